@@ -1,0 +1,7 @@
+//! Android entry point (native activity). Filled in by the APK work.
+
+#[unsafe(no_mangle)]
+fn android_main(_app: android_activity::AndroidApp) {
+    android_logger::init_once(android_logger::Config::default().with_max_level(log::LevelFilter::Info));
+    log::info!("regatta: android_main started");
+}

@@ -1,0 +1,33 @@
+//! The command line contract of ../shared/DESIGN.md. One module per subcommand.
+
+use clap::{Parser, Subcommand};
+
+use crate::error::CliResult;
+
+pub mod probe;
+
+/// Regatta: a sailing race on a real table, with a living sea drawn over it.
+#[derive(Debug, Parser)]
+#[command(name = "regatta", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Print wave, wake and foam values at world points and a race time (JSON on stdout).
+    Probe(probe::ProbeArgs),
+}
+
+pub fn dispatch(cli: Cli) -> CliResult {
+    match cli.command {
+        None => {
+            // Until the renderer lands, the app prints the command overview.
+            use clap::CommandFactory;
+            Cli::command().print_help()?;
+            Ok(())
+        }
+        Some(Command::Probe(a)) => probe::run(a),
+    }
+}

@@ -1,0 +1,8 @@
+//! The `regatta` package: the command line and desktop app (host), and the Android cdylib
+//! (`android_main`). Everything here is wiring; the domain lives in the crates.
+
+pub mod cli;
+pub mod error;
+
+#[cfg(target_os = "android")]
+mod android;

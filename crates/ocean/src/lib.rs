@@ -1,0 +1,23 @@
+//! `ocean`: the sea state of a race as closed-form functions of race time.
+//!
+//! Pure math in f64: Gerstner waves as source report 003 states them (plus finite depth),
+//! their inverse, normals and Jacobian; the wakes; and f32-safe inputs for a GPU whose phases
+//! are reduced here, in f64, so that no shader ever sees an absolute race time or a large
+//! coordinate.
+//!
+//! Invariant: this crate knows nothing of wgpu, egui, Android or the race model's types.
+//! Units: metres and seconds; world frame x east, y up, z south (DESIGN.md).
+
+pub mod gerstner;
+pub mod gpu;
+pub mod sea_file;
+
+pub use gerstner::{Wave, WaveSet};
+pub use gpu::{GpuWave, reduce_phase};
+pub use sea_file::SeaError;
+
+/// Standard gravity used when a sea file does not say otherwise, m/s².
+pub const STANDARD_GRAVITY: f64 = 9.81;
+
+/// The default sea, embedded from `assets/seas/default.json`.
+pub const DEFAULT_SEA_JSON: &str = include_str!("../../../assets/seas/default.json");

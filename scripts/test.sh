@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The one test command: installs what it needs when missing, then runs every check.
+# Under CI=true a GPU test that finds no adapter fails; it never skips silently.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+step() { printf '\n==> %s\n' "$*" >&2; }
+as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
+
+# --- install what is missing --------------------------------------------------------------
+need_pkgs=()
+for p in mesa-vulkan-drivers libvulkan1 libegl-mesa0 libgl1-mesa-dri xvfb xauth clang lld llvm apksigner aapt; do
+  dpkg -s "$p" >/dev/null 2>&1 || need_pkgs+=("$p")
+done
+if [ ${#need_pkgs[@]} -gt 0 ]; then
+  step "installing ${need_pkgs[*]}"
+  as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq "${need_pkgs[@]}" >/dev/null
+fi
+if ! rustup target list --installed | grep -qx aarch64-linux-android; then
+  step "adding rustup target aarch64-linux-android"
+  rustup target add aarch64-linux-android
+fi
+rustup component list --installed | grep -q '^clippy' || rustup component add clippy
+rustup component list --installed | grep -q '^rustfmt' || rustup component add rustfmt
+
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp/regatta-xdg-$(id -u)}"
+mkdir -p "$XDG_RUNTIME_DIR"; chmod 700 "$XDG_RUNTIME_DIR"
+# GPU tests run on Mesa's lavapipe (Vulkan on the CPU).
+lvp=$(ls /usr/share/vulkan/icd.d/lvp_icd*.json 2>/dev/null | head -1 || true)
+if [ -n "$lvp" ]; then export VK_ICD_FILENAMES="$lvp"; export VK_DRIVER_FILES="$lvp"; fi
+export REGATTA_REQUIRE_GPU="${CI:-false}"
+
+start=$(date +%s)
+step "cargo fmt --check"
+cargo fmt --all -- --check
+step "cargo clippy --workspace"
+cargo clippy --workspace --all-targets -- -D warnings
+step "cargo test --workspace"
+cargo test --workspace
+step "cargo check --workspace --target aarch64-linux-android"
+cargo check --workspace --target aarch64-linux-android
+step "cargo clippy --workspace --target aarch64-linux-android"
+cargo clippy --workspace --target aarch64-linux-android -- -D warnings
+step "all checks passed in $(( $(date +%s) - start )) s"
