@@ -2,6 +2,8 @@
 
 #[unsafe(no_mangle)]
 fn android_main(_app: android_activity::AndroidApp) {
-    android_logger::init_once(android_logger::Config::default().with_max_level(log::LevelFilter::Info));
+    android_logger::init_once(
+        android_logger::Config::default().with_max_level(log::LevelFilter::Info),
+    );
     log::info!("regatta: android_main started");
 }

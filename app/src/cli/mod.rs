@@ -4,6 +4,8 @@ use clap::{Parser, Subcommand};
 
 use crate::error::CliResult;
 
+pub mod bench;
+pub mod inputs;
 pub mod probe;
 
 /// Regatta: a sailing race on a real table, with a living sea drawn over it.
@@ -18,6 +20,8 @@ pub struct Cli {
 pub enum Command {
     /// Print wave, wake and foam values at world points and a race time (JSON on stdout).
     Probe(probe::ProbeArgs),
+    /// Run time against error: writes JSON, Markdown and SVG plots into a folder.
+    Bench(bench::BenchArgs),
 }
 
 pub fn dispatch(cli: Cli) -> CliResult {
@@ -29,5 +33,6 @@ pub fn dispatch(cli: Cli) -> CliResult {
             Ok(())
         }
         Some(Command::Probe(a)) => probe::run(a),
+        Some(Command::Bench(a)) => bench::run(a),
     }
 }

@@ -78,7 +78,8 @@ impl WaveSet {
     /// The phase θ = k (D·x0 − c t) + φ of one wave at a rest point, in f64, unreduced.
     pub fn phase_at(&self, w: &Wave, x0: [f64; 2], t: f64) -> f64 {
         let k = w.k();
-        k * (w.direction[0] * x0[0] + w.direction[1] * x0[1]) - w.omega(self.gravity, self.depth) * t
+        k * (w.direction[0] * x0[0] + w.direction[1] * x0[1])
+            - w.omega(self.gravity, self.depth) * t
             + w.phase
     }
 

@@ -52,22 +52,30 @@ impl WaveSet {
                 e.column()
             ),
         })?;
-        let err = |m: String| SeaError { message: format!("{source}: {m}") };
+        let err = |m: String| SeaError {
+            message: format!("{source}: {m}"),
+        };
         let gravity = raw.gravity.unwrap_or(STANDARD_GRAVITY);
         if !gravity.is_finite() || gravity <= 0.0 {
-            return Err(err(format!("\"gravity\" must be a positive number, got {gravity}")));
+            return Err(err(format!(
+                "\"gravity\" must be a positive number, got {gravity}"
+            )));
         }
         if let Some(h) = raw.depth
             && (!h.is_finite() || h <= 0.0)
         {
-            return Err(err(format!("\"depth\" must be a positive number or null, got {h}")));
+            return Err(err(format!(
+                "\"depth\" must be a positive number or null, got {h}"
+            )));
         }
         let mut waves = Vec::with_capacity(raw.waves.len());
         for (i, w) in raw.waves.iter().enumerate() {
             let [dx, dz] = w.direction;
             let nums = [dx, dz, w.steepness, w.wavelength, w.phase];
             if nums.iter().any(|v| !v.is_finite()) {
-                return Err(err(format!("wave {i} has a number that is NaN or infinite")));
+                return Err(err(format!(
+                    "wave {i} has a number that is NaN or infinite"
+                )));
             }
             let len = (dx * dx + dz * dz).sqrt();
             if len == 0.0 {
@@ -92,7 +100,11 @@ impl WaveSet {
                 phase: w.phase,
             });
         }
-        let set = WaveSet { gravity, depth: raw.depth, waves };
+        let set = WaveSet {
+            gravity,
+            depth: raw.depth,
+            waves,
+        };
         let total = set.total_steepness();
         if total >= 1.0 {
             return Err(err(format!(

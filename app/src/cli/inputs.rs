@@ -1,0 +1,25 @@
+//! Inputs shared by several subcommands: the sea (`--sea`). Races (`--race`) join here when the
+//! race crate lands.
+
+use std::path::{Path, PathBuf};
+
+use ocean::WaveSet;
+
+use crate::error::{CliError, CliResult};
+
+/// Read a file into a string, with the path named in the error.
+pub fn read_text(path: &Path) -> CliResult<String> {
+    std::fs::read_to_string(path)
+        .map_err(|e| CliError::new(format!("could not read {}: {e}", path.display())))
+}
+
+/// The sea of `--sea FILE`, or the embedded default sea.
+pub fn load_sea(sea: Option<&PathBuf>) -> CliResult<WaveSet> {
+    match sea {
+        Some(p) => Ok(
+            WaveSet::from_json_str(&read_text(p)?, &p.display().to_string())
+                .map_err(|e| CliError::new(e.to_string()))?,
+        ),
+        None => Ok(WaveSet::default_sea()),
+    }
+}
