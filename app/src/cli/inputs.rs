@@ -23,3 +23,11 @@ pub fn load_sea(sea: Option<&PathBuf>) -> CliResult<WaveSet> {
         None => Ok(WaveSet::default_sea()),
     }
 }
+
+/// The race of `--race PATH ...` (files combined into one race), or the embedded sample race.
+pub fn load_race(paths: &[PathBuf]) -> CliResult<race::Race> {
+    if paths.is_empty() {
+        return Ok(race::Race::sample());
+    }
+    race::Race::load(paths).map_err(|e| CliError::new(e.to_string()))
+}

@@ -7,6 +7,8 @@ use crate::error::CliResult;
 pub mod bench;
 pub mod inputs;
 pub mod probe;
+pub mod replay;
+pub mod race;
 
 /// Regatta: a sailing race on a real table, with a living sea drawn over it.
 #[derive(Debug, Parser)]
@@ -22,6 +24,8 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Run time against error: writes JSON, Markdown and SVG plots into a folder.
     Bench(bench::BenchArgs),
+    /// Boat states and ranks at a race time, or the import report (JSON on stdout).
+    Race(race::RaceArgs),
 }
 
 pub fn dispatch(cli: Cli) -> CliResult {
@@ -34,5 +38,7 @@ pub fn dispatch(cli: Cli) -> CliResult {
         }
         Some(Command::Probe(a)) => probe::run(a),
         Some(Command::Bench(a)) => bench::run(a),
+        Some(Command::Replay(a)) => replay::run(a),
+        Some(Command::Race(a)) => race::run(a),
     }
 }

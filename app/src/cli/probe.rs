@@ -1,16 +1,120 @@
 //! `regatta probe`: sea, wake and foam values at world points (DESIGN.md contract).
+//!
+//! Per point: the wave surface is sampled at the world point (Newton inverse of the horizontal
+//! displacement, tolerance [`ocean::DEFAULT_TOLERANCE`]), then whatever the wakes add there
+//! ([`WakeSample`], zero until wakes exist) is added to the height and to the slopes, and the
+//! normal of the total surface is formed from the summed slopes: n ∝ (−∂h/∂x, 1, −∂h/∂z).
+//!
+//! Foam: sea foam is `clamp((0.6 − J) / 0.6, 0, 1)` with J the Jacobian determinant of the
+//! horizontal wave map at the rest point ([`ocean::foam_from_jacobian`]); sea and wake foam
+//! combine as coverages: `1 − (1 − f_sea)(1 − f_wake)`.
+
+use std::path::PathBuf;
 
 use clap::Args;
+use serde_json::json;
 
-use crate::error::CliResult;
+use crate::cli::inputs::load_sea;
+use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
 pub struct ProbeArgs {
     /// Race time in seconds since the start.
-    #[arg(long)]
-    pub t: f64,
+    #[arg(long, allow_hyphen_values = true, value_name = "SECONDS")]
+    pub t: Option<String>,
+    /// A world point "X,Z" in metres (x east, z south); repeatable.
+    #[arg(long, allow_hyphen_values = true, value_name = "X,Z")]
+    pub at: Vec<String>,
+    /// Sea file (JSON, see DESIGN.md); the embedded default sea without it.
+    #[arg(long, value_name = "FILE")]
+    pub sea: Option<PathBuf>,
 }
 
-pub fn run(_a: ProbeArgs) -> CliResult {
-    Err(crate::error::CliError::new("probe is not implemented yet"))
+/// What the wakes add at a world point.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WakeSample {
+    /// Metres above the wave surface.
+    pub height: f64,
+    /// ∂/∂x, ∂/∂z of that height over the world point.
+    pub gradient: [f64; 2],
+    /// Foam coverage in [0, 1].
+    pub foam: f64,
+}
+
+/// The race time of `--t`: a finite number of seconds.
+pub fn parse_time(t: Option<&str>) -> CliResult<f64> {
+    let Some(t) = t else {
+        return Err(CliError::new(
+            "probe needs the race time: --t SECONDS is missing",
+        ));
+    };
+    match t.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(CliError::new(format!(
+            "--t \"{t}\" is not a finite number of seconds"
+        ))),
+    }
+}
+
+/// A world point of `--at X,Z`: two finite numbers of metres.
+pub fn parse_point(s: &str) -> CliResult<[f64; 2]> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let nums: Vec<Option<f64>> = parts
+        .iter()
+        .map(|p| p.trim().parse::<f64>().ok().filter(|v| v.is_finite()))
+        .collect();
+    match nums[..] {
+        [Some(x), Some(z)] => Ok([x, z]),
+        _ => Err(CliError::new(format!(
+            "--at \"{s}\" is not a point X,Z of two finite numbers of metres"
+        ))),
+    }
+}
+
+/// The JSON of one point: the wave surface there plus `wake`.
+pub fn probe_point(
+    sea: &ocean::WaveSet,
+    t: f64,
+    at: [f64; 2],
+    wake: WakeSample,
+) -> CliResult<serde_json::Value> {
+    let s = sea
+        .sample_at(at, t, ocean::DEFAULT_TOLERANCE)
+        .map_err(|e| CliError::new(e.to_string()))?;
+    let gx = s.gradient[0] + wake.gradient[0];
+    let gz = s.gradient[1] + wake.gradient[1];
+    let len = (gx * gx + 1.0 + gz * gz).sqrt();
+    let foam = 1.0 - (1.0 - s.foam) * (1.0 - wake.foam.clamp(0.0, 1.0));
+    Ok(json!({
+        "at": at,
+        "sea_height": s.height,
+        "wake_height": wake.height,
+        "height": s.height + wake.height,
+        "normal": [-gx / len, 1.0 / len, -gz / len],
+        "rest": s.rest.rest,
+        "foam": foam,
+    }))
+}
+
+pub fn run(a: ProbeArgs) -> CliResult {
+    let t = parse_time(a.t.as_deref())?;
+    if a.at.is_empty() {
+        return Err(CliError::new(
+            "probe needs at least one world point: --at X,Z is missing",
+        ));
+    }
+    let points = a
+        .at
+        .iter()
+        .map(|s| parse_point(s))
+        .collect::<CliResult<Vec<_>>>()?;
+    let sea = load_sea(a.sea.as_ref())?;
+    // The wakes' contribution at a world point: none until the wakes exist.
+    let wake_at = |_at: [f64; 2]| WakeSample::default();
+    let out = points
+        .iter()
+        .map(|&at| probe_point(&sea, t, at, wake_at(at)))
+        .collect::<CliResult<Vec<_>>>()?;
+    println!("{}", json!({ "t": t, "points": out }));
+    Ok(())
 }

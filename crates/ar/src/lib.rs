@@ -1,1 +1,18 @@
-//! ar
+//! Frame sources for Regatta: the one [`FrameSource`] interface that the desktop replay and
+//! synthetic feeds and ARCore on Android share, and the desktop readers and writers.
+//!
+//! Knows nothing of wgpu or egui (ARCHITECTURE.md).
+
+mod error;
+mod frame;
+mod pose;
+pub mod replay;
+pub mod synth;
+
+pub use error::ArError;
+pub use frame::{
+    CameraFrame, DetectedPlane, FrameImage, FrameSource, Intrinsics, PlaneKind, TrackingState,
+};
+pub use pose::{Pose, QUAT_NORM_TOLERANCE};
+pub use replay::{ReplayFeed, ReplayPlayer, ReplayWriter};
+pub use synth::SynthConfig;

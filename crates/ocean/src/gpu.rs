@@ -65,3 +65,67 @@ pub fn displace_f32(waves: &[GpuWave], p: [f32; 2]) -> [f32; 3] {
     }
     d
 }
+
+/// f32 unit roundoff (round to nearest): 2⁻²⁴.
+const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+
+/// A bound, in metres, of |displace_f32(gpu_waves(t, o), p) − (displace(o + p, t) − (o + p))|
+/// per component, for local points with |p| ≤ `radius` metres, on an IEEE f32 path with a
+/// sin/cos accurate to 1 ulp (CPU libm; a GPU's sin may be coarser, see WGSL's 2⁻¹¹ absolute
+/// error in [−π, π]).
+///
+/// Derivation, u = 2⁻²⁴: the phase k (D·p) + θ0 is formed from k, D, p rounded to f32 and
+/// θ0 ∈ [0, 2π) rounded to f32, with four roundings in the products and sums; its error is at
+/// most u (8 k |p| + 3·2π). The wave's term A·sin θ then errs by A (δθ + 4u) (sin/cos, A's
+/// rounding, the product, the direction factor). Summing n terms adds at most n u Σ A. So
+///
+/// bound = u · Σ_i A_i (8 k_i |p| + 6π + 4 + n).
+///
+/// It grows with k|p|, never with t: that is why phases are reduced on the CPU.
+pub fn f32_error_bound(waves: &[GpuWave], radius: f64) -> f64 {
+    let n = waves.len() as f64;
+    F32_UNIT_ROUNDOFF
+        * waves
+            .iter()
+            .map(|w| {
+                w.amplitude as f64
+                    * (8.0 * w.k as f64 * radius + 6.0 * std::f64::consts::PI + 4.0 + n)
+            })
+            .sum::<f64>()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reduce_phase_stays_in_range() {
+        for &th in &[0.0, -1e-300, -1e-17, TAU, -TAU, 1e7, -3.9e7, 123.456] {
+            let r = reduce_phase(th);
+            assert!((0.0..TAU).contains(&r), "{th} -> {r}");
+            // Same angle: sin and cos agree to the f64 rounding of |θ|.
+            let tol = 1e-15 * th.abs().max(1.0) * 4.0;
+            assert!((r.sin() - th.sin()).abs() <= tol && (r.cos() - th.cos()).abs() <= tol);
+        }
+    }
+
+    #[test]
+    fn gpu_waves_are_reduced_and_match_f64_at_a_long_race_time() {
+        let s = WaveSet::default_sea();
+        let (t, o) = (9.5e6, [-8000.0, 7000.0]);
+        let g = s.gpu_waves(t, o);
+        assert_eq!(std::mem::size_of::<GpuWave>(), 32);
+        for w in &g {
+            assert!((0.0..=TAU as f32).contains(&w.phase0));
+        }
+        let p = [37.5f32, -120.25f32];
+        let d = displace_f32(&g, p);
+        let x0 = [o[0] + p[0] as f64, o[1] + p[1] as f64];
+        let r = s.displace(x0, t);
+        let bound = f32_error_bound(&g, 130.0);
+        assert!(bound < 1e-4, "{bound}");
+        assert!(((d[0] as f64) - (r[0] - x0[0])).abs() <= bound);
+        assert!(((d[1] as f64) - r[1]).abs() <= bound);
+        assert!(((d[2] as f64) - (r[2] - x0[1])).abs() <= bound);
+    }
+}

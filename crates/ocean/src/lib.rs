@@ -8,12 +8,18 @@
 //! Invariant: this crate knows nothing of wgpu, egui, Android or the race model's types.
 //! Units: metres and seconds; world frame x east, y up, z south (DESIGN.md).
 
+pub mod cull;
 pub mod gerstner;
 pub mod gpu;
+pub mod inverse;
+pub mod ndbc;
 pub mod sea_file;
+pub mod spectrum;
 
-pub use gerstner::{Wave, WaveSet};
-pub use gpu::{GpuWave, reduce_phase};
+pub use cull::Culled;
+pub use gerstner::{FOAM_ONSET_JACOBIAN, SurfacePoint, Wave, WaveSet, foam_from_jacobian};
+pub use gpu::{GpuWave, displace_f32, f32_error_bound, reduce_phase};
+pub use inverse::{DEFAULT_TOLERANCE, InverseError, RestPoint, WorldSample};
 pub use sea_file::SeaError;
 
 /// Standard gravity used when a sea file does not say otherwise, m/s².

@@ -1,1 +1,213 @@
-//! race
+//! Races: boats' tracks and course marks in time.
+//!
+//! Import native race JSON, GPX and CSV boat logs (several files and kinds at once), project
+//! latitude/longitude onto a local tangent plane in f64, clean the samples (spikes, frozen
+//! fixes, duplicates, order, gaps) with a report, and answer "where is every boat at race time
+//! t" in O(log n) per boat without allocating. Units: metres, seconds; x east, z south; race
+//! time in seconds since the start. Knows nothing of wgpu, egui or Android.
+//!
+//! ```
+//! let race = race::Race::sample();
+//! let (t0, t1) = race.time_span();
+//! let mut states = Vec::new();
+//! race.states_at(0.5 * (t0 + t1), &mut states);
+//! assert_eq!(states.len(), race.boats.len());
+//! ```
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+use time::OffsetDateTime;
+
+pub mod clean;
+pub mod course;
+pub mod error;
+pub mod geo;
+mod import;
+pub mod track;
+
+pub use clean::{BoatReport, Spike};
+pub use course::{Mark, Standing};
+pub use error::{RaceError, RaceResult};
+pub use geo::{GeoPoint, LocalFrame};
+pub use import::DEFAULT_MAX_SPEED_KN;
+pub use track::{Boat, BoatState, Fix};
+
+/// The wind a file states (for the sea and the UI; nothing in the race depends on it).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Wind {
+    /// Compass direction the wind blows from, degrees.
+    pub from_deg: f64,
+    pub speed_mps: f64,
+}
+
+/// What importing did: files, origin, how the start was chosen, cleaning per boat, warnings.
+/// `regatta race --report` prints it as JSON.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct LoadReport {
+    pub files: Vec<String>,
+    pub origin: Option<GeoPoint>,
+    /// RFC 3339, where the files give absolute times.
+    pub start_time: Option<String>,
+    /// A phrase saying where the start came from.
+    pub start_from: String,
+    pub boats: Vec<BoatReport>,
+    pub warnings: Vec<String>,
+}
+
+/// A race: boats, marks, course, and the clock they share.
+#[derive(Debug, Clone)]
+pub struct Race {
+    pub name: String,
+    /// The geographic point at race metres (0, 0), where the files are geographic.
+    pub origin: Option<GeoPoint>,
+    /// The wall-clock time of race time 0, where the files have one.
+    pub start_time: Option<OffsetDateTime>,
+    pub boats: Vec<Boat>,
+    /// Every mark, in file order.
+    pub marks: Vec<Mark>,
+    /// Indices into `marks` in rounding order; `course[0]` is the start.
+    pub course: Vec<usize>,
+    pub wind: Option<Wind>,
+    /// Radius (m) inside which a boat's closest approach to a mark counts as its rounding.
+    pub rounding_radius_m: f64,
+    pub report: LoadReport,
+    frame: Option<LocalFrame>,
+    tail: Vec<f64>,
+}
+
+/// The embedded default race (a generated fleet, see `assets/races/README.md`).
+const SAMPLE: &[(&str, &[u8])] = &[
+    (
+        "assets/races/valencia/2025-06-21-ESP29375-P01.gpx",
+        include_bytes!("../../../assets/races/valencia/2025-06-21-ESP29375-P01.gpx"),
+    ),
+    (
+        "assets/races/valencia/2025-06-21-ESP30782-P01.gpx",
+        include_bytes!("../../../assets/races/valencia/2025-06-21-ESP30782-P01.gpx"),
+    ),
+    (
+        "assets/races/valencia/2025-06-21-ESP30782-P01-meta-data.json",
+        include_bytes!("../../../assets/races/valencia/2025-06-21-ESP30782-P01-meta-data.json"),
+    ),
+];
+
+impl Race {
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn new(
+        name: String,
+        origin: Option<GeoPoint>,
+        start_time: Option<OffsetDateTime>,
+        mut boats: Vec<Boat>,
+        marks: Vec<Mark>,
+        course: Vec<usize>,
+        wind: Option<Wind>,
+        report: LoadReport,
+    ) -> Race {
+        let rounding_radius_m = course::rounding_radius(&marks, &course);
+        for b in &mut boats {
+            b.roundings = course::detect_roundings(b, &marks, &course, rounding_radius_m);
+        }
+        let tail = course::tail_lengths(&marks, &course);
+        Race {
+            name,
+            origin,
+            start_time,
+            boats,
+            marks,
+            course,
+            wind,
+            rounding_radius_m,
+            report,
+            frame: origin.map(LocalFrame::new),
+            tail,
+        }
+    }
+
+    /// The embedded default race.
+    pub fn sample() -> Race {
+        Race::from_files(SAMPLE).expect("the embedded sample race is valid (tested)")
+    }
+
+    /// Read and combine race files: `.json` (native race or maxSail meta-data), `.gpx`, `.csv`.
+    pub fn load(paths: &[PathBuf]) -> RaceResult<Race> {
+        let mut files = Vec::with_capacity(paths.len());
+        for p in paths {
+            let name = p.display().to_string();
+            let bytes = std::fs::read(p)
+                .map_err(|e| RaceError::in_file(&name, format!("could not be read ({e})")))?;
+            files.push((name, bytes));
+        }
+        let refs: Vec<(&str, &[u8])> = files
+            .iter()
+            .map(|(n, b)| (n.as_str(), b.as_slice()))
+            .collect();
+        Race::from_files(&refs)
+    }
+
+    /// Combine files given as (name, contents); the name's extension says the kind.
+    pub fn from_files(files: &[(&str, &[u8])]) -> RaceResult<Race> {
+        let mut sources = Vec::with_capacity(files.len());
+        for (name, bytes) in files {
+            sources.push(import::parse(name, bytes)?);
+        }
+        import::assemble(sources)
+    }
+
+    /// First and last fix of any boat, race seconds.
+    pub fn time_span(&self) -> (f64, f64) {
+        let mut span = (f64::INFINITY, f64::NEG_INFINITY);
+        for b in self.boats.iter().filter(|b| !b.fixes().is_empty()) {
+            let (a, z) = b.time_span();
+            span = (span.0.min(a), span.1.max(z));
+        }
+        if span.0 > span.1 { (0.0, 0.0) } else { span }
+    }
+
+    /// Every boat's state at race time t, in `boats` order, into `out` (cleared first; no
+    /// allocation once it has room for every boat).
+    pub fn states_at(&self, t: f64, out: &mut Vec<BoatState>) {
+        out.clear();
+        out.extend(self.boats.iter().map(|b| b.state_at(t)));
+    }
+
+    /// The leaderboard at time t (see [`course`]) from `states` (= `states_at(t)`), into `out`.
+    pub fn standings_into(&self, t: f64, states: &[BoatState], out: &mut Vec<Standing>) {
+        course::standings_into(t, &self.boats, states, &self.marks, &self.course, &self.tail, out);
+    }
+
+    /// The leaderboard at time t, sorted by rank (allocates; see [`Race::standings_into`]).
+    pub fn standings(&self, t: f64) -> Vec<Standing> {
+        let mut states = Vec::new();
+        self.states_at(t, &mut states);
+        let mut out = Vec::new();
+        self.standings_into(t, &states, &mut out);
+        out
+    }
+
+    /// The marks of the course in rounding order.
+    pub fn course_marks(&self) -> impl Iterator<Item = &Mark> {
+        self.course.iter().map(|&i| &self.marks[i])
+    }
+
+    /// Length of each leg (course[k-1] → course[k]), metres.
+    pub fn leg_lengths(&self) -> Vec<f64> {
+        self.course
+            .windows(2)
+            .map(|w| {
+                let (a, b) = (self.marks[w[0]].position, self.marks[w[1]].position);
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            })
+            .collect()
+    }
+
+    /// Latitude/longitude of race metres, where the race has an origin.
+    pub fn to_geo(&self, xz: [f64; 2]) -> Option<GeoPoint> {
+        self.frame.map(|f| f.to_geo(xz))
+    }
+
+    /// The index of the boat with this id.
+    pub fn boat_index(&self, id: &str) -> Option<usize> {
+        self.boats.iter().position(|b| b.id == id)
+    }
+}

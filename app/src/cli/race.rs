@@ -1,0 +1,98 @@
+//! `regatta race --t T [--race PATH ...]`: boat states and ranks at one race time (DESIGN.md
+//! contract); `regatta race --report`: the import and cleaning report.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use serde_json::{Value, json};
+
+use crate::cli::inputs::load_race;
+use crate::error::{CliError, CliResult};
+
+#[derive(Debug, Args)]
+pub struct RaceArgs {
+    /// Race time in seconds since the start.
+    #[arg(long, allow_negative_numbers = true)]
+    pub t: Option<f64>,
+    /// Race files (native JSON, GPX, CSV; several combine into one race). Default: the sample.
+    #[arg(long, num_args = 1..)]
+    pub race: Vec<PathBuf>,
+    /// Print the import and cleaning report (and the course and roundings) instead.
+    #[arg(long)]
+    pub report: bool,
+}
+
+pub fn run(a: RaceArgs) -> CliResult {
+    if !a.report && a.t.is_none() {
+        return Err(CliError::new(
+            "regatta race needs --t SECONDS (or --report for the import report)",
+        ));
+    }
+    if let Some(t) = a.t
+        && !t.is_finite()
+    {
+        return Err(CliError::new(format!(
+            "--t is {t}; it must be a finite number of seconds"
+        )));
+    }
+    let race = load_race(&a.race)?;
+    let out = if a.report {
+        report_json(&race)
+    } else {
+        states_json(&race, a.t.unwrap_or(0.0))
+    };
+    println!("{out}");
+    Ok(())
+}
+
+/// The DESIGN.md JSON of `regatta race --t T`.
+pub fn states_json(race: &race::Race, t: f64) -> Value {
+    let mut states = Vec::new();
+    race.states_at(t, &mut states);
+    let mut standings = Vec::new();
+    race.standings_into(t, &states, &mut standings);
+    let boats: Vec<Value> = standings
+        .iter()
+        .map(|st| {
+            let b = &race.boats[st.boat];
+            let s = &states[st.boat];
+            let mut o = json!({
+                "id": b.id,
+                "name": b.name,
+                "position": s.position,
+                "heading_deg": s.heading_deg,
+                "speed_mps": s.speed_mps,
+                "rank": st.rank,
+                "distance_m": st.distance_m,
+                "racing": s.racing,
+            });
+            if let Some(g) = race.to_geo(s.position) {
+                o["lat"] = json!(g.lat);
+                o["lon"] = json!(g.lon);
+            }
+            o
+        })
+        .collect();
+    json!({ "t": t, "boats": boats })
+}
+
+fn report_json(race: &race::Race) -> Value {
+    let (t0, t1) = race.time_span();
+    let marks: Vec<&str> = race.course_marks().map(|m| m.name.as_str()).collect();
+    let roundings: Vec<Value> = race
+        .boats
+        .iter()
+        .map(|b| json!({ "id": b.id, "times": b.roundings() }))
+        .collect();
+    json!({
+        "name": race.name,
+        "time_span": [t0, t1],
+        "marks": race.marks,
+        "course": marks,
+        "leg_lengths_m": race.leg_lengths(),
+        "rounding_radius_m": race.rounding_radius_m,
+        "wind": race.wind,
+        "roundings": roundings,
+        "import": race.report,
+    })
+}

@@ -1,0 +1,130 @@
+//! `regatta replay`: recorded camera feeds.
+//!
+//! - `regatta replay synth --out DIR [--frames N] [--size WxH] [--seed S]` writes the synthetic
+//!   feed of [`ar::synth`] (a wooden table seen from a hand-held camera) as a replay folder.
+//! - `regatta replay check DIR` reads a replay or TUM RGB-D folder, checks every frame, and prints
+//!   what it holds.
+//!
+//! Both print JSON on stdout: `{"dir", "frames", "duration_s", "frame_rate", "intrinsics":
+//! {"fx", "fy", "cx", "cy", "width", "height"}, "planes"}`.
+
+use std::path::{Path, PathBuf};
+
+use ar::{ReplayFeed, SynthConfig};
+use clap::{Args, Subcommand};
+use serde_json::json;
+
+use crate::error::{CliError, CliResult};
+
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    #[command(subcommand)]
+    pub command: ReplayCommand,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum ReplayCommand {
+    /// Write a synthetic recorded feed (a textured table from a hand-held camera path).
+    Synth(SynthArgs),
+    /// Read a replay or TUM RGB-D folder, check every frame, print a summary.
+    Check {
+        /// The folder (session.json, or rgb.txt + groundtruth.txt).
+        dir: PathBuf,
+    },
+}
+
+#[derive(Debug, Args)]
+pub struct SynthArgs {
+    /// Output folder (created; existing frames are overwritten).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Number of frames (the camera path loops over them).
+    #[arg(long, value_name = "N", default_value_t = SynthConfig::default().frames)]
+    pub frames: usize,
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", default_value = "400x300")]
+    pub size: String,
+    /// Seed of the hand tremor.
+    #[arg(long, default_value_t = SynthConfig::default().seed)]
+    pub seed: u64,
+    /// JPEG quality, 1–100.
+    #[arg(long, default_value_t = 85)]
+    pub quality: u8,
+}
+
+pub fn run(args: ReplayArgs) -> CliResult {
+    match args.command {
+        ReplayCommand::Synth(a) => synth(a),
+        ReplayCommand::Check { dir } => print_summary(&dir),
+    }
+}
+
+fn synth(a: SynthArgs) -> CliResult {
+    let (width, height) = parse_size(&a.size)?;
+    if a.frames == 0 || a.frames > 100_000 {
+        return Err(CliError::new(format!(
+            "--frames {} is out of range: give 1 to 100000 frames",
+            a.frames
+        )));
+    }
+    if !(1..=100).contains(&a.quality) {
+        return Err(CliError::new(format!(
+            "--quality {} is out of range: give 1 to 100",
+            a.quality
+        )));
+    }
+    let cfg = SynthConfig {
+        frames: a.frames,
+        width,
+        height,
+        seed: a.seed,
+        ..SynthConfig::default()
+    };
+    eprintln!(
+        "regatta: rendering {} synthetic frames of {width}x{height} into {}",
+        a.frames,
+        a.out.display()
+    );
+    cfg.write(&a.out, a.quality).map_err(|e| CliError::new(e.to_string()))?;
+    print_summary(&a.out)
+}
+
+/// `WxH` with both in 16..=4096 pixels.
+pub fn parse_size(s: &str) -> CliResult<(u32, u32)> {
+    let bad = || {
+        CliError::new(format!(
+            "--size \"{s}\" is not WxH with width and height from 16 to 4096 pixels"
+        ))
+    };
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if !(16..=4096).contains(&w) || !(16..=4096).contains(&h) {
+        return Err(bad());
+    }
+    Ok((w, h))
+}
+
+fn print_summary(dir: &Path) -> CliResult {
+    let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
+    let k = feed.intrinsics;
+    let planes: Vec<_> = feed
+        .planes
+        .iter()
+        .map(|p| {
+            json!({"center": p.center_pose.w_axis.truncate().to_array(),
+                   "extent": p.extent.to_array()})
+        })
+        .collect();
+    let out = json!({
+        "dir": dir.display().to_string(),
+        "frames": feed.len(),
+        "duration_s": feed.duration(),
+        "frame_rate": feed.frame_rate,
+        "intrinsics": {"fx": k.fx, "fy": k.fy, "cx": k.cx, "cy": k.cy,
+                       "width": k.width, "height": k.height},
+        "planes": planes,
+    });
+    println!("{out}");
+    Ok(())
+}

@@ -1,0 +1,422 @@
+//! NOAA NDBC buoy spectral files, read into a spectrum and turned into a [`WaveSet`].
+//!
+//! Two layouts (see ../shared/data/README.md for their quirks):
+//! - realtime2 (`.data_spec`, `.swdir`, `.swr1`, ...): one header line, **newest record first**,
+//!   each row `YY MM DD hh mm [Sep_Freq] value (freq) value (freq) ...`;
+//! - historical (`41010w2019part.txt.gz`, `d`, `j`, ...): a header line naming the date columns
+//!   then the frequencies, **oldest first**, one value per frequency; the oldest files have no
+//!   minute column (`YYYY MM DD hh`). Historical r1/r2 are integers scaled ×100.
+//!
+//! Missing values are `999`, `999.0`, `999.00` (or `MM`). Spectral density is m²/Hz;
+//! α1 is the direction waves come *from*, degrees clockwise from true north.
+
+use std::fmt;
+use std::io::Read;
+use std::path::Path;
+
+use crate::spectrum::{
+    Band, SpectralOptions, SpectralSea, sea_from_bands, spreading_from_r1,
+    travel_direction_from_compass,
+};
+
+/// Why an NDBC file was refused: one sentence naming the source and the line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NdbcError {
+    pub message: String,
+}
+
+impl fmt::Display for NdbcError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for NdbcError {}
+
+/// Which layout a file had.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NdbcFormat {
+    Realtime,
+    Historical,
+}
+
+/// UTC time of a record (minute 0 where the file has no minute column).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct NdbcTime {
+    pub year: u32,
+    pub month: u32,
+    pub day: u32,
+    pub hour: u32,
+    pub minute: u32,
+}
+
+impl fmt::Display for NdbcTime {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{:04}-{:02}-{:02} {:02}:{:02}",
+            self.year, self.month, self.day, self.hour, self.minute
+        )
+    }
+}
+
+/// One record: a value per frequency (`None` where missing).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NdbcRow {
+    pub time: NdbcTime,
+    /// Hz.
+    pub frequencies: Vec<f64>,
+    pub values: Vec<Option<f64>>,
+}
+
+/// A whole file, records in file order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NdbcTable {
+    pub format: NdbcFormat,
+    pub rows: Vec<NdbcRow>,
+}
+
+fn missing(v: f64) -> bool {
+    (v - 999.0).abs() < 1e-9 || (v - 9999.0).abs() < 1e-9
+}
+
+fn parse_value(tok: &str) -> Option<Option<f64>> {
+    if tok == "MM" {
+        return Some(None);
+    }
+    let v: f64 = tok.parse().ok()?;
+    if !v.is_finite() {
+        return None;
+    }
+    Some(if missing(v) { None } else { Some(v) })
+}
+
+impl NdbcTable {
+    /// Parse the text of a realtime or historical spectral file. `source` names it in errors.
+    pub fn parse(text: &str, source: &str) -> Result<NdbcTable, NdbcError> {
+        let err = |line: usize, m: String| NdbcError {
+            message: format!("{source}: line {line}: {m}"),
+        };
+        let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty());
+        let Some((_, header)) = lines.next() else {
+            return Err(NdbcError {
+                message: format!("{source}: the file is empty, not an NDBC spectral file"),
+            });
+        };
+        let header_tokens: Vec<&str> = header.split_whitespace().collect();
+        let realtime = header.contains('(') || header.contains('<');
+        let with_sep_freq = header.contains("Sep_Freq");
+        // Date columns: header tokens that are not frequencies ("#YY MM DD hh mm" or
+        // "YYYY MM DD hh"). The realtime header always has 5.
+        let (date_cols, header_freqs) = if realtime {
+            (5, Vec::new())
+        } else {
+            let date_cols = header_tokens
+                .iter()
+                .take_while(|t| t.trim_start_matches('#').parse::<f64>().is_err())
+                .count();
+            let freqs: Result<Vec<f64>, _> = header_tokens[date_cols..]
+                .iter()
+                .map(|t| t.parse::<f64>())
+                .collect();
+            match freqs {
+                Ok(f) if (4..=5).contains(&date_cols) && !f.is_empty() => (date_cols, f),
+                _ => {
+                    return Err(err(
+                        1,
+                        "the header is neither a realtime nor a historical NDBC spectral header"
+                            .into(),
+                    ));
+                }
+            }
+        };
+        let mut rows = Vec::new();
+        for (i, line) in lines {
+            let n = i + 1;
+            let tok: Vec<&str> = line.split_whitespace().collect();
+            if tok.first().is_some_and(|t| t.starts_with('#')) {
+                continue; // a second header line (units)
+            }
+            if tok.len() < date_cols {
+                return Err(err(n, format!("expected {date_cols} date fields")));
+            }
+            let mut d = [0u32; 5];
+            for (j, t) in tok[..date_cols].iter().enumerate() {
+                d[j] = t
+                    .parse()
+                    .map_err(|_| err(n, format!("date field {} is \"{t}\", not a number", j + 1)))?;
+            }
+            if d[0] < 100 {
+                d[0] += if d[0] < 50 { 2000 } else { 1900 };
+            }
+            let time = NdbcTime {
+                year: d[0],
+                month: d[1],
+                day: d[2],
+                hour: d[3],
+                minute: if date_cols == 5 { d[4] } else { 0 },
+            };
+            let rest = &tok[date_cols..];
+            let (frequencies, values) = if realtime {
+                let rest = if with_sep_freq && !rest.is_empty() {
+                    &rest[1..]
+                } else {
+                    rest
+                };
+                if rest.is_empty() || rest.len() % 2 != 0 {
+                    return Err(err(
+                        n,
+                        "expected pairs of \"value (frequency)\" after the date".into(),
+                    ));
+                }
+                let mut f = Vec::with_capacity(rest.len() / 2);
+                let mut v = Vec::with_capacity(rest.len() / 2);
+                for p in rest.chunks(2) {
+                    let val = parse_value(p[0])
+                        .ok_or_else(|| err(n, format!("\"{}\" is not a number", p[0])))?;
+                    let fr = p[1]
+                        .strip_prefix('(')
+                        .and_then(|s| s.strip_suffix(')'))
+                        .and_then(|s| s.parse::<f64>().ok())
+                        .filter(|f| f.is_finite() && *f > 0.0)
+                        .ok_or_else(|| {
+                            err(n, format!("\"{}\" is not a frequency in parentheses", p[1]))
+                        })?;
+                    f.push(fr);
+                    v.push(val);
+                }
+                (f, v)
+            } else {
+                if rest.len() != header_freqs.len() {
+                    return Err(err(
+                        n,
+                        format!(
+                            "expected {} values (one per header frequency), found {}",
+                            header_freqs.len(),
+                            rest.len()
+                        ),
+                    ));
+                }
+                let v: Result<Vec<_>, _> = rest
+                    .iter()
+                    .map(|t| parse_value(t).ok_or_else(|| err(n, format!("\"{t}\" is not a number"))))
+                    .collect();
+                (header_freqs.clone(), v?)
+            };
+            if frequencies.windows(2).any(|w| w[1] <= w[0]) {
+                return Err(err(n, "the frequencies are not increasing".into()));
+            }
+            rows.push(NdbcRow {
+                time,
+                frequencies,
+                values,
+            });
+        }
+        if rows.is_empty() {
+            return Err(NdbcError {
+                message: format!("{source}: no records after the header"),
+            });
+        }
+        Ok(NdbcTable {
+            format: if realtime {
+                NdbcFormat::Realtime
+            } else {
+                NdbcFormat::Historical
+            },
+            rows,
+        })
+    }
+
+    /// Read a file (gzip-compressed when its name ends in `.gz`).
+    pub fn read(path: &Path) -> Result<NdbcTable, NdbcError> {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| NdbcError {
+            message: format!("could not read {name}: {e}"),
+        })?;
+        let text = if name.ends_with(".gz") {
+            let mut s = String::new();
+            flate2::read::GzDecoder::new(&bytes[..])
+                .read_to_string(&mut s)
+                .map_err(|e| NdbcError {
+                    message: format!("{name}: not a readable gzip text file: {e}"),
+                })?;
+            s
+        } else {
+            String::from_utf8(bytes).map_err(|_| NdbcError {
+                message: format!("{name}: not a UTF-8 text file"),
+            })?
+        };
+        NdbcTable::parse(&text, &name)
+    }
+
+    fn row_at(&self, time: NdbcTime) -> Option<&NdbcRow> {
+        self.rows.iter().find(|r| r.time == time)
+    }
+}
+
+/// One record's directional spectrum.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NdbcSpectrum {
+    pub time: NdbcTime,
+    /// Hz, increasing.
+    pub frequencies: Vec<f64>,
+    /// m²/Hz (0 where the file had a missing value).
+    pub density: Vec<f64>,
+    /// Mean direction waves come from, degrees from north, per frequency.
+    pub alpha1_deg: Vec<Option<f64>>,
+    /// First circular moment r1 ∈ [0, 1] per frequency.
+    pub r1: Vec<Option<f64>>,
+}
+
+impl NdbcSpectrum {
+    /// The record at `time` (or the first record of the density file) with the direction
+    /// (α1) and r1 tables when given; their rows are matched by time and frequency.
+    pub fn from_tables(
+        density: &NdbcTable,
+        alpha1: Option<&NdbcTable>,
+        r1: Option<&NdbcTable>,
+        time: Option<NdbcTime>,
+    ) -> Result<NdbcSpectrum, NdbcError> {
+        let row = match time {
+            Some(t) => density.row_at(t).ok_or_else(|| NdbcError {
+                message: format!("the spectral density file has no record at {t}"),
+            })?,
+            None => &density.rows[0],
+        };
+        let n = row.frequencies.len();
+        let pick = |table: Option<&NdbcTable>, what: &str| -> Result<Vec<Option<f64>>, NdbcError> {
+            let Some(table) = table else {
+                return Ok(vec![None; n]);
+            };
+            let other = table.row_at(row.time).ok_or_else(|| NdbcError {
+                message: format!("the {what} file has no record at {}", row.time),
+            })?;
+            if other.frequencies.len() != n
+                || other
+                    .frequencies
+                    .iter()
+                    .zip(&row.frequencies)
+                    .any(|(a, b)| (a - b).abs() > 1e-6)
+            {
+                return Err(NdbcError {
+                    message: format!(
+                        "the {what} file's frequencies at {} differ from the spectral density file's",
+                        row.time
+                    ),
+                });
+            }
+            let scale = if table.format == NdbcFormat::Historical && what == "r1" {
+                0.01
+            } else {
+                1.0
+            };
+            Ok(other.values.iter().map(|v| v.map(|x| x * scale)).collect())
+        };
+        Ok(NdbcSpectrum {
+            time: row.time,
+            frequencies: row.frequencies.clone(),
+            density: row.values.iter().map(|v| v.unwrap_or(0.0).max(0.0)).collect(),
+            alpha1_deg: pick(alpha1, "direction (alpha1)")?,
+            r1: pick(r1, "r1")?,
+        })
+    }
+
+    /// The band [lo, hi] of each frequency: halfway to its neighbours (the end bands mirror).
+    pub fn band_edges(&self) -> Vec<(f64, f64)> {
+        let f = &self.frequencies;
+        let n = f.len();
+        (0..n)
+            .map(|i| {
+                let below = if i > 0 { f[i] - f[i - 1] } else if n > 1 { f[1] - f[0] } else { 0.01 };
+                let above = if i + 1 < n { f[i + 1] - f[i] } else { below };
+                (f[i] - 0.5 * below, f[i] + 0.5 * above)
+            })
+            .collect()
+    }
+
+    /// m0 = ∫ S df, m².
+    pub fn m0(&self) -> f64 {
+        self.band_edges()
+            .iter()
+            .zip(&self.density)
+            .map(|((lo, hi), s)| s * (hi - lo))
+            .sum()
+    }
+
+    /// Significant wave height 4 sqrt(m0), metres.
+    pub fn hs(&self) -> f64 {
+        4.0 * self.m0().sqrt()
+    }
+
+    /// Bands with their measured direction and spreading. A frequency whose α1 or r1 is
+    /// missing gets the energy-weighted mean of the others, or `default_from_deg` and
+    /// s = `default_spreading` when the record has none.
+    pub fn bands(&self, default_from_deg: f64, default_spreading: f64) -> Vec<Band> {
+        let (mut sx, mut sz, mut r1w, mut wsum) = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..self.density.len() {
+            if let (Some(a), Some(r)) = (self.alpha1_deg[i], self.r1[i]) {
+                let d = travel_direction_from_compass(a);
+                let e = self.density[i];
+                sx += e * d[0];
+                sz += e * d[1];
+                r1w += e * r;
+                wsum += e;
+            }
+        }
+        let (mean_dir, mean_s) = if wsum > 0.0 && sx.hypot(sz) > 0.0 {
+            let l = sx.hypot(sz);
+            ([sx / l, sz / l], spreading_from_r1(r1w / wsum))
+        } else {
+            (travel_direction_from_compass(default_from_deg), default_spreading)
+        };
+        self.band_edges()
+            .iter()
+            .enumerate()
+            .map(|(i, &(lo, hi))| Band {
+                f_lo: lo,
+                f_hi: hi,
+                energy: self.density[i] * (hi - lo),
+                direction: self.alpha1_deg[i]
+                    .map(travel_direction_from_compass)
+                    .unwrap_or(mean_dir),
+                spreading: self.r1[i].map(spreading_from_r1).unwrap_or(mean_s),
+            })
+            .collect()
+    }
+
+    /// The sea of this record: one wave per frequency with energy.
+    pub fn to_sea(&self, opts: &SpectralOptions) -> SpectralSea {
+        sea_from_bands(&self.bands(0.0, 10.0), opts)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn historical_header_without_minutes_and_bad_lines() {
+        let text = "YYYY MM DD hh   .030   .040\n2000 01 01 00    .00    .12\n";
+        let t = NdbcTable::parse(text, "x.txt").unwrap();
+        assert_eq!(t.format, NdbcFormat::Historical);
+        assert_eq!(t.rows[0].time.hour, 0);
+        assert_eq!(t.rows[0].values, vec![Some(0.0), Some(0.12)]);
+        let bad = "YYYY MM DD hh   .030   .040\n2000 01 01 00    .00\n";
+        let e = NdbcTable::parse(bad, "x.txt").unwrap_err();
+        assert_eq!(
+            e.message,
+            "x.txt: line 2: expected 2 values (one per header frequency), found 1"
+        );
+        let e = NdbcTable::parse("hello\n", "y").unwrap_err();
+        assert!(e.message.starts_with("y: line 1:"), "{e}");
+        let e = NdbcTable::parse(
+            "#YY  MM DD hh mm alpha1_1 (freq_1)\n2020 06 08 03 50 1.0 (x)\n",
+            "z",
+        )
+        .unwrap_err();
+        assert!(e.message.contains("line 2") && e.message.contains("(x)"), "{e}");
+        let t = NdbcTable::parse("#YY  MM DD hh mm a (freq_1)\n2020 06 08 03 50 999.0 (0.03)\n", "w")
+            .unwrap();
+        assert_eq!(t.rows[0].values, vec![None]);
+    }
+}

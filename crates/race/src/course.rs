@@ -1,0 +1,176 @@
+//! The course: marks in rounding order, legs, rounding detection and the leaderboard.
+//!
+//! `course[0]` is the start: every boat passes it at the start signal (t = 0, or its first fix
+//! if later). Each later mark is rounded at the moment of closest approach during the boat's
+//! first visit inside the rounding radius after it rounded the previous mark.
+
+use serde::Serialize;
+
+use crate::track::{Boat, BoatState};
+
+/// A course mark in race metres.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Mark {
+    pub name: String,
+    /// `[x east, z south]`, metres.
+    pub position: [f64; 2],
+}
+
+/// A boat's place at one time.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Standing {
+    /// Index into `Race::boats`.
+    pub boat: usize,
+    /// 1 = leading.
+    pub rank: usize,
+    /// Course marks passed (the start counts once the boat is racing).
+    pub legs_completed: usize,
+    /// Course distance behind the leader, metres (0 for the leader).
+    pub distance_m: f64,
+    /// Course distance still to sail (to the next mark, then leg by leg); `None` without a course.
+    pub remaining_m: Option<f64>,
+    pub finished: bool,
+    pub racing: bool,
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// The rounding radius for a course: 5 % of its shortest leg, between 15 m and 60 m. GPS on a
+/// dinghy passes a buoy at 5–20 m; an F50 passes a gate mark at 3–14 m but its turning circle
+/// is wider, and its legs are longer.
+pub fn rounding_radius(marks: &[Mark], course: &[usize]) -> f64 {
+    let shortest = course
+        .windows(2)
+        .map(|w| dist(marks[w[0]].position, marks[w[1]].position))
+        .filter(|d| *d > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    if shortest.is_finite() {
+        (0.05 * shortest).clamp(15.0, 60.0)
+    } else {
+        30.0
+    }
+}
+
+/// Times a boat passed each course mark (see the module docs).
+pub(crate) fn detect_roundings(
+    boat: &Boat,
+    marks: &[Mark],
+    course: &[usize],
+    radius: f64,
+) -> Vec<Option<f64>> {
+    let mut out = vec![None; course.len()];
+    let fixes = boat.fixes();
+    if course.is_empty() || fixes.is_empty() {
+        return out;
+    }
+    let (t0, t1) = boat.time_span();
+    if t1 < 0.0 {
+        return out;
+    }
+    out[0] = Some(t0.max(0.0));
+    let mut i = fixes.partition_point(|f| f.t < 0.0);
+    for (k, &m) in course.iter().enumerate().skip(1) {
+        let p = marks[m].position;
+        // First fix inside the radius.
+        let Some(enter) = (i..fixes.len()).find(|&j| dist(fixes[j].pos(), p) <= radius) else {
+            break;
+        };
+        // Closest approach before leaving the radius again.
+        let mut best = enter;
+        let mut j = enter;
+        while j < fixes.len() && dist(fixes[j].pos(), p) <= radius {
+            if dist(fixes[j].pos(), p) < dist(fixes[best].pos(), p) {
+                best = j;
+            }
+            j += 1;
+        }
+        out[k] = Some(fixes[best].t);
+        i = best + 1;
+    }
+    out
+}
+
+/// Course metres from a mark to the finish: `tail[k]` = sum of the legs after course[k].
+pub(crate) fn tail_lengths(marks: &[Mark], course: &[usize]) -> Vec<f64> {
+    let mut tail = vec![0.0; course.len()];
+    for k in (0..course.len().saturating_sub(1)).rev() {
+        tail[k] = tail[k + 1] + dist(marks[course[k]].position, marks[course[k + 1]].position);
+    }
+    tail
+}
+
+/// Rank boats at time t into `out` (cleared first): racing boats by legs completed, then by
+/// course distance still to sail; finished boats first, in finishing order; boats not yet
+/// started last. Without a course (fewer than two marks) by metres sailed.
+/// No allocation once `out` has room for every boat.
+pub(crate) fn standings_into(
+    t: f64,
+    boats: &[Boat],
+    states: &[BoatState],
+    marks: &[Mark],
+    course: &[usize],
+    tail: &[f64],
+    out: &mut Vec<Standing>,
+) {
+    out.clear();
+    let has_course = course.len() >= 2;
+    for (b, (boat, s)) in boats.iter().zip(states).enumerate() {
+        let started = boat.fixes().first().is_some_and(|f| f.t <= t);
+        let done = boat
+            .roundings()
+            .iter()
+            .take_while(|r| r.is_some_and(|r| r <= t))
+            .count();
+        let finished = has_course && done == course.len();
+        let remaining = has_course.then(|| {
+            if finished {
+                0.0
+            } else if done == 0 {
+                dist(s.position, marks[course[0]].position) + tail[0]
+            } else {
+                dist(s.position, marks[course[done]].position) + tail[done]
+            }
+        });
+        out.push(Standing {
+            boat: b,
+            rank: 0,
+            legs_completed: done,
+            distance_m: 0.0,
+            remaining_m: remaining,
+            finished,
+            racing: s.racing,
+        });
+        let _ = started;
+    }
+    let finish_time = |st: &Standing| {
+        if st.finished {
+            boats[st.boat].roundings()[course.len() - 1].unwrap_or(f64::INFINITY)
+        } else {
+            f64::INFINITY
+        }
+    };
+    let started = |st: &Standing| boats[st.boat].fixes().first().is_some_and(|f| f.t <= t);
+    out.sort_unstable_by(|a, b| {
+        started(b)
+            .cmp(&started(a))
+            .then(b.finished.cmp(&a.finished))
+            .then(finish_time(a).total_cmp(&finish_time(b)))
+            .then(b.legs_completed.cmp(&a.legs_completed))
+            .then(match (a.remaining_m, b.remaining_m) {
+                (Some(x), Some(y)) => x.total_cmp(&y),
+                _ => states[b.boat].sailed_m.total_cmp(&states[a.boat].sailed_m),
+            })
+            .then(a.boat.cmp(&b.boat))
+    });
+    let lead_rem = out.first().and_then(|s| s.remaining_m);
+    let lead_sailed = out.first().map_or(0.0, |s| states[s.boat].sailed_m);
+    for (r, st) in out.iter_mut().enumerate() {
+        st.rank = r + 1;
+        st.distance_m = match (st.remaining_m, lead_rem) {
+            (Some(x), Some(l)) => (x - l).max(0.0),
+            _ => (lead_sailed - states[st.boat].sailed_m).max(0.0),
+        };
+    }
+}

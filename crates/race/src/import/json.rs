@@ -1,0 +1,158 @@
+//! The native race JSON of DESIGN.md, plus two optional fields: `"course"` (mark names in
+//! rounding order; default: the marks in file order) and `"wind"` (`{"from_deg", "speed_mps"}`).
+//! A boat may give `"max_speed_kn"` (its class's spike limit; default: no spike removal, the
+//! native format is taken as clean).
+
+use serde::Deserialize;
+
+use super::{Coords, RawBoat, RawMark, RawPoint, Source, Times, unix_seconds};
+use crate::error::{RaceError, RaceResult};
+use crate::geo::GeoPoint;
+use crate::track::Logged;
+use crate::Wind;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JsonRace {
+    name: Option<String>,
+    origin: Option<GeoPoint>,
+    start_time: Option<String>,
+    boats: Vec<JsonBoat>,
+    #[serde(default)]
+    marks: Vec<JsonMark>,
+    course: Option<Vec<String>>,
+    wind: Option<Wind>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JsonBoat {
+    id: String,
+    name: Option<String>,
+    color: Option<String>,
+    track: Vec<[f64; 3]>,
+    /// Degrees, one per track point, where logged.
+    heel: Option<Vec<f64>>,
+    max_speed_kn: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JsonMark {
+    name: String,
+    position: [f64; 2],
+}
+
+pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
+    let r: JsonRace = serde_json::from_str(text).map_err(|e| {
+        let msg = e.to_string();
+        let msg = msg.rsplit_once(" at line ").map_or(msg.as_str(), |(m, _)| m);
+        RaceError::at_line(file, e.line() as u64, format!("not a race file: {msg}"))
+    })?;
+    let mut s = Source::new(file, Coords::Local, Times::Relative);
+    s.name = r.name;
+    if let Some(o) = r.origin {
+        if let Some(p) = super::geo_problem(o.lat, o.lon) {
+            return Err(RaceError::in_file(file, format!("\"origin\": {p}")));
+        }
+        s.origin = Some(o);
+    }
+    if let Some(st) = &r.start_time {
+        let t = time::OffsetDateTime::parse(st, &time::format_description::well_known::Rfc3339)
+            .map_err(|_| {
+                RaceError::in_file(
+                    file,
+                    format!("\"start_time\" is \"{st}\", not an RFC 3339 time such as 2025-06-21T11:23:29Z"),
+                )
+            })?;
+        s.start_time = Some(unix_seconds(t));
+    }
+    s.course = r.course;
+    if let Some(w) = r.wind {
+        if !(w.from_deg.is_finite() && w.speed_mps.is_finite() && w.speed_mps >= 0.0) {
+            return Err(RaceError::in_file(file, "\"wind\" needs a finite from_deg and a speed_mps ≥ 0"));
+        }
+        s.wind = Some(w);
+    }
+    for (bi, b) in r.boats.into_iter().enumerate() {
+        if b.track.is_empty() {
+            return Err(RaceError::in_file(
+                file,
+                format!("boat \"{}\" (boats[{bi}]) has no track points", b.id),
+            ));
+        }
+        if b.id.trim().is_empty() {
+            return Err(RaceError::in_file(file, format!("boats[{bi}] has an empty \"id\"")));
+        }
+        if let Some(c) = &b.color
+            && !(c.len() == 7 && c.starts_with('#') && c[1..].bytes().all(|x| x.is_ascii_hexdigit()))
+        {
+            return Err(RaceError::in_file(
+                file,
+                format!("boat \"{}\" has color \"{c}\", not #rrggbb", b.id),
+            ));
+        }
+        if let Some(h) = &b.heel
+            && h.len() != b.track.len()
+        {
+            return Err(RaceError::in_file(
+                file,
+                format!(
+                    "boat \"{}\" has {} heel values for {} track points",
+                    b.id,
+                    h.len(),
+                    b.track.len()
+                ),
+            ));
+        }
+        let max_speed_mps = match b.max_speed_kn {
+            Some(k) if k.is_finite() && k > 0.0 => super::knots(k),
+            Some(k) => {
+                return Err(RaceError::in_file(
+                    file,
+                    format!("boat \"{}\" has max_speed_kn {k}; it must be positive", b.id),
+                ));
+            }
+            None => f64::INFINITY,
+        };
+        let mut points = Vec::with_capacity(b.track.len());
+        for (k, p) in b.track.iter().enumerate() {
+            if !p.iter().all(|v| v.is_finite() && v.abs() < 1e9) {
+                return Err(RaceError::in_file(
+                    file,
+                    format!("boat \"{}\" track[{k}] = {p:?} is not three finite numbers", b.id),
+                ));
+            }
+            let heel = b.heel.as_ref().map_or(f32::NAN, |h| h[k] as f32);
+            points.push(RawPoint {
+                t: p[0],
+                c: [p[1], p[2]],
+                logged: Logged {
+                    heading: f32::NAN,
+                    heel,
+                },
+                sog: f64::NAN,
+            });
+        }
+        s.boats.push(RawBoat {
+            name: b.name.unwrap_or_else(|| b.id.clone()),
+            id: b.id,
+            color: b.color,
+            points,
+            max_speed_mps,
+        });
+    }
+    for (k, m) in r.marks.into_iter().enumerate() {
+        if !m.position.iter().all(|v| v.is_finite() && v.abs() < 1e9) {
+            return Err(RaceError::in_file(
+                file,
+                format!("marks[{k}] (\"{}\") has a position that is not two finite numbers", m.name),
+            ));
+        }
+        s.marks.push(RawMark {
+            name: m.name,
+            c: m.position,
+        });
+    }
+    Ok(s)
+}

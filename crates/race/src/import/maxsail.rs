@@ -1,0 +1,80 @@
+//! maxSail's `*-meta-data.json` (Valencia sample): marks (`BALIZAS`), wind (`TWD`, `TWS` in
+//! knots) and the start (`MINUTO_SALIDA` minutes after the first fix of `ARCHIVO_TRACK`).
+//! The course is the start mark (`S…`, salida) then the others in file order, then back to the
+//! start mark: an out-and-back sausage, repeated for as many laps as the boats sail (the
+//! Valencia races sail it twice; the file does not say).
+
+use serde::Deserialize;
+
+use super::{Coords, RawMark, Source, Times};
+use crate::error::{RaceError, RaceResult};
+use crate::Wind;
+
+pub(crate) fn is_maxsail(text: &str) -> bool {
+    text.contains("\"BALIZAS\"")
+}
+
+#[derive(Deserialize)]
+#[allow(non_snake_case)]
+struct Meta {
+    TWD: Option<f64>,
+    TWS: Option<f64>,
+    MINUTO_SALIDA: Option<f64>,
+    BALIZAS: Vec<Baliza>,
+    ARCHIVO_TRACK: Option<String>,
+}
+
+#[derive(Deserialize)]
+struct Baliza {
+    lat: f64,
+    lon: f64,
+    nombre: String,
+}
+
+pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
+    let m: Meta = serde_json::from_str(text).map_err(|e| {
+        let msg = e.to_string();
+        let msg = msg.rsplit_once(" at line ").map_or(msg.as_str(), |(m, _)| m);
+        RaceError::at_line(file, e.line() as u64, format!("not a maxSail meta-data file: {msg}"))
+    })?;
+    let mut s = Source::new(file, Coords::Geo, Times::Absolute);
+    for (k, b) in m.BALIZAS.iter().enumerate() {
+        if let Some(p) = super::geo_problem(b.lat, b.lon) {
+            return Err(RaceError::in_file(file, format!("BALIZAS[{k}] (\"{}\"): {p}", b.nombre)));
+        }
+        s.marks.push(RawMark {
+            name: b.nombre.clone(),
+            c: [b.lat, b.lon],
+        });
+    }
+    if let (Some(d), Some(k)) = (m.TWD, m.TWS)
+        && d.is_finite()
+        && k.is_finite()
+        && k >= 0.0
+    {
+        s.wind = Some(Wind {
+            from_deg: d.rem_euclid(360.0),
+            speed_mps: super::knots(k),
+        });
+    }
+    if let (Some(min), Some(track)) = (m.MINUTO_SALIDA, m.ARCHIVO_TRACK)
+        && min.is_finite()
+    {
+        s.start_after_track = Some((track, min));
+    }
+    let start = s.marks.iter().position(|b| b.name.starts_with('S'));
+    if let Some(st) = start {
+        let mut course = vec![s.marks[st].name.clone()];
+        course.extend(
+            s.marks
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| *i != st)
+                .map(|(_, b)| b.name.clone()),
+        );
+        course.push(s.marks[st].name.clone());
+        s.course = Some(course);
+        s.repeat_laps = true;
+    }
+    Ok(s)
+}

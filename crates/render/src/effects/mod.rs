@@ -1,0 +1,153 @@
+//! The AR water effects of source 000, made physical where 000 names its own limitations:
+//! camera background, planar reflection, refraction of the real table, caustics and flow-map
+//! distortion, mixed by the full Fresnel equations of source 004 ([`crate::optics`]).
+//!
+//! Each effect has a pure, host-tested model here (f64, no GPU): the GPU passes follow these
+//! models, and their tests compare against them.
+//!
+//! - [`refraction`]: the view ray through the wave surface onto the table, into the camera image.
+//! - [`caustics`]: the area-ratio caustics of the actual wave surface at race time t, and the
+//!   source's cheap overhead-sun tier.
+//! - [`flowmap`]: current around a mark and the two-phase flow-map blend with the UV jump.
+//! - [`planner`]: when each effect pass runs, and why it does not.
+
+pub mod caustics;
+pub mod flowmap;
+pub mod planner;
+pub mod refraction;
+
+use std::fmt;
+
+/// One effect pass, in draw order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Effect {
+    /// The camera frame behind everything.
+    Background,
+    /// Planar reflection of boats, sails, marks and the camera image.
+    Reflection,
+    /// The real table seen through the water.
+    Refraction,
+    /// Light focused by the waves onto the table.
+    Caustics,
+    /// Flow-map texture distortion for current around marks.
+    FlowMap,
+}
+
+impl Effect {
+    /// Every effect, in draw order.
+    pub const ALL: [Effect; 5] = [
+        Effect::Background,
+        Effect::Reflection,
+        Effect::Refraction,
+        Effect::Caustics,
+        Effect::FlowMap,
+    ];
+
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Effect::Background => "background",
+            Effect::Reflection => "reflection",
+            Effect::Refraction => "refraction",
+            Effect::Caustics => "caustics",
+            Effect::FlowMap => "flowmap",
+        }
+    }
+
+    /// The effect named `name` (as [`Effect::name`] writes it).
+    pub fn from_name(name: &str) -> Option<Effect> {
+        Effect::ALL.into_iter().find(|e| e.name() == name)
+    }
+}
+
+impl fmt::Display for Effect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A set of effects, e.g. from `--effects reflection,caustics`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct EffectSet(u8);
+
+impl EffectSet {
+    /// No effects: water only.
+    pub const NONE: EffectSet = EffectSet(0);
+    /// Every effect.
+    pub const ALL: EffectSet = EffectSet(0b1_1111);
+
+    pub fn only(e: Effect) -> EffectSet {
+        EffectSet(1 << e as u8)
+    }
+    pub fn with(self, e: Effect) -> EffectSet {
+        EffectSet(self.0 | 1 << e as u8)
+    }
+    pub fn contains(self, e: Effect) -> bool {
+        self.0 & (1 << e as u8) != 0
+    }
+    pub fn iter(self) -> impl Iterator<Item = Effect> {
+        Effect::ALL.into_iter().filter(move |e| self.contains(*e))
+    }
+
+    /// Parse a comma-separated list: effect names, `all` or `none` (water only). Whitespace
+    /// around names is ignored; an unknown or empty name is refused with a sentence that names
+    /// it and lists the valid names.
+    pub fn parse(list: &str) -> Result<EffectSet, String> {
+        let mut set = EffectSet::NONE;
+        for raw in list.split(',') {
+            let name = raw.trim();
+            match name {
+                "all" => set = EffectSet::ALL,
+                "none" => {}
+                _ => match Effect::from_name(name) {
+                    Some(e) => set = set.with(e),
+                    None => {
+                        let valid: Vec<&str> = Effect::ALL.iter().map(|e| e.name()).collect();
+                        return Err(format!(
+                            "--effects names the unknown effect \"{name}\"; the effects are: {}, all, none",
+                            valid.join(", ")
+                        ));
+                    }
+                },
+            }
+        }
+        Ok(set)
+    }
+}
+
+impl fmt::Display for EffectSet {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if *self == EffectSet::NONE {
+            return f.write_str("none");
+        }
+        let names: Vec<&str> = self.iter().map(Effect::name).collect();
+        f.write_str(&names.join(","))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn effect_lists_parse_and_print() {
+        let s = EffectSet::parse("reflection, caustics").unwrap();
+        assert!(s.contains(Effect::Reflection) && s.contains(Effect::Caustics));
+        assert!(!s.contains(Effect::Background) && !s.contains(Effect::FlowMap));
+        assert_eq!(s.to_string(), "reflection,caustics");
+        assert_eq!(EffectSet::parse("all").unwrap(), EffectSet::ALL);
+        assert_eq!(EffectSet::parse("none").unwrap(), EffectSet::NONE);
+        assert_eq!(EffectSet::ALL.iter().count(), 5);
+        for e in Effect::ALL {
+            assert_eq!(EffectSet::parse(e.name()).unwrap(), EffectSet::only(e));
+        }
+    }
+
+    #[test]
+    fn unknown_effects_are_refused_by_name() {
+        let err = EffectSet::parse("reflection,fog").unwrap_err();
+        assert!(err.contains("\"fog\"") && err.contains("caustics"), "{err}");
+        let err = EffectSet::parse("reflection,,caustics").unwrap_err();
+        assert!(err.contains("\"\""), "{err}");
+    }
+}

@@ -1,0 +1,325 @@
+//! The pass framework and the frame planner.
+//!
+//! A frame starts from a [`Scene`]; [`FrameContext::new`] turns it into everything the passes
+//! share: the local origin (the clip-map centre), the camera matrices in local f32, the
+//! clip-map's plan and mesh, the reduced wave phases and the [`FrameUniform`] (bind group 0).
+//! Then each [`Pass`] states whether it is needed ([`Pass::plan`]), prepares its buffers
+//! ([`Pass::prepare`]) and draws into its own render pass ([`Pass::draw`]); the renderer
+//! records every decision, the triangles and the GPU time per pass in a [`FrameReport`].
+
+use glam::{DMat4, DVec2, DVec3, DVec4};
+use serde::Serialize;
+
+use crate::camera::Frustum;
+use crate::clipmap::{ClipMapConfig, ClipMesh, Culling, ErrorTarget, LevelPlan, MAX_WAVES};
+use crate::gpu::Gpu;
+use crate::scene::Scene;
+
+/// The per-frame uniform, `Frame` in `shaders/common.wgsl` (bind group 0, binding 0).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniform {
+    pub view_proj: [[f32; 4]; 4],
+    pub inv_view_proj: [[f32; 4]; 4],
+    pub eye: [f32; 4],
+    pub sun: [f32; 4],
+    pub play_area: [f32; 4],
+    pub viewport: [f32; 4],
+    pub counts: [u32; 4],
+    pub level_masks: [[u32; 4]; 8],
+}
+
+/// Everything the passes of one frame share, computed once on the CPU.
+pub struct FrameContext<'a> {
+    pub scene: &'a Scene,
+    /// Viewport, pixels.
+    pub size: [u32; 2],
+    /// World (x, z) of the local origin: the clip-map centre. Shaders see world − origin.
+    pub origin: DVec2,
+    /// View-projection for local coordinates, f64.
+    pub view_proj: DMat4,
+    pub frustum: Frustum,
+    pub clipmap: ClipMapConfig,
+    pub error_target: ErrorTarget,
+    pub levels: Vec<LevelPlan>,
+    pub mesh: ClipMesh,
+    /// The sea's waves as the GPU gets them, sorted as `scene.sea.waves` (at most 64).
+    pub waves: Vec<ocean::GpuWave>,
+    pub uniform: FrameUniform,
+}
+
+impl<'a> FrameContext<'a> {
+    /// Plan the frame: choose the clip-map for the view, build and cull its mesh, reduce the
+    /// wave phases at the origin and fill the uniform.
+    pub fn new(scene: &'a Scene, size: [u32; 2], error_px: f64) -> FrameContext<'a> {
+        let cam = &scene.camera;
+        let aspect = f64::from(size[0]) / f64::from(size[1].max(1));
+        let error_target = ErrorTarget {
+            pixels: error_px,
+            viewport_height: size[1].max(1),
+            fov_y: cam.fov_y,
+        };
+        let eye_xz = DVec2::new(cam.eye.x, cam.eye.z);
+        // The map must reach the farthest corner of the play area that the far plane allows.
+        let [ax, az, bx, bz] = scene.play_area;
+        let corner = [(ax, az), (ax, bz), (bx, az), (bx, bz)]
+            .iter()
+            .map(|&(x, z)| (DVec2::new(x, z) - eye_xz).abs().max_element())
+            .fold(0.0, f64::max);
+        let reach = corner.min(cam.far).max(10.0);
+        let clipmap = ClipMapConfig::for_view(&scene.sea, &error_target, cam.eye.y, reach);
+        let levels = clipmap.plan(&scene.sea, &error_target, cam.eye.y);
+        let origin = clipmap.origin_for(eye_xz);
+        let view_proj = cam.view_proj_local(origin, aspect);
+        let frustum = Frustum::from_matrix(view_proj);
+        let max_displacement: f64 = scene.sea.waves.iter().map(|w| w.amplitude()).sum();
+        let mesh = clipmap.build(
+            eye_xz,
+            &Culling {
+                frustum: Some(frustum),
+                play_area: Some(scene.play_area),
+                max_displacement,
+            },
+        );
+        let mut waves = scene.sea.gpu_waves(scene.t, [origin.x, origin.y]);
+        if waves.len() > MAX_WAVES {
+            log::warn!(
+                "the sea has {} waves; the GPU draws the first {MAX_WAVES}",
+                waves.len()
+            );
+            waves.truncate(MAX_WAVES);
+        }
+        let mut level_masks = [[0u32; 4]; 8];
+        for (l, p) in levels.iter().enumerate() {
+            for &i in p.kept.iter().filter(|&&i| i < MAX_WAVES) {
+                let word = (l % 2) * 2 + i / 32;
+                level_masks[l / 2][word] |= 1 << (i % 32);
+            }
+        }
+        let eye = cam.eye - DVec3::new(origin.x, 0.0, origin.y);
+        let uniform = FrameUniform {
+            view_proj: view_proj.as_mat4().to_cols_array_2d(),
+            inv_view_proj: view_proj.inverse().as_mat4().to_cols_array_2d(),
+            eye: [eye.x as f32, eye.y as f32, eye.z as f32, 0.0],
+            sun: [
+                scene.sun.x as f32,
+                scene.sun.y as f32,
+                scene.sun.z as f32,
+                1.0,
+            ],
+            play_area: [
+                (ax - origin.x) as f32,
+                (az - origin.y) as f32,
+                (bx - origin.x) as f32,
+                (bz - origin.y) as f32,
+            ],
+            viewport: [
+                size[0] as f32,
+                size[1] as f32,
+                1.0 / size[0].max(1) as f32,
+                1.0 / size[1].max(1) as f32,
+            ],
+            counts: [waves.len() as u32, levels.len() as u32, 0, 0],
+            level_masks,
+        };
+        FrameContext {
+            scene,
+            size,
+            origin,
+            view_proj,
+            frustum,
+            clipmap,
+            error_target,
+            levels,
+            mesh,
+            waves,
+            uniform,
+        }
+    }
+
+    /// Does the ray through NDC point (x, y) meet the sea's rest plane inside the play area?
+    pub fn ray_hits_water(&self, ndc: [f64; 2]) -> bool {
+        let inv = self.view_proj.inverse();
+        let near = inv * DVec4::new(ndc[0], ndc[1], 0.0, 1.0);
+        let far = inv * DVec4::new(ndc[0], ndc[1], 1.0, 1.0);
+        let (a, b) = (near.truncate() / near.w, far.truncate() / far.w);
+        if (a.y > 0.0) == (b.y > 0.0) {
+            return false;
+        }
+        let p = a + (b - a) * (a.y / (a.y - b.y));
+        let w = DVec2::new(p.x, p.z) + self.origin;
+        let [ax, az, bx, bz] = self.scene.play_area;
+        w.x >= ax && w.x <= bx && w.y >= az && w.y <= bz
+    }
+
+    /// Is a sphere of `radius` metres at world `centre` inside the view frustum?
+    pub fn sphere_in_view(&self, centre: DVec3, radius: f64) -> bool {
+        let c = centre - DVec3::new(self.origin.x, 0.0, self.origin.y);
+        self.frustum
+            .planes
+            .iter()
+            .all(|p| p.truncate().dot(c) + p.w >= -radius)
+    }
+}
+
+/// Bind group 0, shared by every pass: the frame uniform and the waves.
+pub struct FrameBindings {
+    pub layout: wgpu::BindGroupLayout,
+    pub group: wgpu::BindGroup,
+    pub uniform: wgpu::Buffer,
+    pub waves: wgpu::Buffer,
+}
+
+impl FrameBindings {
+    pub fn new(device: &wgpu::Device) -> FrameBindings {
+        let entry = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("frame"),
+            entries: &[entry(0), entry(1)],
+        });
+        let buffer = |label, size| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let uniform = buffer("frame uniform", size_of::<FrameUniform>() as u64);
+        let waves = buffer(
+            "waves",
+            (MAX_WAVES * size_of::<ocean::GpuWave>()) as u64,
+        );
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: waves.as_entire_binding(),
+                },
+            ],
+        });
+        FrameBindings {
+            layout,
+            group,
+            uniform,
+            waves,
+        }
+    }
+
+    /// Upload the uniform and the waves (the rest of the 64 slots stays as it was: unread).
+    pub fn upload(&self, queue: &wgpu::Queue, uniform: &FrameUniform, waves: &[ocean::GpuWave]) {
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(uniform));
+        if !waves.is_empty() {
+            queue.write_buffer(&self.waves, 0, bytemuck::cast_slice(waves));
+        }
+    }
+}
+
+/// The formats a pass draws into.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Targets {
+    pub colour: wgpu::TextureFormat,
+    pub depth: wgpu::TextureFormat,
+}
+
+/// A render pass of the frame. See the crate docs for how to add one.
+pub trait Pass {
+    /// Short name, used in the frame report.
+    fn name(&self) -> &'static str;
+    /// The condition under which this pass is needed, in words (for the report and docs).
+    fn condition(&self) -> &'static str;
+    /// Decide for this frame: `Ok(why it runs)` or `Err(why it is skipped)`.
+    fn plan(&self, frame: &FrameContext) -> Result<String, String>;
+    /// Upload what the pass draws (only called when it runs).
+    fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext);
+    /// Record the draw calls; bind group 0 is already set. Returns triangles submitted.
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64;
+}
+
+/// One pass's entry in the frame record.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PassRecord {
+    pub name: String,
+    pub condition: String,
+    pub ran: bool,
+    /// Why it ran, or why it was skipped.
+    pub reason: String,
+    pub triangles: u64,
+    /// GPU time from timestamp queries; absent where the adapter has none.
+    pub gpu_ms: Option<f64>,
+}
+
+/// One clip-map level's line in the frame record.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LevelRecord {
+    pub cell_m: f64,
+    pub half_extent_m: f64,
+    pub waves: usize,
+    pub error_bound_px: f64,
+    #[serde(flatten)]
+    pub stats: crate::clipmap::LevelStats,
+}
+
+/// What the planner decided and measured for one frame (`regatta render --report`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FrameReport {
+    pub t: f64,
+    pub size: [u32; 2],
+    pub adapter: String,
+    pub passes: Vec<PassRecord>,
+    pub triangles: u64,
+    /// "pipeline_statistics" where the adapter counts primitives, else "counted".
+    pub triangles_source: String,
+    /// Sum of the passes' GPU times, where measured.
+    pub gpu_ms: Option<f64>,
+    pub clipmap: ClipMapRecord,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClipMapRecord {
+    pub levels: u32,
+    pub cells: u32,
+    pub base_cell_m: f64,
+    pub error_target_px: f64,
+    pub origin: [f64; 2],
+    pub per_level: Vec<LevelRecord>,
+}
+
+impl ClipMapRecord {
+    pub fn of(frame: &FrameContext) -> ClipMapRecord {
+        ClipMapRecord {
+            levels: frame.clipmap.levels,
+            cells: frame.clipmap.cells,
+            base_cell_m: frame.clipmap.base_cell,
+            error_target_px: frame.error_target.pixels,
+            origin: [frame.origin.x, frame.origin.y],
+            per_level: frame
+                .levels
+                .iter()
+                .zip(&frame.mesh.levels)
+                .map(|(p, s)| LevelRecord {
+                    cell_m: p.cell,
+                    half_extent_m: p.half_extent,
+                    waves: p.kept.len(),
+                    error_bound_px: p.error_px,
+                    stats: *s,
+                })
+                .collect(),
+        }
+    }
+}

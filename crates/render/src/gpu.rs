@@ -1,0 +1,288 @@
+//! Device setup in one place for the three targets: a desktop window (winit), headless
+//! (render into a texture and read it back as an image) and an Android surface (a raw window
+//! handle from the native activity). Tests get their device from [`test_gpu`].
+//!
+//! Optional features (timestamp and pipeline-statistics queries) are requested only where the
+//! adapter has them; the frame planner reads [`Gpu::features`] to know what it can measure.
+
+use std::fmt;
+use std::sync::Arc;
+
+use wgpu::{Backends, Features};
+
+/// Features Regatta uses when the adapter has them; none is required.
+pub const OPTIONAL_FEATURES: Features = Features::TIMESTAMP_QUERY
+    .union(Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
+    .union(Features::PIPELINE_STATISTICS_QUERY);
+
+/// Why no device could be set up: one sentence for a person.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GpuError(pub String);
+
+impl fmt::Display for GpuError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for GpuError {}
+
+/// An adapter, its device and queue, and what the device can do.
+pub struct Gpu {
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    /// Optional features that this device has enabled (a subset of [`OPTIONAL_FEATURES`]).
+    pub features: Features,
+}
+
+impl fmt::Debug for Gpu {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let info = self.adapter.get_info();
+        write!(f, "Gpu({} on {:?})", info.name, info.backend)
+    }
+}
+
+/// A window surface with its configuration (desktop or Android).
+pub struct SurfaceTarget {
+    pub surface: wgpu::Surface<'static>,
+    pub config: wgpu::SurfaceConfiguration,
+}
+
+impl SurfaceTarget {
+    /// Reconfigure after a resize; a zero size (minimised window) is ignored.
+    pub fn resize(&mut self, device: &wgpu::Device, width: u32, height: u32) {
+        if width == 0 || height == 0 {
+            return;
+        }
+        self.config.width = width;
+        self.config.height = height;
+        self.surface.configure(device, &self.config);
+    }
+}
+
+fn instance(backends: Backends) -> wgpu::Instance {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle().with_env();
+    // The caller's backends win, but WGPU_BACKEND still narrows them.
+    desc.backends = if std::env::var_os("WGPU_BACKEND").is_some() {
+        desc.backends & backends
+    } else {
+        backends
+    };
+    wgpu::Instance::new(desc)
+}
+
+impl Gpu {
+    /// A device with no surface: for `regatta render`, tests and benches.
+    pub fn headless(backends: Backends) -> Result<Gpu, GpuError> {
+        let instance = instance(backends);
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| GpuError(format!("no GPU adapter for {backends:?}: {e}")))?;
+        Self::from_adapter(instance, adapter)
+    }
+
+    /// A device that can present to `window` (a winit window behind an `Arc`), and the
+    /// configured surface of `width` × `height` pixels.
+    pub fn for_window(
+        window: impl Into<wgpu::SurfaceTarget<'static>>,
+        width: u32,
+        height: u32,
+    ) -> Result<(Gpu, SurfaceTarget), GpuError> {
+        let instance = instance(Backends::all());
+        let surface = instance
+            .create_surface(window)
+            .map_err(|e| GpuError(format!("could not create a window surface: {e}")))?;
+        Self::with_surface(instance, surface, width, height)
+    }
+
+    /// A device that presents to a raw native window (the Android `ANativeWindow` of the
+    /// native activity).
+    ///
+    /// # Safety
+    /// The handles must stay valid until the returned surface is dropped.
+    pub unsafe fn for_raw_window(
+        display: wgpu::rwh::RawDisplayHandle,
+        window: wgpu::rwh::RawWindowHandle,
+        width: u32,
+        height: u32,
+    ) -> Result<(Gpu, SurfaceTarget), GpuError> {
+        let instance = instance(Backends::VULKAN | Backends::GL);
+        // SAFETY: the caller guarantees the handles outlive the surface.
+        let surface = unsafe {
+            instance.create_surface_unsafe(wgpu::SurfaceTargetUnsafe::RawHandle {
+                raw_display_handle: Some(display),
+                raw_window_handle: window,
+            })
+        }
+        .map_err(|e| GpuError(format!("could not create the native window surface: {e}")))?;
+        Self::with_surface(instance, surface, width, height)
+    }
+
+    fn with_surface(
+        instance: wgpu::Instance,
+        surface: wgpu::Surface<'static>,
+        width: u32,
+        height: u32,
+    ) -> Result<(Gpu, SurfaceTarget), GpuError> {
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: Some(&surface),
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| GpuError(format!("no GPU adapter can present to this window: {e}")))?;
+        let gpu = Self::from_adapter(instance, adapter)?;
+        let caps = surface.get_capabilities(&gpu.adapter);
+        // Shaders write linear colour; an sRGB surface does the encoding.
+        let format = caps
+            .formats
+            .iter()
+            .copied()
+            .find(|f| f.is_srgb())
+            .or_else(|| caps.formats.first().copied())
+            .ok_or_else(|| GpuError("the window surface offers no texture format".into()))?;
+        let config = wgpu::SurfaceConfiguration {
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            format,
+            width: width.max(1),
+            height: height.max(1),
+            present_mode: wgpu::PresentMode::AutoVsync,
+            desired_maximum_frame_latency: 2,
+            alpha_mode: caps.alpha_modes[0],
+            view_formats: vec![],
+            color_space: wgpu::SurfaceColorSpace::Auto,
+        };
+        surface.configure(&gpu.device, &config);
+        Ok((gpu, SurfaceTarget { surface, config }))
+    }
+
+    fn from_adapter(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Gpu, GpuError> {
+        let features = adapter.features() & OPTIONAL_FEATURES;
+        let info = adapter.get_info();
+        log::info!(
+            "GPU: {} ({:?}, {:?}), optional features {features:?}",
+            info.name,
+            info.backend,
+            info.device_type
+        );
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("regatta"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| GpuError(format!("the GPU adapter {} refused a device: {e}", info.name)))?;
+        Ok(Gpu {
+            instance,
+            adapter,
+            device,
+            queue,
+            features,
+        })
+    }
+
+    /// The adapter's name and backend, for reports.
+    pub fn describe(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{} ({:?})", info.name, info.backend)
+    }
+
+    /// Block until the GPU has finished all submitted work.
+    pub fn wait(&self) {
+        // A lost device is reported by the next call that uses it; waiting has nothing to add.
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+
+    /// Read a buffer written by the GPU (it must have `MAP_READ`) into bytes.
+    pub fn read_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+        let (tx, rx) = std::sync::mpsc::channel();
+        buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+            let _ = tx.send(r);
+        });
+        self.wait();
+        rx.recv()
+            .map_err(|_| GpuError("the GPU never answered a buffer read".into()))?
+            .map_err(|e| GpuError(format!("could not read a GPU buffer: {e}")))?;
+        let bytes = buffer
+            .get_mapped_range(..)
+            .map_err(|e| GpuError(format!("could not map a GPU buffer: {e}")))?
+            .to_vec();
+        buffer.unmap();
+        Ok(bytes)
+    }
+
+    /// Copy an RGBA8 texture (it must have `COPY_SRC`) into an image.
+    pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<image::RgbaImage, GpuError> {
+        let (w, h) = (texture.width(), texture.height());
+        let row = w * 4;
+        let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: u64::from(padded * h),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        enc.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(h),
+                },
+            },
+            texture.size(),
+        );
+        self.queue.submit([enc.finish()]);
+        let bytes = self.read_buffer(&buffer)?;
+        let mut pixels = Vec::with_capacity((row * h) as usize);
+        for y in 0..h as usize {
+            let start = y * padded as usize;
+            pixels.extend_from_slice(&bytes[start..start + row as usize]);
+        }
+        image::RgbaImage::from_raw(w, h, pixels)
+            .ok_or_else(|| GpuError("a read-back texture had the wrong size".into()))
+    }
+}
+
+/// True when the environment demands a GPU (`REGATTA_REQUIRE_GPU=true`, as CI sets it).
+pub fn gpu_required() -> bool {
+    std::env::var("REGATTA_REQUIRE_GPU").is_ok_and(|v| v == "true" || v == "1")
+}
+
+/// The device for a GPU test, on `backends`. Without an adapter the test must not pass
+/// silently: under `REGATTA_REQUIRE_GPU=true` this panics with the reason; otherwise it prints
+/// "skipped: no GPU adapter" and returns `None`.
+pub fn test_gpu_on(backends: Backends) -> Option<Arc<Gpu>> {
+    match Gpu::headless(backends) {
+        Ok(gpu) => Some(Arc::new(gpu)),
+        Err(e) if gpu_required() => {
+            panic!("REGATTA_REQUIRE_GPU=true but no GPU adapter was found: {e}")
+        }
+        Err(e) => {
+            eprintln!("skipped: no GPU adapter ({e})");
+            None
+        }
+    }
+}
+
+/// The device for a GPU test on any backend (lavapipe in CI); see [`test_gpu_on`].
+pub fn test_gpu() -> Option<Arc<Gpu>> {
+    test_gpu_on(Backends::all())
+}
+
+/// The device and queue for a GPU test, for code that needs nothing else; see [`test_gpu_on`].
+pub fn test_device() -> Option<(wgpu::Device, wgpu::Queue)> {
+    test_gpu().map(|g| (g.device.clone(), g.queue.clone()))
+}

@@ -1,0 +1,24 @@
+//! The pool scene (`--scene pool`): a tiled box pool with moving water, floating and moving
+//! spheres, reflection and refraction traced against the analytic spheres and the box, the full
+//! Fresnel equations, Phong shading and caustics on the floor and walls.
+//!
+//! Source report 004 draws this scene in WebGL with still water and no caustics; here the water
+//! moves (Gerstner waves from `ocean` plus analytic ripples where a sphere moves, see
+//! [`water`]) and the caustics come from the moving surface (area ratio, see [`caustics`]).
+//!
+//! Everything in this module is f64 and GPU-free: it is the reference the shader
+//! (`shaders/pool.wgsl`) is tested against, and it gives the shader its f32-safe inputs.
+//! Pool space: metres, x east, y up, z south, the water's rest level at y = 0, the pool centred
+//! on the origin. In AR a model transform puts pool space on the detected table, exactly as it
+//! does for the race course.
+
+pub mod caustics;
+pub mod geometry;
+pub mod scene;
+pub mod trace;
+pub mod water;
+
+pub use caustics::CausticMap;
+pub use geometry::{BoxHit, Face, PoolBox, Ray, Sphere};
+pub use scene::{Floater, Mover, PoolScene};
+pub use water::{PoolWater, Ring, RippleModel, SpherePath, WaterPoint};

@@ -1,0 +1,296 @@
+//! The renderer: owns the shared frame bindings, the depth buffer and the passes, plans each
+//! frame and draws it into a colour view (a window's surface texture or an offscreen texture).
+
+use crate::frame::{
+    ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, Targets,
+};
+use crate::gpu::Gpu;
+use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
+use crate::scene::Scene;
+
+/// Depth buffer format of every pass.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Default screen-space error target of the clip-map, pixels.
+pub const DEFAULT_ERROR_PX: f64 = 1.0;
+
+/// Options of a [`Renderer`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderOptions {
+    /// Clip-map error target in pixels.
+    pub error_px: f64,
+    /// Read back GPU timestamps after each frame (blocks until the GPU is done: for headless
+    /// frames and benches; the window app leaves it off).
+    pub measure_gpu_time: bool,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions {
+            error_px: DEFAULT_ERROR_PX,
+            measure_gpu_time: true,
+        }
+    }
+}
+
+struct Timer {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    capacity: u32,
+}
+
+pub struct Renderer {
+    pub targets: Targets,
+    pub options: RenderOptions,
+    bindings: FrameBindings,
+    passes: Vec<Box<dyn Pass>>,
+    depth: Option<(wgpu::Texture, wgpu::TextureView)>,
+    timer: Option<Timer>,
+}
+
+impl Renderer {
+    /// A renderer drawing into `colour` textures (linear shader output; use an sRGB format).
+    pub fn new(gpu: &Gpu, colour: wgpu::TextureFormat, options: RenderOptions) -> Renderer {
+        let device = &gpu.device;
+        let targets = Targets {
+            colour,
+            depth: DEPTH_FORMAT,
+        };
+        let bindings = FrameBindings::new(device);
+        let passes: Vec<Box<dyn Pass>> = vec![
+            Box::new(SkyPass::new(device, &bindings.layout, targets)),
+            Box::new(WaterPass::new(device, &bindings.layout, targets)),
+            Box::new(BoatsPass::new(device, &bindings.layout, targets)),
+        ];
+        let timer = gpu
+            .features
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+            .then(|| {
+                let capacity = 2 * 16;
+                let size = u64::from(capacity) * 8;
+                Timer {
+                    queries: device.create_query_set(&wgpu::QuerySetDescriptor {
+                        label: Some("pass timestamps"),
+                        ty: wgpu::QueryType::Timestamp,
+                        count: capacity,
+                    }),
+                    resolve: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("timestamps"),
+                        size,
+                        usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                        mapped_at_creation: false,
+                    }),
+                    read: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("timestamps read"),
+                        size,
+                        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }),
+                    capacity,
+                }
+            });
+        Renderer {
+            targets,
+            options,
+            bindings,
+            passes,
+            depth: None,
+            timer,
+        }
+    }
+
+    /// Add a pass (effects, wakes, pool) after the built-in ones; it draws in that order.
+    pub fn add_pass(&mut self, pass: Box<dyn Pass>) {
+        self.passes.push(pass);
+    }
+
+    /// The layout of bind group 0, for passes built outside this crate's `passes` module.
+    pub fn frame_layout(&self) -> &wgpu::BindGroupLayout {
+        &self.bindings.layout
+    }
+
+    fn depth_view(&mut self, gpu: &Gpu, size: [u32; 2]) -> wgpu::TextureView {
+        let fits = self
+            .depth
+            .as_ref()
+            .is_some_and(|(t, _)| t.width() == size[0] && t.height() == size[1]);
+        if !fits {
+            let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("depth"),
+                size: wgpu::Extent3d {
+                    width: size[0],
+                    height: size[1],
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: DEPTH_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            });
+            let view = tex.create_view(&Default::default());
+            self.depth = Some((tex, view));
+        }
+        self.depth.as_ref().map(|(_, v)| v.clone()).expect("set above")
+    }
+
+    /// Plan and draw `scene` into `target` (`size` pixels); returns the frame's record.
+    pub fn render(
+        &mut self,
+        gpu: &Gpu,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        scene: &Scene,
+    ) -> FrameReport {
+        let frame = FrameContext::new(scene, size, self.options.error_px);
+        self.bindings
+            .upload(&gpu.queue, &frame.uniform, &frame.waves);
+        let depth = self.depth_view(gpu, size);
+        let mut records = Vec::new();
+        let mut run = Vec::new();
+        for (i, p) in self.passes.iter_mut().enumerate() {
+            let decision = p.plan(&frame);
+            if decision.is_ok() {
+                p.prepare(gpu, &frame);
+                run.push(i);
+            }
+            let ran = decision.is_ok();
+            records.push(PassRecord {
+                name: p.name().into(),
+                condition: p.condition().into(),
+                ran,
+                reason: decision.unwrap_or_else(|e| e),
+                triangles: 0,
+                gpu_ms: None,
+            });
+        }
+        let timer = self
+            .timer
+            .as_ref()
+            .filter(|t| self.options.measure_gpu_time && run.len() * 2 <= t.capacity as usize);
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        if run.is_empty() {
+            // Nothing is needed: still clear, so the frame shows no stale image.
+            enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("clear"),
+                color_attachments: &[Some(colour_attachment(target, true))],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+        }
+        for (k, &i) in run.iter().enumerate() {
+            let first = k == 0;
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(self.passes[i].name()),
+                color_attachments: &[Some(colour_attachment(target, first))],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: if first {
+                            wgpu::LoadOp::Clear(1.0)
+                        } else {
+                            wgpu::LoadOp::Load
+                        },
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.map(|t| wgpu::RenderPassTimestampWrites {
+                    query_set: &t.queries,
+                    beginning_of_pass_write_index: Some(2 * k as u32),
+                    end_of_pass_write_index: Some(2 * k as u32 + 1),
+                }),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.bindings.group, &[]);
+            records[i].triangles = self.passes[i].draw(&mut pass);
+        }
+        if let Some(t) = timer
+            && !run.is_empty()
+        {
+            let n = 2 * run.len() as u32;
+            enc.resolve_query_set(&t.queries, 0..n, &t.resolve, 0);
+            enc.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, u64::from(n) * 8);
+        }
+        gpu.queue.submit([enc.finish()]);
+        if let Some(t) = timer
+            && !run.is_empty()
+        {
+            match gpu.read_buffer(&t.read) {
+                Ok(bytes) => {
+                    let ticks: &[u64] = bytemuck::cast_slice(&bytes);
+                    let period_ns = f64::from(gpu.queue.get_timestamp_period());
+                    for (k, &i) in run.iter().enumerate() {
+                        let (a, b) = (ticks[2 * k], ticks[2 * k + 1]);
+                        records[i].gpu_ms = Some(b.saturating_sub(a) as f64 * period_ns * 1e-6);
+                    }
+                }
+                Err(e) => log::warn!("no GPU timings this frame: {e}"),
+            }
+        }
+        let gpu_ms = records
+            .iter()
+            .filter_map(|r| r.gpu_ms)
+            .reduce(|a, b| a + b);
+        FrameReport {
+            t: scene.t,
+            size,
+            adapter: gpu.describe(),
+            triangles: records.iter().map(|r| r.triangles).sum(),
+            triangles_source: "counted".into(),
+            passes: records,
+            gpu_ms,
+            clipmap: ClipMapRecord::of(&frame),
+        }
+    }
+}
+
+fn colour_attachment(view: &wgpu::TextureView, clear: bool) -> wgpu::RenderPassColorAttachment<'_> {
+    wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: if clear {
+                wgpu::LoadOp::Clear(wgpu::Color::BLACK)
+            } else {
+                wgpu::LoadOp::Load
+            },
+            store: wgpu::StoreOp::Store,
+        },
+    }
+}
+
+/// Render `scene` offscreen at `size` and read it back: the image and the frame's record.
+pub fn render_image(
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+    scene: &Scene,
+    size: [u32; 2],
+) -> Result<(image::RgbaImage, FrameReport), crate::gpu::GpuError> {
+    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("offscreen"),
+        size: wgpu::Extent3d {
+            width: size[0],
+            height: size[1],
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: renderer.targets.colour,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let view = tex.create_view(&Default::default());
+    let report = renderer.render(gpu, &view, size, scene);
+    let img = gpu.read_texture(&tex)?;
+    Ok((img, report))
+}
+
+/// The offscreen colour format: 8-bit sRGB, what PNGs hold.
+pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;

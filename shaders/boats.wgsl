@@ -1,0 +1,56 @@
+// The boats pass: instanced procedural hulls, sails and buoys, each placed by a model matrix
+// in local metres that the CPU built from the race (position, heading) and the sea (float
+// height, pitch, roll). Phong-style lighting under the sun. Appended to common.wgsl.
+
+struct MeshVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    // 0 = hull (boat colour), 1 = sail (white), 2 = deck/mast (dark).
+    @location(2) part: u32,
+}
+
+struct Instance {
+    @location(3) m0: vec4<f32>,
+    @location(4) m1: vec4<f32>,
+    @location(5) m2: vec4<f32>,
+    @location(6) m3: vec4<f32>,
+    @location(7) colour: vec4<f32>,
+}
+
+struct BoatOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) colour: vec3<f32>,
+    @location(2) world: vec3<f32>,
+}
+
+@vertex
+fn vs_main(v: MeshVertex, inst: Instance) -> BoatOut {
+    let model = mat4x4<f32>(inst.m0, inst.m1, inst.m2, inst.m3);
+    let world = model * vec4<f32>(v.position, 1.0);
+    var out: BoatOut;
+    out.clip = frame.view_proj * world;
+    out.normal = normalize((model * vec4<f32>(v.normal, 0.0)).xyz);
+    out.world = world.xyz;
+    var c = inst.colour.rgb;
+    if v.part == 1u {
+        c = vec3<f32>(0.92, 0.92, 0.88);
+    } else if v.part == 2u {
+        c = vec3<f32>(0.12, 0.12, 0.13);
+    }
+    out.colour = c;
+    return out;
+}
+
+@fragment
+fn fs_main(in: BoatOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    // Sails are single sheets: light both faces.
+    let n = select(-in.normal, in.normal, front);
+    let l = frame.sun.xyz;
+    let v = normalize(frame.eye.xyz - in.world);
+    let diffuse = max(dot(n, l), 0.0);
+    let h = normalize(l + v);
+    let specular = pow(max(dot(n, h), 0.0), 32.0) * 0.3;
+    let ambient = 0.35 * sky_colour(normalize(vec3<f32>(n.x, abs(n.y) + 0.2, n.z)));
+    return vec4<f32>(in.colour * (ambient + 0.8 * diffuse * frame.sun.w) + specular * frame.sun.w, 1.0);
+}

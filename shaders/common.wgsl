@@ -1,0 +1,125 @@
+// Shared structs and functions of every Regatta pass. Each pass's WGSL file is appended to this
+// one in Rust (crates/render/src/shader.rs), so a pass file uses these names directly.
+//
+// Coordinates: "local" metres, world minus the frame's origin (the clip-map centre), so no
+// large coordinate reaches a shader. Race time never does either: each wave comes with its
+// phase θ0 = (k D·o − ω t + φ) mod 2π reduced in f64 on the CPU (ocean::WaveSet::gpu_waves).
+
+const PI: f32 = 3.14159265358979;
+const MAX_WAVES: u32 = 64u;
+
+// One Gerstner wave (ocean::GpuWave, 32 bytes).
+struct Wave {
+    direction: vec2<f32>,
+    k: f32,
+    amplitude: f32,
+    phase0: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+}
+
+// Per-frame values (render::frame::FrameUniform).
+struct Frame {
+    view_proj: mat4x4<f32>,
+    inv_view_proj: mat4x4<f32>,
+    // Camera position in local metres; w = seconds of the reduced sun/foam animation (< 1 h).
+    eye: vec4<f32>,
+    // Unit vector towards the sun; w = sun irradiance scale.
+    sun: vec4<f32>,
+    // Play area in local metres: min x, min z, max x, max z. Water outside is not drawn.
+    play_area: vec4<f32>,
+    // Viewport width, height in pixels, 1/width, 1/height.
+    viewport: vec4<f32>,
+    // x = number of waves (for shading normals), y = clip-map levels.
+    counts: vec4<u32>,
+    // Which waves the vertices of clip-map level l evaluate (ocean's error-bounded culling for
+    // that level): bit i of the 64-bit mask (lo, hi) = level_masks[l / 2][2 (l % 2) + 0/1].
+    // Level l + 1's mask is always a subset of level l's.
+    level_masks: array<vec4<u32>, 8>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> waves: array<Wave, 64>;
+
+// True when clip-map level `level` evaluates wave `i`.
+fn wave_in_level(i: u32, level: u32) -> bool {
+    if level >= frame.counts.y {
+        return false;
+    }
+    let m = frame.level_masks[level / 2u];
+    let lo = select(m.x, m.z, (level % 2u) == 1u);
+    let hi = select(m.y, m.w, (level % 2u) == 1u);
+    let word = select(hi, lo, i < 32u);
+    return ((word >> (i % 32u)) & 1u) == 1u;
+}
+
+// θ of one wave at local rest point p.
+fn wave_phase(w: Wave, p: vec2<f32>) -> f32 {
+    return w.k * dot(w.direction, p) + w.phase0;
+}
+
+// Displacement (dx, y, dz) of one wave at local rest point p (source 003, eqs. 1-2).
+fn gerstner(w: Wave, p: vec2<f32>) -> vec3<f32> {
+    let theta = wave_phase(w, p);
+    let c = cos(theta);
+    return vec3<f32>(w.direction.x * w.amplitude * c, w.amplitude * sin(theta), w.direction.y * w.amplitude * c);
+}
+
+// The surface's analytic derivatives at a rest point, summed over waves 0..n, each wave
+// weighted by weight(i) (used to fade out waves finer than a pixel).
+struct SurfaceFrame {
+    normal: vec3<f32>,
+    // Determinant of the horizontal map's Jacobian: < 1 where crests bunch up (foam).
+    jacobian: f32,
+}
+
+fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
+    var dxdx = 1.0;
+    var dxdz = 0.0;
+    var dzdz = 1.0;
+    var dydx = 0.0;
+    var dydz = 0.0;
+    for (var i = 0u; i < n; i = i + 1u) {
+        let w = waves[i];
+        // A wave shorter than about two footprints aliases: fade it out instead.
+        let fade = 1.0 - smoothstep(0.25, 0.5, w.k * footprint / (2.0 * PI));
+        let theta = wave_phase(w, p);
+        let s = sin(theta) * fade;
+        let c = cos(theta) * fade;
+        let ka = w.k * w.amplitude;
+        let d = w.direction;
+        dxdx -= d.x * d.x * ka * s;
+        dxdz -= d.x * d.y * ka * s;
+        dzdz -= d.y * d.y * ka * s;
+        dydx += d.x * ka * c;
+        dydz += d.y * ka * c;
+    }
+    let tx = vec3<f32>(dxdx, dydx, dxdz);
+    let tz = vec3<f32>(dxdz, dydz, dzdz);
+    var out: SurfaceFrame;
+    out.normal = normalize(cross(tz, tx));
+    out.jacobian = dxdx * dzdz - dxdz * dxdz;
+    return out;
+}
+
+// The sky seen along unit direction dir: a gradient from horizon haze to zenith blue, and the
+// sun's disc and glow. Linear colour.
+fn sky_colour(dir: vec3<f32>) -> vec3<f32> {
+    let up = clamp(dir.y, -1.0, 1.0);
+    let zenith = vec3<f32>(0.10, 0.28, 0.62);
+    let horizon = vec3<f32>(0.62, 0.74, 0.86);
+    var c = mix(horizon, zenith, pow(max(up, 0.0), 0.45));
+    // Below the horizon (seen only in reflections of steep facets) the sky darkens to haze.
+    c = select(c, horizon * 0.8, up < 0.0);
+    let s = max(dot(dir, frame.sun.xyz), 0.0);
+    let glow = pow(s, 64.0) * 0.6 + pow(s, 8.0) * 0.15;
+    let disc = smoothstep(0.9995, 0.9998, s) * 30.0;
+    return c + vec3<f32>(1.0, 0.92, 0.78) * (glow + disc) * frame.sun.w;
+}
+
+// World direction of the ray through a pixel (NDC xy), from the inverse view-projection.
+fn ray_dir(ndc: vec2<f32>) -> vec3<f32> {
+    let far = frame.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0);
+    return normalize(far.xyz / far.w - frame.eye.xyz);
+}

@@ -1,0 +1,66 @@
+// Optics of the water surface: f32 mirrors of crates/render/src/optics.rs (the f64 reference
+// they are tested against). Included by the water and effect passes.
+//
+// Conventions as in optics.rs: unit vectors; `n1` is the index on the side the ray comes from.
+
+const N_AIR: f32 = 1.0;
+const N_WATER: f32 = 1.333;
+
+// Unpolarised reflectance by the full Fresnel equations (source 004), 1.0 under total internal
+// reflection. Rs = ((n1 ci − n2 ct)/(n1 ci + n2 ct))², Rp = ((n1 ct − n2 ci)/(n1 ct + n2 ci))².
+fn fresnel_reflectance(cos_i_in: f32, n1: f32, n2: f32) -> f32 {
+    let cos_i = min(abs(cos_i_in), 1.0);
+    let eta = n1 / n2;
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = sqrt(1.0 - sin2_t);
+    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// Schlick's approximation, only for comparison with the full equations.
+fn schlick_reflectance(cos_i_in: f32, n1: f32, n2: f32) -> f32 {
+    let r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
+    var c = min(abs(cos_i_in), 1.0);
+    if n1 > n2 {
+        let sin2_t = (n1 / n2) * (n1 / n2) * (1.0 - c * c);
+        if sin2_t >= 1.0 {
+            return 1.0;
+        }
+        c = sqrt(1.0 - sin2_t);
+    }
+    return r0 + (1.0 - r0) * pow(1.0 - c, 5.0);
+}
+
+// Mirror reflection of direction d about normal n (either orientation).
+fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return d - 2.0 * dot(d, n) * n;
+}
+
+// Snell refraction of d through a surface with normal n (turned to face the ray), from n1 into
+// n2. Returns vec4(t, 1) with the transmitted unit direction, or vec4(0, 0, 0, 0) under total
+// internal reflection (WGSL has no optionals).
+fn refract_dir(d: vec3<f32>, n_in: vec3<f32>, n1: f32, n2: f32) -> vec4<f32> {
+    let n = select(n_in, -n_in, dot(d, n_in) > 0.0);
+    let eta = n1 / n2;
+    let cos_i = -dot(n, d);
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    if k < 0.0 {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(eta * d + (eta * cos_i - sqrt(k)) * n, 1.0);
+}
+
+// Where the ray o + s d (s ≥ 0) meets the plane dot(p.xyz, x) + p.w = 0: vec4(point, s), or
+// s < 0 when it misses (parallel or pointing away).
+fn ray_plane(o: vec3<f32>, d: vec3<f32>, p: vec4<f32>) -> vec4<f32> {
+    let denom = dot(p.xyz, d);
+    if abs(denom) < 1e-12 {
+        return vec4<f32>(o, -1.0);
+    }
+    let s = -(dot(p.xyz, o) + p.w) / denom;
+    return vec4<f32>(o + s * d, s);
+}

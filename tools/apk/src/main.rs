@@ -1,0 +1,79 @@
+//! `regatta-apk`: packages and signs Regatta's APK (see the crate docs). Called by
+//! `scripts/build-apk.sh`; prints a JSON summary on stdout, one-sentence errors on stderr.
+
+#[cfg(not(target_os = "android"))]
+fn main() -> std::process::ExitCode {
+    host::main()
+}
+
+#[cfg(target_os = "android")]
+fn main() {
+    eprintln!("regatta-apk runs on the build host, not on Android");
+    std::process::exit(2);
+}
+
+#[cfg(not(target_os = "android"))]
+mod host {
+    use std::path::PathBuf;
+    use std::process::ExitCode;
+
+    use clap::Parser;
+    use regatta_apk::ApkError;
+    use regatta_apk::key::debug_identity;
+    use regatta_apk::metadata::CrateAndroid;
+    use regatta_apk::package::{ApkInputs, write_apk};
+
+    /// Package, align and sign the APK from the cargo-apk metadata of a Cargo.toml.
+    #[derive(Parser, Debug)]
+    #[command(name = "regatta-apk", version)]
+    struct Args {
+        /// The Cargo.toml whose [package.metadata.android] describes the app.
+        #[arg(long, default_value = "app/Cargo.toml")]
+        manifest: PathBuf,
+        /// The app's native library (lib<crate>.so built for aarch64-linux-android).
+        #[arg(long)]
+        lib: PathBuf,
+        /// More arm64-v8a libraries to package (e.g. ARCore's libarcore_sdk_c.so).
+        #[arg(long = "extra-lib")]
+        extra_libs: Vec<PathBuf>,
+        /// DEX files to package (e.g. ARCore's classes, dexed with d8).
+        #[arg(long)]
+        dex: Vec<PathBuf>,
+        /// Signing key (PEM: private key and certificate); generated here when missing.
+        #[arg(long)]
+        key: PathBuf,
+        /// The APK to write.
+        #[arg(long)]
+        out: PathBuf,
+    }
+
+    pub fn main() -> ExitCode {
+        let args = Args::parse();
+        match run(&args) {
+            Ok(json) => {
+                println!("{json}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("regatta-apk: {e}");
+                ExitCode::FAILURE
+            }
+        }
+    }
+
+    fn run(args: &Args) -> Result<String, ApkError> {
+        let app = CrateAndroid::read(&args.manifest)?;
+        let (identity, generated) = debug_identity(&args.key)?;
+        if generated {
+            eprintln!("regatta-apk: generated debug key {}", args.key.display());
+        }
+        let inputs = ApkInputs {
+            app,
+            library: args.lib.clone(),
+            extra_libraries: args.extra_libs.clone(),
+            dex: args.dex.clone(),
+        };
+        let summary = write_apk(&inputs, &args.manifest, identity, &args.out)?;
+        serde_json::to_string_pretty(&summary).map_err(|e| ApkError(e.to_string()))
+    }
+}
