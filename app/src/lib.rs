@@ -3,7 +3,9 @@
 
 pub mod bench;
 pub mod cli;
+pub mod desktop;
 pub mod error;
+pub mod wakes;
 
 #[cfg(target_os = "android")]
 mod android;

@@ -12,6 +12,13 @@ use serde::Serialize;
 
 use crate::error::{CliError, CliResult};
 
+pub mod effects;
+pub mod mesh;
+pub mod pool;
+pub mod race;
+pub mod wakes;
+pub mod waves;
+
 /// What every section gets.
 pub struct BenchContext {
     /// Folder the report and plots go into.
@@ -167,7 +174,15 @@ fn draw_plot(
 pub type Section = (&'static str, fn(&BenchContext) -> CliResult<Vec<Table>>);
 
 /// Every section, in report order. Add yours here (one line).
-pub const SECTIONS: &[Section] = &[];
+pub const SECTIONS: &[Section] = &[
+    ("waves", waves::run),
+    ("effects", effects::effects_section),
+    ("fresnel", effects::fresnel_section),
+    ("mesh", mesh::run),
+    ("race", race::run),
+    ("wakes", wakes::run),
+    ("pool", pool::run),
+];
 
 /// Run the sections (all, or those named in `only`) and write the report.
 pub fn run_all(ctx: &BenchContext, only: &[String]) -> CliResult<Vec<Table>> {

@@ -9,6 +9,7 @@ pub mod inputs;
 pub mod probe;
 pub mod replay;
 pub mod race;
+pub mod render;
 
 /// Regatta: a sailing race on a real table, with a living sea drawn over it.
 #[derive(Debug, Parser)]
@@ -24,21 +25,24 @@ pub enum Command {
     Probe(probe::ProbeArgs),
     /// Run time against error: writes JSON, Markdown and SVG plots into a folder.
     Bench(bench::BenchArgs),
+    /// Recorded camera feeds: write the synthetic feed, check a replay or TUM RGB-D folder.
+    Replay(replay::ReplayArgs),
     /// Boat states and ranks at a race time, or the import report (JSON on stdout).
     Race(race::RaceArgs),
+    /// Render one frame headless to a PNG; the frame planner's record as JSON on stdout.
+    Render(render::RenderArgs),
+    /// Open the desktop window (also what `regatta` alone does).
+    Run(crate::desktop::RunArgs),
 }
 
 pub fn dispatch(cli: Cli) -> CliResult {
     match cli.command {
-        None => {
-            // Until the renderer lands, the app prints the command overview.
-            use clap::CommandFactory;
-            Cli::command().print_help()?;
-            Ok(())
-        }
+        None => crate::desktop::run(Default::default()),
         Some(Command::Probe(a)) => probe::run(a),
         Some(Command::Bench(a)) => bench::run(a),
         Some(Command::Replay(a)) => replay::run(a),
         Some(Command::Race(a)) => race::run(a),
+        Some(Command::Render(a)) => render::run(a),
+        Some(Command::Run(a)) => crate::desktop::run(a),
     }
 }

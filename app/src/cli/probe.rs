@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::json;
 
-use crate::cli::inputs::load_sea;
+use crate::cli::inputs::{load_race, load_sea};
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
@@ -28,6 +28,9 @@ pub struct ProbeArgs {
     /// Sea file (JSON, see DESIGN.md); the embedded default sea without it.
     #[arg(long, value_name = "FILE")]
     pub sea: Option<PathBuf>,
+    /// Race files whose boats make the wakes; the embedded sample race without them.
+    #[arg(long, value_name = "PATH", num_args = 1..)]
+    pub race: Vec<PathBuf>,
 }
 
 /// What the wakes add at a world point.
@@ -109,8 +112,15 @@ pub fn run(a: ProbeArgs) -> CliResult {
         .map(|s| parse_point(s))
         .collect::<CliResult<Vec<_>>>()?;
     let sea = load_sea(a.sea.as_ref())?;
-    // The wakes' contribution at a world point: none until the wakes exist.
-    let wake_at = |_at: [f64; 2]| WakeSample::default();
+    // The race's Kelvin wakes (ocean::wake), added at the world point; slopes by central
+    // differences over R/20, far below the wake's shortest waves (≈ R).
+    let wake = crate::wakes::race_wake(&load_race(&a.race)?, ocean::wake::WakeParams::default())?;
+    let h = wake.params.hull_radius / 20.0;
+    let wake_at = |at: [f64; 2]| WakeSample {
+        height: wake.height(at, t),
+        gradient: wake.gradient(at, t, h),
+        foam: wake.foam(at, t),
+    };
     let out = points
         .iter()
         .map(|&at| probe_point(&sea, t, at, wake_at(at)))

@@ -85,7 +85,8 @@ fn synth(a: SynthArgs) -> CliResult {
         a.frames,
         a.out.display()
     );
-    cfg.write(&a.out, a.quality).map_err(|e| CliError::new(e.to_string()))?;
+    cfg.write(&a.out, a.quality)
+        .map_err(|e| CliError::new(e.to_string()))?;
     print_summary(&a.out)
 }
 

@@ -3,6 +3,7 @@
 //!
 //! Knows nothing of wgpu or egui (ARCHITECTURE.md).
 
+pub mod arcore;
 mod error;
 mod frame;
 mod pose;

@@ -108,7 +108,11 @@ impl Pose {
             position: DVec3::new(v[0], v[1], v[2]),
             // Within rounding of unit norm the quaternion is kept as written, so a written and
             // re-read pose is bit-identical.
-            rotation: if (norm - 1.0).abs() <= 1e-12 { q } else { q / norm },
+            rotation: if (norm - 1.0).abs() <= 1e-12 {
+                q
+            } else {
+                q / norm
+            },
         })
     }
 }

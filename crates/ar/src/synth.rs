@@ -35,10 +35,22 @@ pub struct Marker {
 
 /// The four marker discs, one near each corner of the table, each of its own colour.
 pub const MARKERS: [Marker; 4] = [
-    Marker { center: DVec3::new(0.45, 0.0, 0.28), color: [220, 30, 30] },
-    Marker { center: DVec3::new(-0.45, 0.0, 0.28), color: [30, 60, 220] },
-    Marker { center: DVec3::new(-0.45, 0.0, -0.28), color: [30, 170, 60] },
-    Marker { center: DVec3::new(0.45, 0.0, -0.28), color: [240, 210, 30] },
+    Marker {
+        center: DVec3::new(0.45, 0.0, 0.28),
+        color: [220, 30, 30],
+    },
+    Marker {
+        center: DVec3::new(-0.45, 0.0, 0.28),
+        color: [30, 60, 220],
+    },
+    Marker {
+        center: DVec3::new(-0.45, 0.0, -0.28),
+        color: [30, 170, 60],
+    },
+    Marker {
+        center: DVec3::new(0.45, 0.0, -0.28),
+        color: [225, 40, 215],
+    },
 ];
 
 /// What to render.
@@ -101,7 +113,8 @@ impl SynthConfig {
         // Orbit: 0.9 m from the table centre, 0.55 m above it, swinging ±20° about the +z side.
         let angle = 0.35 * phase.sin();
         let radius = 0.9 + 0.04 * (2.0 * phase).cos();
-        let eye = DVec3::new(radius * angle.sin(), 0.55, radius * angle.cos()) + tremor.offset(phase, 0.006);
+        let eye = DVec3::new(radius * angle.sin(), 0.55, radius * angle.cos())
+            + tremor.offset(phase, 0.006);
         let target = DVec3::new(0.0, 0.0, -0.05) + tremor.offset(phase + 1.0, 0.012);
         Pose::look_at(eye, target, DVec3::Y)
     }
@@ -139,7 +152,11 @@ impl Tremor {
         let mut rng = SmallRng::seed_from_u64(seed);
         let terms = (2..=6)
             .map(|k| {
-                let dir = DVec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+                let dir = DVec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
                 (f64::from(k), rng.random_range(0.0..TAU), dir)
             })
             .collect();
@@ -181,7 +198,11 @@ pub fn render_view(k: &Intrinsics, pose: &Pose, ss: u32) -> FrameImage {
             data[o + 2] = to_u8(c.z);
         }
     }
-    FrameImage::Rgba8 { width: w, height: h, data }
+    FrameImage::Rgba8 {
+        width: w,
+        height: h,
+        data,
+    }
 }
 
 fn to_u8(x: f64) -> u8 {
@@ -219,14 +240,20 @@ fn hit_plane_y(origin: DVec3, dir: DVec3, y: f64) -> Option<DVec3> {
 pub fn table_color(x: f64, z: f64) -> DVec3 {
     for m in &MARKERS {
         if DVec2::new(x - m.center.x, z - m.center.z).length() <= MARKER_RADIUS {
-            return DVec3::new(f64::from(m.color[0]), f64::from(m.color[1]), f64::from(m.color[2]));
+            return DVec3::new(
+                f64::from(m.color[0]),
+                f64::from(m.color[1]),
+                f64::from(m.color[2]),
+            );
         }
     }
     // Planks 0.16 m wide along x; each plank's grain is shifted by a hash of its index.
     let plank = (z / 0.16).floor();
     let seam = ((z / 0.16) - plank).min(1.0 - ((z / 0.16) - plank));
     let offset = hash1(plank) * 10.0;
-    let grain = (z * 90.0 + 2.5 * value_noise(x * 3.0 + offset, z * 12.0) + 0.6 * (x * 7.0 + offset).sin()).sin();
+    let grain =
+        (z * 90.0 + 2.5 * value_noise(x * 3.0 + offset, z * 12.0) + 0.6 * (x * 7.0 + offset).sin())
+            .sin();
     let tone = 0.5 + 0.5 * grain;
     let light = DVec3::new(196.0, 148.0, 98.0);
     let dark = DVec3::new(150.0, 102.0, 62.0);

@@ -15,6 +15,7 @@ pub mod inverse;
 pub mod ndbc;
 pub mod sea_file;
 pub mod spectrum;
+pub mod wake;
 
 pub use cull::Culled;
 pub use gerstner::{FOAM_ONSET_JACOBIAN, SurfacePoint, Wave, WaveSet, foam_from_jacobian};

@@ -35,7 +35,7 @@ pub struct BoatReport {
     pub frozen_removed: usize,
     /// The class speed limit used for spikes, knots.
     pub max_speed_kn: f64,
-    /// Removed spikes: race time and the speed (knots) the fix implied.
+    /// Removed spikes: race time and the speed (knots) of the step that condemned the fix.
     pub spikes: Vec<Spike>,
     /// The gap limit used, seconds.
     pub gap_limit_s: f64,
@@ -157,13 +157,11 @@ pub(crate) fn clean(
         let next_ok_from_top = kept
             .get(i + 1)
             .is_some_and(|q| speed(top, q) <= max_speed_mps);
-        if acc.len() >= 2 && !next_ok_from_top && speed(&acc[acc.len() - 2], p) <= max_speed_mps
-        {
+        if acc.len() >= 2 && !next_ok_from_top && speed(&acc[acc.len() - 2], p) <= max_speed_mps {
             let bad = acc.pop().expect("len >= 2");
-            let before = acc.last().expect("len >= 1");
             spikes.push(Spike {
                 t: bad.t,
-                implied_speed_kn: speed(before, &bad) / MPS_PER_KNOT,
+                implied_speed_kn: v / MPS_PER_KNOT,
             });
             acc.push(*p);
         } else if acc.len() == 1 && !next_ok_from_top && i + 1 < kept.len() {

@@ -117,7 +117,6 @@ pub(crate) fn standings_into(
     out.clear();
     let has_course = course.len() >= 2;
     for (b, (boat, s)) in boats.iter().zip(states).enumerate() {
-        let started = boat.fixes().first().is_some_and(|f| f.t <= t);
         let done = boat
             .roundings()
             .iter()
@@ -142,7 +141,6 @@ pub(crate) fn standings_into(
             finished,
             racing: s.racing,
         });
-        let _ = started;
     }
     let finish_time = |st: &Standing| {
         if st.finished {

@@ -55,6 +55,18 @@ pub struct LoadReport {
     pub warnings: Vec<String>,
 }
 
+/// One boat passing one course mark.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RoundingEvent {
+    /// Race seconds.
+    pub t: f64,
+    /// Index into `Race::boats`.
+    pub boat: usize,
+    /// Position in `Race::course` (0 = the start).
+    pub course_index: usize,
+    pub mark: String,
+}
+
 /// A race: boats, marks, course, and the clock they share.
 #[derive(Debug, Clone)]
 pub struct Race {
@@ -76,8 +88,16 @@ pub struct Race {
     tail: Vec<f64>,
 }
 
-/// The embedded default race (a generated fleet, see `assets/races/README.md`).
-const SAMPLE: &[(&str, &[u8])] = &[
+/// The embedded default race: a generated eight-boat windward-leeward race
+/// (`scripts/gen-fleet-race.sh`, see `assets/races/README.md`).
+const SAMPLE: &[(&str, &[u8])] = &[(
+    "assets/races/fleet.json",
+    include_bytes!("../../../assets/races/fleet.json"),
+)];
+
+/// The real race shipped beside it (MIT, `assets/races/valencia/LICENSE`): two dinghies,
+/// Valencia 2025-06-21, race P01, with the maxSail marks.
+const VALENCIA: &[(&str, &[u8])] = &[
     (
         "assets/races/valencia/2025-06-21-ESP29375-P01.gpx",
         include_bytes!("../../../assets/races/valencia/2025-06-21-ESP29375-P01.gpx"),
@@ -124,9 +144,14 @@ impl Race {
         }
     }
 
-    /// The embedded default race.
+    /// The embedded default race (the generated fleet).
     pub fn sample() -> Race {
         Race::from_files(SAMPLE).expect("the embedded sample race is valid (tested)")
+    }
+
+    /// The embedded real race: Valencia 2025-06-21 P01, two dinghies, marks S1 and B1.
+    pub fn valencia() -> Race {
+        Race::from_files(VALENCIA).expect("the embedded Valencia race is valid (tested)")
     }
 
     /// Read and combine race files: `.json` (native race or maxSail meta-data), `.gpx`, `.csv`.
@@ -173,7 +198,15 @@ impl Race {
 
     /// The leaderboard at time t (see [`course`]) from `states` (= `states_at(t)`), into `out`.
     pub fn standings_into(&self, t: f64, states: &[BoatState], out: &mut Vec<Standing>) {
-        course::standings_into(t, &self.boats, states, &self.marks, &self.course, &self.tail, out);
+        course::standings_into(
+            t,
+            &self.boats,
+            states,
+            &self.marks,
+            &self.course,
+            &self.tail,
+            out,
+        );
     }
 
     /// The leaderboard at time t, sorted by rank (allocates; see [`Race::standings_into`]).
@@ -204,6 +237,29 @@ impl Race {
     /// Latitude/longitude of race metres, where the race has an origin.
     pub fn to_geo(&self, xz: [f64; 2]) -> Option<GeoPoint> {
         self.frame.map(|f| f.to_geo(xz))
+    }
+
+    /// Every rounding of every boat, sorted by time: the timeline's jump targets.
+    pub fn rounding_events(&self) -> Vec<RoundingEvent> {
+        let mut v: Vec<RoundingEvent> = self
+            .boats
+            .iter()
+            .enumerate()
+            .flat_map(|(b, boat)| {
+                boat.roundings()
+                    .iter()
+                    .enumerate()
+                    .filter_map(move |(k, r)| r.map(|t| (b, k, t)))
+            })
+            .map(|(boat, leg, t)| RoundingEvent {
+                t,
+                boat,
+                course_index: leg,
+                mark: self.marks[self.course[leg]].name.clone(),
+            })
+            .collect();
+        v.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.boat.cmp(&b.boat)));
+        v
     }
 
     /// The index of the boat with this id.

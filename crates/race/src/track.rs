@@ -133,8 +133,8 @@ impl Boat {
         ];
         // Segments: runs of fixes without a gap inside.
         let mut start = 0;
-        for i in 0..n {
-            if gap_after[i] || i + 1 == n {
+        for (i, &gap) in gap_after.iter().enumerate() {
+            if gap || i + 1 == n {
                 let seg = start..i + 1;
                 let ts: Vec<f64> = fixes[seg.clone()].iter().map(|f| f.t).collect();
                 let xs: Vec<f64> = fixes[seg.clone()].iter().map(|f| f.x).collect();
@@ -328,8 +328,7 @@ impl Boat {
     }
 
     /// Bytes held per sample (fix + derived values), for the scale benchmark.
-    pub const BYTES_PER_SAMPLE: usize =
-        std::mem::size_of::<Fix>() + std::mem::size_of::<Derived>();
+    pub const BYTES_PER_SAMPLE: usize = std::mem::size_of::<Fix>() + std::mem::size_of::<Derived>();
 }
 
 /// Cubic Hermite on one interval of width h at s ∈ [0, 1], clamped to the interval's end

@@ -64,7 +64,14 @@ impl Frustum {
     /// Gribb–Hartmann extraction from a view-projection with depth range [0, 1].
     pub fn from_matrix(m: DMat4) -> Frustum {
         let r = [m.row(0), m.row(1), m.row(2), m.row(3)];
-        let planes = [r[3] + r[0], r[3] - r[0], r[3] + r[1], r[3] - r[1], r[2], r[3] - r[2]];
+        let planes = [
+            r[3] + r[0],
+            r[3] - r[0],
+            r[3] + r[1],
+            r[3] - r[1],
+            r[2],
+            r[3] - r[2],
+        ];
         Frustum {
             planes: planes.map(|p| p / p.truncate().length()),
         }
@@ -130,7 +137,11 @@ mod tests {
 
     #[test]
     fn frustum_keeps_what_is_ahead_and_drops_what_is_behind() {
-        let cam = Camera::look_at(DVec3::new(0.0, 10.0, 0.0), DVec3::new(0.0, 0.0, -100.0), 1e4);
+        let cam = Camera::look_at(
+            DVec3::new(0.0, 10.0, 0.0),
+            DVec3::new(0.0, 0.0, -100.0),
+            1e4,
+        );
         let f = Frustum::from_matrix(cam.view_proj_local(DVec2::ZERO, 1.5));
         let ahead = (DVec3::new(-5.0, -1.0, -60.0), DVec3::new(5.0, 1.0, -50.0));
         let behind = (DVec3::new(-5.0, -1.0, 50.0), DVec3::new(5.0, 1.0, 60.0));

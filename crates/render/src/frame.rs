@@ -195,10 +195,7 @@ impl FrameBindings {
             })
         };
         let uniform = buffer("frame uniform", size_of::<FrameUniform>() as u64);
-        let waves = buffer(
-            "waves",
-            (MAX_WAVES * size_of::<ocean::GpuWave>()) as u64,
-        );
+        let waves = buffer("waves", (MAX_WAVES * size_of::<ocean::GpuWave>()) as u64);
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("frame"),
             layout: &layout,
@@ -293,7 +290,8 @@ pub struct FrameReport {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ClipMapRecord {
     pub levels: u32,
-    pub cells: u32,
+    /// Cells per side of each level.
+    pub cells: Vec<u32>,
     pub base_cell_m: f64,
     pub error_target_px: f64,
     pub origin: [f64; 2],
@@ -303,8 +301,8 @@ pub struct ClipMapRecord {
 impl ClipMapRecord {
     pub fn of(frame: &FrameContext) -> ClipMapRecord {
         ClipMapRecord {
-            levels: frame.clipmap.levels,
-            cells: frame.clipmap.cells,
+            levels: frame.clipmap.levels(),
+            cells: frame.clipmap.cells.clone(),
             base_cell_m: frame.clipmap.base_cell,
             error_target_px: frame.error_target.pixels,
             origin: [frame.origin.x, frame.origin.y],

@@ -179,7 +179,12 @@ impl Gpu {
             memory_hints: wgpu::MemoryHints::Performance,
             trace: wgpu::Trace::Off,
         }))
-        .map_err(|e| GpuError(format!("the GPU adapter {} refused a device: {e}", info.name)))?;
+        .map_err(|e| {
+            GpuError(format!(
+                "the GPU adapter {} refused a device: {e}",
+                info.name
+            ))
+        })?;
         Ok(Gpu {
             instance,
             adapter,
@@ -223,8 +228,8 @@ impl Gpu {
     pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<image::RgbaImage, GpuError> {
         let (w, h) = (texture.width(), texture.height());
         let row = w * 4;
-        let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size: u64::from(padded * h),

@@ -75,9 +75,9 @@ pub fn boat() -> Mesh {
             let k1 = [0.0, -d1, z1];
             // Wind the topsides so their normals face outwards.
             if side > 0.0 {
-                m.quad(g0, k0, k1, g1, HULL);
-            } else {
                 m.quad(g0, g1, k1, k0, HULL);
+            } else {
+                m.quad(g0, k0, k1, g1, HULL);
             }
         }
         m.quad(
@@ -90,7 +90,12 @@ pub fn boat() -> Mesh {
     }
     // Transom.
     let (zs, bs, ds) = station(N - 1);
-    m.tri([-bs, FREEBOARD, zs], [0.0, -ds, zs], [bs, FREEBOARD, zs], HULL);
+    m.tri(
+        [-bs, FREEBOARD, zs],
+        [0.0, -ds, zs],
+        [bs, FREEBOARD, zs],
+        HULL,
+    );
     // Mast: a thin square tube, a third of the way aft.
     let (mz, h, r) = (-0.12f32, 1.3f32, 0.012f32);
     let c = [[-r, -r], [r, -r], [r, r], [-r, r]];
@@ -150,7 +155,10 @@ mod tests {
         for t in m.vertices.chunks(3).filter(|t| t[0].part == HULL) {
             let cx = (t[0].position[0] + t[1].position[0] + t[2].position[0]) / 3.0;
             if cx.abs() > 0.01 {
-                assert!(cx * t[0].normal[0] > 0.0, "inward-facing hull triangle {t:?}");
+                assert!(
+                    cx * t[0].normal[0] > 0.0,
+                    "inward-facing hull triangle {t:?}"
+                );
             }
         }
         assert!(m.triangles() > 40);

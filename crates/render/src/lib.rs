@@ -36,10 +36,12 @@
 
 pub mod camera;
 pub mod clipmap;
+pub mod compute;
 pub mod effects;
 pub mod frame;
 pub mod gpu;
 pub mod hull;
+pub mod mesh_error;
 pub mod optics;
 pub mod passes;
 pub mod pool;

@@ -410,7 +410,12 @@ mod tests {
                 (schlick(c, N_AIR, N_WATER) - fresnel(c, N_AIR, N_WATER).r).abs()
             })
             .fold(0.0, f64::max);
-        assert!(worst > 1e-3 && worst < 0.05, "worst Schlick error {worst}");
+        // Schlick's worst absolute error for water is about 0.058 near 84°, and at 50° it is
+        // 23 % low: why the water uses the full equations.
+        assert!(worst > 0.055 && worst < 0.06, "worst Schlick error {worst}");
+        let c50 = 50f64.to_radians().cos();
+        let full = fresnel(c50, N_AIR, N_WATER).r;
+        assert!((full - schlick(c50, N_AIR, N_WATER)) / full > 0.2);
     }
 
     #[test]

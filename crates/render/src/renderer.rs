@@ -132,7 +132,10 @@ impl Renderer {
             let view = tex.create_view(&Default::default());
             self.depth = Some((tex, view));
         }
-        self.depth.as_ref().map(|(_, v)| v.clone()).expect("set above")
+        self.depth
+            .as_ref()
+            .map(|(_, v)| v.clone())
+            .expect("set above")
     }
 
     /// Plan and draw `scene` into `target` (`size` pixels); returns the frame's record.
@@ -232,10 +235,7 @@ impl Renderer {
                 Err(e) => log::warn!("no GPU timings this frame: {e}"),
             }
         }
-        let gpu_ms = records
-            .iter()
-            .filter_map(|r| r.gpu_ms)
-            .reduce(|a, b| a + b);
+        let gpu_ms = records.iter().filter_map(|r| r.gpu_ms).reduce(|a, b| a + b);
         FrameReport {
             t: scene.t,
             size,

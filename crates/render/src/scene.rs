@@ -70,7 +70,11 @@ impl Scene {
         let [x0, z0, x1, z1] = Scene::play_area_around(pts, 0.0);
         let centre = DVec2::new(x0 + x1, z0 + z1) / 2.0;
         let radius = (DVec2::new(x1 - x0, z1 - z0).length() / 2.0).max(30.0);
-        let eye = DVec3::new(centre.x + radius * 0.7, radius * 0.45, centre.y + radius * 1.1);
+        let eye = DVec3::new(
+            centre.x + radius * 0.7,
+            radius * 0.45,
+            centre.y + radius * 1.1,
+        );
         Camera::look_at(eye, DVec3::new(centre.x, 0.0, centre.y), far)
     }
 }
@@ -153,15 +157,30 @@ mod tests {
         let sea = one_wave();
         let t = 3.0;
         let x = 7.0;
-        let pose = float_pose(&sea, t, DVec2::new(x, 0.0), std::f64::consts::FRAC_PI_2, 4.0, 1.5);
+        let pose = float_pose(
+            &sea,
+            t,
+            DVec2::new(x, 0.0),
+            std::f64::consts::FRAC_PI_2,
+            4.0,
+            1.5,
+        );
         let bow = sea.height_at([x + 2.0, 0.0], t).unwrap();
         let stern = sea.height_at([x - 2.0, 0.0], t).unwrap();
         assert!((pose.pitch - (bow - stern).atan2(4.0)).abs() < 1e-12);
-        assert!(pose.pitch.abs() > 0.01, "the test point should be on a slope");
+        assert!(
+            pose.pitch.abs() > 0.01,
+            "the test point should be on a slope"
+        );
         // Port and starboard see the same height on a wave along x: no roll.
         assert!(pose.roll.abs() < 1e-9);
         // The model matrix puts the bow where the heading points (east).
-        let m = float_matrix(DVec2::new(x, 0.0), std::f64::consts::FRAC_PI_2, &pose, DVec2::ZERO);
+        let m = float_matrix(
+            DVec2::new(x, 0.0),
+            std::f64::consts::FRAC_PI_2,
+            &pose,
+            DVec2::ZERO,
+        );
         let bow_pt = m.transform_point3(DVec3::new(0.0, 0.0, -2.0));
         assert!(bow_pt.x > x + 1.9 && bow_pt.z.abs() < 1e-9);
     }

@@ -12,21 +12,37 @@ pub struct TrackSample {
     pub z: f64,
 }
 
-/// Why a track was refused: which boat (index in the input) and which sample.
+/// Why wake input was refused.
 #[derive(Debug, Clone, PartialEq)]
-pub struct WakeError {
-    pub boat: usize,
-    pub sample: usize,
-    pub reason: &'static str,
+pub enum WakeError {
+    /// A track sample: which boat (index in the input) and which sample.
+    Track {
+        boat: usize,
+        sample: usize,
+        reason: &'static str,
+    },
+    /// A field of `WakeParams`.
+    Param {
+        field: &'static str,
+        reason: &'static str,
+    },
 }
 
 impl fmt::Display for WakeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "wake track of boat {} is invalid at sample {}: {}",
-            self.boat, self.sample, self.reason
-        )
+        match self {
+            WakeError::Track {
+                boat,
+                sample,
+                reason,
+            } => write!(
+                f,
+                "the track of boat {boat} is invalid at sample {sample}: {reason}"
+            ),
+            WakeError::Param { field, reason } => {
+                write!(f, "the wake parameter `{field}` {reason}")
+            }
+        }
     }
 }
 
@@ -35,7 +51,7 @@ impl std::error::Error for WakeError {}
 /// Check a track: finite values, non-decreasing times.
 pub(crate) fn check_track(boat: usize, samples: &[TrackSample]) -> Result<(), WakeError> {
     for (i, s) in samples.iter().enumerate() {
-        let err = |reason| WakeError {
+        let err = |reason| WakeError::Track {
             boat,
             sample: i,
             reason,

@@ -6,14 +6,14 @@
 //! The spike limit is 1.2 × the log's own top speed over ground (the instrument knows what the
 //! class can do), at least 20 kn.
 
+use time::PrimitiveDateTime;
 use time::format_description::well_known::Rfc3339;
 use time::macros::format_description;
-use time::PrimitiveDateTime;
 
 use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Source, Times, unix_seconds};
+use crate::Wind;
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
-use crate::Wind;
 
 struct Columns {
     time: usize,
@@ -39,23 +39,35 @@ fn unit_of(name: &str) -> f64 {
 }
 
 fn detect(file: &str, header: &csv::StringRecord) -> RaceResult<Columns> {
-    let names: Vec<String> = header.iter().map(|h| h.trim().to_ascii_lowercase()).collect();
+    let names: Vec<String> = header
+        .iter()
+        .map(|h| h.trim().to_ascii_lowercase())
+        .collect();
     let find = |pred: &dyn Fn(&str) -> bool| names.iter().position(|n| pred(n));
     let need = |i: Option<usize>, what: &str| {
-        i.ok_or_else(|| {
-            RaceError::at_line(file, 1, format!("the header has no {what} column"))
-        })
+        i.ok_or_else(|| RaceError::at_line(file, 1, format!("the header has no {what} column")))
     };
-    let time = ["datetime", "time", "timestamp", "utc", "time_utc", "date_time", "t"]
-        .iter()
-        .find_map(|w| names.iter().position(|n| n == w));
+    let time = [
+        "datetime",
+        "time",
+        "timestamp",
+        "utc",
+        "time_utc",
+        "date_time",
+        "t",
+    ]
+    .iter()
+    .find_map(|w| names.iter().position(|n| n == w));
     let sog = find(&|n| n.contains("sog"))
         .or_else(|| find(&|n| n.contains("speed") && !n.starts_with("tw") && !n.starts_with("aw")));
     let tws = find(&|n| n.starts_with("tws"));
     Ok(Columns {
         time: need(time, "time (DATETIME, time, timestamp or utc)")?,
         lat: need(find(&|n| n.starts_with("lat")), "latitude (LAT…)")?,
-        lon: need(find(&|n| n.starts_with("lon") || n.starts_with("lng")), "longitude (LON…)")?,
+        lon: need(
+            find(&|n| n.starts_with("lon") || n.starts_with("lng")),
+            "longitude (LON…)",
+        )?,
         sog: sog.map(|i| (i, unit_of(&names[i]))),
         heading: find(&|n| n.starts_with("heading") || n == "hdg"),
         heel: find(&|n| n.starts_with("heel")),
@@ -70,7 +82,8 @@ fn parse_time(cell: &str) -> Option<(f64, Times)> {
     let c = cell.trim();
     let fmt_frac = format_description!("[year]-[month]-[day] [hour]:[minute]:[second].[subsecond]");
     let fmt = format_description!("[year]-[month]-[day] [hour]:[minute]:[second]");
-    if let Ok(t) = PrimitiveDateTime::parse(c, fmt).or_else(|_| PrimitiveDateTime::parse(c, fmt_frac))
+    if let Ok(t) =
+        PrimitiveDateTime::parse(c, fmt).or_else(|_| PrimitiveDateTime::parse(c, fmt_frac))
     {
         return Some((unix_seconds(t.assume_utc()), Times::Absolute));
     }
@@ -103,7 +116,9 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         let rec = rec.map_err(|e| {
             let line = e.position().map_or(0, |p| p.line());
             let what = match e.kind() {
-                csv::ErrorKind::UnequalLengths { expected_len, len, .. } => {
+                csv::ErrorKind::UnequalLengths {
+                    expected_len, len, ..
+                } => {
                     format!("{len} cells where the header has {expected_len}")
                 }
                 csv::ErrorKind::Utf8 { .. } => "text that is not UTF-8".into(),
@@ -185,7 +200,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         });
     }
     if points.is_empty() {
-        return Err(RaceError::in_file(file, "the log has a header but no rows: a boat needs points"));
+        return Err(RaceError::in_file(
+            file,
+            "the log has a header but no rows: a boat needs points",
+        ));
     }
     let mut s = Source::new(file, Coords::Geo, times.unwrap_or(Times::Absolute));
     if n_wind > 0 {

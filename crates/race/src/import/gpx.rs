@@ -2,7 +2,9 @@
 //! A `<gpx>` element without the `version` attribute (the Gdańsk file) is read as GPX 1.1,
 //! with a warning, instead of refused.
 
-use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawMark, RawPoint, Source, Times, unix_seconds};
+use super::{
+    Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawMark, RawPoint, Source, Times, unix_seconds,
+};
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
 
@@ -61,7 +63,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
                 let Some(t) = w.time else {
                     return Err(RaceError::in_file(
                         file,
-                        format!("{} has no <time>; a race track needs a time on every point", at()),
+                        format!(
+                            "{} has no <time>; a race track needs a time on every point",
+                            at()
+                        ),
                     ));
                 };
                 points.push(RawPoint {
@@ -92,7 +97,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     for (k, w) in g.waypoints.iter().enumerate() {
         let p = w.point();
         if let Some(msg) = super::geo_problem(p.y(), p.x()) {
-            return Err(RaceError::in_file(file, format!("waypoint {}: {msg}", k + 1)));
+            return Err(RaceError::in_file(
+                file,
+                format!("waypoint {}: {msg}", k + 1),
+            ));
         }
         s.marks.push(RawMark {
             name: w.name.clone().unwrap_or_else(|| format!("WP{}", k + 1)),
@@ -100,7 +108,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         });
     }
     if s.boats.is_empty() && s.marks.is_empty() {
-        return Err(RaceError::in_file(file, "the GPX has no tracks and no waypoints"));
+        return Err(RaceError::in_file(
+            file,
+            "the GPX has no tracks and no waypoints",
+        ));
     }
     Ok(s)
 }

@@ -6,10 +6,10 @@
 use serde::Deserialize;
 
 use super::{Coords, RawBoat, RawMark, RawPoint, Source, Times, unix_seconds};
+use crate::Wind;
 use crate::error::{RaceError, RaceResult};
 use crate::geo::GeoPoint;
 use crate::track::Logged;
-use crate::Wind;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -46,7 +46,9 @@ struct JsonMark {
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let r: JsonRace = serde_json::from_str(text).map_err(|e| {
         let msg = e.to_string();
-        let msg = msg.rsplit_once(" at line ").map_or(msg.as_str(), |(m, _)| m);
+        let msg = msg
+            .rsplit_once(" at line ")
+            .map_or(msg.as_str(), |(m, _)| m);
         RaceError::at_line(file, e.line() as u64, format!("not a race file: {msg}"))
     })?;
     let mut s = Source::new(file, Coords::Local, Times::Relative);
@@ -70,7 +72,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     s.course = r.course;
     if let Some(w) = r.wind {
         if !(w.from_deg.is_finite() && w.speed_mps.is_finite() && w.speed_mps >= 0.0) {
-            return Err(RaceError::in_file(file, "\"wind\" needs a finite from_deg and a speed_mps ≥ 0"));
+            return Err(RaceError::in_file(
+                file,
+                "\"wind\" needs a finite from_deg and a speed_mps ≥ 0",
+            ));
         }
         s.wind = Some(w);
     }
@@ -82,10 +87,15 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             ));
         }
         if b.id.trim().is_empty() {
-            return Err(RaceError::in_file(file, format!("boats[{bi}] has an empty \"id\"")));
+            return Err(RaceError::in_file(
+                file,
+                format!("boats[{bi}] has an empty \"id\""),
+            ));
         }
         if let Some(c) = &b.color
-            && !(c.len() == 7 && c.starts_with('#') && c[1..].bytes().all(|x| x.is_ascii_hexdigit()))
+            && !(c.len() == 7
+                && c.starts_with('#')
+                && c[1..].bytes().all(|x| x.is_ascii_hexdigit()))
         {
             return Err(RaceError::in_file(
                 file,
@@ -110,7 +120,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             Some(k) => {
                 return Err(RaceError::in_file(
                     file,
-                    format!("boat \"{}\" has max_speed_kn {k}; it must be positive", b.id),
+                    format!(
+                        "boat \"{}\" has max_speed_kn {k}; it must be positive",
+                        b.id
+                    ),
                 ));
             }
             None => f64::INFINITY,
@@ -120,7 +133,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             if !p.iter().all(|v| v.is_finite() && v.abs() < 1e9) {
                 return Err(RaceError::in_file(
                     file,
-                    format!("boat \"{}\" track[{k}] = {p:?} is not three finite numbers", b.id),
+                    format!(
+                        "boat \"{}\" track[{k}] = {p:?} is not three finite numbers",
+                        b.id
+                    ),
                 ));
             }
             let heel = b.heel.as_ref().map_or(f32::NAN, |h| h[k] as f32);
@@ -146,7 +162,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         if !m.position.iter().all(|v| v.is_finite() && v.abs() < 1e9) {
             return Err(RaceError::in_file(
                 file,
-                format!("marks[{k}] (\"{}\") has a position that is not two finite numbers", m.name),
+                format!(
+                    "marks[{k}] (\"{}\") has a position that is not two finite numbers",
+                    m.name
+                ),
             ));
         }
         s.marks.push(RawMark {

@@ -7,8 +7,8 @@
 use serde::Deserialize;
 
 use super::{Coords, RawMark, Source, Times};
-use crate::error::{RaceError, RaceResult};
 use crate::Wind;
+use crate::error::{RaceError, RaceResult};
 
 pub(crate) fn is_maxsail(text: &str) -> bool {
     text.contains("\"BALIZAS\"")
@@ -34,13 +34,22 @@ struct Baliza {
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let m: Meta = serde_json::from_str(text).map_err(|e| {
         let msg = e.to_string();
-        let msg = msg.rsplit_once(" at line ").map_or(msg.as_str(), |(m, _)| m);
-        RaceError::at_line(file, e.line() as u64, format!("not a maxSail meta-data file: {msg}"))
+        let msg = msg
+            .rsplit_once(" at line ")
+            .map_or(msg.as_str(), |(m, _)| m);
+        RaceError::at_line(
+            file,
+            e.line() as u64,
+            format!("not a maxSail meta-data file: {msg}"),
+        )
     })?;
     let mut s = Source::new(file, Coords::Geo, Times::Absolute);
     for (k, b) in m.BALIZAS.iter().enumerate() {
         if let Some(p) = super::geo_problem(b.lat, b.lon) {
-            return Err(RaceError::in_file(file, format!("BALIZAS[{k}] (\"{}\"): {p}", b.nombre)));
+            return Err(RaceError::in_file(
+                file,
+                format!("BALIZAS[{k}] (\"{}\"): {p}", b.nombre),
+            ));
         }
         s.marks.push(RawMark {
             name: b.nombre.clone(),

@@ -31,7 +31,7 @@ pub(crate) enum Coords {
 /// Time as a file gives it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Times {
-    /// Unix seconds.
+    /// Seconds since `EPOCH_UNIX` (2020-01-01).
     Absolute,
     /// Seconds since the race start (of the file's `start_time`, if it has one).
     Relative,
@@ -71,7 +71,7 @@ pub(crate) struct Source {
     pub name: Option<String>,
     /// Local-coordinate files: the geographic point of their (0, 0).
     pub origin: Option<GeoPoint>,
-    /// Unix seconds of the file's t = 0 (relative times) or of the given start.
+    /// Seconds since `EPOCH_UNIX` of the file's t = 0 (relative times) or of the given start.
     pub start_time: Option<f64>,
     /// maxSail: the start is `minutes` after the first fix of the named track file.
     pub start_after_track: Option<(String, f64)>,
@@ -123,8 +123,12 @@ pub(crate) fn boat_id_from_file(file: &str) -> String {
         .to_string()
 }
 
+/// Absolute times are seconds since 2020-01-01T00:00Z inside the importer: a 2025 time is then
+/// ~1.7e8 s, resolved to 3e-8 s in f64 (Unix seconds would keep only 2.4e-7 s).
+pub(crate) const EPOCH_UNIX: i64 = 1_577_836_800;
+
 pub(crate) fn unix_seconds(t: OffsetDateTime) -> f64 {
-    t.unix_timestamp() as f64 + t.nanosecond() as f64 * 1e-9
+    (t.unix_timestamp() - EPOCH_UNIX) as f64 + t.nanosecond() as f64 * 1e-9
 }
 
 /// Parse one file by its extension.
@@ -150,7 +154,11 @@ pub(crate) fn parse(file: &str, bytes: &[u8]) -> RaceResult<Source> {
         return Err(RaceError::in_file(file, "the file is empty"));
     }
     let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1;
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
         RaceError::at_line(file, line as u64, "the text is not valid UTF-8")
     })?;
     match ext.as_str() {
@@ -241,7 +249,8 @@ pub(crate) fn assemble(sources: Vec<Source>) -> RaceResult<Race> {
             if let Some((track, minutes)) = &s.start_after_track {
                 if let Some(t0) = first_abs(track) {
                     start = Some(t0 + minutes * 60.0);
-                    start_how = format!("{minutes} min after the first fix of {track} ({})", s.file);
+                    start_how =
+                        format!("{minutes} min after the first fix of {track} ({})", s.file);
                     break;
                 }
                 warnings.push(format!(
@@ -313,7 +322,9 @@ pub(crate) fn assemble(sources: Vec<Source>) -> RaceResult<Race> {
         for m in &s.marks {
             let position = to_race(s, m.c);
             match marks.iter().find(|k| k.name == m.name) {
-                Some(k) if (k.position[0] - position[0]).hypot(k.position[1] - position[1]) > 1.0 => {
+                Some(k)
+                    if (k.position[0] - position[0]).hypot(k.position[1] - position[1]) > 1.0 =>
+                {
                     warnings.push(format!(
                         "{}: mark {} is given again {:.0} m away; the first position is kept",
                         s.file,
@@ -335,7 +346,11 @@ pub(crate) fn assemble(sources: Vec<Source>) -> RaceResult<Race> {
             let mut c = Vec::new();
             for n in &names {
                 let Some(i) = marks.iter().position(|m| &m.name == n) else {
-                    let file = &sources.iter().find(|s| s.course.is_some()).expect("found").file;
+                    let file = &sources
+                        .iter()
+                        .find(|s| s.course.is_some())
+                        .expect("found")
+                        .file;
                     return Err(RaceError::in_file(
                         file,
                         format!("the course names the mark \"{n}\", which no file defines"),
@@ -359,19 +374,27 @@ pub(crate) fn assemble(sources: Vec<Source>) -> RaceResult<Race> {
         .unwrap_or_else(|| race_name(&sources));
     let wind = sources.iter().find_map(|s| s.wind);
     let start_time = start.and_then(|s| {
-        OffsetDateTime::from_unix_timestamp_nanos((s * 1e9).round() as i128).ok()
+        let whole = s.floor();
+        let nanos = ((s - whole) * 1e9).round() as i128;
+        OffsetDateTime::from_unix_timestamp_nanos(
+            (whole as i128 + EPOCH_UNIX as i128) * 1_000_000_000 + nanos,
+        )
+        .ok()
     });
     let report = LoadReport {
         files: sources.iter().map(|s| s.file.clone()).collect(),
         origin,
         start_time: start_time.and_then(|t| {
-            t.format(&time::format_description::well_known::Rfc3339).ok()
+            t.format(&time::format_description::well_known::Rfc3339)
+                .ok()
         }),
         start_from: start_how,
         boats: reports,
         warnings,
     };
-    Ok(Race::new(name, origin, start_time, boats, marks, course, wind, report))
+    Ok(Race::new(
+        name, origin, start_time, boats, marks, course, wind, report,
+    ))
 }
 
 /// Add laps (`course[1..]` again) while at least half the boats sail them: the maxSail files

@@ -66,11 +66,13 @@ impl CausticMap {
 /// The surface is sampled on a `src_res`² grid of rest points (plus margin), the result binned
 /// on an `out_res`² grid.
 ///
-/// Each grid cell of the surface is split into two triangles; each triangle's light
-/// (its footprint area along the sun onto the plane y = 0) is spread evenly over the triangle
-/// it lands on, by depositing it at sample points inside that triangle dense enough that every
-/// output cell it covers gets some. Light is thus conserved exactly (up to what leaves a
-/// non-periodic region), and the per-triangle irradiance is A_source / A_table.
+/// Each grid cell of the surface is split into two triangles; each triangle's light (its
+/// footprint area along the sun on the plane y = 0) spreads evenly over the triangle it lands on,
+/// with irradiance A_source / A_table. An output cell's value is the sum of the irradiances of
+/// the landed triangles covering its centre (more than one where the light folds over, as in a
+/// real caustic): exactly what the GPU pass does when it rasterises the landed triangles with
+/// additive blending. Light is conserved up to the sampling of the landed triangles by the
+/// output cells (a periodic patch keeps its mean within about 1 % at the sizes tested).
 pub fn area_ratio(
     waves: &WaveSet,
     t: f64,
@@ -116,52 +118,84 @@ pub fn area_ratio(
         }
     }
     let cell = region.size / out_res as f64;
-    let mut energy = vec![0.0; out_res * out_res];
-    let mut deposit = |p: DVec2, e: f64| {
-        let mut u = (p.x - region.min[0]) / cell;
-        let mut v = (p.y - region.min[1]) / cell;
-        if region.periodic {
-            u = u.rem_euclid(out_res as f64);
-            v = v.rem_euclid(out_res as f64);
-        }
-        let (i, j) = (u.floor(), v.floor());
-        if (0.0..out_res as f64).contains(&i) && (0.0..out_res as f64).contains(&j) {
-            energy[j as usize * out_res + i as usize] += e;
-        }
-    };
-    let tri_area = |a: DVec2, b: DVec2, c: DVec2| 0.5 * (b - a).perp_dot(c - a).abs();
+    let mut intensity = vec![0.0; out_res * out_res];
+    let tri_area = |a: DVec2, b: DVec2, c: DVec2| 0.5 * (b - a).perp_dot(c - a);
     for j in 0..n - 1 {
         for i in 0..n - 1 {
             let k = j * n + i;
             for tri in [[k, k + 1, k + n + 1], [k, k + n + 1, k + n]] {
-                let src = tri_area(foot[tri[0]], foot[tri[1]], foot[tri[2]]);
-                let [a, b, c] = tri.map(|q| land[q]);
-                // Sample points on a barycentric lattice of m subdivisions per edge: m² points
-                // at the centroids of the m² sub-triangles, each carrying an equal share.
-                let edge = (b - a).length().max((c - b).length()).max((a - c).length());
-                let m = ((edge / cell * 2.0).ceil() as usize).clamp(1, 64);
-                let share = src / (m * m) as f64;
-                let inv = 1.0 / m as f64;
-                for p in 0..m {
-                    for q in 0..m - p {
-                        // Upward sub-triangle centroid.
-                        let (u, v) = ((p as f64 + 1.0 / 3.0) * inv, (q as f64 + 1.0 / 3.0) * inv);
-                        deposit(a + u * (b - a) + v * (c - a), share);
-                        if p + q + 1 < m {
-                            let (u, v) =
-                                ((p as f64 + 2.0 / 3.0) * inv, (q as f64 + 2.0 / 3.0) * inv);
-                            deposit(a + u * (b - a) + v * (c - a), share);
-                        }
-                    }
+                let src = tri_area(foot[tri[0]], foot[tri[1]], foot[tri[2]]).abs();
+                let signed = tri_area(land[tri[0]], land[tri[1]], land[tri[2]]);
+                if signed == 0.0 {
+                    continue;
                 }
+                let ratio = (src / signed.abs()).min(MAX_INTENSITY);
+                // Counter-clockwise order, so that "inside" is the left of every edge.
+                let tri = if signed > 0.0 {
+                    tri
+                } else {
+                    [tri[0], tri[2], tri[1]]
+                };
+                splat_triangle(&land, tri, ratio, &region, out_res, cell, &mut intensity);
             }
         }
     }
-    let bin_area = cell * cell;
     CausticMap {
         region,
         n: out_res,
-        intensity: energy.into_iter().map(|e| e / bin_area).collect(),
+        intensity,
+    }
+}
+
+/// Irradiance is capped here (times the flat-water value): at an exact focus the area ratio is
+/// infinite, and a real sun (0.53° wide) and the water's own blur keep caustics finite.
+pub const MAX_INTENSITY: f64 = 50.0;
+
+/// Add `value` to every output cell whose centre lies inside the triangle `tri` (indices into
+/// `pts`, counter-clockwise). A centre on an edge shared by two triangles counts once: each edge
+/// is evaluated in one canonical direction (lower vertex index first), so both triangles see the
+/// same number with opposite signs, and a tie goes to the triangle that traverses the edge in the
+/// canonical direction.
+fn splat_triangle(
+    pts: &[DVec2],
+    tri: [usize; 3],
+    value: f64,
+    region: &CausticRegion,
+    out_res: usize,
+    cell: f64,
+    out: &mut [f64],
+) {
+    let [a, b, c] = tri.map(|q| pts[q]);
+    let lo = a.min(b).min(c);
+    let hi = a.max(b).max(c);
+    let min = DVec2::from(region.min);
+    // Cell-centre indices (unwrapped) whose centres fall in the bounding box.
+    let i0 = ((lo.x - min.x) / cell - 0.5).ceil() as i64;
+    let i1 = ((hi.x - min.x) / cell - 0.5).floor() as i64;
+    let j0 = ((lo.y - min.y) / cell - 0.5).ceil() as i64;
+    let j1 = ((hi.y - min.y) / cell - 0.5).floor() as i64;
+    let edges = [(tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])];
+    let n = out_res as i64;
+    for j in j0..=j1 {
+        for i in i0..=i1 {
+            let (wi, wj) = if region.periodic {
+                (i.rem_euclid(n), j.rem_euclid(n))
+            } else if (0..n).contains(&i) && (0..n).contains(&j) {
+                (i, j)
+            } else {
+                continue;
+            };
+            let p = min + DVec2::new(i as f64 + 0.5, j as f64 + 0.5) * cell;
+            let inside = edges.iter().all(|&(u, v)| {
+                let (s, e, forward) = if u < v { (u, v, true) } else { (v, u, false) };
+                let side = (pts[e] - pts[s]).perp_dot(p - pts[s]);
+                let side = if forward { side } else { -side };
+                side > 0.0 || (side == 0.0 && forward)
+            });
+            if inside {
+                out[wj as usize * out_res + wi as usize] += value;
+            }
+        }
     }
 }
 
@@ -232,13 +266,14 @@ mod tests {
         for t in [0.0, 7.3, 3600.0] {
             let map = area_ratio(&waves, t, sun, 1.5, region, 96, 32);
             assert!(
-                (map.mean() - 1.0).abs() < 1e-9,
+                (map.mean() - 1.0).abs() < 0.01,
                 "t = {t}: mean {}",
                 map.mean()
             );
             // And the waves really focus light: bright lines and dark gaps.
             assert!(map.max() > 1.5, "t = {t}: max {}", map.max());
-            assert!(map.intensity.iter().any(|&v| v < 0.8));
+            let min = map.intensity.iter().copied().fold(f64::MAX, f64::min);
+            assert!(min < 0.9, "t = {t}: min {min}");
         }
     }
 

@@ -11,12 +11,21 @@
 //! - [`flowmap`]: current around a mark and the two-phase flow-map blend with the UV jump.
 //! - [`planner`]: when each effect pass runs, and why it does not.
 
+pub mod camera_frame;
 pub mod caustics;
 pub mod flowmap;
+#[cfg(test)]
+mod gpu_tests;
+pub mod passes;
 pub mod planner;
 pub mod refraction;
 
 use std::fmt;
+
+use glam::{DVec2, DVec3};
+use ocean::{Wave, WaveSet};
+
+use crate::{Boat, Camera, Mark, Scene};
 
 /// One effect pass, in draw order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -122,6 +131,46 @@ impl fmt::Display for EffectSet {
         }
         let names: Vec<&str> = self.iter().map(Effect::name).collect();
         f.write_str(&names.join(","))
+    }
+}
+
+/// A table-sized scene for the effects' golden images and bench: 60 m of water (table units ×
+/// scale) with three short waves, two boats and a mark, seen obliquely from above, at race
+/// time `t`.
+pub fn demo_table_scene(t: f64) -> Scene {
+    let wave = |direction: [f64; 2], steepness: f64, wavelength: f64, phase: f64| Wave {
+        direction,
+        steepness,
+        wavelength,
+        phase,
+    };
+    let boat = |x: f64, z: f64, heading: f64, colour: [f32; 3]| Boat {
+        position: DVec2::new(x, z),
+        heading,
+        colour,
+        length: 8.0,
+    };
+    Scene {
+        t,
+        sea: WaveSet {
+            gravity: 9.81,
+            depth: None,
+            waves: vec![
+                wave([1.0, 0.0], 0.12, 14.0, 0.0),
+                wave([0.6, 0.8], 0.10, 9.0, 1.0),
+                wave([-0.3, 0.95], 0.08, 6.0, 2.0),
+            ],
+        },
+        boats: vec![
+            boat(-6.0, 4.0, 0.7, [0.8, 0.05, 0.05]),
+            boat(8.0, -6.0, 2.0, [0.05, 0.1, 0.7]),
+        ],
+        marks: vec![Mark {
+            position: DVec2::new(2.0, 10.0),
+        }],
+        play_area: [-30.0, -30.0, 30.0, 30.0],
+        sun: Scene::default_sun(),
+        camera: Camera::look_at(DVec3::new(22.0, 26.0, 48.0), DVec3::ZERO, 500.0),
     }
 }
 

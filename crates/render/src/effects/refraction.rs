@@ -88,9 +88,15 @@ fn clamp_uv(uv: DVec2) -> DVec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::{DMat4, DQuat};
+    use glam::DQuat;
 
     fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
+        // Looking straight down, "up" in the image is north.
+        let up = if (target - eye).normalize().y.abs() > 0.999 {
+            DVec3::NEG_Z
+        } else {
+            DVec3::Y
+        };
         PinholeCamera {
             fx: 400.0,
             fy: 400.0,
@@ -98,7 +104,7 @@ mod tests {
             cy: 240.0,
             width: 640.0,
             height: 480.0,
-            pose: glam::dcamera::rh::view::look_at_mat4(eye, target, DVec3::Y).inverse(),
+            pose: glam::dcamera::rh::view::look_at_mat4(eye, target, up).inverse(),
         }
     }
 
@@ -168,8 +174,8 @@ mod tests {
         let edge_px = DVec2::new(639.0, 300.0);
         let ray = cam.pixel_ray(edge_px);
         let (_, surface) = Plane::horizontal(0.0).intersect_ray(eye, ray).unwrap();
-        let n = (DQuat::from_rotation_z(-0.3) * DVec3::Y).normalize();
-        let s = refract_to_table(eye, surface, n, &Plane::horizontal(-0.3), &cam);
+        let n = (DQuat::from_rotation_z(0.8) * DVec3::Y).normalize();
+        let s = refract_to_table(eye, surface, n, &Plane::horizontal(-1.0), &cam);
         let raw = cam.project_uv(s.table_point.unwrap()).unwrap();
         assert!(
             raw.x > 1.0 + EDGE_FADE,

@@ -36,7 +36,8 @@ impl Pass for SkyPass {
     }
     fn plan(&self, frame: &FrameContext) -> Result<String, String> {
         // Sample a 5×5 grid of screen points, corners included.
-        let grid = (0..5).flat_map(|i| (0..5).map(move |j| [i as f64 / 2.0 - 1.0, j as f64 / 2.0 - 1.0]));
+        let grid =
+            (0..5).flat_map(|i| (0..5).map(move |j| [i as f64 / 2.0 - 1.0, j as f64 / 2.0 - 1.0]));
         let misses = grid.filter(|p| !frame.ray_hits_water(*p)).count();
         if misses > 0 {
             Ok(format!("{misses} of 25 sample rays see sky"))

@@ -46,7 +46,9 @@ pub(crate) fn upload(
     usage: wgpu::BufferUsages,
     bytes: &[u8],
 ) {
-    let need = (bytes.len() as u64).max(16).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
+    let need = (bytes.len() as u64)
+        .max(16)
+        .next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
     if slot.as_ref().is_none_or(|b| b.size() < need) {
         *slot = Some(gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("pass data"),

@@ -14,11 +14,23 @@
 
 pub mod caustics;
 pub mod geometry;
+pub mod gpu;
+pub mod interact;
 pub mod scene;
 pub mod trace;
 pub mod water;
 
 pub use caustics::CausticMap;
 pub use geometry::{BoxHit, Face, PoolBox, Ray, Sphere};
+pub use gpu::{PoolFrame, PoolRenderer, PoolReport, PoolSettings, PoolView, render_pool_image};
+pub use interact::pointer_ray;
 pub use scene::{Floater, Mover, PoolScene};
 pub use water::{PoolWater, Ring, RippleModel, SpherePath, WaterPoint};
+
+/// The time `regatta render --scene pool` draws without `--t`, seconds.
+pub const DEFAULT_T: f64 = 4.0;
+/// Far clip distance of the pool's cameras, metres.
+pub const FAR_M: f64 = 50.0;
+
+#[cfg(test)]
+mod gpu_tests;

@@ -1,0 +1,310 @@
+//! `regatta render`: one frame, headless, to a PNG; the frame planner's record as JSON on
+//! stdout (and in `--report FILE.json`).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use glam::{DVec2, DVec3};
+use render::{Boat, Camera, Mark, RenderOptions, Renderer, Scene};
+
+use crate::cli::inputs::{load_race, load_sea};
+use crate::error::{CliError, CliResult};
+
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// PNG file to write.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Race files (native JSON, GPX, CSV); the embedded sample race without it.
+    #[arg(long, num_args = 1..)]
+    pub race: Vec<PathBuf>,
+    /// Sea file (JSON); the embedded default sea without it.
+    #[arg(long)]
+    pub sea: Option<PathBuf>,
+    /// Race time in seconds since the start; the middle of the race without it.
+    #[arg(long)]
+    pub t: Option<f64>,
+    /// Image size, WIDTHxHEIGHT pixels.
+    #[arg(long, default_value = "1280x720")]
+    pub size: String,
+    /// Camera: EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z in race metres (y up); without
+    /// it the camera frames the fleet.
+    #[arg(long, allow_hyphen_values = true)]
+    pub camera: Option<String>,
+    /// Clip-map screen-space error target, pixels.
+    #[arg(long, default_value_t = render::renderer::DEFAULT_ERROR_PX)]
+    pub error_px: f64,
+    /// Also write the frame record (JSON) to this file.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// AR effects over a (synthetic) camera frame: a comma-separated list of background,
+    /// reflection, refraction, caustics, flowmap, or all / none; without it, the water only.
+    #[arg(long)]
+    pub effects: Option<String>,
+    /// Which scene: the race, or the tiled pool of source report 004 (`--camera` then in pool
+    /// metres, `--sea` replacing the pool's waves).
+    #[arg(long, value_enum, default_value_t = SceneKind::Race)]
+    pub scene: SceneKind,
+}
+
+/// The scenes `regatta render` and `regatta run` draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum SceneKind {
+    #[default]
+    Race,
+    Pool,
+}
+
+/// Parse `WIDTHxHEIGHT` (each 1..=8192).
+pub fn parse_size(s: &str) -> CliResult<[u32; 2]> {
+    let bad = || {
+        CliError::new(format!(
+            "--size \"{s}\" is not WIDTHxHEIGHT with each between 1 and 8192 pixels"
+        ))
+    };
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+        return Err(bad());
+    }
+    Ok([w, h])
+}
+
+/// Parse `--camera` (six finite numbers; the eye must differ from the target and not look
+/// straight down the vertical).
+pub fn parse_camera(s: &str, far: f64) -> CliResult<Camera> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| {
+            CliError::new(format!(
+                "--camera \"{s}\" is not six numbers EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z"
+            ))
+        })?;
+    if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
+        return Err(CliError::new(format!(
+            "--camera \"{s}\" needs exactly six finite numbers EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z"
+        )));
+    }
+    let eye = DVec3::new(v[0], v[1], v[2]);
+    let target = DVec3::new(v[3], v[4], v[5]);
+    let d = target - eye;
+    if d.length() < 1e-6 || DVec2::new(d.x, d.z).length() < 1e-6 * d.length() {
+        return Err(CliError::new(format!(
+            "--camera \"{s}\": the eye must differ from the target and not look straight up or down"
+        )));
+    }
+    Ok(Camera::look_at(eye, target, far))
+}
+
+/// Linear RGB of `#rrggbb` (sRGB decoded); grey when the string is not a colour.
+pub fn linear_colour(hex: &str) -> [f32; 3] {
+    let h = hex.trim_start_matches('#');
+    let c = |i: usize| {
+        h.get(i..i + 2)
+            .and_then(|x| u8::from_str_radix(x, 16).ok())
+            .map(|b| {
+                let s = f32::from(b) / 255.0;
+                if s <= 0.04045 {
+                    s / 12.92
+                } else {
+                    ((s + 0.055) / 1.055).powf(2.4)
+                }
+            })
+    };
+    match (h.len(), c(0), c(2), c(4)) {
+        (6, Some(r), Some(g), Some(b)) => [r, g, b],
+        _ => [0.5, 0.5, 0.5],
+    }
+}
+
+/// Hull length drawn for every boat, metres (the tracks do not say).
+pub const BOAT_LENGTH_M: f64 = 10.0;
+/// Far clip distance, metres.
+pub const FAR_M: f64 = 20_000.0;
+
+/// The scene of `race` on `sea` at time `t`: boats that have data at t (not inside a gap),
+/// the course marks, a play area around every track and mark, and `camera` (or one framing
+/// the fleet).
+pub fn scene_at(race: &race::Race, sea: &ocean::WaveSet, t: f64, camera: Option<Camera>) -> Scene {
+    let boats: Vec<Boat> = race
+        .boats
+        .iter()
+        .filter(|b| !b.fixes().is_empty())
+        .map(|b| (b, b.state_at(t)))
+        .filter(|(_, s)| !s.in_gap)
+        .map(|(b, s)| Boat {
+            position: DVec2::from(s.position),
+            heading: s.heading_deg.to_radians(),
+            colour: linear_colour(&b.color),
+            length: BOAT_LENGTH_M,
+        })
+        .collect();
+    let marks: Vec<Mark> = race
+        .marks
+        .iter()
+        .map(|m| Mark {
+            position: DVec2::from(m.position),
+        })
+        .collect();
+    let track_points = race
+        .boats
+        .iter()
+        .flat_map(|b| b.fixes().iter().map(|f| DVec2::from(f.pos())));
+    let play_area =
+        Scene::play_area_around(track_points.chain(marks.iter().map(|m| m.position)), 400.0);
+    let camera = camera.unwrap_or_else(|| Scene::framing_camera(&boats, &[], FAR_M));
+    Scene {
+        t,
+        sea: sea.clone(),
+        boats,
+        marks,
+        play_area,
+        sun: Scene::default_sun(),
+        camera,
+    }
+}
+
+/// The middle of the race's time span.
+pub fn middle_time(race: &race::Race) -> f64 {
+    let (a, b) = race.time_span();
+    (a + b) / 2.0
+}
+
+pub fn run(a: RenderArgs) -> CliResult {
+    let size = parse_size(&a.size)?;
+    let effects = a
+        .effects
+        .as_deref()
+        .map(render::effects::EffectSet::parse)
+        .transpose()
+        .map_err(CliError::new)?;
+    if a.scene == SceneKind::Pool {
+        if effects.is_some() {
+            return Err(CliError::new(
+                "--effects has no meaning with --scene pool (the pool traces its own)",
+            ));
+        }
+        return run_pool(&a, size);
+    }
+    if !(a.error_px.is_finite() && a.error_px > 0.0) {
+        return Err(CliError::new(format!(
+            "--error-px {} must be a positive number of pixels",
+            a.error_px
+        )));
+    }
+    if let Some(t) = a.t
+        && !t.is_finite()
+    {
+        return Err(CliError::new("--t must be a finite number of seconds"));
+    }
+    let camera = a
+        .camera
+        .as_deref()
+        .map(|c| parse_camera(c, FAR_M))
+        .transpose()?;
+    let sea = load_sea(a.sea.as_ref())?;
+    let race = load_race(&a.race)?;
+    let t = a.t.unwrap_or_else(|| middle_time(&race));
+    let scene = scene_at(&race, &sea, t, camera);
+    let gpu = render::Gpu::headless(wgpu::Backends::all())
+        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    let mut renderer = Renderer::new(
+        &gpu,
+        render::OFFSCREEN_FORMAT,
+        RenderOptions {
+            error_px: a.error_px,
+            measure_gpu_time: true,
+        },
+    );
+    if let Some(effects) = effects {
+        render::effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
+    }
+    let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
+        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    img.save(&a.out)
+        .map_err(|e| CliError::new(format!("could not write {}: {e}", a.out.display())))?;
+    print_report(&a, &report)
+}
+
+/// Print the frame record and write it to `--report`.
+fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> CliResult {
+    let json = serde_json::to_string_pretty(report)?;
+    if let Some(p) = &a.report {
+        std::fs::write(p, &json)
+            .map_err(|e| CliError::new(format!("could not write {}: {e}", p.display())))?;
+    }
+    println!("{json}");
+    Ok(())
+}
+
+/// `--scene pool`: the pool at `--t` (default [`render::pool::DEFAULT_T`]).
+fn run_pool(a: &RenderArgs, size: [u32; 2]) -> CliResult {
+    use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView};
+    if !a.race.is_empty() {
+        return Err(CliError::new("--race has no meaning with --scene pool"));
+    }
+    let t = a.t.unwrap_or(render::pool::DEFAULT_T);
+    if !t.is_finite() {
+        return Err(CliError::new("--t must be a finite number of seconds"));
+    }
+    let mut scene = PoolScene::default();
+    if let Some(p) = &a.sea {
+        scene.water.waves = load_sea(Some(p))?;
+    }
+    let mut view = PoolView::default_desktop(size);
+    if let Some(c) = &a.camera {
+        view.camera = parse_camera(c, render::pool::FAR_M)?;
+    }
+    let gpu = render::Gpu::headless(wgpu::Backends::all())
+        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    let settings = PoolSettings::default();
+    let mut renderer = PoolRenderer::new(&gpu, render::OFFSCREEN_FORMAT, settings);
+    let frame = PoolFrame::new(&scene, t, &view, &settings);
+    let (img, report) = render::pool::render_pool_image(&gpu, &mut renderer, &frame)
+        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    img.save(&a.out)
+        .map_err(|e| CliError::new(format!("could not write {}: {e}", a.out.display())))?;
+    print_report(a, &report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bad_sizes_are_refused_with_the_flag_named() {
+        for s in ["", "640", "0x480", "640x", "axb", "9000x10", "-5x5"] {
+            let e = parse_size(s).unwrap_err().to_string();
+            assert!(e.contains("--size") && e.contains(s), "{s}: {e}");
+        }
+        assert_eq!(parse_size("64x48").unwrap(), [64, 48]);
+    }
+
+    #[test]
+    fn bad_cameras_are_refused() {
+        for s in [
+            "1,2,3",
+            "1,2,3,4,5,x",
+            "0,10,0,0,0,0",
+            "1,1,1,1,1,1",
+            "1,2,3,4,5,NaN",
+        ] {
+            let e = parse_camera(s, 1e3).unwrap_err().to_string();
+            assert!(e.contains("--camera"), "{s}: {e}");
+        }
+        let c = parse_camera("0,10,50,0,0,0", 1e3).unwrap();
+        assert_eq!(c.eye, DVec3::new(0.0, 10.0, 50.0));
+    }
+
+    #[test]
+    fn colours_decode_srgb() {
+        assert_eq!(linear_colour("#ffffff"), [1.0, 1.0, 1.0]);
+        assert_eq!(linear_colour("#000000"), [0.0, 0.0, 0.0]);
+        // sRGB 0.5 (0x80) is 0.2158 linear.
+        assert!((linear_colour("#808080")[0] - 0.2158).abs() < 1e-3);
+        assert_eq!(linear_colour("oops"), [0.5, 0.5, 0.5]);
+    }
+}

@@ -1,0 +1,271 @@
+//! The desktop window (`regatta`, `regatta run`): the embedded race and sea (or the files
+//! given) under an orbiting camera. Left-drag orbits, the wheel zooms, space pauses, the arrow
+//! keys step race time by ±10 s. Race time plays at real speed from the start and loops.
+//!
+//! winit 0.30's `ApplicationHandler`; the device comes from `render::Gpu::for_window`.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use clap::Args;
+use glam::{DVec2, DVec3};
+use render::{OrbitCamera, RenderOptions, Renderer};
+use winit::application::ApplicationHandler;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::window::{Window, WindowId};
+
+use crate::cli::inputs::{load_race, load_sea};
+use crate::cli::render::{FAR_M, SceneKind, scene_at};
+use crate::error::{CliError, CliResult};
+
+mod pool;
+
+#[derive(Debug, Args, Default)]
+pub struct RunArgs {
+    /// Race files (native JSON, GPX, CSV); the embedded sample race without it.
+    #[arg(long, num_args = 1..)]
+    pub race: Vec<PathBuf>,
+    /// Sea file (JSON); the embedded default sea without it.
+    #[arg(long)]
+    pub sea: Option<PathBuf>,
+    /// Which scene: the race, or the tiled pool (drag the green ball to make ripples).
+    #[arg(long, value_enum, default_value_t)]
+    pub scene: SceneKind,
+}
+
+/// Open the window and run until it is closed.
+pub fn run(a: RunArgs) -> CliResult {
+    let sea = load_sea(a.sea.as_ref())?;
+    let race = load_race(&a.race)?;
+    let event_loop = EventLoop::new()
+        .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
+    let (t0, t1) = race.time_span();
+    let pool = (a.scene == SceneKind::Pool)
+        .then(|| pool::PoolMode::new(a.sea.is_some().then(|| sea.clone())));
+    let mut app = App {
+        pool,
+        race,
+        sea,
+        span: (t0, t1.max(t0 + 1.0)),
+        state: None,
+        orbit: OrbitCamera {
+            target: DVec3::ZERO,
+            distance: 90.0,
+            yaw: 2.4,
+            pitch: 0.35,
+            far: FAR_M,
+        },
+        clock: Clock {
+            t: t0,
+            playing: true,
+            last: Instant::now(),
+        },
+        drag: None,
+        cursor: (0.0, 0.0),
+        error: None,
+    };
+    if app.pool.is_some() {
+        app.orbit = pool::PoolMode::orbit();
+    }
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| CliError::new(format!("the window's event loop failed: {e}")))?;
+    match app.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// Race time: plays at real speed, pauses, loops over the race's span.
+struct Clock {
+    t: f64,
+    playing: bool,
+    last: Instant,
+}
+
+struct State {
+    window: Arc<Window>,
+    gpu: render::Gpu,
+    surface: render::gpu::SurfaceTarget,
+    renderer: Renderer,
+}
+
+struct App {
+    /// `Some` with `--scene pool`: the pool replaces the race.
+    pool: Option<pool::PoolMode>,
+    race: race::Race,
+    sea: ocean::WaveSet,
+    span: (f64, f64),
+    state: Option<State>,
+    orbit: OrbitCamera,
+    clock: Clock,
+    drag: Option<(f64, f64)>,
+    cursor: (f64, f64),
+    error: Option<CliError>,
+}
+
+impl App {
+    fn fail(&mut self, el: &ActiveEventLoop, msg: String) {
+        self.error = Some(CliError::new(msg));
+        el.exit();
+    }
+
+    fn tick(&mut self) {
+        let now = Instant::now();
+        if self.clock.playing {
+            self.clock.t += now.duration_since(self.clock.last).as_secs_f64();
+        }
+        self.clock.last = now;
+        let (a, b) = self.span;
+        if self.clock.t > b || self.clock.t < a {
+            self.clock.t = a + (self.clock.t - a).rem_euclid(b - a);
+        }
+    }
+
+    fn draw(&mut self, el: &ActiveEventLoop) {
+        self.tick();
+        if let Some(p) = self.pool.as_mut() {
+            if let Some(st) = self.state.as_ref() {
+                p.draw(st, self.clock.t, &self.orbit);
+            }
+            return;
+        }
+        // The camera orbits the fleet's centre.
+        let mut scene = scene_at(&self.race, &self.sea, self.clock.t, None);
+        if !scene.boats.is_empty() {
+            let c =
+                scene.boats.iter().map(|b| b.position).sum::<DVec2>() / scene.boats.len() as f64;
+            self.orbit.target = DVec3::new(c.x, 0.0, c.y);
+        }
+        scene.camera = self.orbit.camera();
+        let Some(st) = self.state.as_mut() else {
+            return;
+        };
+        let frame = match st.surface.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(f)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                let (w, h) = (st.surface.config.width, st.surface.config.height);
+                st.surface.resize(&st.gpu.device, w, h);
+                return;
+            }
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
+                return;
+            }
+            other => {
+                let msg = format!("the window surface failed: {other:?}");
+                self.fail(el, msg);
+                return;
+            }
+        };
+        let view = frame.texture.create_view(&Default::default());
+        let size = [st.surface.config.width, st.surface.config.height];
+        let report = st.renderer.render(&st.gpu, &view, size, &scene);
+        log::debug!("frame: {} triangles", report.triangles);
+        st.window.pre_present_notify();
+        st.gpu.queue.present(frame);
+        st.window.set_title(&format!(
+            "Regatta: {} at t = {:.0} s{}",
+            self.race.name,
+            self.clock.t,
+            if self.clock.playing { "" } else { " (paused)" }
+        ));
+    }
+}
+
+impl ApplicationHandler for App {
+    fn resumed(&mut self, el: &ActiveEventLoop) {
+        if self.state.is_some() {
+            return;
+        }
+        let attrs = Window::default_attributes()
+            .with_title("Regatta")
+            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+        let window = match el.create_window(attrs) {
+            Ok(w) => Arc::new(w),
+            Err(e) => return self.fail(el, format!("cannot open a window: {e}")),
+        };
+        let size = window.inner_size();
+        match render::Gpu::for_window(window.clone(), size.width, size.height) {
+            Ok((gpu, surface)) => {
+                let renderer = Renderer::new(
+                    &gpu,
+                    surface.config.format,
+                    RenderOptions {
+                        measure_gpu_time: false,
+                        ..Default::default()
+                    },
+                );
+                log::info!("window on {}", gpu.describe());
+                self.state = Some(State {
+                    window,
+                    gpu,
+                    surface,
+                    renderer,
+                });
+            }
+            Err(e) => self.fail(el, format!("cannot draw into the window: {e}")),
+        }
+    }
+
+    fn window_event(&mut self, el: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => el.exit(),
+            WindowEvent::Resized(s) => {
+                if let Some(st) = self.state.as_mut() {
+                    st.surface.resize(&st.gpu.device, s.width, s.height);
+                }
+            }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
+                let pressed = state == ElementState::Pressed;
+                // In the pool, a press on a moving ball grabs the ball instead of the camera.
+                let grabbed = self
+                    .pool
+                    .as_mut()
+                    .is_some_and(|p| p.press(pressed, self.cursor, self.clock.t));
+                self.drag = (pressed && !grabbed).then_some(self.cursor);
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                self.cursor = (position.x, position.y);
+                if let Some(p) = self.pool.as_mut() {
+                    p.pointer_moved(self.cursor, self.clock.t);
+                }
+                if let Some((x, y)) = self.drag {
+                    self.orbit.drag(position.x - x, position.y - y);
+                    self.drag = Some(self.cursor);
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let steps = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => f64::from(y),
+                    MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
+                };
+                self.orbit.zoom(steps);
+            }
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                match event.logical_key {
+                    Key::Named(NamedKey::Space) => self.clock.playing = !self.clock.playing,
+                    Key::Named(NamedKey::ArrowRight) => self.clock.t += 10.0,
+                    Key::Named(NamedKey::ArrowLeft) => self.clock.t -= 10.0,
+                    Key::Named(NamedKey::Escape) => el.exit(),
+                    _ => {}
+                }
+            }
+            WindowEvent::RedrawRequested => self.draw(el),
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _el: &ActiveEventLoop) {
+        if let Some(st) = &self.state {
+            st.window.request_redraw();
+        }
+    }
+}

@@ -1,0 +1,230 @@
+//! The per-frame wake source buffer for a GPU, its culling, and the f32 mirror of
+//! `shaders/wake.wgsl`.
+//!
+//! f32 safety: a source's age s is reduced on the CPU to q = g s²/4 (s ≤ max_age, never the
+//! race time) and positions are relative to a local origin near the camera. The shader then
+//! forms k* = q/r², Φ = q/r from local quantities only.
+//!
+//! Culling: for r ≥ r_m = √(qR/2) (where k* ≤ 2/R, so |k*²R² − 3| ≤ 3 and e^{−k*²R²/4} ≤ 1)
+//! a source's term is at most B(r) = C (q²/r⁵ + 3q/r⁴), C = F/(√2πρg)·w(s)·|ΔX|, and B falls
+//! with r. So beyond r_c = max(r_m, (2Cq²/ε)^{1/5}, (6Cq/ε)^{1/4}) the term is below ε. A source
+//! is sent when the view rectangle comes within r_c of it, and the shader skips it at points
+//! farther than r_c. At every point the height then errs by at most ε × (the number of
+//! sources not evaluated there) ≤ ε × alive sources: `GpuWakeFrame::cull_bound`.
+
+use super::kelvin::{GAUSS_CUTOFF, KelvinSource, Wake, foam_shape};
+
+/// One wake source as the shader reads it (std430 layout: 48 bytes, 8-byte aligned).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuWakeSource {
+    /// Segment midpoint − local origin (x, z), m.
+    pub pos: [f32; 2],
+    /// Segment vector ΔX (x, z), m.
+    pub dx: [f32; 2],
+    /// q = g s²/4 for the source's age s, m.
+    pub q: f32,
+    /// F/(√2πρg) · w(s), m³.
+    pub strength: f32,
+    /// R²/4, m².
+    pub gauss: f32,
+    /// r_c²: the term is below ε beyond r_c, m².
+    pub cull_r2: f32,
+    /// Squared width of the foam Gaussian, m².
+    pub foam_w2: f32,
+    /// Foam density at the segment's centre.
+    pub foam: f32,
+    pub _pad: [f32; 2],
+}
+
+/// The world rectangle (x, z) whose points the renderer will evaluate, m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WakeView {
+    pub min: [f64; 2],
+    pub max: [f64; 2],
+}
+
+impl WakeView {
+    /// A square of half-size `radius` around `centre`.
+    pub fn around(centre: [f64; 2], radius: f64) -> WakeView {
+        WakeView {
+            min: [centre[0] - radius, centre[1] - radius],
+            max: [centre[0] + radius, centre[1] + radius],
+        }
+    }
+    /// Squared distance from `p` to the rectangle (0 inside).
+    pub fn distance2(&self, p: [f64; 2]) -> f64 {
+        let dx = (self.min[0] - p[0]).max(0.0).max(p[0] - self.max[0]);
+        let dz = (self.min[1] - p[1]).max(0.0).max(p[1] - self.max[1]);
+        dx * dx + dz * dz
+    }
+}
+
+/// What the renderer uploads for one frame.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct GpuWakeFrame {
+    pub sources: Vec<GpuWakeSource>,
+    /// Alive sources left out because they cannot reach the view.
+    pub culled: usize,
+    /// Bound of the culling error of the height at any point in the view, m (before f32).
+    pub cull_bound: f64,
+}
+
+/// r_c of a source (module docs); `c` = F/(√2πρg)·w(s)·|ΔX|.
+pub(crate) fn cull_radius(c: f64, q: f64, hull_radius: f64, epsilon: f64) -> f64 {
+    let r_m = (q * hull_radius / 2.0).sqrt();
+    let r5 = (2.0 * c * q * q / epsilon).powf(0.2);
+    let r4 = (6.0 * c * q / epsilon).powf(0.25);
+    r_m.max(r5).max(r4)
+}
+
+impl Wake {
+    /// The sources alive at race time `t` that can reach `view`, relative to `origin`, with
+    /// ε = `epsilon` metres per left-out source (see the module docs).
+    pub fn gpu_sources(
+        &self,
+        t: f64,
+        origin: [f64; 2],
+        view: &WakeView,
+        epsilon: f64,
+    ) -> GpuWakeFrame {
+        let prm = &self.params;
+        let mut frame = GpuWakeFrame::default();
+        let mut alive = 0usize;
+        for s in self.active(t) {
+            let age = t - s.t;
+            let fade = prm.age_fade(age);
+            if fade == 0.0 {
+                continue;
+            }
+            alive += 1;
+            let strength = prm.source_constant() * fade;
+            let q = prm.gravity * age * age / 4.0;
+            let c = strength * s.dx[0].hypot(s.dx[1]);
+            let rc = cull_radius(c, q, prm.hull_radius, epsilon);
+            if view.distance2(s.pos) > rc * rc {
+                frame.culled += 1;
+                continue;
+            }
+            let (fw, fs) = foam_shape(s, t, prm).unwrap_or((1.0, 0.0));
+            frame.sources.push(GpuWakeSource {
+                pos: [(s.pos[0] - origin[0]) as f32, (s.pos[1] - origin[1]) as f32],
+                dx: [s.dx[0] as f32, s.dx[1] as f32],
+                q: q as f32,
+                strength: strength as f32,
+                gauss: (prm.hull_radius * prm.hull_radius / 4.0) as f32,
+                cull_r2: (rc * rc) as f32,
+                foam_w2: (fw * fw) as f32,
+                foam: fs as f32,
+                _pad: [0.0; 2],
+            });
+        }
+        frame.cull_bound = epsilon * alive as f64;
+        frame
+    }
+}
+
+/// Below this squared distance (m²) a source is skipped: its term is e^{−k*²R²/4} ≈ 0 there,
+/// and the shader must never divide by zero.
+pub const MIN_R2: f32 = 1e-6;
+
+/// One source's height term at local point `p`, f32, exactly as `wake_source_height` in WGSL.
+pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
+    let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
+    let r2 = d[0] * d[0] + d[1] * d[1];
+    if r2 > s.cull_r2 || r2 < MIN_R2 {
+        return 0.0;
+    }
+    let k = s.q / r2;
+    let g = k * k * s.gauss;
+    if g.is_nan() || g > GAUSS_CUTOFF as f32 {
+        return 0.0;
+    }
+    let r = r2.sqrt();
+    let phi = s.q / r;
+    let amp = s.strength * k * k / r * (-g).exp();
+    let (sn, cs) = phi.sin_cos();
+    let bracket = sn + (4.0 * g - 3.0) / phi * cs;
+    -amp * bracket * (d[0] * s.dx[0] + d[1] * s.dx[1]) / r
+}
+
+/// Wake height at local point `p`, m, f32: the mirror of `wake_height` in WGSL.
+pub fn wake_height_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> f32 {
+    sources.iter().map(|s| source_height_f32(s, p)).sum()
+}
+
+/// Wake foam at local point `p` in [0, 1], f32: the mirror of `wake_foam` in WGSL.
+pub fn wake_foam_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> f32 {
+    let mut sum = 0.0f32;
+    for s in sources {
+        let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
+        sum += s.foam * (-(d[0] * d[0] + d[1] * d[1]) / s.foam_w2).exp();
+    }
+    (1.0 - (-sum).exp()).clamp(0.0, 1.0)
+}
+
+/// A first-order bound of |wake_height_f32 − Σ f64 terms of the same sources| at local point
+/// `p`, m, for IEEE f32 with sin/cos/exp within a few ulp (u = 2⁻²⁴). Per source, with
+/// T = C (k*²/r) e^{−G}(1 + |4G − 3|/Φ)(1 + 1/Φ) the size of the term and its Φ-derivative,
+/// the rounding of p, pos, q and r gives r a relative error ε_r = 2u(|p| + |pos|)/r + 2u,
+/// which moves Φ ∝ 1/r by Φε_r, the amplitude ∝ r⁻⁵ by 5ε_r and G ∝ r⁻⁴ by 4Gε_r; the ~16
+/// roundings of the formula add 16u per unit of Φ-error and 16u of the amplitude:
+/// bound = Σ T [(Φ + 16)·8u + (Φ + 4G + 6) ε_r].
+pub fn f32_height_error_bound(sources: &[GpuWakeSource], p: [f32; 2]) -> f64 {
+    const U: f64 = 1.0 / 16_777_216.0;
+    let mut b = 0.0;
+    for s in sources {
+        let d = [(p[0] - s.pos[0]) as f64, (p[1] - s.pos[1]) as f64];
+        let r2 = d[0] * d[0] + d[1] * d[1];
+        if r2 < MIN_R2 as f64 {
+            continue;
+        }
+        let r = r2.sqrt();
+        let q = s.q as f64;
+        let k = q / r2;
+        let g = k * k * s.gauss as f64;
+        if g > GAUSS_CUTOFF + 1.0 {
+            continue;
+        }
+        let phi = q / r;
+        let len = (s.dx[0] as f64).hypot(s.dx[1] as f64);
+        let t = s.strength as f64 * len * k * k / r
+            * (-g).exp()
+            * (1.0 + (4.0 * g - 3.0).abs() / phi)
+            * (1.0 + 1.0 / phi);
+        let pn = (p[0] as f64).hypot(p[1] as f64);
+        let sn = (s.pos[0] as f64).hypot(s.pos[1] as f64);
+        let eps_r = 2.0 * U * (pn + sn) / r + 2.0 * U;
+        b += t * ((phi + 16.0) * 8.0 * U + (phi + 4.0 * g + 6.0) * eps_r);
+    }
+    b
+}
+
+/// The f64 terms of exactly the sources in `frame` at world point `o + p` (for tests and the
+/// bench: what the f32 path approximates).
+pub fn frame_height_f64(
+    wake: &Wake,
+    t: f64,
+    origin: [f64; 2],
+    view: &WakeView,
+    epsilon: f64,
+    p: [f64; 2],
+) -> f64 {
+    let prm = &wake.params;
+    let world = [origin[0] + p[0], origin[1] + p[1]];
+    wake.active(t)
+        .filter(|s: &&KelvinSource| {
+            let age = t - s.t;
+            let fade = prm.age_fade(age);
+            if fade == 0.0 {
+                return false;
+            }
+            let q = prm.gravity * age * age / 4.0;
+            let c = prm.source_constant() * fade * s.dx[0].hypot(s.dx[1]);
+            let rc = cull_radius(c, q, prm.hull_radius, epsilon);
+            view.distance2(s.pos) <= rc * rc
+                && (world[0] - s.pos[0]).powi(2) + (world[1] - s.pos[1]).powi(2) <= rc * rc
+        })
+        .map(|s| super::kelvin::source_height(s, world, t, prm))
+        .sum()
+}

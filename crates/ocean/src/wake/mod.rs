@@ -1,0 +1,53 @@
+//! Boat wakes, analytic at any race time: source report 003's ring model (its eq. 3, the
+//! baseline) and a Kelvin-correct model, with an independent f64 reference and the per-frame
+//! GPU source buffer.
+//!
+//! Input: each boat's sampled track, `&[TrackSample { t, x, z }]` (race seconds, world metres),
+//! times non-decreasing; never the race crate's types.
+//!
+//! - [`Wake`] (`kelvin.rs`): the Kelvin-correct wake. Sources are emitted by distance sailed
+//!   along the (curved) path; each is a Cauchy–Poisson ring-wave packet of a Gaussian pressure
+//!   patch (force F = m g, radius R) whose radius grows with the group speed and whose phase
+//!   follows deep-water dispersion; summed, they make the Kelvin wake (19.47° half-angle at
+//!   every speed, transverse wavelength 2πU²/g, nothing from a boat that does not move). The
+//!   amplitude law and its source are in `kelvin.rs`. `Wake::height(p, t)` and
+//!   `Wake::foam(p, t)` depend only on the sources alive at t (younger than `max_age`): the
+//!   same t gives the same bits whether reached by playing or scrubbing.
+//! - [`RingWake`] (`ring.rs`): 003 eq. 3 as stated, for comparison.
+//! - [`reference`]: the Havelock integral for a straight steady track, f64, with its own
+//!   convergence estimate.
+//! - [`measure`]: the envelope half-angle and the transverse wavelength of any field.
+//!
+//! For the renderer (`gpu.rs`), per frame:
+//!
+//! ```text
+//! let frame = wake.gpu_sources(t, origin, &WakeView { min, max }, 1e-6);
+//! // upload bytemuck::cast_slice(&frame.sources) as a storage buffer of WakeSource
+//! // (shaders/wake.wgsl); the vertex shader adds wake_height(p) to y, the fragment shader
+//! // mixes wake_foam(p) into the sea foam, p = world (x, z) − origin, both f32.
+//! ```
+//!
+//! The cost per point is the number of sources that reach the view, not the course size or a
+//! texture. `wake_height_f32`/`wake_foam_f32` are the CPU mirrors of the WGSL; culling and f32
+//! have stated error bounds (`GpuWakeFrame::cull_bound`, `f32_height_error_bound`).
+
+pub mod gpu;
+pub mod kelvin;
+pub mod measure;
+pub mod reference;
+pub mod ring;
+mod track;
+
+#[cfg(test)]
+mod tests;
+
+pub use gpu::{
+    GpuWakeFrame, GpuWakeSource, WakeView, f32_height_error_bound, wake_foam_f32, wake_height_f32,
+};
+pub use kelvin::{KelvinSource, SEA_WATER_DENSITY, Wake, WakeParams};
+pub use reference::{SteadyPatch, kelvin_reference, kelvin_wave_height};
+pub use ring::{RingParams, RingWake};
+pub use track::{TrackSample, WakeError};
+
+/// The WGSL that evaluates the source buffer (`shaders/wake.wgsl`).
+pub const WAKE_WGSL: &str = include_str!("../../../../shaders/wake.wgsl");

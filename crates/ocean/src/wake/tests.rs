@@ -1,0 +1,398 @@
+//! Wake tests: each asserts against an independent truth (the Havelock integral, a closed
+//! form, 003's equation evaluated by hand) or an exact property (zero, bitwise equality).
+
+use std::f64::consts::PI;
+
+use proptest::prelude::*;
+
+use super::gpu::{frame_height_f64, source_height_f32};
+use super::measure::{cusp_half_angle_deg_in, transverse_wavelength};
+use super::*;
+
+const G: f64 = crate::STANDARD_GRAVITY;
+
+/// A boat on a straight line along +x at speed `u`, reaching the origin at `t_end`, for
+/// `duration` seconds (samples every second: the track is exactly linear).
+fn straight(u: f64, duration: f64, t_end: f64) -> Vec<TrackSample> {
+    let n = duration.ceil() as usize;
+    (0..=n)
+        .map(|i| {
+            let t = t_end - duration + i as f64 * duration / n as f64;
+            TrackSample {
+                t,
+                x: u * (t - t_end),
+                z: 0.0,
+            }
+        })
+        .collect()
+}
+
+/// Params for a test boat of patch radius `r` whose wake must reach `reach` metres behind.
+fn params(u: f64, r: f64, reach: f64) -> WakeParams {
+    WakeParams {
+        hull_radius: r,
+        spacing: 0.5 * r,
+        // The stationary sources of a point `reach` behind are at most ~2.5 reach back.
+        max_age: 2.5 * reach / u / 0.8,
+        ..WakeParams::default()
+    }
+}
+
+fn patch(u: f64, r: f64, prm: &WakeParams) -> SteadyPatch {
+    SteadyPatch {
+        speed: u,
+        force: prm.force,
+        hull_radius: r,
+        gravity: G,
+    }
+}
+
+#[test]
+fn reference_converges_and_matches_the_stationary_phase_transverse_wave() {
+    let (u, r) = (5.0, 1.0);
+    let prm = params(u, r, 0.0);
+    let p = patch(u, r, &prm);
+    let (k0, lam) = (p.k0(), p.wavelength());
+    for i in 0..12 {
+        let xi = -(4.0 + 0.37 * i as f64) * lam;
+        let (v, conv) = kelvin_reference(&p, xi, 0.0);
+        let a = prm.transverse_amplitude(u, -xi);
+        assert!(conv < 1e-6 * a, "not converged at ξ={xi}: {conv}");
+        // Lamb §256: η → A_T sin(k₀ξ − π/4) far behind; the next term is O(1/(k₀|ξ|)).
+        let asym = a * (k0 * xi - PI / 4.0).sin();
+        assert!((v - asym).abs() < 0.1 * a, "ξ={xi}: {v} vs {asym}");
+    }
+    // Nothing ahead of the boat; symmetric about the track.
+    assert_eq!(kelvin_wave_height(&p, 3.0 * lam, 0.0, 0.25), 0.0);
+    let (a, _) = kelvin_reference(&p, -5.0 * lam, 1.3 * lam);
+    let (b, _) = kelvin_reference(&p, -5.0 * lam, -1.3 * lam);
+    assert!((a - b).abs() <= 1e-12 * a.abs().max(1e-12));
+}
+
+#[test]
+fn kelvin_wake_matches_the_reference_on_a_straight_track() {
+    let (u, r) = (5.0, 1.0);
+    let lam = 2.0 * PI * u * u / G;
+    let prm = params(u, r, 9.0 * lam);
+    let track = straight(u, prm.max_age + 10.0, 300.0);
+    let wake = Wake::new(&[&track], prm).unwrap();
+    let p = patch(u, r, &prm);
+    let (mut e2, mut r2) = (0.0, 0.0);
+    for i in 0..10 {
+        for j in 0..8 {
+            let xi = -(3.0 + 0.6 * i as f64) * lam;
+            let y = j as f64 * 0.05 * -xi;
+            let (rf, _) = kelvin_reference(&p, xi, y);
+            let m = wake.height([xi, y], 300.0);
+            e2 += (m - rf).powi(2);
+            r2 += rf * rf;
+        }
+    }
+    let rel = (e2 / r2).sqrt();
+    eprintln!("Kelvin vs reference: relative RMS {rel:.4}");
+    assert!(rel < 0.15, "relative RMS error {rel}");
+}
+
+#[test]
+fn envelope_half_angle_is_kelvins_at_2_5_8_and_12_mps() {
+    let kelvin = (1.0f64 / 3.0).asin().to_degrees();
+    let r = 0.5;
+    for u in [2.0, 5.0, 8.0, 12.0] {
+        let lam = 2.0 * PI * u * u / G;
+        let radius = 15.0 * lam;
+        let prm = params(u, r, radius + lam);
+        let t_end = 1000.0;
+        let track = straight(u, prm.max_age + 5.0, t_end);
+        let wake = Wake::new(&[&track], prm).unwrap();
+        let f = |xi: f64, y: f64| wake.height([xi, y], t_end);
+        let a = cusp_half_angle_deg_in(&f, lam, radius, 12.0, 26.0).unwrap();
+        eprintln!("U={u} m/s: envelope half-angle {a:.2}°");
+        assert!((a - kelvin).abs() <= 0.5, "U={u}: half-angle {a:.2}°");
+    }
+}
+
+#[test]
+fn transverse_wavelength_is_2_pi_u2_over_g() {
+    for u in [2.0, 5.0, 8.0, 12.0] {
+        let lam = 2.0 * PI * u * u / G;
+        let r = 0.1 * lam;
+        let prm = params(u, r, 11.0 * lam);
+        let track = straight(u, prm.max_age + 5.0, 500.0);
+        let wake = Wake::new(&[&track], prm).unwrap();
+        let f = |xi: f64, y: f64| wake.height([xi, y], 500.0);
+        let m = transverse_wavelength(&f, 3.0 * lam, 10.0 * lam, lam / 40.0).unwrap();
+        eprintln!("U={u} m/s: transverse wavelength / 2πU²/g = {:.4}", m / lam);
+        assert!((m / lam - 1.0).abs() < 0.05, "U={u}: {m} vs {lam}");
+    }
+}
+
+#[test]
+fn a_stationary_boat_makes_no_wake() {
+    let still: Vec<TrackSample> = (0..200)
+        .map(|i| TrackSample {
+            t: i as f64,
+            x: 12.0,
+            z: -7.0,
+        })
+        .collect();
+    let wake = Wake::new(&[&still], WakeParams::default()).unwrap();
+    assert_eq!(wake.source_count(), 0);
+    // A boat that stopped longer than max_age ago: nothing left either.
+    let mut stopped = straight(5.0, 60.0, 60.0);
+    stopped.extend((1..200).map(|i| TrackSample {
+        t: 60.0 + i as f64,
+        x: 0.0,
+        z: 0.0,
+    }));
+    let w2 = Wake::new(&[&stopped], WakeParams::default()).unwrap();
+    assert!(w2.source_count() > 0);
+    for i in 0..50 {
+        let p = [12.0 + 0.37 * i as f64 - 9.0, -7.0 + 0.21 * i as f64];
+        assert_eq!(wake.height(p, 150.0), 0.0);
+        assert_eq!(wake.foam(p, 150.0), 0.0);
+        assert_eq!(w2.height([p[0] - 12.0, p[1]], 60.0 + 61.0), 0.0);
+        assert!(w2.height([-20.0, 3.0 + p[1]], 61.0).abs() > 0.0);
+    }
+}
+
+#[test]
+fn scrubbing_backwards_equals_playing_forward_bitwise() {
+    // A boat turning on a circle of 40 m at 4 m/s, sampled every 0.5 s.
+    let track: Vec<TrackSample> = (0..400)
+        .map(|i| {
+            let t = 0.5 * i as f64;
+            let a = 4.0 * t / 40.0;
+            TrackSample {
+                t,
+                x: 40.0 * a.cos(),
+                z: 40.0 * a.sin(),
+            }
+        })
+        .collect();
+    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
+    let pts: Vec<[f64; 2]> = (0..60)
+        .map(|i| [-50.0 + 1.7 * i as f64, 30.0 - 1.1 * i as f64])
+        .collect();
+    let eval = |t: f64| -> Vec<(u64, u64)> {
+        pts.iter()
+            .map(|&p| (wake.height(p, t).to_bits(), wake.foam(p, t).to_bits()))
+            .collect()
+    };
+    let t1 = 120.25;
+    // Play forward in frames of 1/30 s up to t1, keeping what the frames show.
+    let mut played = Vec::new();
+    let mut t = 100.0;
+    while t < t1 {
+        played = eval(t);
+        t += 1.0 / 30.0;
+    }
+    let _ = played;
+    let at_t1 = eval(t1);
+    let _later = eval(180.0);
+    let _earlier = eval(30.0);
+    assert_eq!(eval(t1), at_t1);
+    assert!(at_t1.iter().any(|(h, _)| f64::from_bits(*h) != 0.0));
+}
+
+#[test]
+fn f32_buffer_matches_f64_within_the_stated_bounds_far_from_the_origin() {
+    // A long race far from the course origin: the buffer must stay f32-safe.
+    let u = 5.0;
+    let t_end = 36_000.0;
+    let track: Vec<TrackSample> = (0..=200)
+        .map(|i| {
+            let t = t_end - 100.0 + i as f64 * 0.5;
+            TrackSample {
+                t,
+                x: 5000.0 + u * (t - t_end),
+                z: -3000.0 + 0.002 * (t - t_end).powi(2),
+            }
+        })
+        .collect();
+    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
+    let origin = [4970.0, -3010.0];
+    let view = WakeView::around([4970.0, -3000.0], 40.0);
+    let eps = 1e-6;
+    let frame = wake.gpu_sources(t_end, origin, &view, eps);
+    assert_eq!(std::mem::size_of::<GpuWakeSource>(), 48);
+    assert!(!frame.sources.is_empty());
+    assert!(
+        frame
+            .sources
+            .iter()
+            .all(|s| s.q < 2.0e4 && s.pos[0].abs() < 1e3)
+    );
+    let mut peak = 0.0f64;
+    let (mut worst, mut worst_bound) = (0.0f64, 0.0f64);
+    for i in 0..40 {
+        for j in 0..40 {
+            let p = [-10.0 + 2.0 * i as f64, -25.0 + 2.0 * j as f64];
+            let world = [origin[0] + p[0], origin[1] + p[1]];
+            let pf = [p[0] as f32, p[1] as f32];
+            let h32 = wake_height_f32(&frame.sources, pf) as f64;
+            let h64 = frame_height_f64(&wake, t_end, origin, &view, eps, p);
+            let bound = f32_height_error_bound(&frame.sources, pf);
+            assert!(
+                (h32 - h64).abs() <= bound + 1e-9,
+                "{p:?}: {h32} vs {h64}, bound {bound}"
+            );
+            worst = worst.max((h32 - h64).abs());
+            worst_bound = worst_bound.max(bound);
+            // Culling: against every alive source in f64.
+            let full = wake.height(world, t_end);
+            assert!((h64 - full).abs() <= frame.cull_bound, "{p:?}");
+            let f = wake_foam_f32(&frame.sources, pf) as f64;
+            assert!((f - wake.foam(world, t_end)).abs() < 1e-4);
+            peak = peak.max(full.abs());
+        }
+    }
+    eprintln!(
+        "f32: max error {worst:.3e} m, max bound {worst_bound:.3e} m, peak {peak:.3e} m, {} sources, cull bound {:.1e}",
+        frame.sources.len(),
+        frame.cull_bound
+    );
+    assert!(peak > 1e-3, "the test field has no wake: {peak}");
+}
+
+#[test]
+fn culling_drops_far_sources_within_its_bound() {
+    let track = straight(6.0, 80.0, 100.0);
+    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
+    let view = WakeView::around([-400.0, 300.0], 20.0);
+    let frame = wake.gpu_sources(100.0, [-400.0, 300.0], &view, 1e-6);
+    assert!(frame.culled > 0);
+    for i in 0..20 {
+        let p = [-410.0 + i as f64, 290.0 + i as f64];
+        let kept: f64 = frame
+            .sources
+            .iter()
+            .map(|s| source_height_f32(s, [(p[0] + 400.0) as f32, (p[1] - 300.0) as f32]) as f64)
+            .sum();
+        assert!((kept - wake.height(p, 100.0)).abs() <= frame.cull_bound + 1e-7);
+    }
+}
+
+#[test]
+fn ring_model_is_003_eq_3() {
+    // One ring (n = 1): a boat moving +x at 2 m/s; its point j = 1 is 2 s back.
+    let prm = RingParams {
+        points: 1,
+        ..RingParams::default()
+    };
+    let track = straight(2.0, 20.0, 20.0);
+    let rw = RingWake::new(&[&track], prm).unwrap();
+    // P_1 = (−4, 0), direction (1, 0), r_1 = r0 + v_r·2 s.
+    let r1 = prm.r0 + prm.growth * 2.0;
+    // On the ring, across the track: l·d = 0, |r² − l·l| = 0 → a/(1·c).
+    let on = rw.strength([-4.0, r1 * 0.999_999_999], 20.0);
+    assert!((on - prm.a / prm.c).abs() < 1e-6, "{on}");
+    // Hand evaluation at a general point inside the square.
+    let (px, pz) = (-4.0 + 0.6 * r1, 0.3 * r1);
+    let l = [(px + 4.0) / prm.uv_length, pz / prm.uv_length];
+    let ruv = r1 / prm.uv_length;
+    let want = (1.0 - l[0].abs()) * prm.a
+        / (prm.b * (ruv * ruv - l[0] * l[0] - l[1] * l[1]).abs().powi(2) + prm.c);
+    assert!((rw.strength([px, pz], 20.0) - want).abs() < 1e-12);
+    // Outside the 2r × 2r square: nothing.
+    assert_eq!(rw.strength([-4.0 + 1.01 * r1, 0.0], 20.0), 0.0);
+}
+
+#[test]
+fn bad_tracks_and_params_are_refused_with_the_sample_named() {
+    let mut tr = straight(3.0, 10.0, 10.0);
+    tr[4].x = f64::NAN;
+    let e = Wake::new(&[&straight(3.0, 5.0, 5.0), &tr], WakeParams::default()).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "the track of boat 1 is invalid at sample 4: t, x and z must be finite numbers"
+    );
+    let mut tr = straight(3.0, 10.0, 10.0);
+    tr[6].t = tr[5].t - 1.0;
+    let e = RingWake::new(&[&tr], RingParams::default()).unwrap_err();
+    assert!(
+        e.to_string().contains("boat 0 is invalid at sample 6"),
+        "{e}"
+    );
+    let bad = WakeParams {
+        spacing: 0.0,
+        ..WakeParams::default()
+    };
+    let e = Wake::new(&[], bad).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "the wake parameter `spacing` must be a positive finite number"
+    );
+}
+
+#[test]
+fn wake_wgsl_validates_and_its_struct_matches_the_buffer() {
+    let module = naga::front::wgsl::parse_str(WAKE_WGSL).expect("wake.wgsl parses");
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .expect("wake.wgsl validates");
+    let _ = info;
+    let ty = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("WakeSource"))
+        .expect("struct WakeSource");
+    let size = ty.1.inner.size(module.to_ctx());
+    assert_eq!(size as usize, std::mem::size_of::<GpuWakeSource>());
+}
+
+/// A random track: steps that move, stop, reverse and jump (zero-time and huge steps).
+fn arb_track() -> impl Strategy<Value = Vec<TrackSample>> {
+    prop::collection::vec((0u8..5, -50.0f64..50.0, -50.0f64..50.0, 0.0f64..3.0), 2..60).prop_map(
+        |steps| {
+            let (mut t, mut x, mut z) = (0.0, 0.0, 0.0);
+            let mut v = vec![TrackSample { t, x, z }];
+            for (kind, a, b, dt) in steps {
+                match kind {
+                    0 => {} // stop
+                    1 => {
+                        x += a * 0.1 * dt;
+                        z += b * 0.1 * dt;
+                    }
+                    2 => {
+                        x -= a * 0.2 * dt;
+                    }
+                    3 => {
+                        x += a * 100.0;
+                        z += b * 100.0;
+                    } // jump
+                    _ => {
+                        x += a * 0.01;
+                        z -= b * 0.01;
+                    }
+                }
+                t += if kind == 3 { 0.0 } else { dt };
+                v.push(TrackSample { t, x, z });
+            }
+            v
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    #[test]
+    fn no_nan_for_stops_reversals_and_jumps(track in arb_track(), px in -60.0f64..60.0, pz in -60.0f64..60.0, dt in 0.0f64..100.0) {
+        let prm = WakeParams { max_age: 30.0, ..WakeParams::default() };
+        let wake = Wake::new(&[&track], prm).unwrap();
+        let t = track[0].t + dt;
+        for p in [[px, pz], [track[track.len() / 2].x, track[track.len() / 2].z]] {
+            let h = wake.height(p, t);
+            let f = wake.foam(p, t);
+            prop_assert!(h.is_finite(), "height {h}");
+            prop_assert!((0.0..=1.0).contains(&f), "foam {f}");
+        }
+        let frame = wake.gpu_sources(t, [px, pz], &WakeView::around([px, pz], 50.0), 1e-6);
+        for q in [[0.0f32, 0.0], [3.5, -2.0]] {
+            prop_assert!(wake_height_f32(&frame.sources, q).is_finite());
+            prop_assert!((0.0..=1.0).contains(&wake_foam_f32(&frame.sources, q)));
+        }
+    }
+}

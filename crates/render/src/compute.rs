@@ -1,0 +1,108 @@
+//! The sea evaluated by a compute shader (`shaders/wave_heights.wgsl`) with the same WGSL
+//! `gerstner()` the water pass's vertices use: the GPU side of the parity test against ocean's
+//! f64 reference, and of the benches.
+
+use glam::DVec2;
+use ocean::WaveSet;
+use wgpu::util::DeviceExt;
+
+use crate::clipmap::MAX_WAVES;
+use crate::frame::{FrameBindings, FrameUniform};
+use crate::gpu::{Gpu, GpuError};
+use crate::shader;
+
+/// Displacements (dx, y, dz), metres, of the local rest points `points` (metres from
+/// `origin`) at race time `t`, evaluated on the GPU with every wave of `sea` (at most 64).
+pub fn gpu_displacements(
+    gpu: &Gpu,
+    sea: &WaveSet,
+    t: f64,
+    origin: DVec2,
+    points: &[[f32; 2]],
+) -> Result<Vec<[f32; 3]>, GpuError> {
+    if points.is_empty() {
+        return Ok(Vec::new());
+    }
+    let device = &gpu.device;
+    let bindings = FrameBindings::new(device);
+    let mut waves = sea.gpu_waves(t, [origin.x, origin.y]);
+    waves.truncate(MAX_WAVES);
+    let uniform = FrameUniform {
+        counts: [waves.len() as u32, 0, 0, 0],
+        ..bytemuck::Zeroable::zeroed()
+    };
+    bindings.upload(&gpu.queue, &uniform, &waves);
+    let storage = |read_only: bool| wgpu::BindGroupLayoutEntry {
+        binding: u32::from(!read_only),
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    let io_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("wave heights io"),
+        entries: &[storage(true), storage(false)],
+    });
+    let module = shader::module(device, "wave heights", &[shader::WAVE_HEIGHTS]);
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("wave heights"),
+        bind_group_layouts: &[Some(&bindings.layout), Some(&io_layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("wave heights"),
+        layout: Some(&layout),
+        module: &module,
+        entry_point: Some("cs_main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("points"),
+        contents: bytemuck::cast_slice(points),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let out_size = (points.len() * 16) as u64;
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("displaced"),
+        size: out_size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let read = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("displaced read"),
+        size: out_size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let io = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("wave heights io"),
+        layout: &io_layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut enc = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bindings.group, &[]);
+        pass.set_bind_group(1, &io, &[]);
+        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
+    }
+    enc.copy_buffer_to_buffer(&output, 0, &read, 0, out_size);
+    gpu.queue.submit([enc.finish()]);
+    let bytes = gpu.read_buffer(&read)?;
+    let v: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+    Ok(v.iter().map(|d| [d[0], d[1], d[2]]).collect())
+}

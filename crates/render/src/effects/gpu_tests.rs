@@ -1,0 +1,283 @@
+//! GPU tests of the effects on lavapipe: the WGSL optics against the f64 reference, and golden
+//! images of each effect. Without an adapter they skip, unless `REGATTA_REQUIRE_GPU=true`.
+//!
+//! Regenerate the golden images after an intended change of the picture:
+//! `REGATTA_UPDATE_GOLDEN=1 cargo test -p render --lib effects::gpu_tests`, then look at them.
+
+use std::path::PathBuf;
+
+use glam::{DVec2, DVec3};
+use wgpu::util::DeviceExt;
+
+use super::camera_frame::CameraFrame;
+use super::passes::{ArConfig, add_effect_passes};
+use super::{Effect, EffectSet};
+use crate::gpu::{Gpu, test_gpu};
+use crate::optics::{N_AIR, N_WATER, fresnel, refract, schlick};
+use crate::{OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene, render_image};
+
+/// The race scene's golden limits: mean difference ≤ 2 levels per channel, ≤ 1 % of pixels
+/// off by more than 24 levels.
+const MEAN_TOLERANCE: f64 = 2.0;
+const PIXEL_TOLERANCE: u8 = 24;
+const MAX_OFF_FRACTION: f64 = 0.01;
+const SIZE: [u32; 2] = [128, 96];
+
+fn table_scene(t: f64) -> Scene {
+    super::demo_table_scene(t)
+}
+
+fn config(effects: EffectSet) -> ArConfig {
+    ArConfig {
+        effects,
+        table_depth: 3.0,
+        ..ArConfig::default()
+    }
+}
+
+fn frame_for(scene: &Scene, cfg: &ArConfig) -> CameraFrame {
+    let [ax, az, bx, bz] = scene.play_area;
+    let centre = DVec2::new(ax + bx, az + bz) / 2.0;
+    CameraFrame::synthetic(
+        &scene.camera,
+        SIZE,
+        cfg.table_depth,
+        centre,
+        cfg.ring_radius_for(scene.play_area),
+        4.0,
+    )
+}
+
+fn render_with(gpu: &Gpu, scene: &Scene, effects: Option<EffectSet>) -> image::RgbaImage {
+    let mut r = Renderer::new(gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+    if let Some(effects) = effects {
+        let cfg = config(effects);
+        let frame = frame_for(scene, &cfg);
+        add_effect_passes(&mut r, gpu, cfg, frame);
+    }
+    render_image(gpu, &mut r, scene, SIZE).expect("render").0
+}
+
+fn compare(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
+    assert_eq!(a.dimensions(), b.dimensions());
+    let (mut sum, mut off) = (0.0, 0usize);
+    for (p, q) in a.pixels().zip(b.pixels()) {
+        let d = [0, 1, 2].map(|c| p[c].abs_diff(q[c]));
+        sum += d.iter().map(|&x| f64::from(x)).sum::<f64>();
+        off += usize::from(d.iter().any(|&x| x > PIXEL_TOLERANCE));
+    }
+    let n = f64::from(a.width() * a.height());
+    (sum / (3.0 * n), off as f64 / n)
+}
+
+fn golden(name: &str, effects: EffectSet) {
+    let Some(gpu) = test_gpu() else { return };
+    let img = render_with(&gpu, &table_scene(40.0), Some(effects));
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("src/effects/golden")
+        .join(format!("{name}.png"));
+    if std::env::var_os("REGATTA_UPDATE_GOLDEN").is_some() {
+        std::fs::create_dir_all(path.parent().expect("has a parent")).expect("golden folder");
+        img.save(&path).expect("write golden");
+        eprintln!("wrote {}", path.display());
+        return;
+    }
+    let want = image::open(&path)
+        .unwrap_or_else(|e| {
+            panic!(
+                "{}: {e}; regenerate with REGATTA_UPDATE_GOLDEN=1",
+                path.display()
+            )
+        })
+        .to_rgba8();
+    let (mean, off) = compare(&img, &want);
+    if mean > MEAN_TOLERANCE || off > MAX_OFF_FRACTION {
+        let got = std::env::temp_dir().join(format!("regatta-{name}-got.png"));
+        let _ = img.save(&got);
+        panic!(
+            "{name}: mean difference {mean:.2} levels, {:.2} % pixels off; got {}",
+            off * 100.0,
+            got.display()
+        );
+    }
+}
+
+#[test]
+fn golden_effect_background() {
+    golden("fx_background", EffectSet::only(Effect::Background));
+}
+#[test]
+fn golden_effect_reflection() {
+    golden(
+        "fx_reflection",
+        EffectSet::only(Effect::Background).with(Effect::Reflection),
+    );
+}
+#[test]
+fn golden_effect_refraction() {
+    golden(
+        "fx_refraction",
+        EffectSet::only(Effect::Background).with(Effect::Refraction),
+    );
+}
+#[test]
+fn golden_effect_caustics() {
+    golden(
+        "fx_caustics",
+        EffectSet::only(Effect::Background).with(Effect::Caustics),
+    );
+}
+#[test]
+fn golden_effect_flowmap() {
+    golden(
+        "fx_flowmap",
+        EffectSet::only(Effect::Background).with(Effect::FlowMap),
+    );
+}
+#[test]
+fn golden_effect_all() {
+    golden("fx_all", EffectSet::ALL);
+}
+
+#[test]
+fn each_effect_changes_the_picture_and_none_changes_nothing() {
+    let Some(gpu) = test_gpu() else { return };
+    let scene = table_scene(40.0);
+    let water_only = render_with(&gpu, &scene, None);
+    let none = render_with(&gpu, &scene, Some(EffectSet::NONE));
+    assert_eq!(
+        compare(&water_only, &none),
+        (0.0, 0.0),
+        "no effect, no change"
+    );
+    let base = render_with(&gpu, &scene, Some(EffectSet::only(Effect::Background)));
+    assert!(
+        compare(&base, &water_only).0 > 5.0,
+        "the camera frame replaces the sky"
+    );
+    for e in [
+        Effect::Reflection,
+        Effect::Refraction,
+        Effect::Caustics,
+        Effect::FlowMap,
+    ] {
+        let img = render_with(
+            &gpu,
+            &scene,
+            Some(EffectSet::only(Effect::Background).with(e)),
+        );
+        let (mean, _) = compare(&img, &base);
+        assert!(mean > 0.5, "{e} changes the picture: {mean:.2}");
+    }
+    // Caustics scrub with race time: a second later the light on the table has moved.
+    let fx = Some(EffectSet::only(Effect::Background).with(Effect::Caustics));
+    let a = render_with(&gpu, &scene, fx);
+    let b = render_with(&gpu, &table_scene(41.0), fx);
+    let c = render_with(&gpu, &table_scene(40.0), fx);
+    assert!(compare(&a, &b).0 > 0.5);
+    assert_eq!(
+        compare(&a, &c),
+        (0.0, 0.0),
+        "the same time gives the same picture"
+    );
+}
+
+/// Evaluate the WGSL optics on the GPU for `cosines`: (R full, Schlick, refracted x, y) per
+/// cosine, air → water, ray in the x–y plane through a level surface.
+fn wgsl_optics(gpu: &Gpu, cosines: &[f32]) -> Vec<[f32; 4]> {
+    let device = &gpu.device;
+    let src = format!(
+        "{}\n{}",
+        crate::shader::OPTICS,
+        r#"
+@group(0) @binding(0) var<storage, read> input: array<f32>;
+@group(0) @binding(1) var<storage, read_write> output: array<vec4<f32>>;
+@compute @workgroup_size(64)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&input) { return; }
+    let c = input[id.x];
+    let s = sqrt(max(1.0 - c * c, 0.0));
+    let t = refract_dir(vec3<f32>(s, -c, 0.0), vec3<f32>(0.0, 1.0, 0.0), N_AIR, N_WATER);
+    output[id.x] = vec4<f32>(fresnel_reflectance(c, N_AIR, N_WATER),
+        schlick_reflectance(c, N_AIR, N_WATER), t.x, t.y);
+}
+"#
+    );
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("optics parity"),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("optics parity"),
+        layout: None,
+        module: &module,
+        entry_point: Some("cs_main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("cosines"),
+        contents: bytemuck::cast_slice(cosines),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let size = (cosines.len() * 16) as u64;
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("optics out"),
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let read = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("optics read"),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("optics parity"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut enc = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups((cosines.len() as u32).div_ceil(64), 1, 1);
+    }
+    enc.copy_buffer_to_buffer(&output, 0, &read, 0, size);
+    gpu.queue.submit([enc.finish()]);
+    let bytes = gpu.read_buffer(&read).expect("read back");
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+#[test]
+fn wgsl_optics_match_the_f64_reference() {
+    let Some(gpu) = test_gpu() else { return };
+    let cosines: Vec<f32> = (0..=180)
+        .map(|i| (f64::from(i) * 0.5).to_radians().cos() as f32)
+        .collect();
+    let got = wgsl_optics(&gpu, &cosines);
+    let mut worst = 0.0f64;
+    for (c, g) in cosines.iter().zip(&got) {
+        let c = f64::from(*c);
+        let full = fresnel(c, N_AIR, N_WATER).r;
+        let sch = schlick(c, N_AIR, N_WATER);
+        let s = (1.0 - c * c).max(0.0).sqrt();
+        let t = refract(DVec3::new(s, -c, 0.0), DVec3::Y, N_AIR, N_WATER).expect("no TIR");
+        for (a, b) in [(g[0], full), (g[1], sch), (g[2], t.x), (g[3], t.y)] {
+            worst = worst.max((f64::from(a) - b).abs());
+        }
+    }
+    // f32 with a few roundings: well under a thousandth of the 2 % normal reflectance.
+    assert!(worst < 2e-5, "worst WGSL vs f64 difference {worst:e}");
+}

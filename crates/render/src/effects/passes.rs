@@ -1,0 +1,769 @@
+//! The effect passes on the GPU, added to a [`Renderer`] by [`add_effect_passes`]:
+//!
+//! - [`BackgroundPass`] (`shaders/background.wgsl`): the camera frame behind everything.
+//! - [`ArWaterPass`] (`shaders/ar_water.wgsl` with `reflection.wgsl`, `refraction.wgsl`,
+//!   `caustics.wgsl`, `flowmap.wgsl`): the water over the table shaded again with the effects
+//!   the planner chose, mixed by the full Fresnel equations. When boats or marks are reflected,
+//!   its `prepare` first draws them into the planar reflection texture (a fraction of the
+//!   screen) with the reflection matrix and oblique near-plane clipping at the water.
+//!
+//! Both share bind group 1 (`shaders/effects_common.wgsl`): the [`EffectsUniform`], the camera
+//! image, the reflection texture, the caustic map and a sampler. The caustic map is the f64
+//! area-ratio map of [`super::caustics`] at the frame's race time, uploaded each frame.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use glam::{DMat4, DVec2, DVec3};
+
+use super::camera_frame::CameraFrame;
+use super::caustics::{CausticRegion, area_ratio};
+use super::flowmap::{DEFAULT_JUMP, flow_phases};
+use super::planner::{EffectDecision, EffectFrame, decide};
+use super::{Effect, EffectSet};
+use crate::frame::{FrameBindings, FrameContext, FrameUniform, Pass, Targets};
+use crate::gpu::Gpu;
+use crate::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
+use crate::passes::boats::BoatsPass;
+use crate::renderer::{DEPTH_FORMAT, Renderer};
+use crate::shader;
+
+pub const EFFECTS_COMMON: &str = include_str!("../../../../shaders/effects_common.wgsl");
+pub const BACKGROUND: &str = include_str!("../../../../shaders/background.wgsl");
+pub const REFLECTION: &str = include_str!("../../../../shaders/reflection.wgsl");
+pub const REFRACTION: &str = include_str!("../../../../shaders/refraction.wgsl");
+pub const CAUSTICS: &str = include_str!("../../../../shaders/caustics.wgsl");
+pub const FLOWMAP: &str = include_str!("../../../../shaders/flowmap.wgsl");
+pub const AR_WATER: &str = include_str!("../../../../shaders/ar_water.wgsl");
+
+/// Largest caustic intensity the 8-bit caustic texture holds (times flat water).
+const CAUSTIC_SCALE: f64 = 4.0;
+
+/// How the effects are set up.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArConfig {
+    /// Effects asked for.
+    pub effects: EffectSet,
+    /// Depth of the water over the table, metres of the scene (table units × scale).
+    pub table_depth: f64,
+    /// Radius of the ring the camera image is reflected on; `None`: 1.05 × half the play
+    /// area's diagonal (000: at least half the water's diagonal).
+    pub ring_radius: Option<f64>,
+    /// Reflection texture size as a fraction of the screen's (000 uses a quarter).
+    pub reflection_fraction: f64,
+    /// Far tidal current, m/s (x, z).
+    pub current: DVec2,
+    /// Radius of a course mark in the current, metres.
+    pub mark_radius: f64,
+    /// Flow-map restart period, seconds.
+    pub flow_period: f64,
+    /// Side of one tile of the flow-distorted detail texture, metres.
+    pub detail_tile: f64,
+    /// Use the cheap overhead-sun caustics instead of the area-ratio map.
+    pub cheap_caustics: bool,
+    /// Surface grid and output cells per side of the area-ratio caustic map.
+    pub caustic_resolution: (usize, usize),
+}
+
+impl Default for ArConfig {
+    fn default() -> Self {
+        ArConfig {
+            effects: EffectSet::ALL,
+            table_depth: 3.0,
+            ring_radius: None,
+            reflection_fraction: 0.25,
+            current: DVec2::new(0.6, 0.2),
+            mark_radius: 4.0,
+            flow_period: 2.0,
+            detail_tile: 12.0,
+            cheap_caustics: false,
+            caustic_resolution: (96, 128),
+        }
+    }
+}
+
+impl ArConfig {
+    /// The ring radius for a scene's play area.
+    pub fn ring_radius_for(&self, play_area: [f64; 4]) -> f64 {
+        let [ax, az, bx, bz] = play_area;
+        self.ring_radius
+            .unwrap_or_else(|| 1.05 * 0.5 * DVec2::new(bx - ax, bz - az).length())
+    }
+}
+
+/// The per-frame uniform of the effects, `Effects` in `shaders/effects_common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct EffectsUniform {
+    pub camera_view: [[f32; 4]; 4],
+    pub intrinsics: [f32; 4],
+    pub display_u: [f32; 4],
+    pub display_v: [f32; 4],
+    pub table: [f32; 4],
+    pub caustic_region: [f32; 4],
+    pub flow_a: [f32; 4],
+    pub flow_b: [f32; 4],
+    pub current: [f32; 4],
+    pub flags: [u32; 4],
+    pub marks: [[f32; 4]; 8],
+}
+
+/// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
+/// rays, reflectors from the frustum test the boats pass uses.
+pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
+    let s = frame.scene;
+    let n = 9;
+    let hits = (0..n * n)
+        .filter(|k| {
+            let (i, j) = (k % n, k / n);
+            let ndc = [
+                i as f64 / (n - 1) as f64 * 2.0 - 1.0,
+                j as f64 / (n - 1) as f64 * 2.0 - 1.0,
+            ];
+            frame.ray_hits_water(ndc)
+        })
+        .count();
+    let water = hits as f64 / (n * n) as f64;
+    let in_view = |p: DVec2, r: f64| frame.sphere_in_view(DVec3::new(p.x, 0.0, p.y), r);
+    let reflectors = s
+        .boats
+        .iter()
+        .filter(|b| in_view(b.position, b.length))
+        .count()
+        + s.marks.iter().filter(|m| in_view(m.position, 2.0)).count();
+    let px = |v: u32| (f64::from(v) * cfg.reflection_fraction).round() as u32;
+    EffectFrame {
+        requested: cfg.effects,
+        camera_frame: true,
+        water_on_screen: water,
+        camera_above_water: s.camera.eye.y > 0.0,
+        reflectors_in_view: reflectors,
+        reflection_texture_px: [px(frame.size[0]), px(frame.size[1])],
+        water_over_table: water,
+        sun_elevation: s.sun.y.clamp(-1.0, 1.0).asin(),
+        calm_sea: s.sea.waves.is_empty(),
+        max_current_in_view: if water > 0.0 {
+            cfg.current.length()
+        } else {
+            0.0
+        },
+        // Frame reuse is the renderer's: it does not keep frames yet.
+        timeline_paused: false,
+        camera_still: false,
+        previous_frame_reusable: false,
+    }
+}
+
+/// Resources shared by the effect passes.
+struct Shared {
+    cfg: ArConfig,
+    camera: CameraFrame,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    camera_tex: wgpu::Texture,
+    caustic_tex: wgpu::Texture,
+    reflection: Option<(wgpu::Texture, wgpu::Texture)>,
+    sampler: wgpu::Sampler,
+    group: Option<wgpu::BindGroup>,
+    colour_format: wgpu::TextureFormat,
+}
+
+fn texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: size[0].max(1),
+            height: size[1].max(1),
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+fn write_rgba(gpu: &Gpu, tex: &wgpu::Texture, size: [u32; 2], bytes: &[u8]) {
+    gpu.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: tex,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * size[0]),
+            rows_per_image: Some(size[1]),
+        },
+        wgpu::Extent3d {
+            width: size[0],
+            height: size[1],
+            depth_or_array_layers: 1,
+        },
+    );
+}
+
+impl Shared {
+    fn new(gpu: &Gpu, targets: Targets, cfg: ArConfig, camera: CameraFrame) -> Shared {
+        let device = &gpu.device;
+        let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("effects"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                tex_entry(1),
+                tex_entry(2),
+                tex_entry(3),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("effects uniform"),
+            size: size_of::<EffectsUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+        let size = [camera.image.width(), camera.image.height()];
+        let camera_tex = texture(
+            device,
+            "camera image",
+            size,
+            wgpu::TextureFormat::Rgba8UnormSrgb,
+            usage,
+        );
+        write_rgba(gpu, &camera_tex, size, camera.image.as_raw());
+        let n = cfg.caustic_resolution.1 as u32;
+        let caustic_tex = texture(
+            device,
+            "caustic map",
+            [n, n],
+            wgpu::TextureFormat::Rgba8Unorm,
+            usage,
+        );
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("effects linear clamp"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Shared {
+            cfg,
+            camera,
+            layout,
+            uniform,
+            camera_tex,
+            caustic_tex,
+            reflection: None,
+            sampler,
+            group: None,
+            colour_format: targets.colour,
+        }
+    }
+
+    /// The reflection textures (colour, depth) at `size`, made when the size changes.
+    fn reflection_targets(&mut self, device: &wgpu::Device, size: [u32; 2]) {
+        let fits = self
+            .reflection
+            .as_ref()
+            .is_some_and(|(c, _)| c.width() == size[0].max(1) && c.height() == size[1].max(1));
+        if fits {
+            return;
+        }
+        let colour = texture(
+            device,
+            "planar reflection",
+            size,
+            self.colour_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let depth = texture(
+            device,
+            "planar reflection depth",
+            size,
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
+        self.reflection = Some((colour, depth));
+        self.group = None;
+    }
+
+    fn bind_group(&mut self, device: &wgpu::Device) -> wgpu::BindGroup {
+        if self.reflection.is_none() {
+            self.reflection_targets(device, [1, 1]);
+        }
+        if let Some(g) = &self.group {
+            return g.clone();
+        }
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let refl = view(&self.reflection.as_ref().expect("made above").0);
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("effects"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_tex)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&refl),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&view(&self.caustic_tex)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+            ],
+        });
+        self.group = Some(group.clone());
+        group
+    }
+
+    /// The uniform for a frame, with the effects that run this frame in `mask`.
+    fn uniform(&self, frame: &FrameContext, mask: u32, reflection_drawn: bool) -> EffectsUniform {
+        let s = frame.scene;
+        let o = frame.origin;
+        let cam = &self.camera.camera;
+        let f = |v: f64| v as f32;
+        let view = self.camera.view_local(o).as_mat4().to_cols_array_2d();
+        let d = self.camera.display;
+        let ring = self.cfg.ring_radius_for(s.play_area);
+        let [ax, az, bx, bz] = s.play_area;
+        let centre = DVec2::new(ax + bx, az + bz) / 2.0 - o;
+        let region = self.caustic_region(frame);
+        let [a, b] = flow_phases(s.t, self.cfg.flow_period, DEFAULT_JUMP);
+        let mut marks = [[0.0f32; 4]; 8];
+        let mut near: Vec<DVec2> = s.marks.iter().map(|m| m.position - o).collect();
+        let target = DVec2::new(s.camera.target.x, s.camera.target.z) - o;
+        near.sort_by(|p, q| (*p - target).length().total_cmp(&(*q - target).length()));
+        for (slot, p) in marks.iter_mut().zip(&near) {
+            *slot = [f(p.x), f(p.y), 0.0, 0.0];
+        }
+        EffectsUniform {
+            camera_view: view,
+            intrinsics: [
+                f(cam.fx / cam.width),
+                f(cam.fy / cam.height),
+                f(cam.cx / cam.width),
+                f(cam.cy / cam.height),
+            ],
+            display_u: [f(d[0][0]), f(d[0][1]), f(d[0][2]), 0.0],
+            display_v: [f(d[1][0]), f(d[1][1]), f(d[1][2]), 0.0],
+            table: [f(self.cfg.table_depth), f(ring), f(centre.x), f(centre.y)],
+            caustic_region: [
+                f(region.min[0] - o.x),
+                f(region.min[1] - o.y),
+                f(region.size),
+                f(CAUSTIC_SCALE),
+            ],
+            flow_a: [f(a.progress), f(a.weight), f(a.offset.x), f(a.offset.y)],
+            flow_b: [f(b.progress), f(b.weight), f(b.offset.x), f(b.offset.y)],
+            current: [
+                f(self.cfg.current.x),
+                f(self.cfg.current.y),
+                f(self.cfg.mark_radius),
+                f(self.cfg.detail_tile),
+            ],
+            flags: [
+                mask,
+                near.len().min(8) as u32,
+                u32::from(self.cfg.cheap_caustics),
+                u32::from(reflection_drawn),
+            ],
+            marks,
+        }
+    }
+
+    /// The square of the table the caustic map covers: around the point looked at, as wide as
+    /// the view there (world metres).
+    fn caustic_region(&self, frame: &FrameContext) -> CausticRegion {
+        let cam = &frame.scene.camera;
+        let dist = (cam.target - cam.eye).length();
+        let aspect = f64::from(frame.size[0]) / f64::from(frame.size[1].max(1));
+        let size = 2.0 * dist * (0.5 * cam.fov_y).tan() * aspect.max(1.0) * 1.5;
+        CausticRegion {
+            min: [cam.target.x - size / 2.0, cam.target.z - size / 2.0],
+            size,
+            periodic: false,
+        }
+    }
+
+    /// Compute the area-ratio caustic map of this frame's sea and time and upload it.
+    fn upload_caustics(&self, gpu: &Gpu, frame: &FrameContext) {
+        let s = frame.scene;
+        let (src, out) = self.cfg.caustic_resolution;
+        let map = area_ratio(
+            &s.sea,
+            s.t,
+            -s.sun,
+            self.cfg.table_depth,
+            self.caustic_region(frame),
+            src,
+            out,
+        );
+        let bytes: Vec<u8> = map
+            .intensity
+            .iter()
+            .flat_map(|&v| {
+                let b = ((v / CAUSTIC_SCALE).clamp(0.0, 1.0) * 255.0).round() as u8;
+                [b, b, b, 255]
+            })
+            .collect();
+        write_rgba(gpu, &self.caustic_tex, [out as u32, out as u32], &bytes);
+    }
+}
+
+/// A pipeline of bind groups 0 (frame) and 1 (effects) over a full-screen triangle.
+fn fx_pipeline(
+    gpu: &Gpu,
+    frame_layout: &wgpu::BindGroupLayout,
+    fx_layout: &wgpu::BindGroupLayout,
+    targets: Targets,
+    label: &str,
+    parts: &[&str],
+    depth_compare: wgpu::CompareFunction,
+) -> wgpu::RenderPipeline {
+    let device = &gpu.device;
+    let module = shader::module(device, label, parts);
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(frame_layout), Some(fx_layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: targets.depth,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(depth_compare),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: targets.colour,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// The camera frame behind everything.
+pub struct BackgroundPass {
+    pipeline: wgpu::RenderPipeline,
+    shared: Rc<RefCell<Shared>>,
+    group: Option<wgpu::BindGroup>,
+}
+
+impl Pass for BackgroundPass {
+    fn name(&self) -> &'static str {
+        "background"
+    }
+    fn condition(&self) -> &'static str {
+        "a camera frame is available (it fills every pixel no water, boat or mark covers)"
+    }
+    fn plan(&self, frame: &FrameContext) -> Result<String, String> {
+        let shared = self.shared.borrow();
+        result(decide(
+            Effect::Background,
+            &effect_frame(frame, &shared.cfg),
+        ))
+    }
+    fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext) {
+        let mut shared = self.shared.borrow_mut();
+        let u = shared.uniform(frame, 0, false);
+        gpu.queue
+            .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
+        self.group = Some(shared.bind_group(&gpu.device));
+    }
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
+        let Some(group) = &self.group else { return 0 };
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(1, group, &[]);
+        pass.draw(0..3, 0..1);
+        1
+    }
+}
+
+/// The water over the table with reflection, refraction, caustics and flow map.
+pub struct ArWaterPass {
+    pipeline: wgpu::RenderPipeline,
+    shared: Rc<RefCell<Shared>>,
+    group: Option<wgpu::BindGroup>,
+    /// The planar reflection: its own frame bindings (reflected camera) and boats pass.
+    reflection_bindings: FrameBindings,
+    reflection_boats: BoatsPass,
+    /// Effect decisions of the last planned frame.
+    pub last_decisions: Vec<EffectDecision>,
+}
+
+const WATER_EFFECTS: [Effect; 4] = [
+    Effect::Reflection,
+    Effect::Refraction,
+    Effect::Caustics,
+    Effect::FlowMap,
+];
+
+fn result(d: EffectDecision) -> Result<String, String> {
+    if d.run { Ok(d.reason) } else { Err(d.reason) }
+}
+
+impl ArWaterPass {
+    fn decisions(&self, frame: &FrameContext) -> Vec<EffectDecision> {
+        let f = effect_frame(frame, &self.shared.borrow().cfg);
+        WATER_EFFECTS.iter().map(|&e| decide(e, &f)).collect()
+    }
+
+    /// Draw boats and marks as the water mirrors them into the reflection texture: view ×
+    /// reflection matrix (000 eq. 1), near plane moved onto the water (000 eq. 2, wgpu depth).
+    /// Returns false when it cannot (camera at or below the water).
+    fn draw_reflection(&mut self, gpu: &Gpu, frame: &FrameContext) -> bool {
+        let s = frame.scene;
+        let cam = &s.camera;
+        let o = DVec3::new(frame.origin.x, 0.0, frame.origin.y);
+        let view = glam::dcamera::rh::view::look_at_mat4(cam.eye - o, cam.target - o, DVec3::Y);
+        let water = Plane::horizontal(0.0);
+        let refl_view = view * reflection_matrix(&water);
+        let aspect = f64::from(frame.size[0]) / f64::from(frame.size[1].max(1));
+        let proj =
+            glam::dcamera::rh::proj::directx::perspective(cam.fov_y, aspect, cam.near, cam.far);
+        let Some(oblique) =
+            oblique_near_plane(proj, &water.transformed(refl_view), DepthRange::ZeroToOne)
+        else {
+            return false;
+        };
+        let view_proj: DMat4 = oblique * refl_view;
+        let mut u: FrameUniform = frame.uniform;
+        u.view_proj = view_proj.as_mat4().to_cols_array_2d();
+        u.inv_view_proj = view_proj.inverse().as_mat4().to_cols_array_2d();
+        u.eye[1] = -u.eye[1];
+        self.reflection_bindings
+            .upload(&gpu.queue, &u, &frame.waves);
+        self.reflection_boats.prepare(gpu, frame);
+        let mut shared = self.shared.borrow_mut();
+        let frac = shared.cfg.reflection_fraction;
+        let size = frame
+            .size
+            .map(|v| ((f64::from(v) * frac).round() as u32).max(1));
+        shared.reflection_targets(&gpu.device, size);
+        let (colour, depth) = shared.reflection.as_ref().expect("made above");
+        let (cv, dv) = (
+            colour.create_view(&Default::default()),
+            depth.create_view(&Default::default()),
+        );
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("planar reflection"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &cv,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &dv,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.reflection_bindings.group, &[]);
+            self.reflection_boats.draw(&mut pass);
+        }
+        gpu.queue.submit([enc.finish()]);
+        true
+    }
+}
+
+impl Pass for ArWaterPass {
+    fn name(&self) -> &'static str {
+        "ar_water"
+    }
+    fn condition(&self) -> &'static str {
+        "one of reflection, refraction, caustics or flow map is needed (see the reasons)"
+    }
+    fn plan(&self, frame: &FrameContext) -> Result<String, String> {
+        let ds = self.decisions(frame);
+        let text = ds
+            .iter()
+            .map(|d| {
+                let verb = if d.run { "runs" } else { "skipped" };
+                format!("{} {verb}: {}", d.effect, d.reason)
+            })
+            .collect::<Vec<_>>()
+            .join("; ");
+        if ds.iter().any(|d| d.run) {
+            Ok(text)
+        } else {
+            Err(text)
+        }
+    }
+    fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext) {
+        let ds = self.decisions(frame);
+        let runs = |e: Effect| ds.iter().any(|d| d.effect == e && d.run);
+        let mask = ds
+            .iter()
+            .filter(|d| d.run)
+            .fold(0u32, |m, d| m | 1 << d.effect as u32);
+        let reflection_drawn = runs(Effect::Reflection) && self.draw_reflection(gpu, frame);
+        let mut shared = self.shared.borrow_mut();
+        if runs(Effect::Caustics) && !shared.cfg.cheap_caustics {
+            shared.upload_caustics(gpu, frame);
+        }
+        let u = shared.uniform(frame, mask, reflection_drawn);
+        gpu.queue
+            .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
+        self.group = Some(shared.bind_group(&gpu.device));
+        self.last_decisions = ds;
+    }
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
+        let Some(group) = &self.group else { return 0 };
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(1, group, &[]);
+        pass.draw(0..3, 0..1);
+        1
+    }
+}
+
+/// Add the background and AR water passes for `cfg` over `camera`'s frames to `renderer`.
+/// Effects that are not in `cfg.effects` never run (the passes report "not requested").
+pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, camera: CameraFrame) {
+    let targets = renderer.targets;
+    let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera)));
+    let frame_layout = renderer.frame_layout().clone();
+    let fx_layout = shared.borrow().layout.clone();
+    let background = BackgroundPass {
+        pipeline: fx_pipeline(
+            gpu,
+            &frame_layout,
+            &fx_layout,
+            targets,
+            "background",
+            &[EFFECTS_COMMON, BACKGROUND],
+            wgpu::CompareFunction::LessEqual,
+        ),
+        shared: shared.clone(),
+        group: None,
+    };
+    let water = ArWaterPass {
+        pipeline: fx_pipeline(
+            gpu,
+            &frame_layout,
+            &fx_layout,
+            targets,
+            "ar_water",
+            &[
+                EFFECTS_COMMON,
+                REFLECTION,
+                REFRACTION,
+                CAUSTICS,
+                FLOWMAP,
+                AR_WATER,
+            ],
+            wgpu::CompareFunction::Less,
+        ),
+        shared,
+        group: None,
+        reflection_bindings: FrameBindings::new(&gpu.device),
+        reflection_boats: BoatsPass::new(&gpu.device, &frame_layout, targets),
+        last_decisions: Vec::new(),
+    };
+    renderer.add_pass(Box::new(background));
+    renderer.add_pass(Box::new(water));
+}
+
+/// The effects for a scene without a frame source yet: the default [`ArConfig`] with
+/// `effects`, over a synthetic camera frame of `size` pixels seen from the scene's camera
+/// (checkers of 1/24 of the play area's width). `regatta render --effects` uses this.
+pub fn add_scene_effects(
+    renderer: &mut Renderer,
+    gpu: &Gpu,
+    scene: &crate::Scene,
+    size: [u32; 2],
+    effects: EffectSet,
+) {
+    let cfg = ArConfig {
+        effects,
+        ..ArConfig::default()
+    };
+    let [ax, az, bx, bz] = scene.play_area;
+    let centre = DVec2::new(ax + bx, az + bz) / 2.0;
+    let square = ((bx - ax).max(bz - az) / 24.0).max(1e-3);
+    // The camera image need not be larger than 640 pixels wide: it is sampled, not shown 1:1.
+    let scale = (640.0 / f64::from(size[0].max(1))).min(1.0);
+    let frame_size = size.map(|v| ((f64::from(v) * scale).round() as u32).max(1));
+    let frame = CameraFrame::synthetic(
+        &scene.camera,
+        frame_size,
+        cfg.table_depth,
+        centre,
+        cfg.ring_radius_for(scene.play_area),
+        square,
+    );
+    add_effect_passes(renderer, gpu, cfg, frame);
+}

@@ -1,0 +1,112 @@
+//! Measured screen-space height error of a clip-map against the analytic f64 sea, and the
+//! triangles it draws at a view: what the `mesh` bench compares with source 003's clip-maps.
+//!
+//! Error: for a ray through every `stride`-th pixel that meets the sea's rest plane inside the
+//! play area, the height the (unmorphed) mesh draws at that rest point, linear over its
+//! triangle, against the f64 sea's height there, divided by the metres one pixel spans at that
+//! distance. It measures the vertical error at rest points (the horizontal displacement is
+//! interpolated alike and not counted).
+
+use glam::{DVec2, DVec3, DVec4};
+use ocean::WaveSet;
+
+use crate::camera::{Camera, Frustum};
+use crate::clipmap::{ClipMapConfig, Culling};
+
+/// The bench view.
+pub struct View {
+    pub camera: Camera,
+    pub size: [u32; 2],
+    pub play_area: [f64; 4],
+    /// Distance from the eye (x, z) to the farthest play-area edge, metres.
+    pub reach: f64,
+}
+
+/// The bench's standard view: an eye 12 m up looking 150 m ahead, 1280 × 720 px, over a 2 km
+/// play area.
+pub fn bench_view() -> View {
+    let camera = Camera::look_at(
+        DVec3::new(0.0, 12.0, 0.0),
+        DVec3::new(0.0, 0.0, -150.0),
+        20_000.0,
+    );
+    View {
+        camera,
+        size: [1280, 720],
+        play_area: [-1000.0, -1000.0, 1000.0, 1000.0],
+        reach: 1000.0,
+    }
+}
+
+/// Measured error of a mesh: max, 99th percentile and mean in pixels over the sample rays.
+#[derive(Debug, Clone, Copy)]
+pub struct Measured {
+    pub max_px: f64,
+    pub p99_px: f64,
+    pub mean_px: f64,
+    pub samples: usize,
+}
+
+/// Measure the height error of `cfg` (waves `kept[level]` per level) at `view`, at time `t`.
+pub fn measure(
+    sea: &WaveSet,
+    cfg: &ClipMapConfig,
+    kept: &[Vec<usize>],
+    view: &View,
+    t: f64,
+    stride: u32,
+) -> Measured {
+    let cam = &view.camera;
+    let eye = DVec2::new(cam.eye.x, cam.eye.z);
+    let aspect = f64::from(view.size[0]) / f64::from(view.size[1]);
+    let inv = cam.view_proj_local(DVec2::ZERO, aspect).inverse();
+    let [ax, az, bx, bz] = view.play_area;
+    let mut errs = Vec::new();
+    for py in (0..view.size[1]).step_by(stride as usize) {
+        for px in (0..view.size[0]).step_by(stride as usize) {
+            let ndc = [
+                (f64::from(px) + 0.5) / f64::from(view.size[0]) * 2.0 - 1.0,
+                1.0 - (f64::from(py) + 0.5) / f64::from(view.size[1]) * 2.0,
+            ];
+            let n = inv * DVec4::new(ndc[0], ndc[1], 0.0, 1.0);
+            let f = inv * DVec4::new(ndc[0], ndc[1], 1.0, 1.0);
+            let (a, b) = (n.truncate() / n.w, f.truncate() / f.w);
+            if b.y >= a.y || a.y <= 0.0 {
+                continue;
+            }
+            let p = a + (b - a) * (a.y / (a.y - b.y));
+            let x0 = DVec2::new(p.x, p.z);
+            if x0.x < ax || x0.x > bx || x0.y < az || x0.y > bz {
+                continue;
+            }
+            let Some(h) = cfg.interpolated_height(sea, kept, eye, x0, t) else {
+                continue;
+            };
+            let truth = sea.displace([x0.x, x0.y], t)[1];
+            let d = (p - cam.eye).length();
+            errs.push((h - truth).abs() * cam.pixels_per_metre(d, view.size[1]));
+        }
+    }
+    errs.sort_by(f64::total_cmp);
+    let n = errs.len();
+    Measured {
+        max_px: errs.last().copied().unwrap_or(0.0),
+        p99_px: errs.get(n * 99 / 100).copied().unwrap_or(0.0),
+        mean_px: errs.iter().sum::<f64>() / n.max(1) as f64,
+        samples: n,
+    }
+}
+
+/// Triangles Regatta draws for `cfg` at `view` (frustum and play-area culling).
+pub fn regatta_triangles(sea: &WaveSet, cfg: &ClipMapConfig, view: &View) -> u64 {
+    let cam = &view.camera;
+    let eye = DVec2::new(cam.eye.x, cam.eye.z);
+    let origin = cfg.origin_for(eye);
+    let aspect = f64::from(view.size[0]) / f64::from(view.size[1]);
+    let culling = Culling {
+        frustum: Some(Frustum::from_matrix(cam.view_proj_local(origin, aspect))),
+        play_area: Some(view.play_area),
+        max_displacement: sea.waves.iter().map(|w| w.amplitude()).sum(),
+    };
+    cfg.build(eye, &culling).triangles()
+}

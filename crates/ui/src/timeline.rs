@@ -1,0 +1,129 @@
+//! The race-timeline scrubber: transport buttons, speed, the race clock, and a track with a
+//! tick at every mark rounding that can be dragged or clicked to scrub.
+
+use egui::{Align2, Color32, FontId, Rect, Sense, Stroke, StrokeKind, Ui, Vec2, pos2};
+
+use crate::clock::{RaceClock, SPEEDS, format_race_time};
+
+/// A moment on the timeline worth jumping to: a mark rounding.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TimelineEvent {
+    /// Race seconds.
+    pub t: f64,
+    /// For the hover text, e.g. "ESP29375 rounds B1".
+    pub label: String,
+    /// The boat's colour.
+    pub color: Color32,
+}
+
+/// Height of the scrub track, points.
+const TRACK_HEIGHT: f32 = 26.0;
+
+/// Draws the timeline into `ui` (full width); returns true when the user moved race time or
+/// changed play state.
+pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent]) -> bool {
+    let before = (clock.time(), clock.is_playing(), clock.speed());
+    let times: Vec<f64> = events.iter().map(|e| e.t).collect();
+    ui.horizontal(|ui| {
+        if ui.button("⏮ Start").on_hover_text("Jump to the start signal").clicked() {
+            clock.jump_to_start();
+        }
+        if ui
+            .button("◀ Mark")
+            .on_hover_text("Jump to the previous mark rounding")
+            .clicked()
+        {
+            clock.jump_to_previous(&times);
+        }
+        if ui.button("◀ Step").on_hover_text("Step back").clicked() {
+            clock.step(-1);
+        }
+        let play_label = if clock.is_playing() { "⏸ Pause" } else { "▶ Play" };
+        if ui.button(play_label).clicked() {
+            clock.toggle();
+        }
+        if ui.button("Step ▶").on_hover_text("Step forward").clicked() {
+            clock.step(1);
+        }
+        if ui
+            .button("Mark ▶")
+            .on_hover_text("Jump to the next mark rounding")
+            .clicked()
+        {
+            clock.jump_to_next(&times);
+        }
+        let mut speed = clock.speed();
+        egui::ComboBox::from_id_salt("race-speed")
+            .selected_text(format!("{speed}×"))
+            .width(56.0)
+            .show_ui(ui, |ui| {
+                for s in SPEEDS {
+                    ui.selectable_value(&mut speed, s, format!("{s}×"));
+                }
+            });
+        clock.set_speed(speed);
+        ui.separator();
+        let (_, end) = clock.span();
+        ui.label(
+            egui::RichText::new(format!(
+                "{} / {}",
+                format_race_time(clock.time()),
+                format_race_time(end)
+            ))
+            .monospace()
+            .size(18.0)
+            .strong(),
+        );
+    });
+    scrub_track(ui, clock, events);
+    let after = (clock.time(), clock.is_playing(), clock.speed());
+    before != after
+}
+
+/// The scrub track: the span as a bar, elapsed part filled, ticks at events, a handle at now.
+fn scrub_track(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent]) {
+    let width = ui.available_width();
+    let (rect, response) = ui.allocate_exact_size(Vec2::new(width, TRACK_HEIGHT), Sense::click_and_drag());
+    let (a, b) = clock.span();
+    let x_of = |t: f64| rect.left() + ((t - a) / (b - a)).clamp(0.0, 1.0) as f32 * rect.width();
+    if let Some(p) = response.interact_pointer_pos()
+        && (response.dragged() || response.clicked())
+    {
+        let s = f64::from(((p.x - rect.left()) / rect.width()).clamp(0.0, 1.0));
+        clock.scrub_to(a + s * (b - a));
+    }
+    let t = clock.time();
+    response.widget_info(|| egui::WidgetInfo::slider(true, t, "Race time"));
+
+    let painter = ui.painter_at(rect.expand(2.0));
+    let visuals = ui.visuals();
+    let bar = Rect::from_min_max(pos2(rect.left(), rect.center().y - 4.0), pos2(rect.right(), rect.center().y + 4.0));
+    painter.rect_filled(bar, 4.0, visuals.extreme_bg_color);
+    let done = Rect::from_min_max(bar.min, pos2(x_of(t), bar.max.y));
+    painter.rect_filled(done, 4.0, visuals.selection.bg_fill);
+    // The start signal, where the data begin before it.
+    if a < 0.0 && b > 0.0 {
+        let x = x_of(0.0);
+        painter.line_segment([pos2(x, rect.top()), pos2(x, rect.bottom())], Stroke::new(2.0, Color32::from_rgb(40, 200, 90)));
+    }
+    for e in events {
+        let x = x_of(e.t);
+        painter.line_segment([pos2(x, rect.top() + 2.0), pos2(x, bar.top())], Stroke::new(2.0, e.color));
+    }
+    let handle = pos2(x_of(t), rect.center().y);
+    painter.circle(handle, 8.0, visuals.widgets.active.bg_fill, Stroke::new(2.0, visuals.strong_text_color()));
+    painter.rect_stroke(bar, 4.0, Stroke::new(1.0, visuals.widgets.noninteractive.bg_stroke.color), StrokeKind::Inside);
+    if let Some(hover) = response.hover_pos() {
+        // Name the nearest rounding under the pointer, if any is within 4 points.
+        let near = events.iter().min_by(|p, q| (x_of(p.t) - hover.x).abs().total_cmp(&(x_of(q.t) - hover.x).abs()));
+        if let Some(e) = near.filter(|e| (x_of(e.t) - hover.x).abs() < 4.0) {
+            painter.text(
+                pos2(x_of(e.t), rect.top()),
+                Align2::CENTER_BOTTOM,
+                format!("{} {}", format_race_time(e.t), e.label),
+                FontId::proportional(12.0),
+                visuals.strong_text_color(),
+            );
+        }
+    }
+}

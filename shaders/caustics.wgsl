@@ -1,0 +1,28 @@
+// Caustics on the table (f64 reference: effects/caustics.rs).
+//
+// Area-ratio tier: the irradiance map of the actual wave surface at this race time, computed on
+// the CPU by the area ratio (light conserved; 1 = flat water) and sampled at the table point.
+// Cheap tier (source 000 / GPU Gems): sun straight overhead; the vertical ray from the table
+// meets the surface above, is bent out by its normal and looks up a sun disc; the source's
+// alpha = clamp(r + g + b, 0, 1) makes the dark parts transparent.
+
+fn overhead_sun(n: vec3<f32>) -> f32 {
+    let up = refract_dir(vec3<f32>(0.0, 1.0, 0.0), n, N_WATER, N_AIR);
+    let angle = acos(clamp(up.y, -1.0, 1.0));
+    return select(0.0, exp(-(angle / 0.1) * (angle / 0.1)), up.w > 0.0);
+}
+
+// Light on the table point q (local metres) relative to flat water; n is the surface normal
+// above it (cheap tier only).
+fn caustic_light(q: vec3<f32>, n: vec3<f32>) -> f32 {
+    if fx.flags.z != 0u {
+        let rgb = vec3<f32>(overhead_sun(n));
+        let alpha = clamp(rgb.r + rgb.g + rgb.b, 0.0, 1.0);
+        return 1.0 + 0.8 * alpha * rgb.r;
+    }
+    let uv = (q.xz - fx.caustic_region.xy) / fx.caustic_region.z;
+    if any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) {
+        return 1.0;
+    }
+    return textureSampleLevel(caustic_map, linear_clamp, uv, 0.0).r * fx.caustic_region.w;
+}

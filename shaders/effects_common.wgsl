@@ -1,0 +1,112 @@
+// Shared by the AR effect passes (background, reflection, refraction, caustics, flow map):
+// their uniform and textures (bind group 1), the full-screen triangle, the water surface under
+// a pixel, and the camera image through the camera's intrinsics and pose. Appended to
+// common.wgsl and optics.wgsl; mirrored in f64 by crates/render/src/effects/*.rs.
+
+// Bits of Effects.flags.x, as render::effects::Effect's discriminants.
+const FX_BACKGROUND: u32 = 1u;
+const FX_REFLECTION: u32 = 2u;
+const FX_REFRACTION: u32 = 4u;
+const FX_CAUSTICS: u32 = 8u;
+const FX_FLOWMAP: u32 = 16u;
+
+struct Effects {
+    // Local world -> camera of the physical camera (right-handed, looking down -z, y up).
+    camera_view: mat4x4<f32>,
+    // Intrinsics as fractions of the image: fx/W, fy/H, cx/W, cy/H (image v grows downwards).
+    intrinsics: vec4<f32>,
+    // The display's UV transform: screen uv -> camera-image uv, rows of a 2x3 affine map.
+    display_u: vec4<f32>,
+    display_v: vec4<f32>,
+    // Table depth below the rest level (m), ring radius (m), ring centre x, z (local m).
+    table: vec4<f32>,
+    // Caustic map: min x, min z (local m), side (m), intensity per unit of the texture.
+    caustic_region: vec4<f32>,
+    // Flow copies A and B: progress, weight, uv offset (reduced on the CPU in f64).
+    flow_a: vec4<f32>,
+    flow_b: vec4<f32>,
+    // Far current x, z (m/s), mark radius (m), detail tile size (m).
+    current: vec4<f32>,
+    // Planar reflection of boats and marks: 1 where the reflection texture was drawn.
+    // x = effect bits, y = marks, z = cheap caustics tier, w = reflection texture drawn.
+    flags: vec4<u32>,
+    marks: array<vec4<f32>, 8>,
+}
+
+@group(1) @binding(0) var<uniform> fx: Effects;
+@group(1) @binding(1) var camera_image: texture_2d<f32>;
+@group(1) @binding(2) var reflection_image: texture_2d<f32>;
+@group(1) @binding(3) var caustic_map: texture_2d<f32>;
+@group(1) @binding(4) var linear_clamp: sampler;
+
+fn fx_on(bit: u32) -> bool {
+    return (fx.flags.x & bit) != 0u;
+}
+
+struct ScreenOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) ndc: vec2<f32>,
+}
+
+// A triangle that covers the screen at depth z.
+fn full_screen(i: u32, z: f32) -> ScreenOut {
+    let xy = vec2<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, f32(i & 2u) * 2.0 - 1.0);
+    var out: ScreenOut;
+    out.clip = vec4<f32>(xy, z, 1.0);
+    out.ndc = xy;
+    return out;
+}
+
+// Screen uv (0..1, v down) of an NDC point.
+fn ndc_to_uv(ndc: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(0.5 * ndc.x + 0.5, 0.5 - 0.5 * ndc.y);
+}
+
+// Camera-image uv of a local world point (the pinhole of effects/refraction.rs); z of the
+// result is 1 in front of the camera, 0 behind it.
+fn camera_uv(p: vec3<f32>) -> vec3<f32> {
+    let c = fx.camera_view * vec4<f32>(p, 1.0);
+    if c.z >= 0.0 {
+        return vec3<f32>(0.5, 0.5, 0.0);
+    }
+    let q = c.xy / -c.z;
+    return vec3<f32>(fx.intrinsics.z + fx.intrinsics.x * q.x, fx.intrinsics.w - fx.intrinsics.y * q.y, 1.0);
+}
+
+// 1 inside the image, falling to 0 at EDGE_FADE outside it (effects::refraction::edge_weight).
+const EDGE_FADE: f32 = 0.05;
+fn edge_weight(uv: vec2<f32>) -> f32 {
+    let outside = max(max(-uv, uv - vec2<f32>(1.0)), vec2<f32>(0.0));
+    return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);
+}
+
+fn sample_camera(uv: vec2<f32>) -> vec3<f32> {
+    return textureSampleLevel(camera_image, linear_clamp, clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0)), 0.0).rgb;
+}
+
+// Height of the sea at a local point, taking the point as its own rest point (the horizontal
+// displacement, at most Σ A, moves the answer by less than a texel at table scale).
+fn sea_height(p: vec2<f32>) -> f32 {
+    var y = 0.0;
+    for (var i = 0u; i < frame.counts.x; i = i + 1u) {
+        y += gerstner(waves[i], p).y;
+    }
+    return y;
+}
+
+// Where the view ray through NDC point `ndc` meets the water: xyz local metres, w = 1 on the
+// water of the play area, 0 off it. Two fixed-point steps from the rest plane onto the waves.
+fn water_hit(ndc: vec2<f32>) -> vec4<f32> {
+    let eye = frame.eye.xyz;
+    let d = ray_dir(ndc);
+    if d.y >= -1e-6 || eye.y <= 0.0 {
+        return vec4<f32>(0.0);
+    }
+    var p = eye + d * (-eye.y / d.y);
+    for (var k = 0; k < 2; k = k + 1) {
+        p = eye + d * ((sea_height(p.xz) - eye.y) / d.y);
+    }
+    let pa = frame.play_area;
+    let inside = p.x >= pa.x && p.z >= pa.y && p.x <= pa.z && p.z <= pa.w;
+    return vec4<f32>(p, select(0.0, 1.0, inside));
+}

@@ -1,0 +1,72 @@
+// Boat wakes: the per-frame wake source buffer (ocean::wake::GpuWakeSource, 48 bytes) and the
+// functions that evaluate it at a local point p = world (x, z) − origin, in metres.
+// Mirrored exactly, in f32, by ocean::wake::gpu::{source_height_f32, wake_foam_f32}.
+//
+// Each source is one segment of a boat's path: a Cauchy–Poisson ring-wave packet of the hull's
+// pressure patch. No race time and no large coordinate reach this file: q = g s²/4 carries the
+// source's age s (reduced on the CPU), positions are local.
+//
+// A pass includes this file and declares the buffer, then sums:
+//
+//   @group(G) @binding(B) var<storage, read> wake_sources: array<WakeSource>;
+//   var h = 0.0; var foam = 0.0;
+//   for (var i = 0u; i < arrayLength(&wake_sources); i++) {
+//       h += wake_source_height(wake_sources[i], p);
+//       foam += wake_source_foam(wake_sources[i], p);
+//   }
+//   let wake_foam = wake_foam_from_density(foam);
+
+struct WakeSource {
+    // Segment midpoint − origin (x, z), m.
+    pos: vec2<f32>,
+    // Segment vector (x, z), m.
+    dx: vec2<f32>,
+    // g s²/4 for the source's age s, m.
+    q: f32,
+    // F/(√2πρg) · age fade, m³.
+    strength: f32,
+    // R²/4 (pressure-patch radius R), m².
+    gauss: f32,
+    // Beyond this squared distance the term is below the cull tolerance, m².
+    cull_r2: f32,
+    // Squared width of the foam strip, m², and its density at the centre.
+    foam_w2: f32,
+    foam: f32,
+    _pad: vec2<f32>,
+}
+
+// Below this squared distance (m²) the term is e^{−k²R²/4} ≈ 0: skip, never divide by zero.
+const WAKE_MIN_R2: f32 = 1e-6;
+// k²R²/4 beyond which the term is nothing (e^{−40}).
+const WAKE_GAUSS_CUTOFF: f32 = 40.0;
+
+// The height one source adds at p, m:
+// −strength · (k²/r) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (r̂·ΔX), k = q/r², Φ = q/r.
+fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
+    let d = p - s.pos;
+    let r2 = dot(d, d);
+    if (r2 > s.cull_r2 || r2 < WAKE_MIN_R2) {
+        return 0.0;
+    }
+    let k = s.q / r2;
+    let g = k * k * s.gauss;
+    if (!(g <= WAKE_GAUSS_CUTOFF)) {
+        return 0.0;
+    }
+    let r = sqrt(r2);
+    let phi = s.q / r;
+    let amp = s.strength * k * k / r * exp(-g);
+    let bracket = sin(phi) + (4.0 * g - 3.0) / phi * cos(phi);
+    return -amp * bracket * dot(d, s.dx) / r;
+}
+
+// The foam density one source adds at p (a Gaussian strip along the segment).
+fn wake_source_foam(s: WakeSource, p: vec2<f32>) -> f32 {
+    let d = p - s.pos;
+    return s.foam * exp(-dot(d, d) / s.foam_w2);
+}
+
+// Summed foam density → foam strength in [0, 1].
+fn wake_foam_from_density(sum: f32) -> f32 {
+    return clamp(1.0 - exp(-sum), 0.0, 1.0);
+}
