@@ -97,5 +97,5 @@ fi
 
 # --- package, align, sign --------------------------------------------------------------------
 cargo build -p regatta-apk --quiet >&2
-"$target_dir/debug/regatta-apk" --manifest app/Cargo.toml --lib "$so" --key "$key" --out "$out" "${extra[@]}"
+"$target_dir/debug/regatta-apk" package --manifest app/Cargo.toml --lib "$so" --key "$key" --out "$out" "${extra[@]}"
 say "wrote $out"

@@ -42,4 +42,7 @@ step "cargo check --workspace --target aarch64-linux-android"
 cargo check --workspace --target aarch64-linux-android
 step "cargo clippy --workspace --target aarch64-linux-android"
 cargo clippy --workspace --target aarch64-linux-android -- -D warnings
+step "APK: scripts/build-apk.sh, then apksigner, aapt and the symbol check"
+scripts/build-apk.sh >/dev/null
+scripts/check-apk.sh
 step "all checks passed in $(( $(date +%s) - start )) s"

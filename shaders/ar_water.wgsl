@@ -41,14 +41,15 @@ fn fs_main(in: ScreenOut) -> FragOut {
         reflected = reflection_colour(p, reflect_dir(view, n), screen_uv, n);
     }
 
-    // The table under the water: straight through, or refracted.
-    var table = vec4<f32>(sample_camera(camera_uv(table_point_straight(p, view)).xy), 0.0);
+    // The table under the water (q), straight through or refracted, and its colour and
+    // path length in the water (table.w).
     var q = table_point_straight(p, view);
-    table.w = length(q - p);
+    var table: vec4<f32>;
     if fx_on(FX_REFRACTION) {
         table = refracted_table(p, view, n);
-        let t = refract_dir(view, n, N_AIR, N_WATER);
-        q = p + t.xyz * table.w;
+        q = p + refract_dir(view, n, N_AIR, N_WATER).xyz * table.w;
+    } else {
+        table = vec4<f32>(sample_camera(camera_uv(q).xy), length(q - p));
     }
     var light = 1.0;
     if fx_on(FX_CAUSTICS) {

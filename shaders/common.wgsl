@@ -31,7 +31,7 @@ struct Frame {
     play_area: vec4<f32>,
     // Viewport width, height in pixels, 1/width, 1/height.
     viewport: vec4<f32>,
-    // x = number of waves (for shading normals), y = clip-map levels.
+    // x = number of waves (for shading normals), y = clip-map levels, z = live wake sources.
     counts: vec4<u32>,
     // Which waves the vertices of clip-map level l evaluate (ocean's error-bounded culling for
     // that level): bit i of the 64-bit mask (lo, hi) = level_masks[l / 2][2 (l % 2) + 0/1].
@@ -110,8 +110,10 @@ fn sky_colour(dir: vec3<f32>) -> vec3<f32> {
     let zenith = vec3<f32>(0.10, 0.28, 0.62);
     let horizon = vec3<f32>(0.62, 0.74, 0.86);
     var c = mix(horizon, zenith, pow(max(up, 0.0), 0.45));
-    // Below the horizon (seen only in reflections of steep facets) the sky darkens to haze.
-    c = select(c, horizon * 0.8, up < 0.0);
+    // Below the horizon (beyond the play area, or in reflections of steep facets): distant
+    // sea under haze, darkening towards the nadir.
+    let below = mix(horizon * 0.85, vec3<f32>(0.05, 0.2, 0.27), clamp(-up * 3.0, 0.0, 1.0));
+    c = select(c, below, up < 0.0);
     let s = max(dot(dir, frame.sun.xyz), 0.0);
     let glow = pow(s, 64.0) * 0.6 + pow(s, 8.0) * 0.15;
     let disc = smoothstep(0.9995, 0.9998, s) * 30.0;

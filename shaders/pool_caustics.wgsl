@@ -41,14 +41,6 @@ fn land(rest: vec2<f32>) -> Landing {
     return out;
 }
 
-fn grid_rest(i: u32, j: u32) -> vec2<f32> {
-    let n = pool.net.z;
-    return vec2<f32>(
-        -pool.box_.x + 2.0 * pool.box_.x * f32(i) / n,
-        -pool.box_.y + 2.0 * pool.box_.y * f32(j) / n,
-    );
-}
-
 struct CausticOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) @interpolate(flat) irradiance: f32,
@@ -56,7 +48,7 @@ struct CausticOut {
 
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32) -> CausticOut {
-    let n = u32(pool.net.z);
+    let n = u32(pool.grid.z);
     let tri = v / 3u;
     let corner = v % 3u;
     let cell = tri / 2u;
@@ -70,9 +62,9 @@ fn vs_main(@builtin(vertex_index) v: u32) -> CausticOut {
     if tri % 2u == 1u {
         idx = vec3<u32>(0u, 2u, 3u);
     }
-    let a = land(grid_rest(quad[idx.x].x, quad[idx.x].y));
-    let b = land(grid_rest(quad[idx.y].x, quad[idx.y].y));
-    let c = land(grid_rest(quad[idx.z].x, quad[idx.z].y));
+    let a = land(grid_rest(quad[idx.x].x, quad[idx.x].y, pool.grid.z));
+    let b = land(grid_rest(quad[idx.y].x, quad[idx.y].y, pool.grid.z));
+    let c = land(grid_rest(quad[idx.z].x, quad[idx.z].y, pool.grid.z));
     var out: CausticOut;
     // A degenerate triangle outside the map draws nothing.
     out.clip = vec4<f32>(2.0, 2.0, 0.5, 1.0);

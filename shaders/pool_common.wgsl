@@ -49,9 +49,11 @@ struct Pool {
     ripple: vec4<f32>,
     // Ripple σ (m), core ε (m), refractive index of the water, wall thickness (m).
     ripple2: vec4<f32>,
-    // Half extents of the unfolded net (m), caustic grid cells per side, water grid cells per
-    // side.
+    // Half extents of the unfolded net (m), 0, 0.
     net: vec4<f32>,
+    // Half extents of the rest-point grids (m, the pool's), caustic grid cells per side, water
+    // grid cells per side.
+    grid: vec4<f32>,
     // Spheres, rings, waves, 0.
     counts: vec4<u32>,
     spheres: array<PoolSphere, 8>,
@@ -98,8 +100,18 @@ struct WaterPoint {
     normal: vec3<f32>,
 }
 
+// Rest point (i, j) of a grid of n × n cells over the rest-point area.
+fn grid_rest(i: u32, j: u32, n: f32) -> vec2<f32> {
+    return vec2<f32>(
+        -pool.grid.x + 2.0 * pool.grid.x * f32(i) / n,
+        -pool.grid.y + 2.0 * pool.grid.y * f32(j) / n,
+    );
+}
+
 // The surface point the waves carry rest point `rest` to, lifted by the ripples, with its
-// normal (slopes add: Gerstner's −n.xz/n.y plus ∇η). Pinned to the walls.
+// normal (slopes add: Gerstner's −n.xz/n.y plus ∇η). Held inside the walls, and pinned to a
+// wall when the rest point lies on it, so the mesh always reaches the walls
+// (pool::PoolScene::mesh_point).
 fn water_at(rest: vec2<f32>) -> WaterPoint {
     var p = vec3<f32>(rest.x, 0.0, rest.y);
     for (var i = 0u; i < pool.counts.z; i = i + 1u) {
@@ -109,11 +121,10 @@ fn water_at(rest: vec2<f32>) -> WaterPoint {
     let rip = ripples(p.xz);
     let slope = -g.xz / g.y + rip.yz;
     var out: WaterPoint;
-    out.position = vec3<f32>(
-        clamp(p.x, -pool.box_.x, pool.box_.x),
-        p.y + rip.x,
-        clamp(p.z, -pool.box_.y, pool.box_.y),
-    );
+    let half = pool.box_.xy;
+    let on_wall = abs(rest) >= half * (1.0 - 1e-6);
+    let xz = select(clamp(p.xz, -half, half), sign(rest) * half, on_wall);
+    out.position = vec3<f32>(xz.x, p.y + rip.x, xz.y);
     out.normal = normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
     return out;
 }

@@ -86,6 +86,13 @@ fn fs_main(in: SceneOut) -> FragOut {
             colour = phong(albedo, max(dot(entry.xyz, l), 0.0), entry.xyz, l, -d, 0.2);
         }
     }
+    // The ground the tub stands on (the table in AR, where the camera image shows instead).
+    let ground_y = pool.box_.z - pool.ripple2.w;
+    if s_hit > 1e29 && d.y < 0.0 && o.y > ground_y {
+        s_hit = (ground_y - o.y) / d.y;
+        let up = vec3<f32>(0.0, 1.0, 0.0);
+        colour = phong(vec3<f32>(0.5, 0.48, 0.42), max(l.y, 0.0), up, l, -d, 0.0);
+    }
     let ball = nearest_sphere(o, d);
     if ball.x > 0.0 && ball.x < s_hit {
         let sp = pool.spheres[u32(ball.y)];

@@ -9,21 +9,11 @@ struct WaterOut {
     @location(1) rest: vec2<f32>,
 }
 
+// Indexed draw: vertex v is grid point (v mod (n + 1), v div (n + 1)), evaluated once.
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32) -> WaterOut {
-    let n = u32(pool.net.w);
-    let cell = v / 6u;
-    let corner = v % 6u;
-    // Two triangles per cell: (00, 10, 11) and (00, 11, 01).
-    var offsets = array<vec2<u32>, 6>(
-        vec2<u32>(0u, 0u), vec2<u32>(1u, 0u), vec2<u32>(1u, 1u),
-        vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(0u, 1u),
-    );
-    let ij = vec2<u32>(cell % n, cell / n) + offsets[corner];
-    let rest = vec2<f32>(
-        -pool.box_.x + 2.0 * pool.box_.x * f32(ij.x) / f32(n),
-        -pool.box_.y + 2.0 * pool.box_.y * f32(ij.y) / f32(n),
-    );
+    let n = u32(pool.grid.w);
+    let rest = grid_rest(v % (n + 1u), v / (n + 1u), pool.grid.w);
     let w = water_at(rest);
     var out: WaterOut;
     out.clip = frame.view_proj * vec4<f32>(w.position, 1.0);

@@ -1,4 +1,5 @@
-// Reflection (source 000 § 3.2.1, improved): what the water mirrors along the reflected ray r
+// Reflection (source 000 § 3.2.1, improved; f64 reference of the ring: effects/reflection.rs):
+// what the water mirrors along the reflected ray r
 // from the surface point p.
 //
 // 1. Boats, sails and marks: the planar reflection texture, drawn by the reflection pass with

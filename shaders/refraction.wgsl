@@ -15,10 +15,15 @@ fn refracted_table(p: vec3<f32>, view: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let t = refract_dir(view, n, N_AIR, N_WATER);
     let hit = ray_plane(p, t.xyz, vec4<f32>(0.0, 1.0, 0.0, fx.table.x));
     if t.w == 0.0 || hit.w <= 0.0 {
+        // No table along the refracted ray: the unrefracted sample, the ray's path along the
+        // view direction (ar_water puts q there).
         return vec4<f32>(sample_camera(straight), length(straight_point - p));
     }
     let uv = camera_uv(hit.xyz);
     let w = edge_weight(uv.xy) * uv.z;
-    let colour = mix(sample_camera(straight), sample_camera(uv.xy), w);
-    return vec4<f32>(colour, hit.w);
+    let refracted = sample_camera(uv.xy);
+    if w >= 1.0 {
+        return vec4<f32>(refracted, hit.w);
+    }
+    return vec4<f32>(mix(sample_camera(straight), refracted, w), hit.w);
 }

@@ -1,6 +1,8 @@
-// The water pass: the clip-map mesh displaced by the analytic Gerstner sea, shaded with
-// per-pixel analytic normals, the full Fresnel equations (optics.wgsl), sky and sun reflection
-// and Jacobian foam. Appended to common.wgsl and optics.wgsl.
+// The water pass: the clip-map mesh displaced by the analytic Gerstner sea and the boats'
+// wakes, shaded with per-pixel analytic normals, the full Fresnel equations (optics.wgsl), sky
+// and sun reflection, Jacobian foam and wake foam. Appended to common.wgsl, optics.wgsl and a
+// wake hook (water_wakes.wgsl after wake.wgsl, or water_no_wakes.wgsl) that defines
+// wake_height(p) and wake_foam(p).
 
 struct VertexIn {
     // Rest point in local metres, already morphed towards the next coarser level (CPU side).
@@ -26,6 +28,8 @@ fn vs_main(v: VertexIn) -> VertexOut {
             pos += gerstner(waves[i], v.rest) * weight;
         }
     }
+    // The wake is a height at a world point: where this vertex has gone.
+    pos.y += wake_height(pos.xz);
     var out: VertexOut;
     out.clip = frame.view_proj * vec4<f32>(pos, 1.0);
     out.rest = v.rest;
@@ -47,7 +51,18 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Footprint of this pixel on the rest plane, metres: waves shorter than two footprints fade.
     let footprint = max(length(dpdx(in.rest)), length(dpdy(in.rest)));
     let sf = surface_frame(in.rest, frame.counts.x, footprint);
-    let n = sf.normal;
+    var n = sf.normal;
+    var wfoam = 0.0;
+    if frame.counts.z > 0u {
+        // Total surface y = h_sea(X) + w(X): add the wake's slope (central differences over
+        // about a pixel, at least 5 cm) to the sea's.
+        let e = max(footprint, 0.05);
+        let p = in.world.xz;
+        let gx = (wake_height(p + vec2<f32>(e, 0.0)) - wake_height(p - vec2<f32>(e, 0.0))) / (2.0 * e);
+        let gz = (wake_height(p + vec2<f32>(0.0, e)) - wake_height(p - vec2<f32>(0.0, e))) / (2.0 * e);
+        n = normalize(vec3<f32>(n.x / n.y - gx, 1.0, n.z / n.y - gz));
+        wfoam = wake_foam(p);
+    }
     let to_eye = normalize(frame.eye.xyz - in.world);
     let cos_i = max(dot(n, to_eye), 0.0);
     let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);
@@ -57,7 +72,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let body = DEEP_WATER + SHALLOW_SCATTER * (0.25 + 0.75 * sun_in) * (1.0 - cos_i * 0.5);
     var colour = r * reflected + (1.0 - r) * body;
     // Foam where the horizontal map compresses (Jacobian below FOAM_ONSET, ocean crate).
-    let foam = clamp((0.72 - sf.jacobian) / 0.35, 0.0, 1.0);
+    let foam = max(clamp((0.72 - sf.jacobian) / 0.35, 0.0, 1.0), wfoam);
     colour = mix(colour, FOAM * (0.6 + 0.4 * sun_in), foam);
     return vec4<f32>(colour, 1.0);
 }

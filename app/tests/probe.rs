@@ -29,7 +29,11 @@ fn fails_with(args: &[&str], needle: &str) {
     assert!(!out.status.success(), "{args:?} should fail");
     assert!(out.stdout.is_empty(), "{args:?} printed to stdout");
     let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: not one line: {err}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "{args:?}: not one line: {err}"
+    );
     assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
     assert!(!err.contains("panicked"), "{err}");
 }
@@ -46,7 +50,15 @@ fn f(v: &Value) -> f64 {
 
 #[test]
 fn default_sea_points_obey_the_contract() {
-    let v = ok_json(&["probe", "--t", "125.5", "--at", "10,-20", "--at", "-3000.5,4000"]);
+    let v = ok_json(&[
+        "probe",
+        "--t",
+        "125.5",
+        "--at",
+        "10,-20",
+        "--at",
+        "-3000.5,4000",
+    ]);
     assert_eq!(f(&v["t"]), 125.5);
     let sea = WaveSet::default_sea();
     let pts = v["points"].as_array().unwrap();
@@ -80,7 +92,15 @@ fn sea_file_with_one_wave_against_the_closed_form() {
             "waves": [{"direction": [2.0, 0.0], "steepness": 0.5, "wavelength": 20.0}]}"#,
     );
     let t = 3.0;
-    let v = ok_json(&["probe", "--t", "3", "--at", "7.25,100", "--sea", sea.to_str().unwrap()]);
+    let v = ok_json(&[
+        "probe",
+        "--t",
+        "3",
+        "--at",
+        "7.25,100",
+        "--sea",
+        sea.to_str().unwrap(),
+    ]);
     let k = std::f64::consts::TAU / 20.0;
     let (a, w) = (0.5 / k, (9.81 * k).sqrt());
     let x_of = |x0: f64| x0 + a * (k * x0 - w * t).cos();
@@ -114,9 +134,20 @@ fn bad_arguments_give_one_sentence_and_fail() {
     fails_with(&["probe", "--t", "5", "--at", "1,NaN"], "--at \"1,NaN\"");
     fails_with(&["probe", "--t", "5", "--at", "inf,0"], "not a point");
     fails_with(&["probe", "--t", "NaN", "--at", "1,2"], "--t \"NaN\"");
-    fails_with(&["probe", "--t", "soon", "--at", "1,2"], "not a finite number");
     fails_with(
-        &["probe", "--t", "1", "--at", "1,2", "--sea", "/nonexistent/sea.json"],
+        &["probe", "--t", "soon", "--at", "1,2"],
+        "not a finite number",
+    );
+    fails_with(
+        &[
+            "probe",
+            "--t",
+            "1",
+            "--at",
+            "1,2",
+            "--sea",
+            "/nonexistent/sea.json",
+        ],
         "could not read /nonexistent/sea.json",
     );
 }
@@ -137,7 +168,15 @@ fn invalid_sea_files_are_refused_naming_file_and_wave() {
                       {"direction": [0, 1], "steepness": 0.5, "wavelength": 10}]}"#,
     );
     fails_with(
-        &["probe", "--t", "1", "--at", "0,0", "--sea", fold.to_str().unwrap()],
+        &[
+            "probe",
+            "--t",
+            "1",
+            "--at",
+            "0,0",
+            "--sea",
+            fold.to_str().unwrap(),
+        ],
         "folds over",
     );
     let zero = temp_file(
@@ -145,12 +184,28 @@ fn invalid_sea_files_are_refused_naming_file_and_wave() {
         r#"{"waves": [{"direction": [0, 0], "steepness": 0.1, "wavelength": 30}]}"#,
     );
     fails_with(
-        &["probe", "--t", "1", "--at", "0,0", "--sea", zero.to_str().unwrap()],
+        &[
+            "probe",
+            "--t",
+            "1",
+            "--at",
+            "0,0",
+            "--sea",
+            zero.to_str().unwrap(),
+        ],
         "wave 0 has a zero \"direction\"",
     );
     let junk = temp_file("probe_junk.json", "{\"waves\": [ oops ]}");
     fails_with(
-        &["probe", "--t", "1", "--at", "0,0", "--sea", junk.to_str().unwrap()],
+        &[
+            "probe",
+            "--t",
+            "1",
+            "--at",
+            "0,0",
+            "--sea",
+            junk.to_str().unwrap(),
+        ],
         "line 1",
     );
 }

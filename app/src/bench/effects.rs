@@ -21,66 +21,66 @@ use crate::error::{CliError, CliResult};
 /// Goal of the issue: every effect on costs at most this much of a water-only frame.
 const GOAL_RATIO: f64 = 1.6;
 
-/// Frame times (seconds) of `frames` frames of the demo table scene at `size` with `effects`
-/// (`None`: the renderer without effect passes), after two warm-up frames. Each frame is
-/// planned, drawn and waited for; race time advances 1/30 s per frame, so caustics and flow
-/// are recomputed every frame as in a playing race.
-fn frame_times(
-    gpu: &render::Gpu,
-    size: [u32; 2],
-    effects: Option<EffectSet>,
-    frames: usize,
-) -> Vec<f64> {
-    let mut r = Renderer::new(
-        gpu,
-        OFFSCREEN_FORMAT,
-        RenderOptions {
-            measure_gpu_time: false,
-            ..RenderOptions::default()
-        },
-    );
-    let scene0 = demo_table_scene(40.0);
-    if let Some(effects) = effects {
-        let cfg = ArConfig {
-            effects,
-            ..ArConfig::default()
-        };
-        let [ax, az, bx, bz] = scene0.play_area;
-        let frame = CameraFrame::synthetic(
-            &scene0.camera,
-            size,
-            cfg.table_depth,
-            glam::DVec2::new(ax + bx, az + bz) / 2.0,
-            cfg.ring_radius_for(scene0.play_area),
-            4.0,
+/// A renderer drawing the demo table scene at `size` with `effects` (`None`: without effect
+/// passes) into its own texture.
+struct Case {
+    renderer: Renderer,
+    view: wgpu::TextureView,
+}
+
+impl Case {
+    fn new(gpu: &render::Gpu, size: [u32; 2], effects: Option<EffectSet>) -> Case {
+        let mut renderer = Renderer::new(
+            gpu,
+            OFFSCREEN_FORMAT,
+            RenderOptions {
+                measure_gpu_time: false,
+                ..RenderOptions::default()
+            },
         );
-        add_effect_passes(&mut r, gpu, cfg, frame);
+        let scene = demo_table_scene(40.0);
+        if let Some(effects) = effects {
+            let cfg = ArConfig {
+                effects,
+                ..ArConfig::default()
+            };
+            let [ax, az, bx, bz] = scene.play_area;
+            let frame = CameraFrame::synthetic(
+                &scene.camera,
+                size,
+                cfg.table_depth,
+                glam::DVec2::new(ax + bx, az + bz) / 2.0,
+                cfg.ring_radius_for(scene.play_area),
+                4.0,
+            );
+            add_effect_passes(&mut renderer, gpu, cfg, frame);
+        }
+        let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("bench target"),
+            size: wgpu::Extent3d {
+                width: size[0],
+                height: size[1],
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: OFFSCREEN_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        let view = tex.create_view(&Default::default());
+        Case { renderer, view }
     }
-    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("bench target"),
-        size: wgpu::Extent3d {
-            width: size[0],
-            height: size[1],
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: OFFSCREEN_FORMAT,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    });
-    let view = tex.create_view(&Default::default());
-    (0..frames + 2)
-        .map(|i| {
-            let scene = demo_table_scene(40.0 + i as f64 / 30.0);
-            let t0 = Instant::now();
-            r.render(gpu, &view, size, &scene);
-            gpu.wait();
-            t0.elapsed().as_secs_f64()
-        })
-        .skip(2)
-        .collect()
+
+    /// Plan, draw and wait for one frame at race time `t`; seconds.
+    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> f64 {
+        let scene = demo_table_scene(t);
+        let t0 = Instant::now();
+        self.renderer.render(gpu, &self.view, size, &scene);
+        gpu.wait();
+        t0.elapsed().as_secs_f64()
+    }
 }
 
 /// Section `effects`.
@@ -88,7 +88,7 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("the effects bench needs a GPU adapter: {e}")))?;
     let (size, frames) = if ctx.quick {
-        ([320, 240], 8)
+        ([320, 240], 8usize)
     } else {
         ([640, 480], 30)
     };
@@ -112,13 +112,23 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     );
     let mut water_ms = f64::NAN;
     let mut worst: (f64, String) = (0.0, String::new());
-    // Interleave the cases over three rounds so that a slow moment of the machine does not
-    // land on one case only; each case's frames are pooled.
+    // Frame by frame, every case in turn: a busy moment of the machine falls on all cases
+    // alike. Race time advances 1/30 s per frame, so caustics and flow are recomputed every
+    // frame as in a playing race. Two warm-up frames are dropped.
+    let mut runs: Vec<Case> = cases
+        .iter()
+        .map(|(_, fx)| Case::new(&gpu, size, *fx))
+        .collect();
     let mut pooled: Vec<Vec<f64>> = vec![Vec::new(); cases.len()];
-    for round in 0..3 {
-        for (k, (name, fx)) in cases.iter().enumerate() {
-            ctx.progress(format!("effects: round {} of 3, {name}", round + 1));
-            pooled[k].extend(frame_times(&gpu, size, *fx, frames.div_ceil(3)));
+    for i in 0..frames + 2 {
+        if i % 10 == 0 {
+            ctx.progress(format!("effects: frame {i} of {}", frames + 2));
+        }
+        for (k, case) in runs.iter_mut().enumerate() {
+            let dt = case.frame(&gpu, size, 40.0 + i as f64 / 30.0);
+            if i >= 2 {
+                pooled[k].push(dt);
+            }
         }
     }
     for ((name, _), times) in cases.iter().zip(&mut pooled) {
@@ -143,10 +153,10 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     }
     t.note(format!(
         "{} frames per case of the demo table scene (60 m of water, two boats, a mark, three \
-         waves) at {}×{} on {}, measured in one run, cases interleaved; each frame planned, \
+         waves) at {}×{} on {}, measured in one run, the cases interleaved frame by frame; each frame planned, \
          drawn and waited for (CPU work included: the area-ratio caustic map is computed in \
          f64 on the CPU every frame). fps is 1 / frame time, as in 000's Table 1.",
-        frames.div_ceil(3) * 3,
+        frames,
         size[0],
         size[1],
         gpu.describe()
@@ -155,7 +165,11 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         "Goal: every case ≤ {GOAL_RATIO}× water only. Largest ratio: {:.2} ({}) — {}.",
         worst.0,
         worst.1,
-        if worst.0 <= GOAL_RATIO { "goal met" } else { "goal NOT met" }
+        if worst.0 <= GOAL_RATIO {
+            "goal met"
+        } else {
+            "goal NOT met"
+        }
     ));
     Ok(vec![t])
 }
@@ -252,8 +266,10 @@ pub fn fresnel_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
          looking into the water, {worst_out:.4} looking up from under it (Schlick there uses \
          the transmitted angle). At 50° Schlick is {:.0} % low: the water mixes reflection and \
          refraction by the full equations.",
-        100.0 * (1.0 - schlick(50f64.to_radians().cos(), N_AIR, N_WATER)
-            / fresnel(50f64.to_radians().cos(), N_AIR, N_WATER).r)
+        100.0
+            * (1.0
+                - schlick(50f64.to_radians().cos(), N_AIR, N_WATER)
+                    / fresnel(50f64.to_radians().cos(), N_AIR, N_WATER).r)
     ));
     t.note(format!(
         "Cost on this CPU (f64, median of {reps} sweeps of {per} angles): full equations \

@@ -169,5 +169,81 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         "Goal: ≤ 10 % of the source's triangles at equal or lower error. Worst ratio {:.4}; Regatta's measured max error ≤ the source's in every row: {all_within}.",
         worst_ratio
     ));
-    Ok(vec![table])
+    Ok(vec![table, gpu_time_table(ctx)?])
+}
+
+/// GPU milliseconds per pass (timestamp queries) for the sample race at its middle, framed by
+/// the default camera, with and without wakes: the ratio is what wakes cost.
+fn gpu_time_table(ctx: &BenchContext) -> CliResult<Table> {
+    use crate::cli::render::{middle_time, race_wake, scene_at};
+    let mut table = Table::new(
+        "render_gpu",
+        "GPU time per pass: the sample race with and without wakes",
+        &["pass", "without wakes ms", "with wakes ms", "ratio"],
+    );
+    let gpu = match render::Gpu::headless(wgpu::Backends::all()) {
+        Ok(g) => g,
+        Err(e) => {
+            table.note(format!("Not measured: {e}."));
+            return Ok(table);
+        }
+    };
+    let race = race::Race::sample();
+    let sea = WaveSet::default_sea();
+    let t = middle_time(&race);
+    let scene = scene_at(&race, &sea, t, None);
+    let size = if ctx.quick { [320, 180] } else { [960, 540] };
+    let reps = if ctx.quick { 3 } else { 9 };
+    let mut renderer = render::Renderer::new(
+        &gpu,
+        render::OFFSCREEN_FORMAT,
+        render::RenderOptions::default(),
+    );
+    let per_pass = |r: &mut render::Renderer| -> CliResult<Vec<(String, Option<f64>)>> {
+        let mut runs = Vec::new();
+        for _ in 0..reps {
+            let (_, rep) = render::render_image(&gpu, r, &scene, size)
+                .map_err(|e| crate::error::CliError::new(format!("bench render: {e}")))?;
+            runs.push(rep.passes);
+        }
+        let names: Vec<String> = runs[0].iter().map(|p| p.name.clone()).collect();
+        Ok(names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| {
+                let mut v: Vec<f64> = runs.iter().filter_map(|r| r[i].gpu_ms).collect();
+                v.sort_by(f64::total_cmp);
+                (n.clone(), v.get(v.len() / 2).copied())
+            })
+            .collect())
+    };
+    let without = per_pass(&mut renderer)?;
+    renderer.set_wake(Some(race_wake(&race)?));
+    let with = per_pass(&mut renderer)?;
+    let mut total = (0.0, 0.0);
+    for ((name, a), (_, b)) in without.iter().zip(&with) {
+        if let (Some(a), Some(b)) = (a, b) {
+            total.0 += a;
+            total.1 += b;
+        }
+        table.row(vec![
+            json!(name),
+            json!(a),
+            json!(b),
+            json!(a.zip(*b).map(|(a, b)| b / a.max(1e-9))),
+        ]);
+    }
+    table.row(vec![
+        json!("frame"),
+        json!(total.0),
+        json!(total.1),
+        json!(total.1 / total.0.max(1e-9)),
+    ]);
+    table.note(format!(
+        "{} at {}×{} px, median of {reps} frames, race time {t:.0} s; GPU time from timestamp queries (empty where the adapter has none). Effects' passes are measured in their own section.",
+        gpu.describe(),
+        size[0],
+        size[1]
+    ));
+    Ok(table)
 }

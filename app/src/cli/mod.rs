@@ -7,9 +7,9 @@ use crate::error::CliResult;
 pub mod bench;
 pub mod inputs;
 pub mod probe;
-pub mod replay;
 pub mod race;
 pub mod render;
+pub mod replay;
 
 /// Regatta: a sailing race on a real table, with a living sea drawn over it.
 #[derive(Debug, Parser)]

@@ -106,11 +106,10 @@ pub fn run(a: ProbeArgs) -> CliResult {
             "probe needs at least one world point: --at X,Z is missing",
         ));
     }
-    let points = a
-        .at
-        .iter()
-        .map(|s| parse_point(s))
-        .collect::<CliResult<Vec<_>>>()?;
+    let points =
+        a.at.iter()
+            .map(|s| parse_point(s))
+            .collect::<CliResult<Vec<_>>>()?;
     let sea = load_sea(a.sea.as_ref())?;
     // The race's Kelvin wakes (ocean::wake), added at the world point; slopes by central
     // differences over R/20, far below the wake's shortest waves (≈ R).

@@ -45,6 +45,9 @@ pub struct RenderArgs {
     /// metres, `--sea` replacing the pool's waves).
     #[arg(long, value_enum, default_value_t = SceneKind::Race)]
     pub scene: SceneKind,
+    /// Draw no boat wakes.
+    #[arg(long)]
+    pub no_wakes: bool,
 }
 
 /// The scenes `regatta render` and `regatta run` draw.
@@ -167,6 +170,11 @@ pub fn scene_at(race: &race::Race, sea: &ocean::WaveSet, t: f64, camera: Option<
     }
 }
 
+/// The wakes of every boat of `race` (default wake parameters), for `Renderer::set_wake`.
+pub fn race_wake(race: &race::Race) -> CliResult<std::sync::Arc<ocean::wake::Wake>> {
+    crate::wakes::race_wake(race, ocean::wake::WakeParams::default()).map(std::sync::Arc::new)
+}
+
 /// The middle of the race's time span.
 pub fn middle_time(race: &race::Race) -> f64 {
     let (a, b) = race.time_span();
@@ -219,6 +227,9 @@ pub fn run(a: RenderArgs) -> CliResult {
             measure_gpu_time: true,
         },
     );
+    if !a.no_wakes {
+        renderer.set_wake(Some(race_wake(&race)?));
+    }
     if let Some(effects) = effects {
         render::effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
     }
@@ -297,6 +308,39 @@ mod tests {
         }
         let c = parse_camera("0,10,50,0,0,0", 1e3).unwrap();
         assert_eq!(c.eye, DVec3::new(0.0, 10.0, 50.0));
+    }
+
+    fn pool_args(extra: &[&str]) -> RenderArgs {
+        use clap::Parser;
+        let base = [
+            "regatta",
+            "render",
+            "--scene",
+            "pool",
+            "--out",
+            "/nonexistent/p.png",
+        ];
+        match crate::cli::Cli::try_parse_from(base.iter().chain(extra))
+            .unwrap()
+            .command
+        {
+            Some(crate::cli::Command::Render(a)) => a,
+            other => panic!("not a render command: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn pool_scene_refuses_a_race_and_a_bad_time() {
+        let e = run(pool_args(&["--race", "r.json"]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--race") && e.contains("--scene pool"), "{e}");
+        let e = run(pool_args(&["--t", "inf"])).unwrap_err().to_string();
+        assert!(e.contains("--t"), "{e}");
+        let e = run(pool_args(&["--camera", "1,2"]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--camera"), "{e}");
     }
 
     #[test]

@@ -21,6 +21,7 @@ use crate::cli::inputs::{load_race, load_sea};
 use crate::cli::render::{FAR_M, SceneKind, scene_at};
 use crate::error::{CliError, CliResult};
 
+mod overlay;
 mod pool;
 
 #[derive(Debug, Args, Default)]
@@ -91,6 +92,8 @@ struct State {
     gpu: render::Gpu,
     surface: render::gpu::SurfaceTarget,
     renderer: Renderer,
+    /// The egui panels (timeline, leaderboard, overlay); `None` in the pool scene.
+    overlay: Option<overlay::Overlay>,
 }
 
 struct App {
@@ -114,6 +117,12 @@ impl App {
     }
 
     fn tick(&mut self) {
+        // With the panels, race time is the timeline's (play, scrub, speed).
+        if let Some(o) = self.state.as_mut().and_then(|s| s.overlay.as_mut()) {
+            self.clock.t = o.tick();
+            self.clock.playing = o.panels.clock.is_playing();
+            return;
+        }
         let now = Instant::now();
         if self.clock.playing {
             self.clock.t += now.duration_since(self.clock.last).as_secs_f64();
@@ -163,10 +172,28 @@ impl App {
         };
         let view = frame.texture.create_view(&Default::default());
         let size = [st.surface.config.width, st.surface.config.height];
+        if let Some(o) = st.overlay.as_mut() {
+            o.apply_effects(&mut st.renderer);
+        }
         let report = st.renderer.render(&st.gpu, &view, size, &scene);
         log::debug!("frame: {} triangles", report.triangles);
+        if let Some(o) = st.overlay.as_mut() {
+            o.record(&report);
+            o.paint(
+                &st.window,
+                &st.gpu.device,
+                &st.gpu.queue,
+                &view,
+                size,
+                &self.race,
+            );
+        }
         st.window.pre_present_notify();
         st.gpu.queue.present(frame);
+        if st.overlay.as_mut().is_some_and(|o| o.frame_done()) {
+            el.exit();
+            return;
+        }
         st.window.set_title(&format!(
             "Regatta: {} at t = {:.0} s{}",
             self.race.name,
@@ -191,7 +218,7 @@ impl ApplicationHandler for App {
         let size = window.inner_size();
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, surface)) => {
-                let renderer = Renderer::new(
+                let mut renderer = Renderer::new(
                     &gpu,
                     surface.config.format,
                     RenderOptions {
@@ -199,12 +226,27 @@ impl ApplicationHandler for App {
                         ..Default::default()
                     },
                 );
+                match crate::cli::render::race_wake(&self.race) {
+                    Ok(w) => renderer.set_wake(Some(w)),
+                    Err(e) => log::warn!("{e}; drawing no wakes"),
+                }
                 log::info!("window on {}", gpu.describe());
+                let overlay = self.pool.is_none().then(|| {
+                    let title = self.race.name.clone();
+                    overlay::Overlay::new(
+                        &window,
+                        &gpu.device,
+                        surface.config.format,
+                        &self.race,
+                        title,
+                    )
+                });
                 self.state = Some(State {
                     window,
                     gpu,
                     surface,
                     renderer,
+                    overlay,
                 });
             }
             Err(e) => self.fail(el, format!("cannot draw into the window: {e}")),
@@ -212,6 +254,12 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, el: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        if let Some(st) = self.state.as_mut()
+            && let Some(o) = st.overlay.as_mut()
+            && overlay::handle_event(o, &st.window, &event)
+        {
+            return;
+        }
         match event {
             WindowEvent::CloseRequested => el.exit(),
             WindowEvent::Resized(s) => {

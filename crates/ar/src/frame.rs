@@ -10,6 +10,7 @@
 use glam::{Affine2, DMat4, DVec2, DVec3, Mat4, Vec2};
 
 use crate::ArError;
+use crate::arcore::yuv::{YuvRange, YuvToRgb};
 
 /// The camera image of one frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -45,7 +46,7 @@ impl FrameImage {
         }
     }
 
-    /// The image as tightly packed RGBA8 (converting YUV with BT.601 full-range coefficients).
+    /// The image as tightly packed RGBA8 (YUV through [`YuvToRgb`], BT.601 full range).
     pub fn to_rgba8(&self) -> Vec<u8> {
         match self {
             FrameImage::Rgba8 { data, .. } => data.clone(),
@@ -60,23 +61,15 @@ impl FrameImage {
                 uv_pixel_stride,
             } => {
                 let (w, h) = (*width as usize, *height as usize);
+                // The same BT.601 full-range matrix the phone's shader applies.
+                let m = YuvToRgb::bt601(YuvRange::Full);
                 let mut out = vec![255u8; w * h * 4];
                 for j in 0..h {
                     for i in 0..w {
-                        let yy = f32::from(y[j * *y_row_stride as usize + i]);
                         let c =
                             (j / 2) * *uv_row_stride as usize + (i / 2) * *uv_pixel_stride as usize;
-                        let cb = f32::from(u[c]) - 128.0;
-                        let cr = f32::from(v[c]) - 128.0;
-                        let rgb = [
-                            yy + 1.402 * cr,
-                            yy - 0.344_136 * cb - 0.714_136 * cr,
-                            yy + 1.772 * cb,
-                        ];
-                        let o = (j * w + i) * 4;
-                        for (k, x) in rgb.into_iter().enumerate() {
-                            out[o + k] = x.round().clamp(0.0, 255.0) as u8;
-                        }
+                        let rgb = m.convert(y[j * *y_row_stride as usize + i], u[c], v[c]);
+                        out[(j * w + i) * 4..][..3].copy_from_slice(&rgb);
                     }
                 }
                 out

@@ -181,7 +181,11 @@ mod tests {
     #[test]
     fn inverse_then_forward_returns_the_world_point() {
         let s = WaveSet::default_sea();
-        for &(x, z, t) in &[(0.0, 0.0, 0.0), (33.0, -71.0, 500.0), (-9500.0, 8000.0, 9e6)] {
+        for &(x, z, t) in &[
+            (0.0, 0.0, 0.0),
+            (33.0, -71.0, 500.0),
+            (-9500.0, 8000.0, 9e6),
+        ] {
             let r = s.rest_point([x, z], t, 1e-9).unwrap();
             let p = s.displace(r.rest, t);
             assert!((p[0] - x).hypot(p[2] - z) <= 1e-9, "{p:?}");
@@ -234,8 +238,8 @@ mod tests {
         assert!((gz - w.gradient[1]).abs() < 1e-6);
         let len = (gx * gx + 1.0 + gz * gz).sqrt();
         let n = [-gx / len, 1.0 / len, -gz / len];
-        for i in 0..3 {
-            assert!((n[i] - w.normal[i]).abs() < 1e-6);
+        for (a, b) in n.iter().zip(w.normal) {
+            assert!((a - b).abs() < 1e-6);
         }
     }
 

@@ -97,7 +97,10 @@ impl NdbcTable {
         let err = |line: usize, m: String| NdbcError {
             message: format!("{source}: line {line}: {m}"),
         };
-        let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty());
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty());
         let Some((_, header)) = lines.next() else {
             return Err(NdbcError {
                 message: format!("{source}: the file is empty, not an NDBC spectral file"),
@@ -142,9 +145,9 @@ impl NdbcTable {
             }
             let mut d = [0u32; 5];
             for (j, t) in tok[..date_cols].iter().enumerate() {
-                d[j] = t
-                    .parse()
-                    .map_err(|_| err(n, format!("date field {} is \"{t}\", not a number", j + 1)))?;
+                d[j] = t.parse().map_err(|_| {
+                    err(n, format!("date field {} is \"{t}\", not a number", j + 1))
+                })?;
             }
             if d[0] < 100 {
                 d[0] += if d[0] < 50 { 2000 } else { 1900 };
@@ -199,7 +202,9 @@ impl NdbcTable {
                 }
                 let v: Result<Vec<_>, _> = rest
                     .iter()
-                    .map(|t| parse_value(t).ok_or_else(|| err(n, format!("\"{t}\" is not a number"))))
+                    .map(|t| {
+                        parse_value(t).ok_or_else(|| err(n, format!("\"{t}\" is not a number")))
+                    })
                     .collect();
                 (header_freqs.clone(), v?)
             };
@@ -315,7 +320,11 @@ impl NdbcSpectrum {
         Ok(NdbcSpectrum {
             time: row.time,
             frequencies: row.frequencies.clone(),
-            density: row.values.iter().map(|v| v.unwrap_or(0.0).max(0.0)).collect(),
+            density: row
+                .values
+                .iter()
+                .map(|v| v.unwrap_or(0.0).max(0.0))
+                .collect(),
             alpha1_deg: pick(alpha1, "direction (alpha1)")?,
             r1: pick(r1, "r1")?,
         })
@@ -327,7 +336,13 @@ impl NdbcSpectrum {
         let n = f.len();
         (0..n)
             .map(|i| {
-                let below = if i > 0 { f[i] - f[i - 1] } else if n > 1 { f[1] - f[0] } else { 0.01 };
+                let below = if i > 0 {
+                    f[i] - f[i - 1]
+                } else if n > 1 {
+                    f[1] - f[0]
+                } else {
+                    0.01
+                };
                 let above = if i + 1 < n { f[i + 1] - f[i] } else { below };
                 (f[i] - 0.5 * below, f[i] + 0.5 * above)
             })
@@ -367,7 +382,10 @@ impl NdbcSpectrum {
             let l = sx.hypot(sz);
             ([sx / l, sz / l], spreading_from_r1(r1w / wsum))
         } else {
-            (travel_direction_from_compass(default_from_deg), default_spreading)
+            (
+                travel_direction_from_compass(default_from_deg),
+                default_spreading,
+            )
         };
         self.band_edges()
             .iter()
@@ -414,9 +432,15 @@ mod tests {
             "z",
         )
         .unwrap_err();
-        assert!(e.message.contains("line 2") && e.message.contains("(x)"), "{e}");
-        let t = NdbcTable::parse("#YY  MM DD hh mm a (freq_1)\n2020 06 08 03 50 999.0 (0.03)\n", "w")
-            .unwrap();
+        assert!(
+            e.message.contains("line 2") && e.message.contains("(x)"),
+            "{e}"
+        );
+        let t = NdbcTable::parse(
+            "#YY  MM DD hh mm a (freq_1)\n2020 06 08 03 50 999.0 (0.03)\n",
+            "w",
+        )
+        .unwrap();
         assert_eq!(t.rows[0].values, vec![None]);
     }
 }

@@ -120,3 +120,87 @@ impl WaveSet {
             .expect("the embedded default sea is valid (checked by a test)")
     }
 }
+
+impl WaveSet {
+    /// The sea file of DESIGN.md for this sea: `from_json_str` reads it back to the same set
+    /// (numbers are written with Rust's shortest round-trip formatting).
+    pub fn to_json_string(&self) -> String {
+        let waves: Vec<serde_json::Value> = self
+            .waves
+            .iter()
+            .map(|w| {
+                serde_json::json!({
+                    "direction": w.direction,
+                    "steepness": w.steepness,
+                    "wavelength": w.wavelength,
+                    "phase": w.phase,
+                })
+            })
+            .collect();
+        let v = serde_json::json!({ "gravity": self.gravity, "depth": self.depth, "waves": waves });
+        serde_json::to_string_pretty(&v).expect("a sea serialises")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sea_round_trips_through_its_file() {
+        let s = WaveSet::default_sea();
+        let r = WaveSet::from_json_str(&s.to_json_string(), "x").unwrap();
+        assert_eq!(
+            (r.gravity, r.depth, r.waves.len()),
+            (s.gravity, s.depth, s.waves.len())
+        );
+        for (a, b) in r.waves.iter().zip(&s.waves) {
+            assert_eq!(
+                (a.steepness, a.wavelength, a.phase),
+                (b.steepness, b.wavelength, b.phase)
+            );
+            // Directions are normalised again on load: equal to an ulp.
+            assert!((a.direction[0] - b.direction[0]).abs() < 1e-15);
+            assert!((a.direction[1] - b.direction[1]).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn refusals_name_the_source_and_the_wave() {
+        let e = |t: &str| WaveSet::from_json_str(t, "sea.json").unwrap_err().message;
+        let w = |s: &str| {
+            format!(
+                r#"{{"waves": [{{"direction": [1, 0], "steepness": 0.1, "wavelength": 5}}, {s}]}}"#
+            )
+        };
+        assert_eq!(
+            e(&w(
+                r#"{"direction": [0, 0], "steepness": 0.1, "wavelength": 5}"#
+            )),
+            "sea.json: wave 1 has a zero \"direction\""
+        );
+        assert!(
+            e(&w(
+                r#"{"direction": [1, 0], "steepness": 0.1, "wavelength": 0}"#
+            ))
+            .contains("wave 1 has \"wavelength\" 0")
+        );
+        assert!(
+            e(&w(
+                r#"{"direction": [1, 0], "steepness": -0.1, "wavelength": 3}"#
+            ))
+            .contains("outside [0, 1]")
+        );
+        assert!(
+            e(&w(
+                r#"{"direction": [1, 0], "steepness": 0.9, "wavelength": 3}"#
+            ))
+            .contains("Σ kA of the waves is 1.000")
+        );
+        assert!(e(r#"{"depth": -2, "waves": []}"#).contains("\"depth\""));
+        assert!(
+            e(r#"{"waves": [{"direction": [1, 0], "steepness": 0.1, "wavelength": 1e999}]}"#)
+                .starts_with("sea.json: not a valid sea file at line 1")
+        );
+    }
+}

@@ -77,9 +77,8 @@ fn ln_gamma(x: f64) -> f64 {
 
 /// The cos-2s spreading density D(Δ) over Δ ∈ [−π, π] (radians⁻¹), Δ the angle from the mean.
 pub fn cos2s(delta: f64, s: f64) -> f64 {
-    let ln_g = (2.0 * s - 1.0) * 2f64.ln() + 2.0 * ln_gamma(s + 1.0)
-        - PI.ln()
-        - ln_gamma(2.0 * s + 1.0);
+    let ln_g =
+        (2.0 * s - 1.0) * 2f64.ln() + 2.0 * ln_gamma(s + 1.0) - PI.ln() - ln_gamma(2.0 * s + 1.0);
     ln_g.exp() * (0.5 * delta).cos().abs().powf(2.0 * s)
 }
 
@@ -247,7 +246,7 @@ pub fn sea_from_bands(bands: &[Band], opts: &SpectralOptions) -> SpectralSea {
         let f = rng.random_range(b.f_lo..=b.f_hi);
         let spread = sample_spread(&mut rng, b.spreading);
         let phase = rng.random_range(0.0..TAU);
-        if !(b.energy > 0.0) {
+        if b.energy.is_nan() || b.energy <= 0.0 {
             continue;
         }
         m0 += b.energy;
@@ -294,7 +293,12 @@ mod tests {
     fn pierson_moskowitz_integrates_to_hs_squared_over_16_and_peaks_at_fp() {
         for &(hs, tp) in &[(1.0, 5.0), (2.5, 8.0), (6.0, 14.0)] {
             let fp = 1.0 / tp;
-            let m0 = simpson(|f| pierson_moskowitz(f, hs, tp), 0.05 * fp, 60.0 * fp, 200_000);
+            let m0 = simpson(
+                |f| pierson_moskowitz(f, hs, tp),
+                0.05 * fp,
+                60.0 * fp,
+                200_000,
+            );
             assert!((m0 / (hs * hs / 16.0) - 1.0).abs() < 1e-5, "{m0}");
             // dS/df = 0 exactly at fp: the neighbours are lower.
             let p = pierson_moskowitz(fp, hs, tp);
@@ -369,7 +373,11 @@ mod tests {
         let g = state.to_sea(32, &SpectralOptions::default());
         assert_eq!(g.sea.waves.len(), 32);
         // Bands from 0.6 fp to 4 fp hold m0 to within 1.5 %: Hs within 0.75 %.
-        assert!((g.hs_spectrum / 2.0 - 1.0).abs() < 0.0075, "{}", g.hs_spectrum);
+        assert!(
+            (g.hs_spectrum / 2.0 - 1.0).abs() < 0.0075,
+            "{}",
+            g.hs_spectrum
+        );
         assert!(g.sea.total_steepness() <= 0.8 + 1e-12);
         assert!(g.amplitude_scale <= 1.0);
         assert!((g.hs_waves - g.hs_spectrum * g.amplitude_scale).abs() < 1e-9);
@@ -391,9 +399,7 @@ mod tests {
         }
         .to_sea(32, &SpectralOptions::default());
         assert!(steep.unscaled_total_steepness > 0.8);
-        assert!(
-            (steep.amplitude_scale - 0.8 / steep.unscaled_total_steepness).abs() < 1e-12
-        );
+        assert!((steep.amplitude_scale - 0.8 / steep.unscaled_total_steepness).abs() < 1e-12);
         assert!((steep.sea.total_steepness() - 0.8).abs() < 1e-9);
         // Mean direction: energy-weighted travel direction is near (1, 1)/√2.
         let (mut sx, mut sz) = (0.0, 0.0);

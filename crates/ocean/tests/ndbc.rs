@@ -6,7 +6,9 @@ use ocean::ndbc::{NdbcFormat, NdbcSpectrum, NdbcTable, NdbcTime};
 use ocean::spectrum::{SpectralOptions, travel_direction_from_compass};
 
 fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/ndbc").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/ndbc")
+        .join(name)
 }
 
 fn table(name: &str) -> NdbcTable {
@@ -22,7 +24,13 @@ fn realtime_hs_matches_the_buoys_own_wvht_in_every_record() {
     let first = density.rows[0].time;
     assert_eq!(
         first,
-        NdbcTime { year: 2020, month: 6, day: 8, hour: 3, minute: 50 }
+        NdbcTime {
+            year: 2020,
+            month: 6,
+            day: 8,
+            hour: 3,
+            minute: 50
+        }
     );
     assert!(density.rows[148].time < first);
     assert_eq!(density.rows[0].frequencies.len(), 46);
@@ -36,7 +44,13 @@ fn realtime_hs_matches_the_buoys_own_wvht_in_every_record() {
     for line in spec.lines().filter(|l| !l.starts_with('#')) {
         let tok: Vec<&str> = line.split_whitespace().collect();
         let d: Vec<u32> = tok[..4].iter().map(|t| t.parse().unwrap()).collect();
-        let time = NdbcTime { year: d[0], month: d[1], day: d[2], hour: d[3], minute: 50 };
+        let time = NdbcTime {
+            year: d[0],
+            month: d[1],
+            day: d[2],
+            hour: d[3],
+            minute: 50,
+        };
         let wvht: f64 = tok[5].parse().unwrap();
         let s = NdbcSpectrum::from_tables(&density, None, None, Some(time)).unwrap();
         let diff = (s.hs() - wvht).abs();
@@ -46,7 +60,11 @@ fn realtime_hs_matches_the_buoys_own_wvht_in_every_record() {
     }
     assert_eq!(n, 149);
     assert!(worst <= 0.12, "worst |Hs − WVHT| = {worst}");
-    assert!(sum / n as f64 <= 0.04, "mean |Hs − WVHT| = {}", sum / n as f64);
+    assert!(
+        sum / n as f64 <= 0.04,
+        "mean |Hs − WVHT| = {}",
+        sum / n as f64
+    );
 }
 
 #[test]
@@ -72,7 +90,11 @@ fn realtime_directions_become_a_sea() {
     // Each wave's frequency lies in its band: its wavelength g/(2π f²) is within the band's.
     for w in &g.sea.waves {
         let f = (9.81 / (std::f64::consts::TAU * w.wavelength)).sqrt();
-        assert!(bands.iter().any(|b| f >= b.f_lo - 1e-12 && f <= b.f_hi + 1e-12));
+        assert!(
+            bands
+                .iter()
+                .any(|b| f >= b.f_lo - 1e-12 && f <= b.f_hi + 1e-12)
+        );
     }
 }
 
@@ -83,13 +105,25 @@ fn historical_gz_files_with_scaled_r1() {
     assert_eq!(density.rows.len(), 99);
     assert_eq!(
         density.rows[0].time,
-        NdbcTime { year: 2019, month: 2, day: 6, hour: 0, minute: 40 }
+        NdbcTime {
+            year: 2019,
+            month: 2,
+            day: 6,
+            hour: 0,
+            minute: 40
+        }
     );
     assert_eq!(density.rows[0].frequencies.len(), 47);
     assert_eq!(density.rows[0].values[15], Some(5.80));
     let d = table("41010d2019part.txt.gz");
     let j = table("41010j2019part.txt.gz");
-    let t = NdbcTime { year: 2019, month: 2, day: 10, hour: 10, minute: 40 };
+    let t = NdbcTime {
+        year: 2019,
+        month: 2,
+        day: 10,
+        hour: 10,
+        minute: 40,
+    };
     let s = NdbcSpectrum::from_tables(&density, Some(&d), Some(&j), Some(t)).unwrap();
     // Historical r1 is written ×100 (integers 1–100): read as 0.01–1.
     assert!(s.r1.iter().flatten().all(|r| *r > 0.0 && *r <= 1.0));
@@ -102,7 +136,16 @@ fn historical_gz_files_with_scaled_r1() {
 fn old_layout_without_minutes() {
     let t = table("44004w2000.txt");
     assert_eq!(t.rows.len(), 3);
-    assert_eq!(t.rows[2].time, NdbcTime { year: 2000, month: 1, day: 1, hour: 2, minute: 0 });
+    assert_eq!(
+        t.rows[2].time,
+        NdbcTime {
+            year: 2000,
+            month: 1,
+            day: 1,
+            hour: 2,
+            minute: 0
+        }
+    );
     assert_eq!(t.rows[0].frequencies.len(), 38);
     assert_eq!(t.rows[0].values[5], Some(0.12));
 }
@@ -118,7 +161,13 @@ fn mismatched_or_missing_files_are_named() {
         e.message,
         "the direction (alpha1) file has no record at 2020-06-08 03:50"
     );
-    let t = NdbcTime { year: 1999, month: 1, day: 1, hour: 0, minute: 0 };
+    let t = NdbcTime {
+        year: 1999,
+        month: 1,
+        day: 1,
+        hour: 0,
+        minute: 0,
+    };
     let e = NdbcSpectrum::from_tables(&density, None, None, Some(t)).unwrap_err();
     assert!(e.message.contains("1999-01-01 00:00"), "{e}");
 }

@@ -6,7 +6,12 @@ use proptest::prelude::*;
 /// A valid sea: 1–12 waves, λ in [1, 300] m (log-uniform), Σ kA in [0, 0.9], deep or finite
 /// depth in [1, 200] m.
 fn sea() -> impl Strategy<Value = WaveSet> {
-    let wave = (0.0..std::f64::consts::TAU, 0.0f64..5.7, 0.01f64..1.0, 0.0..std::f64::consts::TAU);
+    let wave = (
+        0.0..std::f64::consts::TAU,
+        0.0f64..5.7,
+        0.01f64..1.0,
+        0.0..std::f64::consts::TAU,
+    );
     (
         prop::collection::vec(wave, 1..12),
         0.0f64..0.9,

@@ -239,6 +239,23 @@ impl Race {
         self.frame.map(|f| f.to_geo(xz))
     }
 
+    /// The box `[[x_min, z_min], [x_max, z_max]]` (race metres) around every fix and mark: what
+    /// a table scene must fit. `None` for a race with nothing in it.
+    pub fn bounds(&self) -> Option<[[f64; 2]; 2]> {
+        let pts = self
+            .boats
+            .iter()
+            .flat_map(|b| b.fixes().iter().map(|f| f.pos()))
+            .chain(self.marks.iter().map(|m| m.position));
+        let mut bb: Option<[[f64; 2]; 2]> = None;
+        for p in pts {
+            let b = bb.get_or_insert([p, p]);
+            b[0] = [b[0][0].min(p[0]), b[0][1].min(p[1])];
+            b[1] = [b[1][0].max(p[0]), b[1][1].max(p[1])];
+        }
+        bb
+    }
+
     /// Every rounding of every boat, sorted by time: the timeline's jump targets.
     pub fn rounding_events(&self) -> Vec<RoundingEvent> {
         let mut v: Vec<RoundingEvent> = self

@@ -132,3 +132,20 @@ fn states_at_fills_every_boat_without_reallocating() {
     }
     assert_eq!((v.capacity(), v.as_ptr()), (cap, ptr));
 }
+
+#[test]
+fn fixes_between_and_bounds() {
+    let r = race_json(&[
+        [0.0, 1.0, 2.0],
+        [1.0, 5.0, -3.0],
+        [2.0, 9.0, 4.0],
+        [3.0, -2.0, 0.0],
+    ]);
+    let b = &r.boats[0];
+    let ts = |s: &[race::Fix]| s.iter().map(|f| f.t).collect::<Vec<_>>();
+    assert_eq!(ts(b.fixes_between(0.5, 2.0)), [1.0, 2.0]);
+    assert_eq!(ts(b.fixes_between(-9.0, 0.0)), [0.0]);
+    assert!(b.fixes_between(3.5, 9.0).is_empty());
+    assert!(b.fixes_between(2.0, 1.0).is_empty());
+    assert_eq!(r.bounds(), Some([[-2.0, -3.0], [9.0, 4.0]]));
+}

@@ -46,6 +46,9 @@ pub struct FrameContext<'a> {
     /// The sea's waves as the GPU gets them, sorted as `scene.sea.waves` (at most 64).
     pub waves: Vec<ocean::GpuWave>,
     pub uniform: FrameUniform,
+    /// The wake sources that can reach the view (empty without wakes); the renderer fills
+    /// them and `uniform.counts[2]` from its wake.
+    pub wakes: ocean::wake::GpuWakeFrame,
 }
 
 impl<'a> FrameContext<'a> {
@@ -134,6 +137,7 @@ impl<'a> FrameContext<'a> {
             mesh,
             waves,
             uniform,
+            wakes: Default::default(),
         }
     }
 
@@ -285,6 +289,19 @@ pub struct FrameReport {
     /// Sum of the passes' GPU times, where measured.
     pub gpu_ms: Option<f64>,
     pub clipmap: ClipMapRecord,
+    /// The wakes of this frame, where the renderer has a wake.
+    pub wakes: Option<WakeRecord>,
+}
+
+/// The wake sources of a frame.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WakeRecord {
+    /// Sources sent to the GPU.
+    pub sources: usize,
+    /// Alive sources left out because they cannot reach the view.
+    pub culled: usize,
+    /// Bound of the wake height error from culling anywhere in view, metres.
+    pub cull_bound_m: f64,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

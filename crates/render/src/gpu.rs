@@ -74,8 +74,16 @@ fn instance(backends: Backends) -> wgpu::Instance {
 }
 
 impl Gpu {
-    /// A device with no surface: for `regatta render`, tests and benches.
+    /// A device with no surface: for `regatta render`, tests and benches. Among `backends`
+    /// the primary ones (Vulkan, Metal, DX12) are tried first, OpenGL only without them.
     pub fn headless(backends: Backends) -> Result<Gpu, GpuError> {
+        let primary = backends & Backends::PRIMARY;
+        if !primary.is_empty() && primary != backends {
+            if let Ok(gpu) = Self::headless(primary) {
+                return Ok(gpu);
+            }
+            return Self::headless(backends - primary);
+        }
         let instance = instance(backends);
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,

@@ -1,8 +1,13 @@
 //! The renderer: owns the shared frame bindings, the depth buffer and the passes, plans each
 //! frame and draws it into a colour view (a window's surface texture or an offscreen texture).
 
+use std::sync::Arc;
+
+use glam::DVec2;
+
 use crate::frame::{
     ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, Targets,
+    WakeRecord,
 };
 use crate::gpu::Gpu;
 use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
@@ -12,6 +17,8 @@ use crate::scene::Scene;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Default screen-space error target of the clip-map, pixels.
 pub const DEFAULT_ERROR_PX: f64 = 1.0;
+/// Wake culling tolerance: height error allowed per left-out wake source, metres.
+pub const WAKE_EPSILON_M: f64 = 1e-4;
 
 /// Options of a [`Renderer`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,6 +53,7 @@ pub struct Renderer {
     passes: Vec<Box<dyn Pass>>,
     depth: Option<(wgpu::Texture, wgpu::TextureView)>,
     timer: Option<Timer>,
+    wake: Option<Arc<ocean::wake::Wake>>,
 }
 
 impl Renderer {
@@ -59,7 +67,12 @@ impl Renderer {
         let bindings = FrameBindings::new(device);
         let passes: Vec<Box<dyn Pass>> = vec![
             Box::new(SkyPass::new(device, &bindings.layout, targets)),
-            Box::new(WaterPass::new(device, &bindings.layout, targets)),
+            Box::new(WaterPass::new(
+                device,
+                &bindings.layout,
+                targets,
+                crate::passes::water::supports_wakes(&gpu.adapter),
+            )),
             Box::new(BoatsPass::new(device, &bindings.layout, targets)),
         ];
         let timer = gpu
@@ -96,7 +109,13 @@ impl Renderer {
             passes,
             depth: None,
             timer,
+            wake: None,
         }
+    }
+
+    /// The boats' wakes to draw (built once per race by the caller), or none.
+    pub fn set_wake(&mut self, wake: Option<Arc<ocean::wake::Wake>>) {
+        self.wake = wake;
     }
 
     /// Add a pass (effects, wakes, pool) after the built-in ones; it draws in that order.
@@ -146,7 +165,20 @@ impl Renderer {
         size: [u32; 2],
         scene: &Scene,
     ) -> FrameReport {
-        let frame = FrameContext::new(scene, size, self.options.error_px);
+        let mut frame = FrameContext::new(scene, size, self.options.error_px);
+        if let Some(w) = &self.wake {
+            // Sources that can reach any water the clip-map draws.
+            let eye = DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
+            let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
+            let view = ocean::wake::WakeView::around([eye.x, eye.y], reach);
+            frame.wakes = w.gpu_sources(
+                scene.t,
+                [frame.origin.x, frame.origin.y],
+                &view,
+                WAKE_EPSILON_M,
+            );
+            frame.uniform.counts[2] = frame.wakes.sources.len() as u32;
+        }
         self.bindings
             .upload(&gpu.queue, &frame.uniform, &frame.waves);
         let depth = self.depth_view(gpu, size);
@@ -245,6 +277,11 @@ impl Renderer {
             passes: records,
             gpu_ms,
             clipmap: ClipMapRecord::of(&frame),
+            wakes: self.wake.as_ref().map(|_| WakeRecord {
+                sources: frame.wakes.sources.len(),
+                culled: frame.wakes.culled,
+                cull_bound_m: frame.wakes.cull_bound,
+            }),
         }
     }
 }

@@ -9,6 +9,11 @@ pub const SKY: &str = include_str!("../../../shaders/sky.wgsl");
 pub const WATER: &str = include_str!("../../../shaders/water.wgsl");
 pub const BOATS: &str = include_str!("../../../shaders/boats.wgsl");
 pub const WAVE_HEIGHTS: &str = include_str!("../../../shaders/wave_heights.wgsl");
+/// The boats' wake sources (the wakes engineer's file; ocean::wake::gpu mirrors it in f32).
+pub const WAKE: &str = include_str!("../../../shaders/wake.wgsl");
+/// The water pass's wake hook with wakes (bind group 1) and without.
+pub const WATER_WAKES: &str = include_str!("../../../shaders/water_wakes.wgsl");
+pub const WATER_NO_WAKES: &str = include_str!("../../../shaders/water_no_wakes.wgsl");
 
 /// The full source of a pass: the shared files then `parts`.
 pub fn source(parts: &[&str]) -> String {

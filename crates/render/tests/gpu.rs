@@ -149,3 +149,41 @@ fn every_phase_a_frame_sends_is_reduced_to_zero_two_pi() {
         assert!(f64::from(far) <= 2.0 * f.clipmap.half_extent(f.clipmap.levels() - 1));
     }
 }
+
+#[test]
+fn wakes_draw_foam_behind_a_boat_and_are_recorded() {
+    use ocean::wake::{TrackSample, Wake, WakeParams};
+    let Some(gpu) = test_gpu() else { return };
+    // A boat sailing east at 5 m/s for a minute, ending at the origin.
+    let track: Vec<TrackSample> = (0..=60)
+        .map(|i| TrackSample {
+            t: f64::from(i),
+            x: 5.0 * f64::from(i) - 300.0,
+            z: 0.0,
+        })
+        .collect();
+    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
+    let mut s = scene(60.0);
+    s.sea.waves.truncate(1);
+    s.boats.truncate(1);
+    s.boats[0].heading = std::f64::consts::FRAC_PI_2;
+    s.marks.clear();
+    s.camera = Camera::look_at(DVec3::new(-20.0, 25.0, 30.0), DVec3::new(-25.0, 0.0, 0.0), 5000.0);
+    let mut r = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, RenderOptions::default());
+    let (plain, report) = render::render_image(&gpu, &mut r, &s, [96, 64]).unwrap();
+    assert!(report.wakes.is_none());
+    r.set_wake(Some(std::sync::Arc::new(wake)));
+    let (waked, report) = render::render_image(&gpu, &mut r, &s, [96, 64]).unwrap();
+    let w = report.wakes.expect("the frame records its wakes");
+    assert!(w.sources > 10, "{w:?}");
+    let water = report.passes.iter().find(|p| p.name == "water").unwrap();
+    assert!(water.reason.contains("wake sources"), "{}", water.reason);
+    // The wake whitens the water behind the boat: pixels brighter by > 40 levels (of 765).
+    let lum = |p: &image::Rgba<u8>| i32::from(p[0]) + i32::from(p[1]) + i32::from(p[2]);
+    let whiter = plain
+        .pixels()
+        .zip(waked.pixels())
+        .filter(|(a, b)| lum(b) > lum(a) + 40)
+        .count();
+    assert!(whiter > 30, "only {whiter} pixels whiter with the wake");
+}

@@ -66,13 +66,21 @@ impl RaceClock {
     }
 
     pub fn toggle(&mut self) {
-        if self.playing { self.pause() } else { self.play() }
+        if self.playing {
+            self.pause()
+        } else {
+            self.play()
+        }
     }
 
     /// Sets the speed to the nearest of [`SPEEDS`].
     pub fn set_speed(&mut self, speed: f64) {
         self.speed = (0..SPEEDS.len())
-            .min_by(|&a, &b| (SPEEDS[a] - speed).abs().total_cmp(&(SPEEDS[b] - speed).abs()))
+            .min_by(|&a, &b| {
+                (SPEEDS[a] - speed)
+                    .abs()
+                    .total_cmp(&(SPEEDS[b] - speed).abs())
+            })
             .unwrap_or(0);
     }
 
@@ -87,7 +95,7 @@ impl RaceClock {
     /// Advances by `wall_dt` wall seconds when playing; returns whether race time moved. Play
     /// stops at the end of the span (or starts over, with `looping`).
     pub fn advance(&mut self, wall_dt: f64) -> bool {
-        if !self.playing || !(wall_dt > 0.0) {
+        if !self.playing || wall_dt.is_nan() || wall_dt <= 0.0 {
             return false;
         }
         let before = self.t;

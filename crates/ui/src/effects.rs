@@ -15,7 +15,11 @@ pub struct EffectToggle {
 
 impl EffectToggle {
     pub fn new(key: &str, label: &str, enabled: bool) -> Self {
-        Self { key: key.to_string(), label: label.to_string(), enabled }
+        Self {
+            key: key.to_string(),
+            label: label.to_string(),
+            enabled,
+        }
     }
 }
 
@@ -30,5 +34,10 @@ pub fn effects_ui(ui: &mut Ui, toggles: &mut [EffectToggle]) -> bool {
 
 /// The keys of the enabled effects, comma-separated (the `--effects LIST` form).
 pub fn enabled_list(toggles: &[EffectToggle]) -> String {
-    toggles.iter().filter(|t| t.enabled).map(|t| t.key.as_str()).collect::<Vec<_>>().join(",")
+    toggles
+        .iter()
+        .filter(|t| t.enabled)
+        .map(|t| t.key.as_str())
+        .collect::<Vec<_>>()
+        .join(",")
 }

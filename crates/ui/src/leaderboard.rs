@@ -37,7 +37,11 @@ pub fn leaderboard_rows(race: &Race, t: f64) -> Vec<LeaderboardRow> {
             let st = &states[s.boat];
             LeaderboardRow {
                 rank: s.rank,
-                name: if boat.name.is_empty() { boat.id.clone() } else { boat.name.clone() },
+                name: if boat.name.is_empty() {
+                    boat.id.clone()
+                } else {
+                    boat.name.clone()
+                },
                 color: parse_hex_color(&boat.color).unwrap_or(Color32::GRAY),
                 speed_kn: st.speed_mps * KNOTS_PER_MPS,
                 heading_deg: st.heading_deg,
@@ -74,7 +78,8 @@ pub fn leaderboard_ui(ui: &mut Ui, rows: &[LeaderboardRow]) {
             for r in rows {
                 ui.label(RichText::new(r.rank.to_string()).strong());
                 ui.horizontal(|ui| {
-                    let (rect, _) = ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
+                    let (rect, _) =
+                        ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
                     ui.painter().rect_filled(rect, 2.0, r.color);
                     let mut name = RichText::new(&r.name);
                     if !r.racing && !r.finished {
@@ -84,8 +89,16 @@ pub fn leaderboard_ui(ui: &mut Ui, rows: &[LeaderboardRow]) {
                 });
                 ui.label(format!("{:.1}", r.speed_kn));
                 ui.label(format!("{:03.0}°", r.heading_deg));
-                ui.label(if r.rank == 1 { "—".to_string() } else { format_distance(r.behind_m) });
-                ui.label(if r.finished { "fin".to_string() } else { format!("{}/{}", r.legs.0, r.legs.1) });
+                ui.label(if r.rank == 1 {
+                    "—".to_string()
+                } else {
+                    format_distance(r.behind_m)
+                });
+                ui.label(if r.finished {
+                    "fin".to_string()
+                } else {
+                    format!("{}/{}", r.legs.0, r.legs.1)
+                });
                 ui.end_row();
             }
         });
@@ -93,5 +106,9 @@ pub fn leaderboard_ui(ui: &mut Ui, rows: &[LeaderboardRow]) {
 
 /// `35 m`, `1.24 km`.
 pub fn format_distance(m: f64) -> String {
-    if m.abs() < 1000.0 { format!("{m:.0} m") } else { format!("{:.2} km", m / 1000.0) }
+    if m.abs() < 1000.0 {
+        format!("{m:.0} m")
+    } else {
+        format!("{:.2} km", m / 1000.0)
+    }
 }

@@ -65,7 +65,13 @@ pub struct RegattaUi {
 
 impl RegattaUi {
     pub fn new(clock: RaceClock, effects: Vec<EffectToggle>) -> Self {
-        Self { clock, effects, show_leaderboard: true, show_effects: false, show_perf: true }
+        Self {
+            clock,
+            effects,
+            show_leaderboard: true,
+            show_effects: false,
+            show_perf: true,
+        }
     }
 
     /// Lays out the panels over the scene: the timeline along the bottom, the leaderboard top
@@ -74,9 +80,15 @@ impl RegattaUi {
     pub fn show(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
         let mut out = UiResponse::default();
         let ctx = ui.ctx().clone();
-        let glass = Frame::window(&ctx.global_style()).fill(Color32::from_black_alpha(170)).corner_radius(6.0);
+        let glass = Frame::window(&ctx.global_style())
+            .fill(Color32::from_black_alpha(170))
+            .corner_radius(6.0);
         egui::Panel::bottom("timeline")
-            .frame(Frame::side_top_panel(&ctx.global_style()).fill(Color32::from_black_alpha(190)).inner_margin(8.0))
+            .frame(
+                Frame::side_top_panel(&ctx.global_style())
+                    .fill(Color32::from_black_alpha(190))
+                    .inner_margin(8.0),
+            )
             .show(ui, |ui| {
                 ui.horizontal(|ui| {
                     ui.label(egui::RichText::new(frame.title).strong());
@@ -89,24 +101,30 @@ impl RegattaUi {
                 out.clock_changed = timeline_ui(ui, &mut self.clock, frame.events);
             });
         if self.show_leaderboard && !frame.rows.is_empty() {
-            egui::Area::new("leaderboard-area".into()).anchor(Align2::RIGHT_TOP, [-10.0, 10.0]).show(&ctx, |ui| {
-                glass.show(ui, |ui| leaderboard_ui(ui, frame.rows));
-            });
+            egui::Area::new(egui::Id::unique("leaderboard-area"))
+                .anchor(Align2::RIGHT_TOP, [-10.0, 10.0])
+                .show(&ctx, |ui| {
+                    glass.show(ui, |ui| leaderboard_ui(ui, frame.rows));
+                });
         }
         if self.show_perf
             && let Some(p) = frame.perf
         {
-            egui::Area::new("perf-area".into()).anchor(Align2::LEFT_TOP, [10.0, 10.0]).show(&ctx, |ui| {
-                glass.show(ui, |ui| perf_ui(ui, p));
-            });
+            egui::Area::new(egui::Id::unique("perf-area"))
+                .anchor(Align2::LEFT_TOP, [10.0, 10.0])
+                .show(&ctx, |ui| {
+                    glass.show(ui, |ui| perf_ui(ui, p));
+                });
         }
         if self.show_effects {
-            egui::Area::new("effects-area".into()).anchor(Align2::LEFT_BOTTOM, [10.0, -110.0]).show(&ctx, |ui| {
-                glass.show(ui, |ui| {
-                    ui.label(egui::RichText::new("Effects").strong());
-                    out.effects_changed = effects_ui(ui, &mut self.effects);
+            egui::Area::new(egui::Id::unique("effects-area"))
+                .anchor(Align2::LEFT_BOTTOM, [10.0, -110.0])
+                .show(&ctx, |ui| {
+                    glass.show(ui, |ui| {
+                        ui.label(egui::RichText::new("Effects").strong());
+                        out.effects_changed = effects_ui(ui, &mut self.effects);
+                    });
                 });
-            });
         }
         out
     }

@@ -41,12 +41,16 @@ pub struct FpsMeter {
 
 impl FpsMeter {
     pub fn new(window: usize) -> Self {
-        Self { intervals: VecDeque::with_capacity(window), window: window.max(1), sum: 0.0 }
+        Self {
+            intervals: VecDeque::with_capacity(window),
+            window: window.max(1),
+            sum: 0.0,
+        }
     }
 
     /// Records one frame that took `dt` wall seconds.
     pub fn push(&mut self, dt: f64) {
-        if !(dt > 0.0 && dt.is_finite()) {
+        if !dt.is_finite() || dt <= 0.0 {
             return;
         }
         if self.intervals.len() == self.window
@@ -60,40 +64,66 @@ impl FpsMeter {
 
     /// Frames per second: frames in the window over their total time (0 before the first).
     pub fn fps(&self) -> f64 {
-        if self.sum > 0.0 { self.intervals.len() as f64 / self.sum } else { 0.0 }
+        if self.sum > 0.0 {
+            self.intervals.len() as f64 / self.sum
+        } else {
+            0.0
+        }
     }
 
     /// Mean milliseconds per frame.
     pub fn frame_ms(&self) -> f64 {
-        if self.intervals.is_empty() { 0.0 } else { 1000.0 * self.sum / self.intervals.len() as f64 }
+        if self.intervals.is_empty() {
+            0.0
+        } else {
+            1000.0 * self.sum / self.intervals.len() as f64
+        }
     }
 }
 
 /// Draws the overlay: a headline line, then one line per pass.
 pub fn perf_ui(ui: &mut Ui, stats: &PerfStats) {
     ui.label(
-        RichText::new(format!("{:.0} fps  {:.1} ms  {} tris", stats.fps, stats.frame_ms, format_count(stats.triangles)))
-            .monospace()
-            .strong(),
+        RichText::new(format!(
+            "{:.0} fps  {:.1} ms  {} tris",
+            stats.fps,
+            stats.frame_ms,
+            format_count(stats.triangles)
+        ))
+        .monospace()
+        .strong(),
     );
     if !stats.adapter.is_empty() {
         ui.label(RichText::new(&stats.adapter).small().weak());
     }
-    egui::Grid::new("perf-passes").num_columns(4).spacing([8.0, 2.0]).show(ui, |ui| {
-        for p in &stats.passes {
-            let color = if p.ran { Color32::from_rgb(90, 200, 110) } else { Color32::from_gray(150) };
-            ui.label(RichText::new(&p.name).monospace().color(color));
-            if p.ran {
-                ui.label(RichText::new(p.gpu_ms.map_or("– ms".to_string(), |ms| format!("{ms:.2} ms"))).monospace());
-                ui.label(RichText::new(format_count(p.triangles)).monospace());
-            } else {
-                ui.label(RichText::new("skipped").monospace().weak());
-                ui.label("");
+    egui::Grid::new("perf-passes")
+        .num_columns(4)
+        .spacing([8.0, 2.0])
+        .show(ui, |ui| {
+            for p in &stats.passes {
+                let color = if p.ran {
+                    Color32::from_rgb(90, 200, 110)
+                } else {
+                    Color32::from_gray(150)
+                };
+                ui.label(RichText::new(&p.name).monospace().color(color));
+                if p.ran {
+                    ui.label(
+                        RichText::new(
+                            p.gpu_ms
+                                .map_or("– ms".to_string(), |ms| format!("{ms:.2} ms")),
+                        )
+                        .monospace(),
+                    );
+                    ui.label(RichText::new(format_count(p.triangles)).monospace());
+                } else {
+                    ui.label(RichText::new("skipped").monospace().weak());
+                    ui.label("");
+                }
+                ui.label(RichText::new(&p.reason).small());
+                ui.end_row();
             }
-            ui.label(RichText::new(&p.reason).small());
-            ui.end_row();
-        }
-    });
+        });
 }
 
 /// `950`, `12.3k`, `1.25M`.

@@ -25,11 +25,15 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
     let before = (clock.time(), clock.is_playing(), clock.speed());
     let times: Vec<f64> = events.iter().map(|e| e.t).collect();
     ui.horizontal(|ui| {
-        if ui.button("⏮ Start").on_hover_text("Jump to the start signal").clicked() {
+        if ui
+            .button("⏮ Start")
+            .on_hover_text("Jump to the start signal")
+            .clicked()
+        {
             clock.jump_to_start();
         }
         if ui
-            .button("◀ Mark")
+            .button("⏪ Mark")
             .on_hover_text("Jump to the previous mark rounding")
             .clicked()
         {
@@ -38,7 +42,11 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
         if ui.button("◀ Step").on_hover_text("Step back").clicked() {
             clock.step(-1);
         }
-        let play_label = if clock.is_playing() { "⏸ Pause" } else { "▶ Play" };
+        let play_label = if clock.is_playing() {
+            "⏸ Pause"
+        } else {
+            "▶ Play"
+        };
         if ui.button(play_label).clicked() {
             clock.toggle();
         }
@@ -46,14 +54,14 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
             clock.step(1);
         }
         if ui
-            .button("Mark ▶")
+            .button("Mark ⏩")
             .on_hover_text("Jump to the next mark rounding")
             .clicked()
         {
             clock.jump_to_next(&times);
         }
         let mut speed = clock.speed();
-        egui::ComboBox::from_id_salt("race-speed")
+        egui::ComboBox::new("race-speed", "speed")
             .selected_text(format!("{speed}×"))
             .width(56.0)
             .show_ui(ui, |ui| {
@@ -83,7 +91,8 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
 /// The scrub track: the span as a bar, elapsed part filled, ticks at events, a handle at now.
 fn scrub_track(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent]) {
     let width = ui.available_width();
-    let (rect, response) = ui.allocate_exact_size(Vec2::new(width, TRACK_HEIGHT), Sense::click_and_drag());
+    let (rect, response) =
+        ui.allocate_exact_size(Vec2::new(width, TRACK_HEIGHT), Sense::click_and_drag());
     let (a, b) = clock.span();
     let x_of = |t: f64| rect.left() + ((t - a) / (b - a)).clamp(0.0, 1.0) as f32 * rect.width();
     if let Some(p) = response.interact_pointer_pos()
@@ -97,25 +106,48 @@ fn scrub_track(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent]) {
 
     let painter = ui.painter_at(rect.expand(2.0));
     let visuals = ui.visuals();
-    let bar = Rect::from_min_max(pos2(rect.left(), rect.center().y - 4.0), pos2(rect.right(), rect.center().y + 4.0));
+    let bar = Rect::from_min_max(
+        pos2(rect.left(), rect.center().y - 4.0),
+        pos2(rect.right(), rect.center().y + 4.0),
+    );
     painter.rect_filled(bar, 4.0, visuals.extreme_bg_color);
     let done = Rect::from_min_max(bar.min, pos2(x_of(t), bar.max.y));
     painter.rect_filled(done, 4.0, visuals.selection.bg_fill);
     // The start signal, where the data begin before it.
     if a < 0.0 && b > 0.0 {
         let x = x_of(0.0);
-        painter.line_segment([pos2(x, rect.top()), pos2(x, rect.bottom())], Stroke::new(2.0, Color32::from_rgb(40, 200, 90)));
+        painter.line_segment(
+            [pos2(x, rect.top()), pos2(x, rect.bottom())],
+            Stroke::new(2.0, Color32::from_rgb(40, 200, 90)),
+        );
     }
     for e in events {
         let x = x_of(e.t);
-        painter.line_segment([pos2(x, rect.top() + 2.0), pos2(x, bar.top())], Stroke::new(2.0, e.color));
+        painter.line_segment(
+            [pos2(x, rect.top() + 2.0), pos2(x, bar.top())],
+            Stroke::new(2.0, e.color),
+        );
     }
     let handle = pos2(x_of(t), rect.center().y);
-    painter.circle(handle, 8.0, visuals.widgets.active.bg_fill, Stroke::new(2.0, visuals.strong_text_color()));
-    painter.rect_stroke(bar, 4.0, Stroke::new(1.0, visuals.widgets.noninteractive.bg_stroke.color), StrokeKind::Inside);
+    painter.circle(
+        handle,
+        8.0,
+        visuals.widgets.active.bg_fill,
+        Stroke::new(2.0, visuals.strong_text_color()),
+    );
+    painter.rect_stroke(
+        bar,
+        4.0,
+        Stroke::new(1.0, visuals.widgets.noninteractive.bg_stroke.color),
+        StrokeKind::Inside,
+    );
     if let Some(hover) = response.hover_pos() {
         // Name the nearest rounding under the pointer, if any is within 4 points.
-        let near = events.iter().min_by(|p, q| (x_of(p.t) - hover.x).abs().total_cmp(&(x_of(q.t) - hover.x).abs()));
+        let near = events.iter().min_by(|p, q| {
+            (x_of(p.t) - hover.x)
+                .abs()
+                .total_cmp(&(x_of(q.t) - hover.x).abs())
+        });
         if let Some(e) = near.filter(|e| (x_of(e.t) - hover.x).abs() < 4.0) {
             painter.text(
                 pos2(x_of(e.t), rect.top()),

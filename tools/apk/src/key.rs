@@ -22,8 +22,12 @@ pub fn debug_identity(path: &Path) -> Result<(SigningIdentity, bool), ApkError> 
         }
         write_private(path, &pem)?;
     }
-    let pem = std::fs::read_to_string(path)
-        .map_err(|e| ApkError(format!("{}: cannot read the signing key: {e}", path.display())))?;
+    let pem = std::fs::read_to_string(path).map_err(|e| {
+        ApkError(format!(
+            "{}: cannot read the signing key: {e}",
+            path.display()
+        ))
+    })?;
     let identity = SigningIdentity::from_pem(&pem).map_err(|e| {
         ApkError(format!(
             "{}: not a PEM private key with its certificate: {e}",
@@ -64,7 +68,12 @@ fn write_private(path: &Path, text: &str) -> Result<(), ApkError> {
     options
         .open(path)
         .and_then(|mut f| f.write_all(text.as_bytes()))
-        .map_err(|e| ApkError(format!("{}: cannot write the debug key: {e}", path.display())))
+        .map_err(|e| {
+            ApkError(format!(
+                "{}: cannot write the debug key: {e}",
+                path.display()
+            ))
+        })
 }
 
 #[cfg(test)]
@@ -90,7 +99,10 @@ mod tests {
         let path = dir.join("debug.pem");
         std::fs::write(&path, "not a key").unwrap();
         let e = debug_identity(&path).err().unwrap();
-        assert!(e.0.starts_with(&format!("{}: not a PEM private key", path.display())), "{e}");
+        assert!(
+            e.0.starts_with(&format!("{}: not a PEM private key", path.display())),
+            "{e}"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -9,6 +9,8 @@ pub mod key;
 pub mod metadata;
 #[cfg(not(target_os = "android"))]
 pub mod package;
+#[cfg(not(target_os = "android"))]
+pub mod symbols;
 
 /// A packaging error: one sentence naming the file (and field) at fault.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -22,10 +22,33 @@ mod host {
     use regatta_apk::key::debug_identity;
     use regatta_apk::metadata::CrateAndroid;
     use regatta_apk::package::{ApkInputs, write_apk};
+    use regatta_apk::symbols::{SymbolMaps, check, read_undefined};
 
-    /// Package, align and sign the APK from the cargo-apk metadata of a Cargo.toml.
+    /// Packages Regatta's APK and checks its native library.
     #[derive(Parser, Debug)]
     #[command(name = "regatta-apk", version)]
+    enum Cli {
+        /// Package, align and sign the APK from the cargo-apk metadata of a Cargo.toml.
+        Package(Args),
+        /// Check the library's undefined dynamic symbols against Android's symbol maps at the
+        /// manifest's minSdk.
+        CheckSymbols(SymbolArgs),
+    }
+
+    #[derive(clap::Args, Debug)]
+    struct SymbolArgs {
+        /// The Cargo.toml whose [package.metadata.android] gives minSdk.
+        #[arg(long, default_value = "app/Cargo.toml")]
+        manifest: PathBuf,
+        /// The native library to check.
+        #[arg(long)]
+        lib: PathBuf,
+        /// Folders of AOSP `*.map.txt` symbol maps (repeat the option for more).
+        #[arg(long, required = true)]
+        maps: Vec<PathBuf>,
+    }
+
+    #[derive(clap::Args, Debug)]
     struct Args {
         /// The Cargo.toml whose [package.metadata.android] describes the app.
         #[arg(long, default_value = "app/Cargo.toml")]
@@ -48,8 +71,11 @@ mod host {
     }
 
     pub fn main() -> ExitCode {
-        let args = Args::parse();
-        match run(&args) {
+        let result = match Cli::parse() {
+            Cli::Package(args) => run(&args),
+            Cli::CheckSymbols(args) => check_symbols(&args),
+        };
+        match result {
             Ok(json) => {
                 println!("{json}");
                 ExitCode::SUCCESS
@@ -58,6 +84,27 @@ mod host {
                 eprintln!("regatta-apk: {e}");
                 ExitCode::FAILURE
             }
+        }
+    }
+
+    fn check_symbols(args: &SymbolArgs) -> Result<String, ApkError> {
+        let app = CrateAndroid::read(&args.manifest)?;
+        let min_sdk = app.android.sdk.min_sdk_version;
+        let dirs: Vec<&std::path::Path> = args.maps.iter().map(PathBuf::as_path).collect();
+        let maps = SymbolMaps::read_dirs(&dirs)?;
+        let (undefined, versions) = read_undefined(&args.lib)?;
+        let report = check(&maps, &undefined, &versions, min_sdk);
+        let json = serde_json::to_string_pretty(&report).map_err(|e| ApkError(e.to_string()))?;
+        if report.problems.is_empty() {
+            Ok(json)
+        } else {
+            println!("{json}");
+            Err(ApkError(format!(
+                "{}: {} undefined symbol problem(s) at minSdk {min_sdk}: {}",
+                args.lib.display(),
+                report.problems.len(),
+                report.problems.join("; ")
+            )))
         }
     }
 

@@ -135,7 +135,8 @@ impl CrateAndroid {
                 .any(|t| t == "aarch64-linux-android")
         {
             return Err(at(
-                "[package.metadata.android] build_targets must include aarch64-linux-android".into(),
+                "[package.metadata.android] build_targets must include aarch64-linux-android"
+                    .into(),
             ));
         }
         Ok(Self {
@@ -178,7 +179,10 @@ value = "optional"
         assert_eq!(c.crate_name, "regatta");
         assert_eq!(c.android.package, "org.regatta.app");
         assert_eq!(c.android.sdk.min_sdk_version, 28);
-        assert_eq!(c.android.uses_permission[0].name, "android.permission.CAMERA");
+        assert_eq!(
+            c.android.uses_permission[0].name,
+            "android.permission.CAMERA"
+        );
         assert!(!c.android.uses_feature[0].required);
         assert_eq!(c.android.application.meta_data[0].value, "optional");
     }
@@ -193,7 +197,8 @@ value = "optional"
 
     #[test]
     fn missing_table_is_named() {
-        let e = CrateAndroid::parse("[package]\nname = \"x\"\n", Path::new("x/Cargo.toml")).unwrap_err();
+        let e = CrateAndroid::parse("[package]\nname = \"x\"\n", Path::new("x/Cargo.toml"))
+            .unwrap_err();
         assert_eq!(e.0, "x/Cargo.toml: has no [package.metadata.android] table");
     }
 
@@ -201,7 +206,10 @@ value = "optional"
     fn min_above_target_is_refused() {
         let bad = GOOD.replace("target_sdk_version = 35", "target_sdk_version = 21");
         let e = CrateAndroid::parse(&bad, Path::new("app/Cargo.toml")).unwrap_err();
-        assert!(e.0.contains("min_sdk_version <= target_sdk_version, got 28 and 21"), "{e}");
+        assert!(
+            e.0.contains("min_sdk_version <= target_sdk_version, got 28 and 21"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use apk::manifest;
-use apk::xml::Element;
 use apk::prelude::*;
+use apk::xml::Element;
 
 use crate::ApkError;
 use crate::metadata::CrateAndroid;
@@ -43,7 +43,12 @@ fn err(what: impl std::fmt::Display) -> impl Fn(apk::Error) -> ApkError {
 /// The manifest the metadata describes (NativeActivity running `lib<crate>.so`).
 pub fn builder(app: &CrateAndroid, manifest_file: &Path) -> Result<ApkBuilder, ApkError> {
     let a = &app.android;
-    let field = |name: &str| format!("{} [package.metadata.android] {name}", manifest_file.display());
+    let field = |name: &str| {
+        format!(
+            "{} [package.metadata.android] {name}",
+            manifest_file.display()
+        )
+    };
     let package: PackageName = a
         .package
         .parse()
@@ -86,7 +91,10 @@ pub fn builder(app: &CrateAndroid, manifest_file: &Path) -> Result<ApkBuilder, A
     }
     if let Some(orientation) = &a.application.activity.orientation {
         let value = attr::SCREEN_ORIENTATION.parse(orientation).map_err(|e| {
-            ApkError(format!("{}: {e}", field("application.activity.orientation")))
+            ApkError(format!(
+                "{}: {e}",
+                field("application.activity.orientation")
+            ))
         })?;
         let activity = application
             .element_mut("activity")

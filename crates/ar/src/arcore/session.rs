@@ -142,8 +142,11 @@ pub enum Event {
 pub enum Command {
     /// `ArCoreApk_requestInstall(env, activity, user_requested_install, &out)`.
     RequestInstall { user_requested: bool },
-    /// Check, and if needed request, `android.permission.CAMERA`.
+    /// Check, and if not granted request, `android.permission.CAMERA` (the answer comes now
+    /// when already granted, else after the dialog, on the next resume).
     RequestCameraPermission,
+    /// Only check the permission (after the dialog): granted or refused, no new dialog.
+    CheckCameraPermission,
     /// `ArSession_create`.
     CreateSession,
     /// `ArSession_configure`: horizontal planes, this light mode, latest-camera-image updates,
@@ -204,6 +207,9 @@ impl SessionState {
                 st::SUCCESS => (S::InstallRequested, vec![]),
                 other => fall(unavailable(other)),
             },
+            (S::AwaitingPermission, E::AppResumed { .. }) => {
+                (S::AwaitingPermission, vec![C::CheckCameraPermission])
+            }
             (S::AwaitingPermission, E::Permission { granted: true }) => {
                 (S::Creating, vec![C::CreateSession])
             }

@@ -58,13 +58,11 @@ impl YuvToRgb {
             f64::from(u) / 255.0,
             f64::from(v) / 255.0,
         ];
-        let mut out = [0u8; 3];
-        for k in 0..3 {
+        std::array::from_fn(|k| {
             let m = self.matrix[k];
             let x = m[0] * s[0] + m[1] * s[1] + m[2] * s[2] + self.offset[k];
-            out[k] = (x * 255.0).round().clamp(0.0, 255.0) as u8;
-        }
-        out
+            (x * 255.0).round().clamp(0.0, 255.0) as u8
+        })
     }
 
     /// The matrix as three `vec4<f32>` columns for a WGSL uniform (`mat3x3` padded), with the

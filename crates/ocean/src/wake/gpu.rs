@@ -9,8 +9,8 @@
 //! a source's term is at most B(r) = C (q²/r⁵ + 3q/r⁴), C = F/(√2πρg)·w(s)·|ΔX|, and B falls
 //! with r. So beyond r_c = max(r_m, (2Cq²/ε)^{1/5}, (6Cq/ε)^{1/4}) the term is below ε. A source
 //! is sent when the view rectangle comes within r_c of it, and the shader skips it at points
-//! farther than r_c. At every point the height then errs by at most ε × (the number of
-//! sources not evaluated there) ≤ ε × alive sources: `GpuWakeFrame::cull_bound`.
+//! farther than r_c. At every point in the view the height then errs by at most
+//! Σ_culled B(distance to the view) + ε × sent sources: `GpuWakeFrame::cull_bound`.
 
 use super::kelvin::{GAUSS_CUTOFF, KelvinSource, Wake, foam_shape};
 
@@ -66,8 +66,14 @@ pub struct GpuWakeFrame {
     pub sources: Vec<GpuWakeSource>,
     /// Alive sources left out because they cannot reach the view.
     pub culled: usize,
-    /// Bound of the culling error of the height at any point in the view, m (before f32).
+    /// Bound of the culling error of the height at any point in the view, m (before f32):
+    /// Σ over culled sources of B(their distance to the view) + ε × sent sources.
     pub cull_bound: f64,
+}
+
+/// B(r) = c (q²/r⁵ + 3q/r⁴): bound of a source's term at distance r ≥ r_m (module docs).
+pub(crate) fn term_bound(c: f64, q: f64, r: f64) -> f64 {
+    c * (q * q / r.powi(5) + 3.0 * q / r.powi(4))
 }
 
 /// r_c of a source (module docs); `c` = F/(√2πρg)·w(s)·|ΔX|.
@@ -90,22 +96,24 @@ impl Wake {
     ) -> GpuWakeFrame {
         let prm = &self.params;
         let mut frame = GpuWakeFrame::default();
-        let mut alive = 0usize;
+        let mut bound = 0.0;
         for s in self.active(t) {
             let age = t - s.t;
             let fade = prm.age_fade(age);
             if fade == 0.0 {
                 continue;
             }
-            alive += 1;
             let strength = prm.source_constant() * fade;
             let q = prm.gravity * age * age / 4.0;
             let c = strength * s.dx[0].hypot(s.dx[1]);
             let rc = cull_radius(c, q, prm.hull_radius, epsilon);
-            if view.distance2(s.pos) > rc * rc {
+            let d2 = view.distance2(s.pos);
+            if d2 > rc * rc {
                 frame.culled += 1;
+                bound += term_bound(c, q, d2.sqrt());
                 continue;
             }
+            bound += epsilon;
             let (fw, fs) = foam_shape(s, t, prm).unwrap_or((1.0, 0.0));
             frame.sources.push(GpuWakeSource {
                 pos: [(s.pos[0] - origin[0]) as f32, (s.pos[1] - origin[1]) as f32],
@@ -119,7 +127,7 @@ impl Wake {
                 _pad: [0.0; 2],
             });
         }
-        frame.cull_bound = epsilon * alive as f64;
+        frame.cull_bound = bound;
         frame
     }
 }

@@ -18,6 +18,7 @@ pub mod flowmap;
 mod gpu_tests;
 pub mod passes;
 pub mod planner;
+pub mod reflection;
 pub mod refraction;
 
 use std::fmt;

@@ -77,7 +77,7 @@ impl Default for ArConfig {
             flow_period: 2.0,
             detail_tile: 12.0,
             cheap_caustics: false,
-            caustic_resolution: (96, 128),
+            caustic_resolution: (64, 96),
         }
     }
 }

@@ -58,6 +58,7 @@ impl BoatsPass {
             depth_write: true,
             depth_test: true,
             cull: None,
+            extra_layouts: &[],
         };
         let mesh = |m: hull::Mesh| {
             let b = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

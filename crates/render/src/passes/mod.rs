@@ -16,6 +16,8 @@ pub struct PipelineSpec<'a> {
     pub depth_write: bool,
     pub depth_test: bool,
     pub cull: Option<wgpu::Face>,
+    /// Bind groups 1.. of the pass (group 0 is the frame's).
+    pub extra_layouts: &'a [&'a wgpu::BindGroupLayout],
 }
 
 pub fn pipeline(
@@ -24,9 +26,13 @@ pub fn pipeline(
     targets: Targets,
     spec: PipelineSpec,
 ) -> wgpu::RenderPipeline {
+    let layouts: Vec<Option<&wgpu::BindGroupLayout>> = std::iter::once(frame_layout)
+        .chain(spec.extra_layouts.iter().copied())
+        .map(Some)
+        .collect();
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(spec.label),
-        bind_group_layouts: &[Some(frame_layout)],
+        bind_group_layouts: &layouts,
         immediate_size: 0,
     });
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {

@@ -20,6 +20,7 @@ impl SkyPass {
             depth_write: false,
             depth_test: false,
             cull: None,
+            extra_layouts: &[],
         };
         SkyPass {
             pipeline: pipeline(device, frame_layout, t, spec),

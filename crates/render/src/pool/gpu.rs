@@ -72,8 +72,10 @@ pub struct PoolUniform {
     pub ripple: [f32; 4],
     /// Ripple σ, ε, refractive index, wall thickness.
     pub ripple2: [f32; 4],
-    /// Net half extents x, z; caustic grid cells; water grid cells.
+    /// Net half extents x, z; 0; 0.
     pub net: [f32; 4],
+    /// Rest-point grid half extents x, z (the pool's); caustic grid cells; water grid cells.
+    pub grid: [f32; 4],
     /// Spheres, rings, waves, 0.
     pub counts: [u32; 4],
     pub spheres: [GpuSphere; MAX_SPHERES],
@@ -181,9 +183,12 @@ impl PoolFrame {
             ripple2: [f(m.packet_width), f(m.core), f(scene.ior), f(settings.wall)],
             net: {
                 let [nx, nz] = scene.pool.net_half_extent();
+                [f(nx), f(nz), 0.0, 0.0]
+            },
+            grid: {
                 [
-                    f(nx),
-                    f(nz),
+                    f(scene.pool.half_x),
+                    f(scene.pool.half_z),
                     settings.caustic_grid as f32,
                     settings.water_grid as f32,
                 ]
@@ -262,6 +267,9 @@ pub struct PoolRenderer {
     caustics: wgpu::RenderPipeline,
     scene: wgpu::RenderPipeline,
     water: wgpu::RenderPipeline,
+    /// Indices of the water grid's triangles over its (n + 1)² vertices.
+    water_indices: wgpu::Buffer,
+    water_index_count: u32,
     depth: Option<(wgpu::Texture, wgpu::TextureView)>,
 }
 
@@ -455,7 +463,18 @@ impl PoolRenderer {
                 depth: depth_state(wgpu::CompareFunction::Less),
             },
         );
+        let indices = grid_indices(settings.water_grid);
+        let water_indices = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pool water indices"),
+            size: (indices.len() * 4) as u64,
+            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        gpu.queue
+            .write_buffer(&water_indices, 0, bytemuck::cast_slice(&indices));
         PoolRenderer {
+            water_indices,
+            water_index_count: indices.len() as u32,
             settings,
             colour_format: colour,
             bindings,
@@ -577,7 +596,8 @@ impl PoolRenderer {
             pass.set_pipeline(&self.scene);
             pass.draw(0..3, 0..1);
             pass.set_pipeline(&self.water);
-            pass.draw(0..(water_cells * 6) as u32, 0..1);
+            pass.set_index_buffer(self.water_indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..self.water_index_count, 0, 0..1);
         }
         gpu.queue.submit([enc.finish()]);
         let record =
@@ -668,6 +688,18 @@ impl PoolRenderer {
     }
 }
 
+/// Two triangles per cell of an n × n grid whose (n + 1)² vertices are numbered row by row:
+/// (00, 10, 11) and (00, 11, 01), counter-clockwise seen from above.
+fn grid_indices(n: u32) -> Vec<u32> {
+    let row = n + 1;
+    (0..n * n)
+        .flat_map(|c| {
+            let v = (c / n) * row + c % n;
+            [v, v + 1, v + row + 1, v, v + row + 1, v + row]
+        })
+        .collect()
+}
+
 /// IEEE 754 half → single precision.
 fn f16_to_f32(h: u16) -> f32 {
     let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
@@ -715,6 +747,15 @@ pub fn render_pool_image(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn grid_indices_cover_each_cell_with_two_triangles() {
+        let idx = grid_indices(2);
+        assert_eq!(idx.len(), 24);
+        // Cell (1, 1) of a 2 × 2 grid: vertices 4, 5, 8, 7 of the 3 × 3.
+        assert_eq!(&idx[18..24], &[4, 5, 8, 4, 8, 7]);
+        assert!(idx.iter().all(|&i| i < 9));
+    }
 
     #[test]
     fn half_floats_decode() {

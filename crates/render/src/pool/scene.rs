@@ -6,7 +6,7 @@ use glam::DVec3;
 use ocean::WaveSet;
 
 use super::geometry::{PoolBox, Ray, Sphere};
-use super::water::{PoolWater, Ring, RippleModel, SpherePath, rings_of};
+use super::water::{PoolWater, Ring, RippleModel, SpherePath, WaterPoint, rings_of};
 
 /// The pool's own sea: short, steep-ish waves sized to a 2 m pool, finite depth 1 m (Σ kA =
 /// 0.43). They focus light at about 1–2 m depth, so the floor shows a caustic network.
@@ -150,6 +150,24 @@ impl Default for PoolScene {
 }
 
 impl PoolScene {
+    /// The surface mesh's vertex for rest point `x0` (inside the pool's footprint): the water
+    /// point, held inside the walls, and pinned to a wall when `x0` lies on it. Free edge
+    /// vertices would open a gap where the waves pull the surface away from a wall (up to
+    /// Σ A); pinned ones keep the mesh's footprint exactly the pool's. The shader does the same.
+    pub fn mesh_point(&self, x0: [f64; 2], t: f64, rings: &[Ring]) -> WaterPoint {
+        let mut p = self.water.point(x0, t, rings);
+        let pin = |rest: f64, at: f64, half: f64| {
+            if rest.abs() >= half * (1.0 - 1e-9) {
+                half.copysign(rest)
+            } else {
+                at.clamp(-half, half)
+            }
+        };
+        p.position.x = pin(x0[0], p.position.x, self.pool.half_x);
+        p.position.z = pin(x0[1], p.position.z, self.pool.half_z);
+        p
+    }
+
     /// The ripple rings alive at time `t`, from every moving sphere.
     pub fn rings(&self, t: f64) -> Vec<Ring> {
         self.movers
@@ -223,6 +241,25 @@ mod tests {
             let (eta, _) = super::super::water::ripple_height(&scene.water.ripples, &rings, [x, z]);
             let c = s.sphere.center;
             assert!((c - DVec3::new(x, y + eta + f.lift, z)).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn mesh_edges_stay_on_the_walls_and_inside_points_inside() {
+        let scene = PoolScene::default();
+        let (hx, hz) = (scene.pool.half_x, scene.pool.half_z);
+        for t in [0.0, 1.3, 7.7] {
+            let rings = scene.rings(t);
+            for u in [-1.0, -0.5, 0.0, 0.999, 1.0] {
+                let e = scene.mesh_point([hx, u * hz], t, &rings).position;
+                assert_eq!(e.x, hx);
+                let w = scene.mesh_point([u * hx, -hz], t, &rings).position;
+                assert_eq!(w.z, -hz);
+                let i = scene
+                    .mesh_point([u * hx * 0.99, u * hz * 0.99], t, &rings)
+                    .position;
+                assert!(i.x.abs() <= hx && i.z.abs() <= hz);
+            }
         }
     }
 

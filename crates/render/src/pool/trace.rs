@@ -284,6 +284,7 @@ mod tests {
             height: 1,
             half_extent: scene.pool.net_half_extent(),
             texels: vec![0.0],
+            entered: 0.0,
         };
         let p = DVec3::new(0.33, 0.0, 0.33);
         let c = trace_water(&scene, &[], &map, &Ray::new(p, DVec3::NEG_Y));

@@ -1,0 +1,267 @@
+//! The egui panels over the desktop window: the race-timeline scrubber (which owns race time),
+//! the leaderboard, effect toggles and the performance overlay of `crates/ui`, wired to winit
+//! through egui-winit and painted with egui-wgpu after the scene, into the same surface texture.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use ocean::wake::Wake;
+
+use render::FrameReport;
+use ui::{FpsMeter, PassStat, PerfStats, RaceClock, RegattaUi, TimelineEvent, UiFrame};
+use winit::event::WindowEvent;
+use winit::window::Window;
+
+/// The panels, their egui context and painter.
+pub struct Overlay {
+    ctx: egui::Context,
+    input: egui_winit::State,
+    painter: egui_wgpu::Renderer,
+    pub panels: RegattaUi,
+    events: Vec<TimelineEvent>,
+    fps: FpsMeter,
+    perf: PerfStats,
+    last: Instant,
+    title: String,
+    /// The race's wakes, kept so the "Wakes" toggle can take them out of the renderer and back.
+    wake: Option<Arc<Wake>>,
+    wakes_shown: bool,
+    /// Frames drawn, and the count after which the app exits by itself
+    /// (`REGATTA_EXIT_AFTER_FRAMES`, for the smoke test).
+    frames: u64,
+    exit_after: Option<u64>,
+}
+
+/// The race clock the app starts with: paused at the start signal would show an empty sea, so
+/// it plays at 8× from the span's start (or from the start signal when the data begin earlier).
+pub fn initial_clock(race: &race::Race) -> RaceClock {
+    let mut clock = RaceClock::new(race.time_span());
+    clock.looping = true;
+    clock.jump_to_start();
+    clock.set_speed(8.0);
+    clock.play();
+    clock
+}
+
+/// The effect toggles the desktop offers.
+pub fn effect_toggles() -> Vec<ui::EffectToggle> {
+    vec![ui::EffectToggle::new("wakes", "Wakes", true)]
+}
+
+impl Overlay {
+    pub fn new(
+        window: &Window,
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+        race: &race::Race,
+        title: String,
+    ) -> Self {
+        let ctx = egui::Context::default();
+        let input = egui_winit::State::new(
+            ctx.clone(),
+            egui::ViewportId::ROOT,
+            window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(device.limits().max_texture_dimension_2d as usize),
+        );
+        let painter =
+            egui_wgpu::Renderer::new(device, format, egui_wgpu::RendererOptions::default());
+        Self {
+            ctx,
+            input,
+            painter,
+            panels: RegattaUi::new(initial_clock(race), effect_toggles()),
+            events: ui::timeline_events(race),
+            fps: FpsMeter::new(30),
+            perf: PerfStats::default(),
+            last: Instant::now(),
+            title,
+            wake: crate::cli::render::race_wake(race).ok(),
+            wakes_shown: true,
+            frames: 0,
+            exit_after: std::env::var("REGATTA_EXIT_AFTER_FRAMES")
+                .ok()
+                .and_then(|v| v.parse().ok()),
+        }
+    }
+
+    /// Hands a window event to egui; true when egui used it (the pointer is over a panel), so
+    /// the app does not orbit the camera with it.
+    pub fn on_event(&mut self, window: &Window, event: &WindowEvent) -> bool {
+        self.input.on_window_event(window, event).consumed
+    }
+
+    /// True while the pointer is over a panel or egui has the keyboard.
+    pub fn wants_pointer(&self) -> bool {
+        self.ctx.egui_wants_pointer_input()
+    }
+
+    pub fn wants_keyboard(&self) -> bool {
+        self.ctx.egui_wants_keyboard_input()
+    }
+
+    /// Advances the clock by the wall time since the last call; returns the race time to draw.
+    pub fn tick(&mut self) -> f64 {
+        let now = Instant::now();
+        let dt = now.duration_since(self.last).as_secs_f64();
+        self.last = now;
+        self.fps.push(dt);
+        self.panels.clock.advance(dt);
+        self.panels.clock.time()
+    }
+
+    /// Takes the renderer's record of the frame for the overlay.
+    pub fn record(&mut self, report: &FrameReport) {
+        self.perf = perf_stats(report, &self.fps);
+    }
+
+    /// Applies the effect toggles to the renderer (before it draws the frame).
+    pub fn apply_effects(&mut self, renderer: &mut render::Renderer) {
+        let want = self
+            .panels
+            .effects
+            .iter()
+            .any(|e| e.key == "wakes" && e.enabled);
+        if want != self.wakes_shown {
+            renderer.set_wake(if want { self.wake.clone() } else { None });
+            self.wakes_shown = want;
+        }
+    }
+
+    /// Counts a drawn frame; true when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`).
+    pub fn frame_done(&mut self) -> bool {
+        self.frames += 1;
+        self.exit_after.is_some_and(|n| self.frames >= n)
+    }
+
+    /// Lays out the panels for race time `t` and paints them over `view` (`size` pixels).
+    pub fn paint(
+        &mut self,
+        window: &Window,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        view: &wgpu::TextureView,
+        size: [u32; 2],
+        race: &race::Race,
+    ) {
+        let raw = self.input.take_egui_input(window);
+        let rows = ui::leaderboard_rows(race, self.panels.clock.time());
+        let (panels, events, perf, title) =
+            (&mut self.panels, &self.events, &self.perf, &self.title);
+        let out = self.ctx.run_ui(raw, |ui| {
+            panels.show(
+                ui,
+                &UiFrame {
+                    rows: &rows,
+                    events,
+                    perf: Some(perf),
+                    title,
+                },
+            );
+        });
+        self.input
+            .handle_platform_output(window, out.platform_output);
+        let jobs = self.ctx.tessellate(out.shapes, out.pixels_per_point);
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: size,
+            pixels_per_point: out.pixels_per_point,
+        };
+        // Every frame's texture changes are applied and freed, or egui's font atlas goes stale.
+        for (id, delta) in &out.textures_delta.set {
+            for d in delta {
+                self.painter.update_texture(device, queue, *id, d);
+            }
+        }
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("egui"),
+        });
+        let extra = self
+            .painter
+            .update_buffers(device, queue, &mut encoder, &jobs, &screen);
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    resolve_target: None,
+                    depth_slice: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                ..Default::default()
+            });
+            self.painter
+                .render(&mut pass.forget_lifetime(), &jobs, &screen);
+        }
+        queue.submit(extra.into_iter().chain(std::iter::once(encoder.finish())));
+        for id in &out.textures_delta.free {
+            self.painter.free_texture(id);
+        }
+    }
+}
+
+/// The overlay's numbers from the renderer's frame record and the app's frame meter.
+pub fn perf_stats(report: &FrameReport, fps: &FpsMeter) -> PerfStats {
+    PerfStats {
+        fps: fps.fps(),
+        frame_ms: fps.frame_ms(),
+        triangles: report.triangles,
+        adapter: report.adapter.clone(),
+        passes: report
+            .passes
+            .iter()
+            .map(|p| PassStat {
+                name: p.name.clone(),
+                ran: p.ran,
+                reason: p.reason.clone(),
+                triangles: p.triangles,
+                gpu_ms: p.gpu_ms,
+            })
+            .collect(),
+    }
+}
+
+/// Gives `event` to the panels first: true when they used it (a click on a panel, or the
+/// timeline's keys: space plays and pauses, ←/→ step, Home jumps to the start, PgUp/PgDn jump
+/// between mark roundings), so the app must not use it too.
+pub fn handle_event(o: &mut Overlay, window: &Window, event: &WindowEvent) -> bool {
+    use winit::event::ElementState;
+    use winit::keyboard::{Key, NamedKey};
+    let consumed = o.on_event(window, event);
+    match event {
+        WindowEvent::CloseRequested | WindowEvent::Resized(_) | WindowEvent::RedrawRequested => {
+            false
+        }
+        WindowEvent::KeyboardInput { event, .. }
+            if event.state == ElementState::Pressed && !o.wants_keyboard() =>
+        {
+            let times: Vec<f64> = o.events.iter().map(|e| e.t).collect();
+            let clock = &mut o.panels.clock;
+            match event.logical_key {
+                Key::Named(NamedKey::Space) => clock.toggle(),
+                Key::Named(NamedKey::ArrowRight) => clock.step(1),
+                Key::Named(NamedKey::ArrowLeft) => clock.step(-1),
+                Key::Named(NamedKey::Home) => clock.jump_to_start(),
+                Key::Named(NamedKey::PageDown) => {
+                    clock.jump_to_next(&times);
+                }
+                Key::Named(NamedKey::PageUp) => {
+                    clock.jump_to_previous(&times);
+                }
+                _ => return consumed,
+            }
+            true
+        }
+        WindowEvent::MouseInput { .. }
+        | WindowEvent::MouseWheel { .. }
+        | WindowEvent::CursorMoved { .. } => {
+            // Pointer events over a panel belong to the panel; elsewhere they orbit the camera
+            // (cursor moves always reach the app, so a drag that leaves a panel ends cleanly).
+            !matches!(event, WindowEvent::CursorMoved { .. }) && (consumed || o.wants_pointer())
+        }
+        _ => consumed,
+    }
+}
