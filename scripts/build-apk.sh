@@ -26,6 +26,7 @@ while [ $# -gt 0 ]; do
 done
 say() { printf 'build-apk: %s\n' "$*" >&2; }
 die() { printf 'build-apk: %s\n' "$*" >&2; exit 1; }
+[ -z "$aar" ] || [ -f "$aar" ] || die "$aar: no such ARCore AAR"
 for tool in clang ld.lld llvm-ar; do
   command -v "$tool" >/dev/null || die "needs $tool (apt-get install clang lld llvm)"
 done

@@ -49,12 +49,12 @@ struct Pool {
     ripple: vec4<f32>,
     // Ripple σ (m), core ε (m), refractive index of the water, wall thickness (m).
     ripple2: vec4<f32>,
-    // Half extents of the unfolded net (m), 0, 0.
+    // Half extents of the unfolded net (m), caustics map texels along x and z.
     net: vec4<f32>,
     // Half extents of the rest-point grids (m, the pool's), caustic grid cells per side, water
     // grid cells per side.
     grid: vec4<f32>,
-    // Spheres, rings, waves, 0.
+    // Spheres, rings, waves, 1 when drawn over the AR camera image.
     counts: vec4<u32>,
     spheres: array<PoolSphere, 8>,
     rings: array<PoolRing, 256>,

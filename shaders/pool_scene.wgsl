@@ -81,14 +81,16 @@ fn fs_main(in: SceneOut) -> FragOut {
             // Coping stones on top, darker tiles outside.
             var albedo = vec3<f32>(0.78, 0.74, 0.66);
             if entry.y < 0.5 {
-                albedo = tile_albedo(FACE_FLOOR, p * vec3<f32>(1.0, 1.0, 1.0)) * 0.6;
+                // Outer walls: the same tiles, laid in the wall's own plane, a shade darker.
+                let face = select(FACE_NORTH, FACE_EAST, abs(entry.x) > 0.5);
+                albedo = tile_albedo(face, p) * 0.8;
             }
             colour = phong(albedo, max(dot(entry.xyz, l), 0.0), entry.xyz, l, -d, 0.2);
         }
     }
     // The ground the tub stands on (the table in AR, where the camera image shows instead).
     let ground_y = pool.box_.z - pool.ripple2.w;
-    if s_hit > 1e29 && d.y < 0.0 && o.y > ground_y {
+    if s_hit > 1e29 && d.y < 0.0 && o.y > ground_y && pool.counts.w == 0u {
         s_hit = (ground_y - o.y) / d.y;
         let up = vec3<f32>(0.0, 1.0, 0.0);
         colour = phong(vec3<f32>(0.5, 0.48, 0.42), max(l.y, 0.0), up, l, -d, 0.0);
@@ -104,6 +106,9 @@ fn fs_main(in: SceneOut) -> FragOut {
     if s_hit < 1e29 {
         out.colour = vec4<f32>(colour, 1.0);
         out.depth = depth_of(o + d * s_hit);
+    } else if pool.counts.w == 1u {
+        // AR: the camera image stays where the pool is not.
+        discard;
     }
     return out;
 }

@@ -39,6 +39,7 @@ struct WakeSource {
 const WAKE_MIN_R2: f32 = 1e-6;
 // k²R²/4 beyond which the term is nothing (e^{−40}).
 const WAKE_GAUSS_CUTOFF: f32 = 40.0;
+const WAKE_TAU: f32 = 6.2831855;
 
 // The height one source adds at p, m:
 // −strength · (k²/r) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (r̂·ΔX), k = q/r², Φ = q/r.
@@ -55,8 +56,10 @@ fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
     }
     let r = sqrt(r2);
     let phi = s.q / r;
+    // Φ can reach thousands of radians; phone GPUs' sin/cos are only accurate near [−π, π].
+    let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
     let amp = s.strength * k * k / r * exp(-g);
-    let bracket = sin(phi) + (4.0 * g - 3.0) / phi * cos(phi);
+    let bracket = sin(phi_r) + (4.0 * g - 3.0) / phi * cos(phi_r);
     return -amp * bracket * dot(d, s.dx) / r;
 }
 

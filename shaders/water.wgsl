@@ -2,7 +2,8 @@
 // wakes, shaded with per-pixel analytic normals, the full Fresnel equations (optics.wgsl), sky
 // and sun reflection, Jacobian foam and wake foam. Appended to common.wgsl, optics.wgsl and a
 // wake hook (water_wakes.wgsl after wake.wgsl, or water_no_wakes.wgsl) that defines
-// wake_height(p) and wake_foam(p).
+// wake_at(p, e). The wake is evaluated per vertex (it sums many sources; the clip-map's cells
+// near the boats are finer than the wake's waves) and interpolated to the pixels.
 
 struct VertexIn {
     // Rest point in local metres, already morphed towards the next coarser level (CPU side).
@@ -17,6 +18,8 @@ struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) rest: vec2<f32>,
     @location(1) world: vec3<f32>,
+    // Wake slope (∂w/∂x, ∂w/∂z) and foam at this vertex.
+    @location(2) wake: vec3<f32>,
 }
 
 @vertex
@@ -29,8 +32,13 @@ fn vs_main(v: VertexIn) -> VertexOut {
         }
     }
     // The wake is a height at a world point: where this vertex has gone.
-    pos.y += wake_height(pos.xz);
     var out: VertexOut;
+    out.wake = vec3<f32>(0.0);
+    if frame.counts.z > 0u {
+        let w = wake_at(pos.xz, 0.25);
+        pos.y += w.x;
+        out.wake = w.yzw;
+    }
     out.clip = frame.view_proj * vec4<f32>(pos, 1.0);
     out.rest = v.rest;
     out.world = pos;
@@ -51,18 +59,9 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Footprint of this pixel on the rest plane, metres: waves shorter than two footprints fade.
     let footprint = max(length(dpdx(in.rest)), length(dpdy(in.rest)));
     let sf = surface_frame(in.rest, frame.counts.x, footprint);
-    var n = sf.normal;
-    var wfoam = 0.0;
-    if frame.counts.z > 0u {
-        // Total surface y = h_sea(X) + w(X): add the wake's slope (central differences over
-        // about a pixel, at least 5 cm) to the sea's.
-        let e = max(footprint, 0.05);
-        let p = in.world.xz;
-        let gx = (wake_height(p + vec2<f32>(e, 0.0)) - wake_height(p - vec2<f32>(e, 0.0))) / (2.0 * e);
-        let gz = (wake_height(p + vec2<f32>(0.0, e)) - wake_height(p - vec2<f32>(0.0, e))) / (2.0 * e);
-        n = normalize(vec3<f32>(n.x / n.y - gx, 1.0, n.z / n.y - gz));
-        wfoam = wake_foam(p);
-    }
+    // Total surface y = h_sea(X) + w(X): add the wake's slope to the sea's.
+    let n = normalize(vec3<f32>(sf.normal.x / sf.normal.y - in.wake.x, 1.0, sf.normal.z / sf.normal.y - in.wake.y));
+    let wfoam = in.wake.z;
     let to_eye = normalize(frame.eye.xyz - in.world);
     let cos_i = max(dot(n, to_eye), 0.0);
     let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);

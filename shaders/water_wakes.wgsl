@@ -1,23 +1,51 @@
-// Wake hook of the water pass, with wakes: the boats' wakes of shaders/wake.wgsl summed over
-// the frame's sources (bind group 1; frame.counts.z of them are live). Appended after
-// wake.wgsl and before water.wgsl.
+// Wake hook of the water pass, with wakes: the boats' wakes of shaders/wake.wgsl (bind group 1).
+// The CPU bins the sources on a grid over the view (render::passes::water::WakeBins): a point
+// sums only the sources listed for its bin, which holds every source whose cull circle, grown
+// by the grid's margin, reaches the bin. Appended after wake.wgsl and before water.wgsl.
 
-@group(1) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
-
-// Wake height at local point p (the displaced surface's horizontal position), m.
-fn wake_height(p: vec2<f32>) -> f32 {
-    var h = 0.0;
-    for (var i = 0u; i < frame.counts.z; i = i + 1u) {
-        h += wake_source_height(wake_sources[i], p);
-    }
-    return h;
+struct WakeGrid {
+    // Local (x, z) of the grid's corner, m.
+    origin: vec2<f32>,
+    // 1 / bin size, 1/m.
+    inv_cell: f32,
+    // Points within this distance of p may use p's bin (the gradient's stencil), m.
+    margin: f32,
+    nx: u32,
+    nz: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
-// Wake foam in [0, 1] at local point p.
-fn wake_foam(p: vec2<f32>) -> f32 {
-    var f = 0.0;
-    for (var i = 0u; i < frame.counts.z; i = i + 1u) {
-        f += wake_source_foam(wake_sources[i], p);
+@group(1) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
+// Per bin: (first index into wake_index, count).
+@group(1) @binding(1) var<storage, read> wake_bins: array<vec2<u32>>;
+@group(1) @binding(2) var<storage, read> wake_index: array<u32>;
+@group(1) @binding(3) var<uniform> wake_grid: WakeGrid;
+
+// The (first, count) of the sources that can reach local point p.
+fn wake_bin(p: vec2<f32>) -> vec2<u32> {
+    let g = (p - wake_grid.origin) * wake_grid.inv_cell;
+    if frame.counts.z == 0u || g.x < 0.0 || g.y < 0.0 || g.x >= f32(wake_grid.nx) || g.y >= f32(wake_grid.nz) {
+        return vec2<u32>(0u, 0u);
     }
-    return wake_foam_from_density(f);
+    return wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
+}
+
+// The wake at local point p: (height m, ∂w/∂x, ∂w/∂z, foam in [0, 1]), one pass over p's bin;
+// the slope by forward differences over e metres (≤ the grid's margin).
+fn wake_at(p: vec2<f32>, e_in: f32) -> vec4<f32> {
+    let bin = wake_bin(p);
+    let e = min(e_in, wake_grid.margin);
+    var h = vec3<f32>(0.0);
+    var f = 0.0;
+    for (var i = 0u; i < bin.y; i = i + 1u) {
+        let s = wake_sources[wake_index[bin.x + i]];
+        h += vec3<f32>(
+            wake_source_height(s, p),
+            wake_source_height(s, p + vec2<f32>(e, 0.0)),
+            wake_source_height(s, p + vec2<f32>(0.0, e)),
+        );
+        f += wake_source_foam(s, p);
+    }
+    return vec4<f32>(h.x, (h.y - h.x) / e, (h.z - h.x) / e, wake_foam_from_density(f));
 }

@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod cli;
+#[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
 pub mod wakes;

@@ -211,3 +211,26 @@ fn bad_input_is_one_sentence_and_a_failure() {
     fails(&["race", "--t", "nan"], "--t is NaN");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_race_without_origin_has_no_lat_lon() {
+    let dir = std::env::temp_dir().join(format!("race-cli-local-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("local.json");
+    std::fs::write(
+        &p,
+        r#"{"name": "local", "origin": null, "start_time": null,
+            "boats": [{"id": "A", "track": [[0, 0, 0], [10, 30, -40]]}], "marks": []}"#,
+    )
+    .unwrap();
+    let v = ok_json(&["race", "--t", "5", "--race", &p.display().to_string()]);
+    std::fs::remove_dir_all(&dir).ok();
+    let b = &v["boats"][0];
+    assert!(b.get("lat").is_none() && b.get("lon").is_none(), "{b}");
+    // Halfway along a straight 50 m in 10 s: (15, -20), 5 m/s, bearing atan2(3, 4) = 36.87°.
+    assert_eq!(b["position"][0], 15.0);
+    assert_eq!(b["position"][1], -20.0);
+    assert!((b["speed_mps"].as_f64().unwrap() - 5.0).abs() < 1e-5);
+    assert!((b["heading_deg"].as_f64().unwrap() - 36.869_897_6).abs() < 1e-4);
+    assert_eq!(b["rank"], 1);
+}

@@ -34,7 +34,7 @@ impl Case {
             gpu,
             OFFSCREEN_FORMAT,
             RenderOptions {
-                measure_gpu_time: false,
+                measure_gpu_time: true,
                 ..RenderOptions::default()
             },
         );
@@ -73,13 +73,14 @@ impl Case {
         Case { renderer, view }
     }
 
-    /// Plan, draw and wait for one frame at race time `t`; seconds.
-    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> f64 {
+    /// Plan, draw and wait for one frame at race time `t`: wall seconds, and the passes'
+    /// GPU milliseconds from timestamp queries where the adapter has them.
+    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> (f64, Option<f64>) {
         let scene = demo_table_scene(t);
         let t0 = Instant::now();
-        self.renderer.render(gpu, &self.view, size, &scene);
+        let report = self.renderer.render(gpu, &self.view, size, &scene);
         gpu.wait();
-        t0.elapsed().as_secs_f64()
+        (t0.elapsed().as_secs_f64(), report.gpu_ms)
     }
 }
 
@@ -108,6 +109,8 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
             "average fps",
             "median ms/frame",
             "ratio to water only",
+            "median GPU ms",
+            "GPU ratio",
         ],
     );
     let mut water_ms = f64::NAN;
@@ -120,18 +123,32 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         .map(|(_, fx)| Case::new(&gpu, size, *fx))
         .collect();
     let mut pooled: Vec<Vec<f64>> = vec![Vec::new(); cases.len()];
+    let mut gpu_ms: Vec<Vec<f64>> = vec![Vec::new(); cases.len()];
     for i in 0..frames + 2 {
         if i % 10 == 0 {
             ctx.progress(format!("effects: frame {i} of {}", frames + 2));
         }
         for (k, case) in runs.iter_mut().enumerate() {
-            let dt = case.frame(&gpu, size, 40.0 + i as f64 / 30.0);
+            let (dt, g) = case.frame(&gpu, size, 40.0 + i as f64 / 30.0);
             if i >= 2 {
                 pooled[k].push(dt);
+                gpu_ms[k].extend(g);
             }
         }
     }
-    for ((name, _), times) in cases.iter().zip(&mut pooled) {
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied()
+    };
+    let mut water_gpu = None;
+    let mut worst_gpu = 0.0f64;
+    for (((name, _), times), g) in cases.iter().zip(&mut pooled).zip(&mut gpu_ms) {
+        let g = median(g);
+        if water_gpu.is_none() {
+            water_gpu = g;
+        }
+        let g_ratio = g.zip(water_gpu).map(|(a, b)| a / b);
+        worst_gpu = worst_gpu.max(g_ratio.unwrap_or(0.0));
         times.sort_by(f64::total_cmp);
         let median = times[times.len() / 2] * 1e3;
         let mean = times.iter().sum::<f64>() / times.len() as f64;
@@ -149,6 +166,8 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
             json!(1.0 / mean),
             json!(median),
             json!(ratio),
+            json!(g),
+            json!(g_ratio),
         ]);
     }
     t.note(format!(
@@ -162,14 +181,20 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         gpu.describe()
     ));
     t.note(format!(
-        "Goal: every case ≤ {GOAL_RATIO}× water only. Largest ratio: {:.2} ({}) — {}.",
+        "Goal: every case ≤ {GOAL_RATIO}× water only. Largest frame-time ratio: {:.2} ({}), \
+         {}; largest GPU-time ratio (sum of the passes' timestamps): {:.2}. The AR water pass \
+         shades the water a second time over the water pass; on lavapipe even an empty \
+         full-screen version of it costs about a water-only frame, so the goal needs the water \
+         pass to hand its shading to the effects (one shading per water pixel), not cheaper \
+         effects.",
         worst.0,
         worst.1,
         if worst.0 <= GOAL_RATIO {
             "goal met"
         } else {
             "goal NOT met"
-        }
+        },
+        worst_gpu
     ));
     Ok(vec![t])
 }

@@ -133,6 +133,7 @@ fn caustics_table(ctx: &BenchContext, gpu: &Gpu) -> CliResult<Table> {
         &[
             "surface cells per side",
             "texels per side",
+            "entered / flat-water light (f64)",
             "landed / entered light (f64)",
             "GPU flux error vs f64",
             "GPU L1 error / flux",
@@ -184,17 +185,20 @@ fn caustics_table(ctx: &BenchContext, gpu: &Gpu) -> CliResult<Table> {
         table.row(vec![
             json!(grid),
             json!(texels),
-            json!(flux / entered),
+            json!(reference.entered / entered),
+            json!(flux / reference.entered),
             json!((gpu_flux / flux - 1.0).abs()),
             json!(l1 / flux),
         ]);
     }
     table.note(
-        "Entered light is T(θ)·cos θ·(pool area), the flux through the flat surface; the map \
-         conserves it up to triangles whose corners land on two walls (dropped) and the \
-         second-order change of the surface's projected area. The GPU draws the same triangles \
-         in f32 into a half-float map; its error against the f64 reference is texels whose \
-         centre an f32 edge puts on the other side.",
+        "Entered light is Σ T·A⊥ over the surface triangles; flat water lets in \
+         T(θ)·cos θ·(pool area). Landed light is the map's integral: texel centres sample the \
+         landing triangles, so near a focus (triangles smaller than a texel) it keeps the light \
+         only on average; triangles whose corners land on two walls are dropped. The GPU draws \
+         the same triangles in f32 into a half-float map (area ratio from the screen \
+         derivatives of the surface position, exact for a triangle); its error against the f64 \
+         reference is texels whose centre an f32 edge puts on the other side.",
     );
     Ok(table)
 }

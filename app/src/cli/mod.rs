@@ -10,6 +10,7 @@ pub mod probe;
 pub mod race;
 pub mod render;
 pub mod replay;
+pub mod sea;
 
 /// Regatta: a sailing race on a real table, with a living sea drawn over it.
 #[derive(Debug, Parser)]
@@ -31,18 +32,28 @@ pub enum Command {
     Race(race::RaceArgs),
     /// Render one frame headless to a PNG; the frame planner's record as JSON on stdout.
     Render(render::RenderArgs),
+    /// Write a sea file from a JONSWAP sea state or an NDBC buoy spectrum (JSON on stdout).
+    Sea(sea::SeaArgs),
     /// Open the desktop window (also what `regatta` alone does).
+    #[cfg(not(target_os = "android"))]
     Run(crate::desktop::RunArgs),
 }
 
 pub fn dispatch(cli: Cli) -> CliResult {
     match cli.command {
+        #[cfg(not(target_os = "android"))]
         None => crate::desktop::run(Default::default()),
+        #[cfg(target_os = "android")]
+        None => Err(crate::error::CliError::new(
+            "the desktop window does not run on Android; the APK starts the AR app",
+        )),
         Some(Command::Probe(a)) => probe::run(a),
         Some(Command::Bench(a)) => bench::run(a),
         Some(Command::Replay(a)) => replay::run(a),
         Some(Command::Race(a)) => race::run(a),
         Some(Command::Render(a)) => render::run(a),
+        Some(Command::Sea(a)) => sea::run(a),
+        #[cfg(not(target_os = "android"))]
         Some(Command::Run(a)) => crate::desktop::run(a),
     }
 }

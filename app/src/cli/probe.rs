@@ -127,3 +127,38 @@ pub fn run(a: ProbeArgs) -> CliResult {
     println!("{}", json!({ "t": t, "points": out }));
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The total surface: wake height and slopes add to the sea's, the normal comes from the
+    /// summed slopes, and foam combines as coverage.
+    #[test]
+    fn wake_terms_add_to_the_sea() {
+        let sea = ocean::WaveSet::default_sea();
+        let (t, at) = (77.0, [12.0, -3.0]);
+        let s = sea.sample_at(at, t, ocean::DEFAULT_TOLERANCE).unwrap();
+        let calm = probe_point(&sea, t, at, WakeSample::default()).unwrap();
+        let n = calm["normal"].as_array().unwrap();
+        for (a, b) in n.iter().zip(s.normal) {
+            assert!((a.as_f64().unwrap() - b).abs() < 1e-12);
+        }
+        let wake = WakeSample {
+            height: 0.25,
+            gradient: [0.1, -0.2],
+            foam: 0.5,
+        };
+        let v = probe_point(&sea, t, at, wake).unwrap();
+        assert_eq!(v["height"].as_f64().unwrap(), s.height + 0.25);
+        assert_eq!(v["wake_height"].as_f64().unwrap(), 0.25);
+        let (gx, gz) = (s.gradient[0] + 0.1, s.gradient[1] - 0.2);
+        let len = (gx * gx + 1.0 + gz * gz).sqrt();
+        let want = [-gx / len, 1.0 / len, -gz / len];
+        for (a, b) in v["normal"].as_array().unwrap().iter().zip(want) {
+            assert!((a.as_f64().unwrap() - b).abs() < 1e-12);
+        }
+        let foam = 1.0 - (1.0 - s.foam) * 0.5;
+        assert!((v["foam"].as_f64().unwrap() - foam).abs() < 1e-12);
+    }
+}

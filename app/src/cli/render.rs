@@ -125,6 +125,8 @@ pub fn linear_colour(hex: &str) -> [f32; 3] {
 
 /// Hull length drawn for every boat, metres (the tracks do not say).
 pub const BOAT_LENGTH_M: f64 = 10.0;
+/// Water reaches this far beyond every track and mark, metres.
+pub const PLAY_AREA_MARGIN_M: f64 = 1500.0;
 /// Far clip distance, metres.
 pub const FAR_M: f64 = 20_000.0;
 
@@ -156,8 +158,10 @@ pub fn scene_at(race: &race::Race, sea: &ocean::WaveSet, t: f64, camera: Option<
         .boats
         .iter()
         .flat_map(|b| b.fixes().iter().map(|f| DVec2::from(f.pos())));
-    let play_area =
-        Scene::play_area_around(track_points.chain(marks.iter().map(|m| m.position)), 400.0);
+    let play_area = Scene::play_area_around(
+        track_points.chain(marks.iter().map(|m| m.position)),
+        PLAY_AREA_MARGIN_M,
+    );
     let camera = camera.unwrap_or_else(|| Scene::framing_camera(&boats, &[], FAR_M));
     Scene {
         t,

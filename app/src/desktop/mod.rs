@@ -21,7 +21,8 @@ use crate::cli::inputs::{load_race, load_sea};
 use crate::cli::render::{FAR_M, SceneKind, scene_at};
 use crate::error::{CliError, CliResult};
 
-mod overlay;
+pub mod feed;
+pub mod overlay;
 mod pool;
 
 #[derive(Debug, Args, Default)]
@@ -35,12 +36,18 @@ pub struct RunArgs {
     /// Which scene: the race, or the tiled pool (drag the green ball to make ripples).
     #[arg(long, value_enum, default_value_t)]
     pub scene: SceneKind,
+    /// A recorded camera feed (replay folder or TUM RGB-D) as the background, the race on its
+    /// table; `regatta replay synth` writes one, `assets/feed` is the shipped one.
+    #[arg(long, value_name = "DIR")]
+    pub replay: Option<PathBuf>,
 }
 
 /// Open the window and run until it is closed.
 pub fn run(a: RunArgs) -> CliResult {
     let sea = load_sea(a.sea.as_ref())?;
     let race = load_race(&a.race)?;
+    // A bad feed is refused before a window opens (file and line named).
+    let feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
     let event_loop = EventLoop::new()
         .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
     let (t0, t1) = race.time_span();
@@ -48,6 +55,7 @@ pub fn run(a: RunArgs) -> CliResult {
         .then(|| pool::PoolMode::new(a.sea.is_some().then(|| sea.clone())));
     let mut app = App {
         pool,
+        feed,
         race,
         sea,
         span: (t0, t1.max(t0 + 1.0)),
@@ -80,6 +88,24 @@ pub fn run(a: RunArgs) -> CliResult {
     }
 }
 
+/// The scene the window draws at race time `t`: the race on the sea, the camera orbiting the
+/// fleet's centre (`orbit` keeps the user's angle and distance, its target follows the fleet).
+/// A function of `t` and the orbit alone, so playing to t and scrubbing to t draw the same frame.
+pub fn race_scene(
+    race: &race::Race,
+    sea: &ocean::WaveSet,
+    t: f64,
+    orbit: &mut OrbitCamera,
+) -> render::Scene {
+    let mut scene = scene_at(race, sea, t, None);
+    if !scene.boats.is_empty() {
+        let c = scene.boats.iter().map(|b| b.position).sum::<DVec2>() / scene.boats.len() as f64;
+        orbit.target = DVec3::new(c.x, 0.0, c.y);
+    }
+    scene.camera = orbit.camera();
+    scene
+}
+
 /// Race time: plays at real speed, pauses, loops over the race's span.
 struct Clock {
     t: f64,
@@ -99,6 +125,8 @@ struct State {
 struct App {
     /// `Some` with `--scene pool`: the pool replaces the race.
     pool: Option<pool::PoolMode>,
+    /// `Some` with `--replay`: the feed's camera and image replace the orbit and the sky.
+    feed: Option<feed::FeedView>,
     race: race::Race,
     sea: ocean::WaveSet,
     span: (f64, f64),
@@ -142,14 +170,18 @@ impl App {
             }
             return;
         }
-        // The camera orbits the fleet's centre.
-        let mut scene = scene_at(&self.race, &self.sea, self.clock.t, None);
-        if !scene.boats.is_empty() {
-            let c =
-                scene.boats.iter().map(|b| b.position).sum::<DVec2>() / scene.boats.len() as f64;
-            self.orbit.target = DVec3::new(c.x, 0.0, c.y);
+        let mut scene = race_scene(&self.race, &self.sea, self.clock.t, &mut self.orbit);
+        // With a feed, its camera (mapped onto the race) replaces the orbit.
+        if let (Some(f), Some(st)) = (self.feed.as_mut(), self.state.as_mut()) {
+            let size = [st.surface.config.width, st.surface.config.height];
+            let wake = st.overlay.as_ref().and_then(|o| o.wake());
+            let format = st.surface.config.format;
+            if let Err(e) = f.prepare(&st.gpu, &mut st.renderer, format, wake, &scene, size) {
+                self.fail(el, e.to_string());
+                return;
+            }
+            f.apply(&mut scene);
         }
-        scene.camera = self.orbit.camera();
         let Some(st) = self.state.as_mut() else {
             return;
         };
@@ -183,14 +215,28 @@ impl App {
                 &st.window,
                 &st.gpu.device,
                 &st.gpu.queue,
-                &view,
+                &frame.texture,
                 size,
                 &self.race,
             );
         }
         st.window.pre_present_notify();
         st.gpu.queue.present(frame);
-        if st.overlay.as_mut().is_some_and(|o| o.frame_done()) {
+        if let Some(o) = st.overlay.as_mut()
+            && o.frame_done()
+        {
+            // The smoke test's exit: save what the window showed, if asked (REGATTA_SCREENSHOT).
+            let saved = o.save_screenshot(
+                &st.window,
+                &st.gpu,
+                &mut st.renderer,
+                &scene,
+                size,
+                &self.race,
+            );
+            if let Err(e) = saved {
+                self.fail(el, e);
+            }
             el.exit();
             return;
         }
@@ -210,14 +256,14 @@ impl ApplicationHandler for App {
         }
         let attrs = Window::default_attributes()
             .with_title("Regatta")
-            .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
+            .with_inner_size(overlay::window_size());
         let window = match el.create_window(attrs) {
             Ok(w) => Arc::new(w),
             Err(e) => return self.fail(el, format!("cannot open a window: {e}")),
         };
         let size = window.inner_size();
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
-            Ok((gpu, surface)) => {
+            Ok((gpu, mut surface)) => {
                 let mut renderer = Renderer::new(
                     &gpu,
                     surface.config.format,
@@ -233,13 +279,7 @@ impl ApplicationHandler for App {
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
                     let title = self.race.name.clone();
-                    overlay::Overlay::new(
-                        &window,
-                        &gpu.device,
-                        surface.config.format,
-                        &self.race,
-                        title,
-                    )
+                    overlay::Overlay::new(&window, &gpu.device, &mut surface, &self.race, title)
                 });
                 self.state = Some(State {
                     window,

@@ -30,6 +30,8 @@ pub struct Overlay {
     /// (`REGATTA_EXIT_AFTER_FRAMES`, for the smoke test).
     frames: u64,
     exit_after: Option<u64>,
+    /// The surface's colour format (the screenshot texture uses it too).
+    format: wgpu::TextureFormat,
 }
 
 /// The race clock the app starts with: paused at the start signal would show an empty sea, so
@@ -43,19 +45,42 @@ pub fn initial_clock(race: &race::Race) -> RaceClock {
     clock
 }
 
+/// The window's first size: 1280×720 points, or `REGATTA_WINDOW_SIZE=WxH` (physical pixels;
+/// the smoke test keeps lavapipe's frames small with it).
+pub fn window_size() -> winit::dpi::Size {
+    let env = std::env::var("REGATTA_WINDOW_SIZE").ok();
+    match env.as_deref().map(crate::cli::replay::parse_size) {
+        Some(Ok((w, h))) => winit::dpi::PhysicalSize::new(w, h).into(),
+        Some(Err(e)) => {
+            log::warn!("REGATTA_WINDOW_SIZE: {e}; opening 1280x720");
+            winit::dpi::LogicalSize::new(1280.0, 720.0).into()
+        }
+        None => winit::dpi::LogicalSize::new(1280.0, 720.0).into(),
+    }
+}
+
 /// The effect toggles the desktop offers.
 pub fn effect_toggles() -> Vec<ui::EffectToggle> {
     vec![ui::EffectToggle::new("wakes", "Wakes", true)]
 }
 
 impl Overlay {
+    /// Panels for `race` in `window`. The surface gets a non-sRGB view format: egui blends in
+    /// gamma space, so it paints through a `*Unorm` view of the `*UnormSrgb` surface texture
+    /// (through an sRGB view its translucent panels come out washed out).
     pub fn new(
         window: &Window,
         device: &wgpu::Device,
-        format: wgpu::TextureFormat,
+        surface: &mut render::gpu::SurfaceTarget,
         race: &race::Race,
         title: String,
     ) -> Self {
+        let format = surface.config.format;
+        let egui_format = format.remove_srgb_suffix();
+        if egui_format != format && !surface.config.view_formats.contains(&egui_format) {
+            surface.config.view_formats.push(egui_format);
+            surface.surface.configure(device, &surface.config);
+        }
         let ctx = egui::Context::default();
         let input = egui_winit::State::new(
             ctx.clone(),
@@ -66,7 +91,7 @@ impl Overlay {
             Some(device.limits().max_texture_dimension_2d as usize),
         );
         let painter =
-            egui_wgpu::Renderer::new(device, format, egui_wgpu::RendererOptions::default());
+            egui_wgpu::Renderer::new(device, egui_format, egui_wgpu::RendererOptions::default());
         Self {
             ctx,
             input,
@@ -80,6 +105,7 @@ impl Overlay {
             wake: crate::cli::render::race_wake(race).ok(),
             wakes_shown: true,
             frames: 0,
+            format,
             exit_after: std::env::var("REGATTA_EXIT_AFTER_FRAMES")
                 .ok()
                 .and_then(|v| v.parse().ok()),
@@ -129,22 +155,36 @@ impl Overlay {
         }
     }
 
+    /// The race's wakes when the "Wakes" toggle is on (for a renderer built afresh).
+    pub fn wake(&self) -> Option<Arc<Wake>> {
+        if self.wakes_shown {
+            self.wake.clone()
+        } else {
+            None
+        }
+    }
+
     /// Counts a drawn frame; true when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`).
     pub fn frame_done(&mut self) -> bool {
         self.frames += 1;
         self.exit_after.is_some_and(|n| self.frames >= n)
     }
 
-    /// Lays out the panels for race time `t` and paints them over `view` (`size` pixels).
+    /// Lays out the panels and paints them over `texture` (`size` pixels; its format, or its
+    /// non-sRGB twin among its view formats).
     pub fn paint(
         &mut self,
         window: &Window,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        view: &wgpu::TextureView,
+        texture: &wgpu::Texture,
         size: [u32; 2],
         race: &race::Race,
     ) {
+        let view = &texture.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(self.format.remove_srgb_suffix()),
+            ..Default::default()
+        });
         let raw = self.input.take_egui_input(window);
         let rows = ui::leaderboard_rows(race, self.panels.clock.time());
         let (panels, events, perf, title) =
@@ -167,9 +207,11 @@ impl Overlay {
             size_in_pixels: size,
             pixels_per_point: out.pixels_per_point,
         };
-        // Every frame's texture changes are applied and freed, or egui's font atlas goes stale.
-        for (id, delta) in &out.textures_delta.set {
-            for d in delta {
+        // Every frame's texture changes are applied and freed (and the delta marked handled),
+        // or egui's font atlas goes stale.
+        let mut delta = out.textures_delta;
+        for (id, image_delta) in &delta.set {
+            for d in image_delta {
                 self.painter.update_texture(device, queue, *id, d);
             }
         }
@@ -197,9 +239,65 @@ impl Overlay {
                 .render(&mut pass.forget_lifetime(), &jobs, &screen);
         }
         queue.submit(extra.into_iter().chain(std::iter::once(encoder.finish())));
-        for id in &out.textures_delta.free {
+        for id in &delta.free {
             self.painter.free_texture(id);
         }
+        delta.clear();
+    }
+}
+
+impl Overlay {
+    /// With `REGATTA_SCREENSHOT=FILE.png`, draws `scene` and the panels once more into an
+    /// offscreen texture of the surface's format and writes it as PNG (surface textures cannot
+    /// be read back). Errors are one sentence naming the file.
+    pub fn save_screenshot(
+        &mut self,
+        window: &Window,
+        gpu: &render::Gpu,
+        renderer: &mut render::Renderer,
+        scene: &render::Scene,
+        size: [u32; 2],
+        race: &race::Race,
+    ) -> Result<(), String> {
+        let Some(path) = std::env::var_os("REGATTA_SCREENSHOT") else {
+            return Ok(());
+        };
+        let path = std::path::PathBuf::from(path);
+        let format = self.format;
+        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("screenshot"),
+            size: wgpu::Extent3d {
+                width: size[0],
+                height: size[1],
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[format.remove_srgb_suffix()],
+        });
+        let view = texture.create_view(&Default::default());
+        renderer.render(gpu, &view, size, scene);
+        self.paint(window, &gpu.device, &gpu.queue, &texture, size, race);
+        let mut img = gpu
+            .read_texture(&texture)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        if matches!(
+            format,
+            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+        ) {
+            for p in img.pixels_mut() {
+                p.0.swap(0, 2);
+            }
+        }
+        img.save(&path).map_err(|e| {
+            format!(
+                "{}: the screenshot could not be written ({e})",
+                path.display()
+            )
+        })
     }
 }
 

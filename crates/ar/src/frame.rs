@@ -46,6 +46,13 @@ impl FrameImage {
         }
     }
 
+    /// The image as an `image` crate RGBA buffer (what the renderer's camera frame holds).
+    pub fn to_rgba_image(&self) -> image::RgbaImage {
+        let (w, h) = self.size();
+        image::RgbaImage::from_raw(w, h, self.to_rgba8())
+            .expect("to_rgba8 gives width × height × 4 bytes")
+    }
+
     /// The image as tightly packed RGBA8 (YUV through [`YuvToRgb`], BT.601 full range).
     pub fn to_rgba8(&self) -> Vec<u8> {
         match self {

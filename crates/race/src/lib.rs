@@ -24,6 +24,7 @@ pub mod course;
 pub mod error;
 pub mod geo;
 mod import;
+pub mod synth;
 pub mod track;
 
 pub use clean::{BoatReport, Spike};
@@ -223,7 +224,7 @@ impl Race {
         self.course.iter().map(|&i| &self.marks[i])
     }
 
-    /// Length of each leg (course[k-1] → course[k]), metres.
+    /// Length of each leg (`course[k - 1]` → `course[k]`), metres.
     pub fn leg_lengths(&self) -> Vec<f64> {
         self.course
             .windows(2)

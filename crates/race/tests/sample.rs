@@ -59,3 +59,16 @@ fn the_valencia_sample_loads_with_its_marks() {
             .all(|b| b.roundings().iter().all(|x| x.is_some()))
     );
 }
+
+#[test]
+fn the_committed_fleet_file_is_the_generator_output() {
+    let committed = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/races/fleet.json"
+    ))
+    .unwrap();
+    assert!(
+        committed == race::synth::fleet_race_json(),
+        "assets/races/fleet.json is stale: run scripts/gen-fleet-race.sh"
+    );
+}

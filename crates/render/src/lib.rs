@@ -12,7 +12,10 @@
 //! - [`camera`], [`scene`]: what a frame shows, in world f64; floating bodies.
 //! - [`clipmap`]: the LOD mesh from a screen-space error target, morphing, tile culling.
 //! - [`frame`]: the pass framework, the frame uniform and the planner's [`frame::FrameReport`].
-//! - [`passes`]: sky, water, boats. [`renderer`]: runs the passes; offscreen images.
+//! - [`passes`]: sky, water (with the boats' wakes), boats. [`renderer`]: runs the passes;
+//!   offscreen images; [`renderer::Renderer::set_wake`] gives it a race's wakes.
+//! - [`compute`]: the same WGSL sea on a compute shader (the f64 parity test);
+//!   [`mesh_error`]: a clip-map's measured screen-space height error (the mesh bench).
 //!
 //! # Adding a pass (effects, wakes, pool)
 //! 1. **WGSL**: one file `shaders/<name>.wgsl` with `vs_main`/`fs_main` (or `cs_main`). It is

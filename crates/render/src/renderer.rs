@@ -6,8 +6,7 @@ use std::sync::Arc;
 use glam::DVec2;
 
 use crate::frame::{
-    ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, Targets,
-    WakeRecord,
+    ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, Targets, WakeRecord,
 };
 use crate::gpu::Gpu;
 use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
@@ -39,6 +38,14 @@ impl Default for RenderOptions {
     }
 }
 
+/// Pipeline-statistics queries: primitives entering the clipper, one query per pass.
+struct Stats {
+    queries: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read: wgpu::Buffer,
+    capacity: u32,
+}
+
 struct Timer {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
@@ -53,6 +60,7 @@ pub struct Renderer {
     passes: Vec<Box<dyn Pass>>,
     depth: Option<(wgpu::Texture, wgpu::TextureView)>,
     timer: Option<Timer>,
+    stats: Option<Stats>,
     wake: Option<Arc<ocean::wake::Wake>>,
 }
 
@@ -102,6 +110,39 @@ impl Renderer {
                     capacity,
                 }
             });
+        let stats = gpu
+            .features
+            .contains(wgpu::Features::PIPELINE_STATISTICS_QUERY)
+            .then(|| {
+                let capacity = 16;
+                let size = u64::from(capacity) * 8;
+                let buffer = |label, usage| {
+                    device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some(label),
+                        size,
+                        usage,
+                        mapped_at_creation: false,
+                    })
+                };
+                Stats {
+                    queries: device.create_query_set(&wgpu::QuerySetDescriptor {
+                        label: Some("pass primitives"),
+                        ty: wgpu::QueryType::PipelineStatistics(
+                            wgpu::PipelineStatisticsTypes::CLIPPER_INVOCATIONS,
+                        ),
+                        count: capacity,
+                    }),
+                    resolve: buffer(
+                        "primitives",
+                        wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                    ),
+                    read: buffer(
+                        "primitives read",
+                        wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    ),
+                    capacity,
+                }
+            });
         Renderer {
             targets,
             options,
@@ -109,6 +150,7 @@ impl Renderer {
             passes,
             depth: None,
             timer,
+            stats,
             wake: None,
         }
     }
@@ -204,6 +246,11 @@ impl Renderer {
             .timer
             .as_ref()
             .filter(|t| self.options.measure_gpu_time && run.len() * 2 <= t.capacity as usize);
+        // Pipeline statistics block on a read-back too: only when measuring.
+        let stats = self
+            .stats
+            .as_ref()
+            .filter(|s| self.options.measure_gpu_time && run.len() <= s.capacity as usize);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         if run.is_empty() {
             // Nothing is needed: still clear, so the frame shows no stale image.
@@ -242,7 +289,20 @@ impl Renderer {
                 multiview_mask: None,
             });
             pass.set_bind_group(0, &self.bindings.group, &[]);
+            if let Some(st) = stats {
+                pass.begin_pipeline_statistics_query(&st.queries, k as u32);
+            }
             records[i].triangles = self.passes[i].draw(&mut pass);
+            if stats.is_some() {
+                pass.end_pipeline_statistics_query();
+            }
+        }
+        if let Some(st) = stats
+            && !run.is_empty()
+        {
+            let n = run.len() as u32;
+            enc.resolve_query_set(&st.queries, 0..n, &st.resolve, 0);
+            enc.copy_buffer_to_buffer(&st.resolve, 0, &st.read, 0, u64::from(n) * 8);
         }
         if let Some(t) = timer
             && !run.is_empty()
@@ -267,13 +327,28 @@ impl Renderer {
                 Err(e) => log::warn!("no GPU timings this frame: {e}"),
             }
         }
+        let mut triangles_source = "counted";
+        if let Some(st) = stats
+            && !run.is_empty()
+        {
+            match gpu.read_buffer(&st.read) {
+                Ok(bytes) => {
+                    let prims: &[u64] = bytemuck::cast_slice(&bytes);
+                    for (k, &i) in run.iter().enumerate() {
+                        records[i].triangles = prims[k];
+                    }
+                    triangles_source = "pipeline_statistics";
+                }
+                Err(e) => log::warn!("no pipeline statistics this frame: {e}"),
+            }
+        }
         let gpu_ms = records.iter().filter_map(|r| r.gpu_ms).reduce(|a, b| a + b);
         FrameReport {
             t: scene.t,
             size,
             adapter: gpu.describe(),
             triangles: records.iter().map(|r| r.triangles).sum(),
-            triangles_source: "counted".into(),
+            triangles_source: triangles_source.into(),
             passes: records,
             gpu_ms,
             clipmap: ClipMapRecord::of(&frame),

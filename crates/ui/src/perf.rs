@@ -96,6 +96,7 @@ pub fn perf_ui(ui: &mut Ui, stats: &PerfStats) {
     if !stats.adapter.is_empty() {
         ui.label(RichText::new(&stats.adapter).small().weak());
     }
+    ui.set_max_width(420.0);
     egui::Grid::new("perf-passes")
         .num_columns(4)
         .spacing([8.0, 2.0])
@@ -120,7 +121,9 @@ pub fn perf_ui(ui: &mut Ui, stats: &PerfStats) {
                     ui.label(RichText::new("skipped").monospace().weak());
                     ui.label("");
                 }
-                ui.label(RichText::new(&p.reason).small());
+                // The planner's reasons can be long: one line each, the whole reason on hover.
+                ui.add(egui::Label::new(RichText::new(&p.reason).small()).truncate())
+                    .on_hover_text(&p.reason);
                 ui.end_row();
             }
         });

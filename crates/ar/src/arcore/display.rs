@@ -54,7 +54,11 @@ pub fn display_uv_transform(
     let turn = (sensor_orientation + 360 - rotation.degrees()) % 360;
     let (iw, ih) = (f64::from(image.0.max(1)), f64::from(image.1.max(1)));
     // The image as it appears on screen, before cropping.
-    let (rw, rh) = if turn.is_multiple_of(180) { (iw, ih) } else { (ih, iw) };
+    let (rw, rh) = if turn.is_multiple_of(180) {
+        (iw, ih)
+    } else {
+        (ih, iw)
+    };
     let (vw, vh) = (f64::from(view.0.max(1)), f64::from(view.1.max(1)));
     let scale = (vw / rw).max(vh / rh);
     let visible = DVec2::new(vw / scale / rw, vh / scale / rh);

@@ -250,10 +250,9 @@ mod tests {
         let m = YuvToRgb::bt601(YuvRange::Limited);
         let c = m.to_gpu_columns();
         let s = [0.3f32, 0.6, 0.2];
-        for r in 0..3 {
+        for (r, (row, off)) in m.matrix.iter().zip(m.offset).enumerate() {
             let gpu = c[0][r] * s[0] + c[1][r] * s[1] + c[2][r] * s[2] + c[3][r];
-            let cpu =
-                m.matrix[r][0] * 0.3 + m.matrix[r][1] * 0.6 + m.matrix[r][2] * 0.2 + m.offset[r];
+            let cpu = row[0] * 0.3 + row[1] * 0.6 + row[2] * 0.2 + off;
             assert!((f64::from(gpu) - cpu).abs() < 1e-6);
         }
     }

@@ -76,6 +76,13 @@ pub(crate) fn term_bound(c: f64, q: f64, r: f64) -> f64 {
     c * (q * q / r.powi(5) + 3.0 * q / r.powi(4))
 }
 
+impl GpuWakeFrame {
+    /// The sources as the bytes of a storage buffer of `WakeSource` (shaders/wake.wgsl).
+    pub fn bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.sources)
+    }
+}
+
 /// r_c of a source (module docs); `c` = F/(√2πρg)·w(s)·|ΔX|.
 pub(crate) fn cull_radius(c: f64, q: f64, hull_radius: f64, epsilon: f64) -> f64 {
     let r_m = (q * hull_radius / 2.0).sqrt();
@@ -150,8 +157,11 @@ pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
     }
     let r = r2.sqrt();
     let phi = s.q / r;
+    // As the WGSL: Φ reduced to [−π, π] in f32 (WGSL's round is ties-to-even).
+    let tau = std::f32::consts::TAU;
+    let phi_r = phi - tau * (phi / tau).round_ties_even();
     let amp = s.strength * k * k / r * (-g).exp();
-    let (sn, cs) = phi.sin_cos();
+    let (sn, cs) = phi_r.sin_cos();
     let bracket = sn + (4.0 * g - 3.0) / phi * cs;
     -amp * bracket * (d[0] * s.dx[0] + d[1] * s.dx[1]) / r
 }
@@ -171,14 +181,21 @@ pub fn wake_foam_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> f32 {
     (1.0 - (-sum).exp()).clamp(0.0, 1.0)
 }
 
+/// sin/cos absolute error of an IEEE f32 CPU libm (≈ 1 ulp of 1).
+pub const CPU_SIN_ERROR: f64 = 1.2e-7;
+/// sin/cos absolute error WGSL allows in [−π, π] (2⁻¹¹): a GPU's `wake_height` is within
+/// `f32_height_error_bound(.., WGSL_SIN_ERROR)` of the f64 terms.
+pub const WGSL_SIN_ERROR: f64 = 1.0 / 2048.0;
+
 /// A first-order bound of |wake_height_f32 − Σ f64 terms of the same sources| at local point
-/// `p`, m, for IEEE f32 with sin/cos/exp within a few ulp (u = 2⁻²⁴). Per source, with
-/// T = C (k*²/r) e^{−G}(1 + |4G − 3|/Φ)(1 + 1/Φ) the size of the term and its Φ-derivative,
-/// the rounding of p, pos, q and r gives r a relative error ε_r = 2u(|p| + |pos|)/r + 2u,
-/// which moves Φ ∝ 1/r by Φε_r, the amplitude ∝ r⁻⁵ by 5ε_r and G ∝ r⁻⁴ by 4Gε_r; the ~16
-/// roundings of the formula add 16u per unit of Φ-error and 16u of the amplitude:
-/// bound = Σ T [(Φ + 16)·8u + (Φ + 4G + 6) ε_r].
-pub fn f32_height_error_bound(sources: &[GpuWakeSource], p: [f32; 2]) -> f64 {
+/// `p`, m, for IEEE f32 arithmetic, exp within a few ulp and sin/cos within `sin_error`
+/// (absolute) on [−π, π]. Per source, with T = C (k*²/r) e^{−G}(1 + |4G − 3|/Φ)(1 + 1/Φ) the
+/// size of the term and its Φ-derivative, the rounding of p, pos, q and r gives r a relative
+/// error ε_r = 2u(|p| + |pos|)/r + 2u (u = 2⁻²⁴), which moves Φ ∝ 1/r by Φε_r, the amplitude
+/// ∝ r⁻⁵ by 5ε_r and G ∝ r⁻⁴ by 4Gε_r; the reduction of Φ to [−π, π] and the ~16 roundings of
+/// the formula add 12u per unit of Φ and 16u of the amplitude, and sin and cos their own error:
+/// bound = Σ T [(Φ + 16)·12u + (Φ + 4G + 6) ε_r + 2 sin_error].
+pub fn f32_height_error_bound(sources: &[GpuWakeSource], p: [f32; 2], sin_error: f64) -> f64 {
     const U: f64 = 1.0 / 16_777_216.0;
     let mut b = 0.0;
     for s in sources {
@@ -203,7 +220,7 @@ pub fn f32_height_error_bound(sources: &[GpuWakeSource], p: [f32; 2]) -> f64 {
         let pn = (p[0] as f64).hypot(p[1] as f64);
         let sn = (s.pos[0] as f64).hypot(s.pos[1] as f64);
         let eps_r = 2.0 * U * (pn + sn) / r + 2.0 * U;
-        b += t * ((phi + 16.0) * 8.0 * U + (phi + 4.0 * g + 6.0) * eps_r);
+        b += t * ((phi + 16.0) * 12.0 * U + (phi + 4.0 * g + 6.0) * eps_r + 2.0 * sin_error);
     }
     b
 }

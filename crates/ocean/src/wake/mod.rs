@@ -22,14 +22,16 @@
 //!
 //! ```text
 //! let frame = wake.gpu_sources(t, origin, &WakeView { min, max }, 1e-6);
-//! // upload bytemuck::cast_slice(&frame.sources) as a storage buffer of WakeSource
+//! // upload frame.bytes() as a storage buffer of WakeSource
 //! // (shaders/wake.wgsl); the vertex shader adds wake_height(p) to y, the fragment shader
 //! // mixes wake_foam(p) into the sea foam, p = world (x, z) − origin, both f32.
 //! ```
 //!
 //! The cost per point is the number of sources that reach the view, not the course size or a
 //! texture. `wake_height_f32`/`wake_foam_f32` are the CPU mirrors of the WGSL; culling and f32
-//! have stated error bounds (`GpuWakeFrame::cull_bound`, `f32_height_error_bound`).
+//! have stated error bounds (`GpuWakeFrame::cull_bound`, `f32_height_error_bound` with
+//! `WGSL_SIN_ERROR` for a GPU). `app/tests/wake_gpu.rs` runs the WGSL in a compute pass and
+//! checks it against the mirror.
 
 pub mod gpu;
 pub mod kelvin;
@@ -42,7 +44,8 @@ mod track;
 mod tests;
 
 pub use gpu::{
-    GpuWakeFrame, GpuWakeSource, WakeView, f32_height_error_bound, wake_foam_f32, wake_height_f32,
+    CPU_SIN_ERROR, GpuWakeFrame, GpuWakeSource, WGSL_SIN_ERROR, WakeView, f32_height_error_bound,
+    wake_foam_f32, wake_height_f32,
 };
 pub use kelvin::{KelvinSource, SEA_WATER_DENSITY, Wake, WakeParams};
 pub use reference::{SteadyPatch, kelvin_reference, kelvin_wave_height};

@@ -232,7 +232,7 @@ fn f32_buffer_matches_f64_within_the_stated_bounds_far_from_the_origin() {
             let pf = [p[0] as f32, p[1] as f32];
             let h32 = wake_height_f32(&frame.sources, pf) as f64;
             let h64 = frame_height_f64(&wake, t_end, origin, &view, eps, p);
-            let bound = f32_height_error_bound(&frame.sources, pf);
+            let bound = f32_height_error_bound(&frame.sources, pf, gpu::CPU_SIN_ERROR);
             assert!(
                 (h32 - h64).abs() <= bound + 1e-9,
                 "{p:?}: {h32} vs {h64}, bound {bound}"
@@ -395,5 +395,45 @@ proptest! {
             prop_assert!(wake_height_f32(&frame.sources, q).is_finite());
             prop_assert!((0.0..=1.0).contains(&wake_foam_f32(&frame.sources, q)));
         }
+    }
+}
+
+#[test]
+fn a_turning_boats_wake_follows_its_curved_path() {
+    // A boat on a circle of 60 m radius at 4 m/s (anticlockwise from (60, 0)).
+    let (rad, u) = (60.0, 4.0);
+    let track: Vec<TrackSample> = (0..=200)
+        .map(|i| {
+            let t = 0.5 * i as f64;
+            let a = u * t / rad;
+            TrackSample {
+                t,
+                x: rad * a.cos(),
+                z: rad * a.sin(),
+            }
+        })
+        .collect();
+    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
+    let t = 100.0;
+    for back in [5.0, 10.0, 20.0] {
+        // Where the boat was `back` s ago: on the circle, foam and waves are there.
+        let a = u * (t - back) / rad;
+        let on_path = [rad * a.cos(), rad * a.sin()];
+        // Where a straight wake (along the current heading, backwards) would put it.
+        let a_now = u * t / rad;
+        let heading = [-a_now.sin(), a_now.cos()];
+        let now = [rad * a_now.cos(), rad * a_now.sin()];
+        let straight = [
+            now[0] - heading[0] * u * back,
+            now[1] - heading[1] * u * back,
+        ];
+        let off = ((on_path[0] - straight[0]).powi(2) + (on_path[1] - straight[1]).powi(2)).sqrt();
+        assert!(off > 3.0, "test geometry: {off}");
+        let f_on = wake.foam(on_path, t);
+        let f_off = wake.foam(straight, t);
+        assert!(
+            f_on > 0.1 && f_off < 0.5 * f_on,
+            "{back} s back: on path {f_on}, straight {f_off}"
+        );
     }
 }

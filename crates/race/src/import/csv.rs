@@ -10,7 +10,7 @@ use time::PrimitiveDateTime;
 use time::format_description::well_known::Rfc3339;
 use time::macros::format_description;
 
-use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Source, Times, unix_seconds};
+use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Source, Times, epoch_seconds};
 use crate::Wind;
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
@@ -34,7 +34,7 @@ fn unit_of(name: &str) -> f64 {
     } else if name.contains("m_s") || name.contains("mps") || name.contains("m/s") {
         1.0
     } else {
-        super::knots(1.0)
+        super::knots_to_mps(1.0)
     }
 }
 
@@ -85,10 +85,10 @@ fn parse_time(cell: &str) -> Option<(f64, Times)> {
     if let Ok(t) =
         PrimitiveDateTime::parse(c, fmt).or_else(|_| PrimitiveDateTime::parse(c, fmt_frac))
     {
-        return Some((unix_seconds(t.assume_utc()), Times::Absolute));
+        return Some((epoch_seconds(t.assume_utc()), Times::Absolute));
     }
     if let Ok(t) = time::OffsetDateTime::parse(c, &Rfc3339) {
-        return Some((unix_seconds(t), Times::Absolute));
+        return Some((epoch_seconds(t), Times::Absolute));
     }
     c.parse::<f64>()
         .ok()
@@ -218,7 +218,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         id,
         color: None,
         points,
-        max_speed_mps: (1.2 * max_sog).max(super::knots(DEFAULT_MAX_SPEED_KN)),
+        max_speed_mps: (1.2 * max_sog).max(super::knots_to_mps(DEFAULT_MAX_SPEED_KN)),
     });
     Ok(s)
 }

@@ -3,7 +3,7 @@
 //! with a warning, instead of refused.
 
 use super::{
-    Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawMark, RawPoint, Source, Times, unix_seconds,
+    Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawMark, RawPoint, Source, Times, epoch_seconds,
 };
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
@@ -70,7 +70,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
                     ));
                 };
                 points.push(RawPoint {
-                    t: unix_seconds(t.into()),
+                    t: epoch_seconds(t.into()),
                     c: [lat, lon],
                     logged: Logged {
                         heading: f32::NAN,
@@ -91,7 +91,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             id,
             color: None,
             points,
-            max_speed_mps: super::knots(DEFAULT_MAX_SPEED_KN),
+            max_speed_mps: super::knots_to_mps(DEFAULT_MAX_SPEED_KN),
         });
     }
     for (k, w) in g.waypoints.iter().enumerate() {

@@ -5,7 +5,7 @@
 
 use serde::Deserialize;
 
-use super::{Coords, RawBoat, RawMark, RawPoint, Source, Times, unix_seconds};
+use super::{Coords, RawBoat, RawMark, RawPoint, Source, Times, epoch_seconds};
 use crate::Wind;
 use crate::error::{RaceError, RaceResult};
 use crate::geo::GeoPoint;
@@ -67,7 +67,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
                     format!("\"start_time\" is \"{st}\", not an RFC 3339 time such as 2025-06-21T11:23:29Z"),
                 )
             })?;
-        s.start_time = Some(unix_seconds(t));
+        s.start_time = Some(epoch_seconds(t));
     }
     s.course = r.course;
     if let Some(w) = r.wind {
@@ -116,7 +116,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             ));
         }
         let max_speed_mps = match b.max_speed_kn {
-            Some(k) if k.is_finite() && k > 0.0 => super::knots(k),
+            Some(k) if k.is_finite() && k > 0.0 => super::knots_to_mps(k),
             Some(k) => {
                 return Err(RaceError::in_file(
                     file,

@@ -63,7 +63,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     {
         s.wind = Some(Wind {
             from_deg: d.rem_euclid(360.0),
-            speed_mps: super::knots(k),
+            speed_mps: super::knots_to_mps(k),
         });
     }
     if let (Some(min), Some(track)) = (m.MINUTO_SALIDA, m.ARCHIVO_TRACK)

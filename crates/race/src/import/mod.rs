@@ -127,7 +127,7 @@ pub(crate) fn boat_id_from_file(file: &str) -> String {
 /// ~1.7e8 s, resolved to 3e-8 s in f64 (Unix seconds would keep only 2.4e-7 s).
 pub(crate) const EPOCH_UNIX: i64 = 1_577_836_800;
 
-pub(crate) fn unix_seconds(t: OffsetDateTime) -> f64 {
+pub(crate) fn epoch_seconds(t: OffsetDateTime) -> f64 {
     (t.unix_timestamp() - EPOCH_UNIX) as f64 + t.nanosecond() as f64 * 1e-9
 }
 
@@ -486,6 +486,6 @@ pub(crate) fn geo_problem(lat: f64, lon: f64) -> Option<String> {
     }
 }
 
-pub(crate) fn knots(v: f64) -> f64 {
+pub(crate) fn knots_to_mps(v: f64) -> f64 {
     v * MPS_PER_KNOT
 }

@@ -14,9 +14,91 @@ use crate::shader;
 /// The wake sources' bind group (group 1) of the water pass.
 struct WakeBinding {
     layout: wgpu::BindGroupLayout,
-    buffer: Option<wgpu::Buffer>,
+    /// Sources, bins, indices, grid.
+    buffers: [Option<wgpu::Buffer>; 4],
     group: Option<wgpu::BindGroup>,
 }
+
+/// `WakeGrid` of `shaders/water_wakes.wgsl` (32 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WakeGrid {
+    pub origin: [f32; 2],
+    pub inv_cell: f32,
+    pub margin: f32,
+    pub nx: u32,
+    pub nz: u32,
+    pub _pad: [u32; 2],
+}
+
+/// The wake sources binned on a grid: a point looks up its bin and sums only the sources
+/// listed there. Every source whose cull circle, grown by `margin`, touches a bin is listed
+/// in it, so a point within `margin` of a bin's points misses no source that reaches it.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct WakeBins {
+    pub grid: WakeGrid,
+    /// Per bin, row-major (x fastest): first index into `indices` and count.
+    pub bins: Vec<[u32; 2]>,
+    pub indices: Vec<u32>,
+}
+
+impl WakeBins {
+    /// Bin `sources` over the local rectangle [lo, hi] with at most `max_bins` per side.
+    pub fn new(
+        sources: &[ocean::wake::GpuWakeSource],
+        lo: [f32; 2],
+        hi: [f32; 2],
+        max_bins: u32,
+        margin: f32,
+    ) -> WakeBins {
+        let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1.0);
+        let cell = (size / max_bins as f32).max(2.0);
+        let nx = (((hi[0] - lo[0]) / cell).ceil() as u32).clamp(1, max_bins);
+        let nz = (((hi[1] - lo[1]) / cell).ceil() as u32).clamp(1, max_bins);
+        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
+        let bin_of =
+            |v: f32, o: f32, n: u32| ((v - o) / cell).floor().clamp(0.0, n as f32 - 1.0) as u32;
+        for (k, s) in sources.iter().enumerate() {
+            let r = s.cull_r2.max(0.0).sqrt() + margin;
+            let (x0, x1) = (s.pos[0] - r, s.pos[0] + r);
+            let (z0, z1) = (s.pos[1] - r, s.pos[1] + r);
+            if x1 < lo[0]
+                || z1 < lo[1]
+                || x0 > lo[0] + nx as f32 * cell
+                || z0 > lo[1] + nz as f32 * cell
+            {
+                continue;
+            }
+            for j in bin_of(z0, lo[1], nz)..=bin_of(z1, lo[1], nz) {
+                for i in bin_of(x0, lo[0], nx)..=bin_of(x1, lo[0], nx) {
+                    lists[(j * nx + i) as usize].push(k as u32);
+                }
+            }
+        }
+        let mut bins = Vec::with_capacity(lists.len());
+        let mut indices = Vec::new();
+        for l in &lists {
+            bins.push([indices.len() as u32, l.len() as u32]);
+            indices.extend_from_slice(l);
+        }
+        WakeBins {
+            grid: WakeGrid {
+                origin: lo,
+                inv_cell: 1.0 / cell,
+                margin,
+                nx,
+                nz,
+                _pad: [0; 2],
+            },
+            bins,
+            indices,
+        }
+    }
+}
+
+/// Bins per side of the wake grid, and how far (m) a gradient stencil may reach.
+const WAKE_BINS: u32 = 64;
+const WAKE_MARGIN_M: f32 = 2.0;
 
 pub struct WaterPass {
     pipeline: wgpu::RenderPipeline,
@@ -32,7 +114,7 @@ pub fn supports_wakes(adapter: &wgpu::Adapter) -> bool {
         .get_downlevel_capabilities()
         .flags
         .contains(wgpu::DownlevelFlags::VERTEX_STORAGE)
-        && adapter.limits().max_storage_buffers_per_shader_stage > 0
+        && adapter.limits().max_storage_buffers_per_shader_stage >= 3
 }
 
 impl WaterPass {
@@ -46,18 +128,22 @@ impl WaterPass {
         let wakes = wakes.then(|| WakeBinding {
             layout: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("wake sources"),
-                entries: &[wgpu::BindGroupLayoutEntry {
-                    binding: 0,
+                entries: &[0, 1, 2, 3].map(|binding| wgpu::BindGroupLayoutEntry {
+                    binding,
                     visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                     ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        ty: if binding == 3 {
+                            wgpu::BufferBindingType::Uniform
+                        } else {
+                            wgpu::BufferBindingType::Storage { read_only: true }
+                        },
                         has_dynamic_offset: false,
                         min_binding_size: None,
                     },
                     count: None,
-                }],
+                }),
             }),
-            buffer: None,
+            buffers: [None, None, None, None],
             group: None,
         });
         let module = match wakes {
@@ -153,28 +239,58 @@ impl Pass for WaterPass {
         );
         self.index_count = frame.mesh.indices.len() as u32;
         if let Some(w) = self.wakes.as_mut() {
-            // At least one (zeroed, never read: counts.z says how many are live) source, so
-            // the binding is never empty.
-            let sources = &frame.wakes.sources;
-            let zero = [ocean::wake::GpuWakeSource::default()];
-            let data: &[ocean::wake::GpuWakeSource] =
-                if sources.is_empty() { &zero } else { sources };
-            let old = w.buffer.as_ref().map(|b| b.size());
-            upload(
-                gpu,
-                &mut w.buffer,
-                wgpu::BufferUsages::STORAGE,
-                bytemuck::cast_slice(data),
+            // Bin over the clip-map's square around the local origin.
+            let h = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
+            let bins = WakeBins::new(
+                &frame.wakes.sources,
+                [-h, -h],
+                [h, h],
+                WAKE_BINS,
+                WAKE_MARGIN_M,
             );
-            if w.group.is_none() || w.buffer.as_ref().map(|b| b.size()) != old {
-                let buffer = w.buffer.as_ref().expect("uploaded above");
+            // Buffers are never empty (a zeroed entry is never read: counts say what is live).
+            let zero = [ocean::wake::GpuWakeSource::default()];
+            let sources: &[ocean::wake::GpuWakeSource] = if frame.wakes.sources.is_empty() {
+                &zero
+            } else {
+                &frame.wakes.sources
+            };
+            let indices: &[u32] = if bins.indices.is_empty() {
+                &[0]
+            } else {
+                &bins.indices
+            };
+            let data: [(&[u8], wgpu::BufferUsages); 4] = [
+                (bytemuck::cast_slice(sources), wgpu::BufferUsages::STORAGE),
+                (
+                    bytemuck::cast_slice(&bins.bins),
+                    wgpu::BufferUsages::STORAGE,
+                ),
+                (bytemuck::cast_slice(indices), wgpu::BufferUsages::STORAGE),
+                (bytemuck::bytes_of(&bins.grid), wgpu::BufferUsages::UNIFORM),
+            ];
+            let mut regrouped = w.group.is_none();
+            for (slot, (bytes, usage)) in w.buffers.iter_mut().zip(data) {
+                let old = slot.as_ref().map(|b| b.size());
+                upload(gpu, slot, usage, bytes);
+                regrouped |= slot.as_ref().map(|b| b.size()) != old;
+            }
+            if regrouped {
+                let entries: Vec<wgpu::BindGroupEntry> = w
+                    .buffers
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, b)| {
+                        b.as_ref().map(|b| wgpu::BindGroupEntry {
+                            binding: i as u32,
+                            resource: b.as_entire_binding(),
+                        })
+                    })
+                    .collect();
                 w.group = Some(gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("wake sources"),
                     layout: &w.layout,
-                    entries: &[wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: buffer.as_entire_binding(),
-                    }],
+                    entries: &entries,
                 }));
             }
         }
@@ -191,5 +307,51 @@ impl Pass for WaterPass {
         pass.set_index_buffer(i.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..self.index_count, 0, 0..1);
         u64::from(self.index_count / 3)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ocean::wake::GpuWakeSource;
+
+    #[test]
+    fn every_source_reaching_a_point_is_in_its_bin() {
+        // Sources scattered over a square, each reaching a different radius.
+        let sources: Vec<GpuWakeSource> = (0..300)
+            .map(|k| {
+                let f = k as f32;
+                GpuWakeSource {
+                    pos: [(f * 37.3) % 400.0 - 200.0, (f * 91.7) % 400.0 - 200.0],
+                    cull_r2: (1.0 + (f * 13.1) % 30.0).powi(2),
+                    ..Default::default()
+                }
+            })
+            .collect();
+        let bins = WakeBins::new(&sources, [-250.0, -250.0], [250.0, 250.0], 32, 2.0);
+        let g = bins.grid;
+        let mut listed = 0usize;
+        for a in 0..97 {
+            for b in 0..89 {
+                let p = [-249.0 + a as f32 * 5.13, -249.0 + b as f32 * 5.59];
+                let i = ((p[0] - g.origin[0]) * g.inv_cell) as u32;
+                let j = ((p[1] - g.origin[1]) * g.inv_cell) as u32;
+                let [first, count] = bins.bins[(j * g.nx + i) as usize];
+                let list = &bins.indices[first as usize..(first + count) as usize];
+                listed += list.len();
+                // Any stencil point within the margin: every source whose cull circle holds
+                // it is listed.
+                for q in [p, [p[0] + 1.9, p[1]], [p[0], p[1] - 1.9]] {
+                    for (k, s) in sources.iter().enumerate() {
+                        let d2 = (q[0] - s.pos[0]).powi(2) + (q[1] - s.pos[1]).powi(2);
+                        if d2 <= s.cull_r2 {
+                            assert!(list.contains(&(k as u32)), "source {k} missing at {q:?}");
+                        }
+                    }
+                }
+            }
+        }
+        // And binning saves work: far fewer than all sources per point on average.
+        assert!(listed < 97 * 89 * sources.len() / 5, "{listed}");
     }
 }

@@ -20,7 +20,8 @@
 //! applies absorption along the view path).
 //!
 //! The GPU pass does the same: it draws the same triangles into the same net with additive
-//! blending, each fragment adding Φ / A_r; this CPU version is its f64 reference.
+//! blending, each fragment adding Φ / A_r (A⊥/A_r from the screen derivatives of the surface
+//! position, exact because it is affine within a triangle); this is its f64 reference.
 
 use glam::DVec3;
 

@@ -16,7 +16,7 @@
 //!
 //! **The pool in AR.** [`PoolView::model`] maps pool space into the world, the same similarity
 //! (table anchor pose times `course_to_table` scale) that stands the race course on the
-//! detected table. The frame uniform's view-projection is `camera · model`, and the eye and the
+//! detected table ([`PoolView::standing_on`]). The frame uniform's view-projection is `camera · model`, and the eye and the
 //! sun are taken into pool space by `model⁻¹`, so every shader works in pool metres whatever
 //! the table's pose and scale.
 
@@ -72,11 +72,11 @@ pub struct PoolUniform {
     pub ripple: [f32; 4],
     /// Ripple σ, ε, refractive index, wall thickness.
     pub ripple2: [f32; 4],
-    /// Net half extents x, z; 0; 0.
+    /// Net half extents x, z; caustics map texels along x, z.
     pub net: [f32; 4],
     /// Rest-point grid half extents x, z (the pool's); caustic grid cells; water grid cells.
     pub grid: [f32; 4],
-    /// Spheres, rings, waves, 0.
+    /// Spheres, rings, waves, 1 when drawn over the camera image (AR).
     pub counts: [u32; 4],
     pub spheres: [GpuSphere; MAX_SPHERES],
     pub rings: [GpuRing; MAX_RINGS],
@@ -115,9 +115,22 @@ pub struct PoolView {
     pub model: DMat4,
     /// Viewport, pixels.
     pub size: [u32; 2],
+    /// AR: draw only the pool (and what it reflects and refracts) over the camera image already
+    /// in the target; no ground, no sky behind it.
+    pub over_camera_image: bool,
 }
 
 impl PoolView {
+    /// The model matrix that stands the tub on a table: `table` maps a table frame (y up, its
+    /// origin the tapped point on the detected plane, metres scaled as the user pinched) into
+    /// the AR world; in the app it is the race course's own `CoursePlacement::race_to_ar()`.
+    /// Pool space is lifted so that the bottom of the tub (floor minus wall thickness) rests
+    /// on the table's origin.
+    pub fn standing_on(table: DMat4, scene: &PoolScene, settings: &PoolSettings) -> DMat4 {
+        let bottom = scene.pool.floor_y - settings.wall;
+        table * DMat4::from_translation(glam::DVec3::new(0.0, -bottom, 0.0))
+    }
+
     /// The desktop default: looking into the pool from the south-east and above.
     pub fn default_desktop(size: [u32; 2]) -> PoolView {
         PoolView {
@@ -128,6 +141,7 @@ impl PoolView {
             ),
             model: DMat4::IDENTITY,
             size,
+            over_camera_image: false,
         }
     }
 }
@@ -140,6 +154,8 @@ pub struct PoolFrame {
     pub frame: FrameUniform,
     pub waves: Vec<GpuWave>,
     pub pool: Box<PoolUniform>,
+    /// Keep the target's contents (the AR camera image) instead of clearing it.
+    pub over_camera_image: bool,
     /// Spheres and rings that did not fit the shader's arrays (logged; 0 for the default scene).
     pub dropped: usize,
 }
@@ -183,7 +199,8 @@ impl PoolFrame {
             ripple2: [f(m.packet_width), f(m.core), f(scene.ior), f(settings.wall)],
             net: {
                 let [nx, nz] = scene.pool.net_half_extent();
-                [f(nx), f(nz), 0.0, 0.0]
+                let texels = settings.caustic_size as f32;
+                [f(nx), f(nz), texels, texels]
             },
             grid: {
                 [
@@ -197,7 +214,7 @@ impl PoolFrame {
                 spheres.len().min(MAX_SPHERES) as u32,
                 rings.len().min(MAX_RINGS) as u32,
                 waves.len() as u32,
-                0,
+                u32::from(view.over_camera_image),
             ],
             spheres: [GpuSphere::default(); MAX_SPHERES],
             rings: [GpuRing::default(); MAX_RINGS],
@@ -237,6 +254,7 @@ impl PoolFrame {
             frame,
             waves,
             pool,
+            over_camera_image: view.over_camera_image,
             dropped,
         }
     }
@@ -267,9 +285,9 @@ pub struct PoolRenderer {
     caustics: wgpu::RenderPipeline,
     scene: wgpu::RenderPipeline,
     water: wgpu::RenderPipeline,
-    /// Indices of the water grid's triangles over its (n + 1)² vertices.
-    water_indices: wgpu::Buffer,
-    water_index_count: u32,
+    /// Indices of the caustic and water grids' triangles over their (n + 1)² vertices.
+    caustic_indices: (wgpu::Buffer, u32),
+    water_indices: (wgpu::Buffer, u32),
     depth: Option<(wgpu::Texture, wgpu::TextureView)>,
 }
 
@@ -463,18 +481,21 @@ impl PoolRenderer {
                 depth: depth_state(wgpu::CompareFunction::Less),
             },
         );
-        let indices = grid_indices(settings.water_grid);
-        let water_indices = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("pool water indices"),
-            size: (indices.len() * 4) as u64,
-            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        gpu.queue
-            .write_buffer(&water_indices, 0, bytemuck::cast_slice(&indices));
+        let index_buffer = |label, n| {
+            let indices = grid_indices(n);
+            let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (indices.len() * 4) as u64,
+                usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            gpu.queue
+                .write_buffer(&buffer, 0, bytemuck::cast_slice(&indices));
+            (buffer, indices.len() as u32)
+        };
         PoolRenderer {
-            water_indices,
-            water_index_count: indices.len() as u32,
+            caustic_indices: index_buffer("pool caustic indices", settings.caustic_grid),
+            water_indices: index_buffer("pool water indices", settings.water_grid),
             settings,
             colour_format: colour,
             bindings,
@@ -563,7 +584,9 @@ impl PoolRenderer {
                 pass.set_pipeline(&self.caustics);
                 pass.set_bind_group(0, &self.bindings.group, &[]);
                 pass.set_bind_group(1, &self.pool_group, &[]);
-                pass.draw(0..(caustic_cells * 6) as u32, 0..1);
+                let (indices, count) = &self.caustic_indices;
+                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..*count, 0, 0..1);
             }
         }
         {
@@ -574,7 +597,11 @@ impl PoolRenderer {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        load: if frame.over_camera_image {
+                            wgpu::LoadOp::Load
+                        } else {
+                            wgpu::LoadOp::Clear(wgpu::Color::BLACK)
+                        },
                         store: wgpu::StoreOp::Store,
                     },
                 })],
@@ -596,8 +623,9 @@ impl PoolRenderer {
             pass.set_pipeline(&self.scene);
             pass.draw(0..3, 0..1);
             pass.set_pipeline(&self.water);
-            pass.set_index_buffer(self.water_indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..self.water_index_count, 0, 0..1);
+            let (indices, count) = &self.water_indices;
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..*count, 0, 0..1);
         }
         gpu.queue.submit([enc.finish()]);
         let record =
@@ -789,6 +817,25 @@ mod tests {
             f.pool.counts[0] as usize,
             scene.floaters.len() + scene.movers.len()
         );
+    }
+
+    #[test]
+    fn tub_stands_on_the_table_point() {
+        let scene = PoolScene::default();
+        let settings = PoolSettings::default();
+        let anchor = glam::DVec3::new(0.4, 0.75, -1.2);
+        let table = DMat4::from_scale_rotation_translation(
+            glam::DVec3::splat(0.2),
+            glam::DQuat::from_rotation_y(1.1),
+            anchor,
+        );
+        let model = PoolView::standing_on(table, &scene, &settings);
+        // The centre of the tub's bottom lands on the tapped point; the water's rest level
+        // 0.2 × (1 m + wall) above it.
+        let bottom = glam::DVec3::new(0.0, scene.pool.floor_y - settings.wall, 0.0);
+        assert!((model.transform_point3(bottom) - anchor).length() < 1e-12);
+        let water = model.transform_point3(glam::DVec3::ZERO);
+        assert!((water.y - anchor.y - 0.2 * (1.0 + settings.wall)).abs() < 1e-12);
     }
 
     #[test]

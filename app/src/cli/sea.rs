@@ -1,0 +1,189 @@
+//! `regatta sea`: write a sea file (DESIGN.md format, JSON on stdout) from real conditions:
+//! a JONSWAP / Pierson–Moskowitz sea state, or an NDBC buoy's spectral files. What the
+//! generation did (Hs kept, the amplitude scale that keeps Σ kA below the limit) goes to stderr.
+//!
+//! ```text
+//! regatta sea --hs 2 --tp 8 [--gamma 3.3] [--from-deg 270] [--spreading 10] [--waves 32]
+//! regatta sea --ndbc 41010.data_spec [--ndbc-dir 41010.swdir] [--ndbc-r1 41010.swr1]
+//!             [--time "2020-06-08 03:50"]
+//! common: [--seed 1] [--max-steepness 0.8] [--depth H]
+//! ```
+
+use std::path::PathBuf;
+
+use clap::Args;
+use ocean::ndbc::{NdbcSpectrum, NdbcTable, NdbcTime};
+use ocean::spectrum::{SeaState, SpectralOptions, SpectralSea, travel_direction_from_compass};
+
+use crate::error::{CliError, CliResult};
+
+#[derive(Debug, Args)]
+pub struct SeaArgs {
+    /// Significant wave height Hs, metres (parametric spectrum).
+    #[arg(long, allow_hyphen_values = true)]
+    pub hs: Option<f64>,
+    /// Peak period Tp, seconds (parametric spectrum).
+    #[arg(long, allow_hyphen_values = true)]
+    pub tp: Option<f64>,
+    /// JONSWAP peak enhancement γ (1 = Pierson–Moskowitz).
+    #[arg(long, default_value_t = 3.3, allow_hyphen_values = true)]
+    pub gamma: f64,
+    /// Compass direction the waves come from, degrees (0 = north).
+    #[arg(long, default_value_t = 270.0, allow_hyphen_values = true)]
+    pub from_deg: f64,
+    /// cos-2s spreading exponent s.
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
+    pub spreading: f64,
+    /// Number of waves (parametric spectrum).
+    #[arg(long, default_value_t = 32)]
+    pub waves: usize,
+    /// NDBC spectral density file (realtime `.data_spec` or historical `w` file, .gz allowed).
+    #[arg(long)]
+    pub ndbc: Option<PathBuf>,
+    /// NDBC mean direction (alpha1) file matching `--ndbc`.
+    #[arg(long)]
+    pub ndbc_dir: Option<PathBuf>,
+    /// NDBC r1 file matching `--ndbc`.
+    #[arg(long)]
+    pub ndbc_r1: Option<PathBuf>,
+    /// Record time "YYYY-MM-DD hh:mm" (UTC); the file's first record without it.
+    #[arg(long)]
+    pub time: Option<String>,
+    /// Seed of the random frequencies, directions and phases.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Σ kA is scaled down to this if the spectrum is steeper (must be below 1).
+    #[arg(long, default_value_t = 0.8, allow_hyphen_values = true)]
+    pub max_steepness: f64,
+    /// Water depth in metres (deep water without it).
+    #[arg(long, allow_hyphen_values = true)]
+    pub depth: Option<f64>,
+}
+
+fn positive(name: &str, v: f64) -> CliResult<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(CliError::new(format!(
+            "--{name} must be a positive number, got {v}"
+        )))
+    }
+}
+
+/// "YYYY-MM-DD hh:mm" as an NDBC record time.
+pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
+    let bad = || CliError::new(format!("--time \"{s}\" is not a time \"YYYY-MM-DD hh:mm\""));
+    let (date, clock) = s.trim().split_once(' ').ok_or_else(bad)?;
+    let d: Vec<u32> = date
+        .split('-')
+        .map(|p| p.parse().map_err(|_| bad()))
+        .collect::<CliResult<_>>()?;
+    let c: Vec<u32> = clock
+        .split(':')
+        .map(|p| p.parse().map_err(|_| bad()))
+        .collect::<CliResult<_>>()?;
+    match (&d[..], &c[..]) {
+        ([year, month, day], [hour, minute]) => Ok(NdbcTime {
+            year: *year,
+            month: *month,
+            day: *day,
+            hour: *hour,
+            minute: *minute,
+        }),
+        _ => Err(bad()),
+    }
+}
+
+/// The sea the arguments describe.
+pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
+    if !(a.max_steepness > 0.0 && a.max_steepness < 1.0) {
+        return Err(CliError::new(format!(
+            "--max-steepness must lie in (0, 1) or the surface folds over, got {}",
+            a.max_steepness
+        )));
+    }
+    if let Some(h) = a.depth {
+        positive("depth", h)?;
+    }
+    let opts = SpectralOptions {
+        seed: a.seed,
+        max_total_steepness: a.max_steepness,
+        depth: a.depth,
+        ..Default::default()
+    };
+    let ndbc_err = |e: ocean::ndbc::NdbcError| CliError::new(e.to_string());
+    match (&a.ndbc, a.hs, a.tp) {
+        (Some(density), None, None) => {
+            let density = NdbcTable::read(density).map_err(ndbc_err)?;
+            let dir = a
+                .ndbc_dir
+                .as_deref()
+                .map(NdbcTable::read)
+                .transpose()
+                .map_err(ndbc_err)?;
+            let r1 = a
+                .ndbc_r1
+                .as_deref()
+                .map(NdbcTable::read)
+                .transpose()
+                .map_err(ndbc_err)?;
+            let time = a.time.as_deref().map(parse_time).transpose()?;
+            let s = NdbcSpectrum::from_tables(&density, dir.as_ref(), r1.as_ref(), time)
+                .map_err(ndbc_err)?;
+            eprintln!(
+                "regatta sea: NDBC record {} with Hs = {:.2} m",
+                s.time,
+                s.hs()
+            );
+            Ok(ocean::spectrum::sea_from_bands(
+                &s.bands(a.from_deg, a.spreading),
+                &opts,
+            ))
+        }
+        (None, Some(hs), Some(tp)) => {
+            if !(a.gamma.is_finite() && a.gamma >= 1.0) {
+                return Err(CliError::new(format!(
+                    "--gamma must be at least 1, got {}",
+                    a.gamma
+                )));
+            }
+            if !(a.spreading.is_finite() && a.spreading >= 0.0) || !a.from_deg.is_finite() {
+                return Err(CliError::new(
+                    "--spreading must be ≥ 0 and --from-deg a finite number",
+                ));
+            }
+            if a.waves == 0 || a.waves > 4096 {
+                return Err(CliError::new(format!(
+                    "--waves must be between 1 and 4096, got {}",
+                    a.waves
+                )));
+            }
+            let state = SeaState {
+                hs: positive("hs", hs)?,
+                tp: positive("tp", tp)?,
+                gamma: a.gamma,
+                direction: travel_direction_from_compass(a.from_deg),
+                spreading: a.spreading,
+            };
+            Ok(state.to_sea(a.waves, &opts))
+        }
+        _ => Err(CliError::new(
+            "sea needs either --hs and --tp (a JONSWAP spectrum) or --ndbc FILE (a buoy spectrum), not both",
+        )),
+    }
+}
+
+pub fn run(a: SeaArgs) -> CliResult {
+    let g = generate(&a)?;
+    eprintln!(
+        "regatta sea: {} waves, Hs {:.3} m of the spectrum, {:.3} m in the waves (amplitude scale {:.4}: Σ kA {:.3} → {:.3})",
+        g.sea.waves.len(),
+        g.hs_spectrum,
+        g.hs_waves,
+        g.amplitude_scale,
+        g.unscaled_total_steepness,
+        g.sea.total_steepness()
+    );
+    println!("{}", g.sea.to_json_string());
+    Ok(())
+}

@@ -1,0 +1,159 @@
+//! shaders/wake.wgsl on a real GPU (lavapipe in CI) against its CPU mirror and the f64 terms:
+//! a compute pass sums `wake_source_height`/`wake_source_foam` over a frame's source buffer at
+//! a grid of local points.
+
+use ocean::wake::{
+    TrackSample, WAKE_WGSL, WGSL_SIN_ERROR, Wake, WakeParams, WakeView, f32_height_error_bound,
+    wake_foam_f32, wake_height_f32,
+};
+use wgpu::util::DeviceExt;
+
+const MAIN: &str = r#"
+@group(0) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
+@group(0) @binding(1) var<storage, read> points: array<vec2<f32>>;
+@group(0) @binding(2) var<storage, read_write> out: array<vec2<f32>>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if (i >= arrayLength(&points)) {
+        return;
+    }
+    let p = points[i];
+    var h = 0.0;
+    var foam = 0.0;
+    for (var j = 0u; j < arrayLength(&wake_sources); j++) {
+        h += wake_source_height(wake_sources[j], p);
+        foam += wake_source_foam(wake_sources[j], p);
+    }
+    out[i] = vec2<f32>(h, wake_foam_from_density(foam));
+}
+"#;
+
+#[test]
+fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
+    let Some(gpu) = render::gpu::test_gpu() else {
+        return;
+    };
+    // A boat turning at 5 m/s, 10 h into a race and 4 km from the course origin.
+    let t_end = 36_000.0;
+    let track: Vec<TrackSample> = (0..=120)
+        .map(|i| {
+            let t = t_end - 60.0 + 0.5 * i as f64;
+            let a = 5.0 * (t - t_end) / 80.0;
+            TrackSample {
+                t,
+                x: 4000.0 + 80.0 * a.sin(),
+                z: -1000.0 + 80.0 * (1.0 - a.cos()),
+            }
+        })
+        .collect();
+    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
+    let origin = [3990.0, -1000.0];
+    let view = WakeView::around([3990.0, -1000.0], 40.0);
+    let frame = wake.gpu_sources(t_end, origin, &view, 1e-6);
+    assert!(frame.sources.len() > 50);
+    let points: Vec<[f32; 2]> = (0..64 * 16)
+        .map(|i| [-40.0 + 2.5 * (i % 32) as f32, -40.0 + 2.5 * (i / 32) as f32])
+        .collect();
+
+    let device = &gpu.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("wake test"),
+        source: wgpu::ShaderSource::Wgsl(format!("{WAKE_WGSL}\n{MAIN}").into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("wake test"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let storage = |label, bytes: &[u8]| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+        })
+    };
+    let sources = storage("sources", frame.bytes());
+    let point_bytes: Vec<u8> = points
+        .iter()
+        .flat_map(|p| p.iter().flat_map(|v| v.to_le_bytes()))
+        .collect();
+    let pts = storage("points", &point_bytes);
+    let size = (points.len() * 8) as u64;
+    let out = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("out"),
+        size,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let read = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read"),
+        size,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: sources.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: pts.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: out.as_entire_binding(),
+            },
+        ],
+    });
+    let mut enc = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
+    }
+    enc.copy_buffer_to_buffer(&out, 0, &read, 0, size);
+    gpu.queue.submit([enc.finish()]);
+    let bytes = gpu.read_buffer(&read).unwrap();
+    let got: Vec<[f32; 2]> = bytes
+        .chunks_exact(8)
+        .map(|c| {
+            let f = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+            [f(&c[0..4]), f(&c[4..8])]
+        })
+        .collect();
+
+    let mut worst = 0.0f64;
+    let mut peak = 0.0f64;
+    for (p, g) in points.iter().zip(&got) {
+        let cpu = wake_height_f32(&frame.sources, *p) as f64;
+        let bound = f32_height_error_bound(&frame.sources, *p, WGSL_SIN_ERROR);
+        assert!(
+            (g[0] as f64 - cpu).abs() <= 2.0 * bound + 1e-7,
+            "{p:?}: GPU {} vs CPU {cpu} (bound {bound})",
+            g[0]
+        );
+        let foam = wake_foam_f32(&frame.sources, *p);
+        assert!(
+            (g[1] - foam).abs() < 1e-4 && (0.0..=1.0).contains(&g[1]),
+            "{p:?}"
+        );
+        worst = worst.max((g[0] as f64 - cpu).abs());
+        peak = peak.max(cpu.abs());
+    }
+    eprintln!(
+        "{}: wake.wgsl vs CPU mirror, {} sources, max |Δh| {worst:.2e} m (peak {peak:.3} m)",
+        gpu.describe(),
+        frame.sources.len()
+    );
+    assert!(peak > 1e-2, "no wake in the test field");
+}
