@@ -231,10 +231,11 @@ fn write_report(ctx: &BenchContext, tables: &[Table]) -> CliResult {
 pub fn markdown(tables: &[Table]) -> String {
     let mut md = String::from("# Regatta benchmark report\n");
     for t in tables {
+        let header: Vec<String> = t.columns.iter().map(|c| escape_pipes(c)).collect();
         md.push_str(&format!(
             "\n## {}\n\n| {} |\n|",
             t.title,
-            t.columns.join(" | ")
+            header.join(" | ")
         ));
         md.push_str(&" --- |".repeat(t.columns.len()));
         md.push('\n');
@@ -252,9 +253,14 @@ pub fn markdown(tables: &[Table]) -> String {
     md
 }
 
+/// A `|` inside a Markdown table cell ends the cell unless escaped (e.g. "max |Δy|").
+fn escape_pipes(s: &str) -> String {
+    s.replace('|', "\\|")
+}
+
 fn cell(v: &serde_json::Value) -> String {
     match v {
-        serde_json::Value::String(s) => s.clone(),
+        serde_json::Value::String(s) => escape_pipes(s),
         serde_json::Value::Number(n) => match n.as_f64() {
             Some(f) if n.is_f64() => fmt_sig(f),
             _ => n.to_string(),
