@@ -147,7 +147,7 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
                     a.gamma
                 )));
             }
-            if !(a.spreading.is_finite() && a.spreading >= 0.0) || !a.from_deg.is_finite() {
+            if !(a.spreading.is_finite() && a.spreading >= 0.0 && a.from_deg.is_finite()) {
                 return Err(CliError::new(
                     "--spreading must be ≥ 0 and --from-deg a finite number",
                 ));

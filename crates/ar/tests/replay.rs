@@ -4,7 +4,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use ar::replay::{FrameFileFormat, TUM_MAX_POSE_GAP_S};
+use ar::replay::FrameFileFormat;
 use ar::{FrameImage, FrameSource, Intrinsics, Pose, ReplayFeed, ReplayPlayer, ReplayWriter};
 use glam::{DQuat, DVec3};
 

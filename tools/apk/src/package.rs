@@ -114,6 +114,15 @@ pub fn write_apk(
     let mut b = builder(&inputs.app, manifest_file)?;
     let mut libraries = Vec::new();
     for lib in std::iter::once(&inputs.library).chain(&inputs.extra_libraries) {
+        // Read and parse first, so a bad library is named by its own path.
+        let bytes = std::fs::read(lib)
+            .map_err(|e| ApkError(format!("{}: cannot read: {e}", lib.display())))?;
+        apk::native::ElfInfo::parse(&bytes).map_err(|e| {
+            ApkError(format!(
+                "{}: not an Android shared library: {e}",
+                lib.display()
+            ))
+        })?;
         b.native_library(Abi::Arm64V8a, lib)
             .map_err(err(lib.display()))?;
         libraries.push(format!(
