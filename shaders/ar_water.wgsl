@@ -1,35 +1,26 @@
-// The AR water pass: the water over the table, shaded again with the effects this frame needs
-// (flags.x) and mixed by the full Fresnel equations (source 004): R·reflection + (1 − R)·the
-// table seen through the water (refracted, lit by caustics, absorbed along the path).
-// A full-screen triangle; each pixel finds the water under it (effects_common.wgsl), so the
-// pass needs no mesh. Its depth is pulled towards the eye by a margin that covers the wave
-// height, so it passes the depth test over the water pass but not over boats in front.
-
-struct FragOut {
-    @location(0) colour: vec4<f32>,
-    @builtin(frag_depth) depth: f32,
-}
-
-@vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> ScreenOut {
-    return full_screen(i, 0.0);
-}
+// The AR water: the water pass's mesh (water.wgsl's vs_main: waves and wakes) shaded once with
+// the effects this frame needs (flags.x), mixed by the full Fresnel equations (source 004):
+// R·reflection + (1 − R)·the table seen through the water (refracted, lit by caustics,
+// absorbed along the path), then foam. Replaces water.wgsl's fs_main when an effect runs, so
+// no water pixel is shaded twice. Appended after the water pass's files and the effect files.
 
 // Light lost per metre of water path, relative to the table's depth (so a scaled table looks
 // the same): red goes first.
 const ABSORPTION: vec3<f32> = vec3<f32>(0.9, 0.35, 0.25);
 
 @fragment
-fn fs_main(in: ScreenOut) -> FragOut {
-    let hit = water_hit(in.ndc);
-    if hit.w == 0.0 {
+fn fs_ar(in: VertexOut) -> @location(0) vec4<f32> {
+    let pa = frame.play_area;
+    if in.rest.x < pa.x || in.rest.y < pa.y || in.rest.x > pa.z || in.rest.y > pa.w {
         discard;
     }
-    let p = hit.xyz;
+    let p = in.world;
     let view = normalize(p - frame.eye.xyz);
-    let screen_uv = ndc_to_uv(in.ndc);
-    let footprint = length(p - frame.eye.xyz) * 2.0 * frame.viewport.w;
-    var n = surface_frame(p.xz, frame.counts.x, footprint).normal;
+    let screen_uv = in.clip.xy * frame.viewport.zw;
+    let footprint = max(length(dpdx(in.rest)), length(dpdy(in.rest)));
+    let sf = surface_frame(in.rest, frame.counts.x, footprint);
+    // Sea and wake slopes add, as in water.wgsl: the wake's (∂w/∂x, ∂w/∂z) is in.wake.xy.
+    var n = normalize(vec3<f32>(sf.normal.x / sf.normal.y - in.wake.x, 1.0, sf.normal.z / sf.normal.y - in.wake.y));
     if fx_on(FX_FLOWMAP) {
         n = flow_normal(p.xz, n);
     }
@@ -57,16 +48,10 @@ fn fs_main(in: ScreenOut) -> FragOut {
     }
     let depth = max(fx.table.x, 1e-3);
     let transmitted = table.rgb * light * exp(-ABSORPTION * table.w / depth);
-
-    var out: FragOut;
-    out.colour = vec4<f32>(r * reflected + (1.0 - r) * transmitted, 1.0);
-    // Pull towards the eye by the largest wave height (Σ A) plus 1 % of the distance.
-    var amplitude = 0.0;
-    for (var i = 0u; i < frame.counts.x; i = i + 1u) {
-        amplitude += waves[i].amplitude;
-    }
-    let margin = amplitude + 0.01 * length(p - frame.eye.xyz);
-    let c = frame.view_proj * vec4<f32>(p - view * margin, 1.0);
-    out.depth = clamp(c.z / c.w, 0.0, 1.0);
-    return out;
+    var colour = r * reflected + (1.0 - r) * transmitted;
+    // Foam of breaking crests (Jacobian) and of the boats' wakes, as the water pass draws it.
+    let sun_in = max(dot(n, frame.sun.xyz), 0.0);
+    let foam = max(clamp((0.72 - sf.jacobian) / 0.35, 0.0, 1.0), in.wake.z);
+    colour = mix(colour, FOAM * (0.6 + 0.4 * sun_in), foam);
+    return vec4<f32>(colour, 1.0);
 }

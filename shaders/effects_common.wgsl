@@ -1,7 +1,8 @@
 // Shared by the AR effect passes (background, reflection, refraction, caustics, flow map):
-// their uniform and textures (bind group 1), the full-screen triangle, the water surface under
-// a pixel, and the camera image through the camera's intrinsics and pose. Appended to
-// common.wgsl and optics.wgsl; mirrored in f64 by crates/render/src/effects/*.rs.
+// their uniform and textures (bind group 2; group 1 is the water pass's wakes), the
+// full-screen triangle, the water surface under a pixel, and the camera image through the
+// camera's intrinsics and pose. Appended to common.wgsl and optics.wgsl; mirrored in f64 by
+// crates/render/src/effects/*.rs.
 
 // Bits of Effects.flags.x, as render::effects::Effect's discriminants.
 const FX_BACKGROUND: u32 = 1u;
@@ -33,11 +34,11 @@ struct Effects {
     marks: array<vec4<f32>, 8>,
 }
 
-@group(1) @binding(0) var<uniform> fx: Effects;
-@group(1) @binding(1) var camera_image: texture_2d<f32>;
-@group(1) @binding(2) var reflection_image: texture_2d<f32>;
-@group(1) @binding(3) var caustic_map: texture_2d<f32>;
-@group(1) @binding(4) var linear_clamp: sampler;
+@group(2) @binding(0) var<uniform> fx: Effects;
+@group(2) @binding(1) var camera_image: texture_2d<f32>;
+@group(2) @binding(2) var reflection_image: texture_2d<f32>;
+@group(2) @binding(3) var caustic_map: texture_2d<f32>;
+@group(2) @binding(4) var linear_clamp: sampler;
 
 fn fx_on(bit: u32) -> bool {
     return (fx.flags.x & bit) != 0u;

@@ -17,7 +17,7 @@ use glam::{DVec2, DVec3};
 use rand::{Rng, SeedableRng, rngs::SmallRng};
 
 use crate::replay::{FrameFileFormat, ReplayWriter, TablePlane};
-use crate::{ArError, FrameImage, Intrinsics, Pose};
+use crate::{ArError, CameraFrame, FrameImage, Intrinsics, Pose, TrackingState};
 
 /// Table top size along x and z, metres.
 pub const TABLE_EXTENT: [f64; 2] = [1.2, 0.8];
@@ -122,6 +122,26 @@ impl SynthConfig {
     /// Renders frame `i`.
     pub fn render(&self, i: usize) -> FrameImage {
         render_view(&self.intrinsics(), &self.pose(i), self.supersample)
+    }
+
+    /// Frame `i` as a camera frame (rendered now; the table is its detected plane), the same
+    /// frame that [`SynthConfig::write`] writes and a reader gives back, before JPEG.
+    pub fn frame(&self, i: usize) -> CameraFrame {
+        CameraFrame {
+            image: self.render(i),
+            camera_to_world: self.pose(i).to_mat4(),
+            intrinsics: self.intrinsics(),
+            planes: vec![self.table().to_detected_plane()],
+            timestamp: self.time(i),
+            display_uv: glam::Affine2::IDENTITY,
+            tracking: TrackingState::Tracking,
+        }
+    }
+
+    /// The frame showing at `t` seconds when the clip loops.
+    pub fn index_at(&self, t: f64) -> usize {
+        ((t.rem_euclid(self.period()) * self.frame_rate).floor() as usize)
+            .min(self.frames.max(1) - 1)
     }
 
     /// Writes the feed as a replay folder (JPEG frames at `jpeg_quality`).

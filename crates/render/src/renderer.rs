@@ -165,6 +165,18 @@ impl Renderer {
         self.passes.push(pass);
     }
 
+    /// Put `pass` in the place of the pass named `name` (the AR effects replace "water" with
+    /// a pass that draws the same mesh shaded once with the effects); false if there is none.
+    pub fn replace_pass(&mut self, name: &str, pass: Box<dyn Pass>) -> bool {
+        match self.passes.iter_mut().find(|p| p.name() == name) {
+            Some(slot) => {
+                *slot = pass;
+                true
+            }
+            None => false,
+        }
+    }
+
     /// The layout of bind group 0, for passes built outside this crate's `passes` module.
     pub fn frame_layout(&self) -> &wgpu::BindGroupLayout {
         &self.bindings.layout

@@ -2,12 +2,15 @@
 //!
 //! - [`BackgroundPass`] (`shaders/background.wgsl`): the camera frame behind everything.
 //! - [`ArWaterPass`] (`shaders/ar_water.wgsl` with `reflection.wgsl`, `refraction.wgsl`,
-//!   `caustics.wgsl`, `flowmap.wgsl`): the water over the table shaded again with the effects
-//!   the planner chose, mixed by the full Fresnel equations. When boats or marks are reflected,
-//!   its `prepare` first draws them into the planar reflection texture (a fraction of the
-//!   screen) with the reflection matrix and oblique near-plane clipping at the water.
+//!   `caustics.wgsl`, `flowmap.wgsl`): takes the water pass's place and draws its mesh (waves
+//!   and wakes, `water.wgsl`'s vertex shader) with a fragment shader that shades each water
+//!   pixel once with the effects the planner chose, mixed by the full Fresnel equations, and
+//!   the sea's and wakes' normals and foam; when no effect runs it draws the plain water. When
+//!   boats or marks are reflected, its `prepare` first draws them into the planar reflection
+//!   texture (a fraction of the screen) with the reflection matrix and oblique near-plane
+//!   clipping at the water.
 //!
-//! Both share bind group 1 (`shaders/effects_common.wgsl`): the [`EffectsUniform`], the camera
+//! Both share bind group 2 (group 1 is the water's wake sources) (`shaders/effects_common.wgsl`): the [`EffectsUniform`], the camera
 //! image, the reflection texture, the caustic map and a sampler. The caustic map is the f64
 //! area-ratio map of [`super::caustics`] at the frame's race time, uploaded each frame.
 
@@ -25,6 +28,7 @@ use crate::frame::{FrameBindings, FrameContext, FrameUniform, Pass, Targets};
 use crate::gpu::Gpu;
 use crate::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
 use crate::passes::boats::BoatsPass;
+use crate::passes::water::{WaterPass, supports_wakes, vertex_layout};
 use crate::renderer::{DEPTH_FORMAT, Renderer};
 use crate::shader;
 
@@ -454,7 +458,17 @@ impl Shared {
     }
 }
 
-/// A pipeline of bind groups 0 (frame) and 1 (effects) over a full-screen triangle.
+/// How an effect pipeline draws: a full-screen triangle (the background) or the water mesh.
+struct FxDraw<'a> {
+    /// Bind group 1: the water's wake sources, if any.
+    wake_layout: Option<&'a wgpu::BindGroupLayout>,
+    buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    fragment: &'a str,
+    depth_write: bool,
+    depth_compare: wgpu::CompareFunction,
+}
+
+/// A pipeline of bind groups 0 (frame), 1 (wakes or none) and 2 (effects).
 fn fx_pipeline(
     gpu: &Gpu,
     frame_layout: &wgpu::BindGroupLayout,
@@ -462,13 +476,13 @@ fn fx_pipeline(
     targets: Targets,
     label: &str,
     parts: &[&str],
-    depth_compare: wgpu::CompareFunction,
+    draw: FxDraw,
 ) -> wgpu::RenderPipeline {
     let device = &gpu.device;
     let module = shader::module(device, label, parts);
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
-        bind_group_layouts: &[Some(frame_layout), Some(fx_layout)],
+        bind_group_layouts: &[Some(frame_layout), draw.wake_layout, Some(fx_layout)],
         immediate_size: 0,
     });
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -478,20 +492,20 @@ fn fx_pipeline(
             module: &module,
             entry_point: Some("vs_main"),
             compilation_options: Default::default(),
-            buffers: &[],
+            buffers: draw.buffers,
         },
         primitive: Default::default(),
         depth_stencil: Some(wgpu::DepthStencilState {
             format: targets.depth,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(depth_compare),
+            depth_write_enabled: Some(draw.depth_write),
+            depth_compare: Some(draw.depth_compare),
             stencil: Default::default(),
             bias: Default::default(),
         }),
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: &module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(draw.fragment),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: targets.colour,
@@ -535,7 +549,7 @@ impl Pass for BackgroundPass {
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
         let Some(group) = &self.group else { return 0 };
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(1, group, &[]);
+        pass.set_bind_group(2, group, &[]);
         pass.draw(0..3, 0..1);
         1
     }
@@ -543,7 +557,12 @@ impl Pass for BackgroundPass {
 
 /// The water over the table with reflection, refraction, caustics and flow map.
 pub struct ArWaterPass {
+    /// The water pass it replaces: mesh, wakes, and the plain shading when no effect runs.
+    water: WaterPass,
+    /// The water mesh with `ar_water.wgsl`'s fragment shader.
     pipeline: wgpu::RenderPipeline,
+    /// Does an effect run this frame (else the plain water shading draws)?
+    effects_run: bool,
     shared: Rc<RefCell<Shared>>,
     group: Option<wgpu::BindGroup>,
     /// The planar reflection: its own frame bindings (reflected camera) and boats pass.
@@ -645,9 +664,10 @@ impl Pass for ArWaterPass {
         "ar_water"
     }
     fn condition(&self) -> &'static str {
-        "one of reflection, refraction, caustics or flow map is needed (see the reasons)"
+        "the water is in view (the water pass's condition); each effect by its own rule"
     }
     fn plan(&self, frame: &FrameContext) -> Result<String, String> {
+        let water = self.water.plan(frame);
         let ds = self.decisions(frame);
         let text = ds
             .iter()
@@ -657,14 +677,16 @@ impl Pass for ArWaterPass {
             })
             .collect::<Vec<_>>()
             .join("; ");
-        if ds.iter().any(|d| d.run) {
-            Ok(text)
-        } else {
-            Err(text)
+        match water {
+            Ok(w) if ds.iter().any(|d| d.run) => Ok(format!("{w}; {text}")),
+            Ok(w) => Ok(format!("{w}; plain water shading: {text}")),
+            Err(w) => Err(format!("{w}; {text}")),
         }
     }
     fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext) {
+        self.water.prepare(gpu, frame);
         let ds = self.decisions(frame);
+        self.effects_run = ds.iter().any(|d| d.run);
         let runs = |e: Effect| ds.iter().any(|d| d.effect == e && d.run);
         let mask = ds
             .iter()
@@ -682,16 +704,19 @@ impl Pass for ArWaterPass {
         self.last_decisions = ds;
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
-        let Some(group) = &self.group else { return 0 };
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(1, group, &[]);
-        pass.draw(0..3, 0..1);
-        1
+        match &self.group {
+            Some(group) if self.effects_run => {
+                pass.set_bind_group(2, group, &[]);
+                self.water.draw_with(pass, &self.pipeline)
+            }
+            _ => self.water.draw(pass),
+        }
     }
 }
 
-/// Add the background and AR water passes for `cfg` over `camera`'s frames to `renderer`.
-/// Effects that are not in `cfg.effects` never run (the passes report "not requested").
+/// Add the background pass for `cfg` over `camera`'s frames to `renderer` and put the AR
+/// water pass in the water pass's place. Effects that are not in `cfg.effects` never run (the
+/// passes report "not requested").
 pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, camera: CameraFrame) {
     let targets = renderer.targets;
     let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera)));
@@ -705,28 +730,54 @@ pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, came
             targets,
             "background",
             &[EFFECTS_COMMON, BACKGROUND],
-            wgpu::CompareFunction::LessEqual,
+            FxDraw {
+                wake_layout: None,
+                buffers: &[],
+                fragment: "fs_main",
+                depth_write: false,
+                depth_compare: wgpu::CompareFunction::LessEqual,
+            },
         ),
         shared: shared.clone(),
         group: None,
     };
+    let wakes = supports_wakes(&gpu.adapter);
+    let water = WaterPass::new(&gpu.device, &frame_layout, targets, wakes);
+    // The water pass's own files first (its vs_main, VertexOut, foam colour), then the effects.
+    let hook: &[&str] = if wakes {
+        &[shader::WAKE, shader::WATER_WAKES]
+    } else {
+        &[shader::WATER_NO_WAKES]
+    };
+    let effects = [
+        shader::WATER,
+        EFFECTS_COMMON,
+        REFLECTION,
+        REFRACTION,
+        CAUSTICS,
+        FLOWMAP,
+        AR_WATER,
+    ];
+    let parts: Vec<&str> = hook.iter().chain(&effects).copied().collect();
+    let pipeline = fx_pipeline(
+        gpu,
+        &frame_layout,
+        &fx_layout,
+        targets,
+        "ar_water",
+        &parts,
+        FxDraw {
+            wake_layout: water.wake_layout(),
+            buffers: &[Some(vertex_layout())],
+            fragment: "fs_ar",
+            depth_write: true,
+            depth_compare: wgpu::CompareFunction::Less,
+        },
+    );
     let water = ArWaterPass {
-        pipeline: fx_pipeline(
-            gpu,
-            &frame_layout,
-            &fx_layout,
-            targets,
-            "ar_water",
-            &[
-                EFFECTS_COMMON,
-                REFLECTION,
-                REFRACTION,
-                CAUSTICS,
-                FLOWMAP,
-                AR_WATER,
-            ],
-            wgpu::CompareFunction::Less,
-        ),
+        water,
+        pipeline,
+        effects_run: false,
         shared,
         group: None,
         reflection_bindings: FrameBindings::new(&gpu.device),
@@ -734,7 +785,9 @@ pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, came
         last_decisions: Vec::new(),
     };
     renderer.add_pass(Box::new(background));
-    renderer.add_pass(Box::new(water));
+    if !renderer.replace_pass("water", Box::new(water)) {
+        log::warn!("no water pass to shade with the effects: the renderer has none");
+    }
 }
 
 /// The effects for a scene without a frame source yet: the default [`ArConfig`] with

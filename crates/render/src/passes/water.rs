@@ -155,15 +155,10 @@ impl WaterPass {
             None => shader::module(device, "water", &[shader::WATER_NO_WAKES, shader::WATER]),
         };
         let extra: Vec<&wgpu::BindGroupLayout> = wakes.iter().map(|w| &w.layout).collect();
-        let attrs = wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32, 2 => Uint32];
         let spec = PipelineSpec {
             label: "water",
             module: &module,
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: size_of::<ClipVertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &attrs,
-            })],
+            buffers: &[Some(vertex_layout())],
             depth_write: true,
             depth_test: true,
             cull: None,
@@ -176,6 +171,43 @@ impl WaterPass {
             index_count: 0,
             wakes,
         }
+    }
+}
+
+/// The clip-map vertex attributes of `shaders/water.wgsl`'s `VertexIn`.
+const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
+    wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32, 2 => Uint32];
+
+/// The clip-map vertex buffer layout, for pipelines that draw the water mesh with another
+/// fragment shader (the AR effects' `ArWaterPass`).
+pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
+    wgpu::VertexBufferLayout {
+        array_stride: size_of::<ClipVertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &VERTEX_ATTRIBUTES,
+    }
+}
+
+impl WaterPass {
+    /// The wake sources' bind group layout (group 1), when built with wakes.
+    pub fn wake_layout(&self) -> Option<&wgpu::BindGroupLayout> {
+        self.wakes.as_ref().map(|w| &w.layout)
+    }
+
+    /// Draw this frame's mesh (and wakes, group 1) with `pipeline`, which shares the water's
+    /// vertex shader and layout; returns the triangles drawn.
+    pub fn draw_with(&self, pass: &mut wgpu::RenderPass<'_>, pipeline: &wgpu::RenderPipeline) -> u64 {
+        let (Some(v), Some(i)) = (&self.vertices, &self.indices) else {
+            return 0;
+        };
+        pass.set_pipeline(pipeline);
+        if let Some(g) = self.wakes.as_ref().and_then(|w| w.group.as_ref()) {
+            pass.set_bind_group(1, g, &[]);
+        }
+        pass.set_vertex_buffer(0, v.slice(..));
+        pass.set_index_buffer(i.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..self.index_count, 0, 0..1);
+        u64::from(self.index_count / 3)
     }
 }
 
@@ -296,17 +328,7 @@ impl Pass for WaterPass {
         }
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
-        let (Some(v), Some(i)) = (&self.vertices, &self.indices) else {
-            return 0;
-        };
-        pass.set_pipeline(&self.pipeline);
-        if let Some(g) = self.wakes.as_ref().and_then(|w| w.group.as_ref()) {
-            pass.set_bind_group(1, g, &[]);
-        }
-        pass.set_vertex_buffer(0, v.slice(..));
-        pass.set_index_buffer(i.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.index_count, 0, 0..1);
-        u64::from(self.index_count / 3)
+        self.draw_with(pass, &self.pipeline)
     }
 }
 
