@@ -42,7 +42,7 @@ pub enum Command {
 pub fn dispatch(cli: Cli) -> CliResult {
     match cli.command {
         #[cfg(not(target_os = "android"))]
-        None => crate::desktop::run(Default::default()),
+        None => crate::desktop::run(crate::desktop::RunArgs::default_app()),
         #[cfg(target_os = "android")]
         None => Err(crate::error::CliError::new(
             "the desktop window does not run on Android; the APK starts the AR app",

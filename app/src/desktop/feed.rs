@@ -13,7 +13,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use ar::{CameraFrame, ReplayFeed};
+use ar::{CameraFrame, ReplayFeed, SynthConfig};
 use glam::{DMat4, DVec2, DVec3};
 use render::effects::camera_frame::CameraFrame as RenderCameraFrame;
 use render::effects::passes::{ArConfig, add_effect_passes};
@@ -22,9 +22,20 @@ use render::{Camera, RenderOptions, Renderer, Scene};
 
 use crate::error::{CliError, CliResult};
 
+/// Where the frames come from.
+enum Source {
+    Replay(ReplayFeed),
+    /// The synthetic table of `ar::synth`, rendered frame by frame (no files needed) and kept:
+    /// after the first loop, frames cost nothing.
+    Synth(SynthConfig, Vec<Option<CameraFrame>>),
+}
+
+/// The `--replay` value that chooses the built-in synthetic feed.
+pub const SYNTH: &str = "synth";
+
 /// The feed, where it maps in the race, and which frame the renderer holds.
 pub struct FeedView {
-    feed: ReplayFeed,
+    source: Source,
     start: Instant,
     shown: Option<usize>,
     /// The current frame's render camera.
@@ -67,16 +78,23 @@ impl TableMap {
 }
 
 impl FeedView {
+    /// Opens a replay or TUM folder, or the synthetic feed for [`SYNTH`].
     pub fn open(dir: &std::path::Path) -> CliResult<Self> {
-        let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
-        log::info!(
-            "replay {}: {} frames, {:.1} s",
-            dir.display(),
-            feed.len(),
-            feed.duration()
-        );
+        let source = if dir.as_os_str() == SYNTH {
+            let cfg = SynthConfig::default();
+            Source::Synth(cfg, vec![None; cfg.frames])
+        } else {
+            let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
+            log::info!(
+                "replay {}: {} frames, {:.1} s",
+                dir.display(),
+                feed.len(),
+                feed.duration()
+            );
+            Source::Replay(feed)
+        };
         Ok(FeedView {
-            feed,
+            source,
             start: Instant::now(),
             shown: None,
             camera: None,
@@ -106,14 +124,19 @@ impl FeedView {
         scene: &Scene,
         size: [u32; 2],
     ) -> CliResult {
-        let i = self.feed.index_at(self.start.elapsed().as_secs_f64());
+        let t = self.start.elapsed().as_secs_f64();
+        let i = match &self.source {
+            Source::Replay(f) => f.index_at(t),
+            Source::Synth(c, _) => c.index_at(t),
+        };
         if self.shown == Some(i) {
             return Ok(());
         }
-        let frame = self
-            .feed
-            .frame(i)
-            .map_err(|e| CliError::new(e.to_string()))?;
+        let frame = match &mut self.source {
+            Source::Replay(f) => f.frame(i).map_err(|e| CliError::new(e.to_string()))?,
+            Source::Synth(c, cache) => cache[i].get_or_insert_with(|| c.frame(i)).clone(),
+        };
+        let rebuild = Instant::now();
         let cfg = ArConfig::default();
         let (extent, centre) = match frame.planes.first() {
             Some(p) => (
@@ -136,6 +159,10 @@ impl FeedView {
         fresh.set_wake(wake);
         add_effect_passes(&mut fresh, gpu, cfg, render_frame);
         *renderer = fresh;
+        log::debug!(
+            "feed frame {i}: renderer rebuilt in {:.1} ms",
+            rebuild.elapsed().as_secs_f64() * 1e3
+        );
         self.camera = Some(camera);
         self.map = Some(map);
         self.shown = Some(i);

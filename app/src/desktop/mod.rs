@@ -37,9 +37,20 @@ pub struct RunArgs {
     #[arg(long, value_enum, default_value_t)]
     pub scene: SceneKind,
     /// A recorded camera feed (replay folder or TUM RGB-D) as the background, the race on its
-    /// table; `regatta replay synth` writes one, `assets/feed` is the shipped one.
+    /// table; `synth` for the built-in synthetic table (what `regatta` alone opens).
     #[arg(long, value_name = "DIR")]
     pub replay: Option<PathBuf>,
+}
+
+impl RunArgs {
+    /// What `regatta` without a subcommand opens: the embedded race and sea on the synthetic
+    /// feed's table.
+    pub fn default_app() -> RunArgs {
+        RunArgs {
+            replay: Some(PathBuf::from(feed::SYNTH)),
+            ..RunArgs::default()
+        }
+    }
 }
 
 /// Open the window and run until it is closed.

@@ -281,3 +281,79 @@ fn wgsl_optics_match_the_f64_reference() {
     // f32 with a few roundings: well under a thousandth of the 2 % normal reflectance.
     assert!(worst < 2e-5, "worst WGSL vs f64 difference {worst:e}");
 }
+
+#[test]
+fn wakes_shape_the_effect_shaded_water_near_the_boat() {
+    use ocean::wake::{TrackSample, Wake, WakeParams};
+    let Some(gpu) = test_gpu() else { return };
+    let t = 40.0;
+    let scene = table_scene(t);
+    // The first boat's track: straight along its heading at 3 m/s, arriving where it is at t
+    // (heading 0 is north, −z; π/2 east, +x).
+    let boat = &scene.boats[0];
+    let dir = DVec2::new(boat.heading.sin(), -boat.heading.cos());
+    let at = |s: f64| boat.position - dir * 3.0 * (t - s);
+    let track: Vec<TrackSample> = (0..=40)
+        .map(|i| {
+            let s = f64::from(i);
+            TrackSample {
+                t: s,
+                x: at(s).x,
+                z: at(s).y,
+            }
+        })
+        .collect();
+    let wake = Wake::new(&[&track], WakeParams::default()).expect("a valid track");
+    let render = |with_wake: bool| {
+        let mut r = Renderer::new(&gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+        if with_wake {
+            r.set_wake(Some(std::sync::Arc::new(wake.clone())));
+        }
+        let cfg = config(EffectSet::ALL);
+        let frame = frame_for(&scene, &cfg);
+        add_effect_passes(&mut r, &gpu, cfg, frame);
+        render_image(&gpu, &mut r, &scene, SIZE).expect("render")
+    };
+    let (plain, _) = render(false);
+    let (waked, report) = render(true);
+    let water = report
+        .passes
+        .iter()
+        .find(|p| p.name == "ar_water")
+        .expect("the effects shade the water");
+    assert!(water.ran && water.reason.contains("wake sources"), "{water:?}");
+    assert!(!report.passes.iter().any(|p| p.name == "water"), "shaded once");
+    // Pixel of a world point on the water through the scene's camera.
+    let cam = &scene.camera;
+    let aspect = f64::from(SIZE[0]) / f64::from(SIZE[1]);
+    let view_proj = glam::DMat4::perspective_rh(cam.fov_y, aspect, cam.near, cam.far)
+        * glam::DMat4::look_at_rh(cam.eye, cam.target, DVec3::Y);
+    let pixel = |p: DVec2| {
+        let c = view_proj * glam::DVec4::new(p.x, 0.0, p.y, 1.0);
+        DVec2::new(
+            (c.x / c.w * 0.5 + 0.5) * f64::from(SIZE[0]),
+            (0.5 - c.y / c.w * 0.5) * f64::from(SIZE[1]),
+        )
+    };
+    // The last 10 s of the track (30 m behind the boat), as pixels.
+    let trail: Vec<DVec2> = (0..=20).map(|k| pixel(at(t - 0.5 * f64::from(k)))).collect();
+    let near_trail = |x: u32, y: u32| {
+        let q = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+        trail.iter().any(|p| p.distance(q) < 12.0)
+    };
+    let (mut near, mut far) = (0usize, 0usize);
+    for (x, y, a) in plain.enumerate_pixels() {
+        let b = waked.get_pixel(x, y);
+        let d: u32 = (0..3).map(|c| u32::from(a[c].abs_diff(b[c]))).sum();
+        if d > 30 {
+            if near_trail(x, y) {
+                near += 1;
+            } else {
+                far += 1;
+            }
+        }
+    }
+    // The wake's slope and foam change the shading behind the boat, and only there.
+    assert!(near > 40, "only {near} pixels changed near the boat ({far} elsewhere)");
+    assert!(far * 10 < near, "{far} pixels changed away from the boat, {near} near it");
+}

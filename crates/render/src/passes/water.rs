@@ -196,7 +196,11 @@ impl WaterPass {
 
     /// Draw this frame's mesh (and wakes, group 1) with `pipeline`, which shares the water's
     /// vertex shader and layout; returns the triangles drawn.
-    pub fn draw_with(&self, pass: &mut wgpu::RenderPass<'_>, pipeline: &wgpu::RenderPipeline) -> u64 {
+    pub fn draw_with(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        pipeline: &wgpu::RenderPipeline,
+    ) -> u64 {
         let (Some(v), Some(i)) = (&self.vertices, &self.indices) else {
             return 0;
         };
