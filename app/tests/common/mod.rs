@@ -1,0 +1,75 @@
+//! What the app's integration tests share: running the built `regatta` binary and checking the
+//! command-line contract of DESIGN.md (JSON on stdout; bad input is one sentence on stderr,
+//! nothing on stdout, a non-zero exit and no panic).
+
+// Each test file is its own crate and uses only some of these helpers.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+/// Runs the built binary with `args` and returns its raw output.
+pub fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_regatta"))
+        .args(args)
+        .output()
+        .expect("the regatta binary runs")
+}
+
+/// Runs the built binary: (exit code, -1 when killed by a signal; stdout; stderr).
+pub fn regatta(args: &[&str]) -> (i32, String, String) {
+    let o = run(args);
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+/// A good input: exit 0 and a JSON document on stdout.
+pub fn ok_json(args: &[&str]) -> Value {
+    let (code, out, err) = regatta(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {out}"))
+}
+
+/// A bad input: non-zero exit, nothing on stdout, one line on stderr containing `needle`, and
+/// no panic.
+pub fn fails_with(args: &[&str], needle: &str) {
+    let (code, out, err) = regatta(args);
+    assert_ne!(code, 0, "{args:?} should fail");
+    assert!(out.is_empty(), "{args:?} printed to stdout: {out}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "{args:?}: not one line: {err}"
+    );
+    assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+}
+
+/// A JSON number.
+pub fn f(v: &Value) -> f64 {
+    v.as_f64().expect("a number")
+}
+
+/// Writes `text` to `name` in the test target's temporary directory.
+pub fn temp_file(name: &str, text: &str) -> PathBuf {
+    let p = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// A race (written to `name`) whose only boat sails 50 km away: its wakes are negligible
+/// (< 1e-9 m) near the origin, so the sea's own values can be checked exactly there.
+pub fn far_race(name: &str) -> PathBuf {
+    temp_file(
+        name,
+        r##"{"name": "far away", "origin": null, "start_time": null,
+            "boats": [{"id": "FAR", "name": "Far", "color": "#ff0000",
+                       "track": [[0, 50000, 0], [1000, 50000, 5000]]}],
+            "marks": []}"##,
+    )
+}
