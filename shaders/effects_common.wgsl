@@ -1,8 +1,7 @@
 // Shared by the AR effect passes (background, reflection, refraction, caustics, flow map):
 // their uniform and textures (bind group 2; group 1 is the water pass's wakes), the
-// full-screen triangle, the water surface under a pixel, and the camera image through the
-// camera's intrinsics and pose. Appended to common.wgsl and optics.wgsl; mirrored in f64 by
-// crates/render/src/effects/*.rs.
+// full-screen triangle, and the camera image through the camera's intrinsics and pose.
+// Appended to common.wgsl and optics.wgsl; mirrored in f64 by crates/render/src/effects/*.rs.
 
 // Bits of Effects.flags.x, as render::effects::Effect's discriminants.
 const FX_BACKGROUND: u32 = 1u;
@@ -83,31 +82,4 @@ fn edge_weight(uv: vec2<f32>) -> f32 {
 
 fn sample_camera(uv: vec2<f32>) -> vec3<f32> {
     return textureSampleLevel(camera_image, linear_clamp, clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0)), 0.0).rgb;
-}
-
-// Height of the sea at a local point, taking the point as its own rest point (the horizontal
-// displacement, at most Σ A, moves the answer by less than a texel at table scale).
-fn sea_height(p: vec2<f32>) -> f32 {
-    var y = 0.0;
-    for (var i = 0u; i < frame.counts.x; i = i + 1u) {
-        y += gerstner(waves[i], p).y;
-    }
-    return y;
-}
-
-// Where the view ray through NDC point `ndc` meets the water: xyz local metres, w = 1 on the
-// water of the play area, 0 off it. Two fixed-point steps from the rest plane onto the waves.
-fn water_hit(ndc: vec2<f32>) -> vec4<f32> {
-    let eye = frame.eye.xyz;
-    let d = ray_dir(ndc);
-    if d.y >= -1e-6 || eye.y <= 0.0 {
-        return vec4<f32>(0.0);
-    }
-    var p = eye + d * (-eye.y / d.y);
-    for (var k = 0; k < 2; k = k + 1) {
-        p = eye + d * ((sea_height(p.xz) - eye.y) / d.y);
-    }
-    let pa = frame.play_area;
-    let inside = p.x >= pa.x && p.z >= pa.y && p.x <= pa.z && p.z <= pa.w;
-    return vec4<f32>(p, select(0.0, 1.0, inside));
 }

@@ -1,21 +1,10 @@
 //! `regatta render --effects LIST` through the built binary: bad lists are refused with one
 //! sentence naming the effect, and a frame with effects reports each effect's decision.
 
-use std::process::Command;
+mod common;
 
+use common::regatta;
 use serde_json::Value;
-
-fn regatta(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_regatta"))
-        .args(args)
-        .output()
-        .expect("run regatta");
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
-}
 
 fn out_png(name: &str) -> String {
     std::env::temp_dir()
@@ -53,21 +42,20 @@ fn unknown_effects_are_refused_by_name() {
     assert!(err.contains("--effects") && err.contains("pool"), "{err}");
 }
 
+/// `regatta render` of a 96 × 64 frame into `out` with `--effects list`.
+fn render_effects(out: &str, list: &str) -> (i32, String, String) {
+    regatta(&["render", "--out", out, "--size", "96x64", "--effects", list])
+}
+
 #[test]
 fn a_frame_with_effects_reports_every_decision() {
     let out = out_png("all");
-    let (code, stdout, err) = regatta(&[
-        "render",
-        "--out",
-        &out,
-        "--size",
-        "96x64",
-        "--effects",
-        "all",
-    ]);
+    let (code, stdout, err) = render_effects(&out, "all");
     if code != 0 && err.contains("cannot render") {
-        let required = std::env::var("REGATTA_REQUIRE_GPU").is_ok_and(|v| v == "true" || v == "1");
-        assert!(!required, "REGATTA_REQUIRE_GPU=true but: {err}");
+        assert!(
+            !render::gpu::gpu_required(),
+            "REGATTA_REQUIRE_GPU=true but: {err}"
+        );
         eprintln!("skipped: no GPU adapter ({err})");
         return;
     }
@@ -89,15 +77,7 @@ fn a_frame_with_effects_reports_every_decision() {
     assert!(std::path::Path::new(&out).exists());
     let _ = std::fs::remove_file(&out);
     // Only the named effects run; the others say they were not requested.
-    let (code, stdout, err) = regatta(&[
-        "render",
-        "--out",
-        &out,
-        "--size",
-        "96x64",
-        "--effects",
-        "refraction",
-    ]);
+    let (code, stdout, err) = render_effects(&out, "refraction");
     assert_eq!(code, 0, "{err}");
     let report: Value = serde_json::from_str(&stdout).expect("JSON");
     let passes = report["passes"].as_array().expect("passes");

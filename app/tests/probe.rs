@@ -1,68 +1,13 @@
 //! `regatta probe` through the built binary: the JSON contract of DESIGN.md and its errors.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
+use common::{f, fails_with, far_race, ok_json, temp_file};
 use ocean::WaveSet;
-use serde_json::Value;
-
-fn regatta(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_regatta"))
-        .args(args)
-        .output()
-        .expect("the regatta binary runs")
-}
-
-fn ok_json(args: &[&str]) -> Value {
-    let out = regatta(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("stdout is JSON")
-}
-
-/// A bad input: non-zero exit, nothing on stdout, one line on stderr containing `needle`.
-fn fails_with(args: &[&str], needle: &str) {
-    let out = regatta(args);
-    assert!(!out.status.success(), "{args:?} should fail");
-    assert!(out.stdout.is_empty(), "{args:?} printed to stdout");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(
-        err.trim_end().lines().count(),
-        1,
-        "{args:?}: not one line: {err}"
-    );
-    assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
-    assert!(!err.contains("panicked"), "{err}");
-}
-
-fn temp_file(name: &str, text: &str) -> PathBuf {
-    let p = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
-
-/// A race whose only boat sails 50 km away: its wakes are negligible (< 1e-9 m) at the
-/// points probed here, so the sea's own values can be checked exactly.
-fn far_race() -> PathBuf {
-    temp_file(
-        "probe_far_race.json",
-        r##"{"name": "far away", "origin": null, "start_time": null,
-            "boats": [{"id": "FAR", "name": "Far", "color": "#ff0000",
-                       "track": [[0, 50000, 0], [1000, 50000, 5000]]}],
-            "marks": []}"##,
-    )
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().expect("a number")
-}
 
 #[test]
 fn default_sea_points_obey_the_contract() {
-    let race = far_race();
+    let race = far_race("probe_far_race.json");
     let v = ok_json(&[
         "probe",
         "--t",
@@ -108,7 +53,7 @@ fn sea_file_with_one_wave_against_the_closed_form() {
             "waves": [{"direction": [2.0, 0.0], "steepness": 0.5, "wavelength": 20.0}]}"#,
     );
     let t = 3.0;
-    let race = far_race();
+    let race = far_race("probe_far_race.json");
     let v = ok_json(&[
         "probe",
         "--t",
@@ -171,60 +116,35 @@ fn bad_arguments_give_one_sentence_and_fail() {
     );
 }
 
+/// Writes `text` as sea file `name`, probes with it and expects a one-sentence failure naming
+/// `needle`; returns the file's path.
+fn sea_file_fails(name: &str, text: &str, needle: &str) -> std::path::PathBuf {
+    let sea = temp_file(name, text);
+    let s = sea.to_str().unwrap();
+    fails_with(&["probe", "--t", "1", "--at", "0,0", "--sea", s], needle);
+    sea
+}
+
 #[test]
 fn invalid_sea_files_are_refused_naming_file_and_wave() {
-    let steep = temp_file(
+    let steep = sea_file_fails(
         "probe_steep.json",
         r#"{"waves": [{"direction": [1, 0], "steepness": 0.6, "wavelength": 30},
                       {"direction": [0, 1], "steepness": 1.5, "wavelength": 10}]}"#,
+        "wave 1",
     );
     let s = steep.to_str().unwrap();
-    fails_with(&["probe", "--t", "1", "--at", "0,0", "--sea", s], "wave 1");
     fails_with(&["probe", "--t", "1", "--at", "0,0", "--sea", s], s);
-    let fold = temp_file(
+    sea_file_fails(
         "probe_fold.json",
         r#"{"waves": [{"direction": [1, 0], "steepness": 0.6, "wavelength": 30},
                       {"direction": [0, 1], "steepness": 0.5, "wavelength": 10}]}"#,
-    );
-    fails_with(
-        &[
-            "probe",
-            "--t",
-            "1",
-            "--at",
-            "0,0",
-            "--sea",
-            fold.to_str().unwrap(),
-        ],
         "folds over",
     );
-    let zero = temp_file(
+    sea_file_fails(
         "probe_zero_dir.json",
         r#"{"waves": [{"direction": [0, 0], "steepness": 0.1, "wavelength": 30}]}"#,
-    );
-    fails_with(
-        &[
-            "probe",
-            "--t",
-            "1",
-            "--at",
-            "0,0",
-            "--sea",
-            zero.to_str().unwrap(),
-        ],
         "wave 0 has a zero \"direction\"",
     );
-    let junk = temp_file("probe_junk.json", "{\"waves\": [ oops ]}");
-    fails_with(
-        &[
-            "probe",
-            "--t",
-            "1",
-            "--at",
-            "0,0",
-            "--sea",
-            junk.to_str().unwrap(),
-        ],
-        "line 1",
-    );
+    sea_file_fails("probe_junk.json", "{\"waves\": [ oops ]}", "line 1");
 }

@@ -1,32 +1,12 @@
 //! `regatta probe --race`: the boats' Kelvin wakes in the probe's JSON, checked against the
 //! independent Havelock reference through the built binary.
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
+use common::{f, fails_with, ok_json, temp_file};
 use ocean::wake::{SteadyPatch, WakeParams, kelvin_reference};
-use serde_json::Value;
-
-fn regatta(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_regatta"))
-        .args(args)
-        .output()
-        .expect("the regatta binary runs")
-}
-
-fn ok_json(args: &[&str]) -> Value {
-    let out = regatta(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).expect("stdout is JSON")
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().expect("a number")
-}
 
 /// One boat sailing +x at 5 m/s, reaching (0, 0) at t = 200 s, fixes every second.
 fn straight_race() -> PathBuf {
@@ -39,9 +19,7 @@ fn straight_race() -> PathBuf {
          \"marks\": []}}",
         track.join(", ")
     );
-    let p = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("probe_wake_straight.json");
-    std::fs::write(&p, json).unwrap();
-    p
+    temp_file("probe_wake_straight.json", &json)
 }
 
 #[test]
@@ -115,18 +93,16 @@ fn the_sample_race_makes_wakes_without_race_files() {
 
 #[test]
 fn a_missing_race_file_is_one_clear_error() {
-    let out = regatta(&[
-        "probe",
-        "--t",
-        "1",
-        "--at",
-        "0,0",
-        "--race",
+    fails_with(
+        &[
+            "probe",
+            "--t",
+            "1",
+            "--at",
+            "0,0",
+            "--race",
+            "/nonexistent/race.json",
+        ],
         "/nonexistent/race.json",
-    ]);
-    assert!(!out.status.success());
-    assert!(out.stdout.is_empty());
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-    assert!(err.contains("/nonexistent/race.json"), "{err}");
+    );
 }

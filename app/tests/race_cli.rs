@@ -1,10 +1,11 @@
 //! `regatta race` through the built binary: the DESIGN.md JSON, the report, and bad input
 //! (one sentence on stderr naming the file, non-zero exit, nothing on stdout).
 
-use std::path::PathBuf;
-use std::process::Command;
+mod common;
 
-use serde_json::Value;
+use std::path::PathBuf;
+
+use common::{fails_with, ok_json};
 
 fn data(rel: &str) -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -12,33 +13,6 @@ fn data(rel: &str) -> String {
         .join(rel)
         .display()
         .to_string()
-}
-
-fn regatta(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_regatta"))
-        .args(args)
-        .output()
-        .expect("run regatta");
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
-}
-
-fn ok_json(args: &[&str]) -> Value {
-    let (code, out, err) = regatta(args);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: not JSON ({e}): {out}"))
-}
-
-fn fails(args: &[&str], needle: &str) {
-    let (code, out, err) = regatta(args);
-    assert_ne!(code, 0, "{args:?} succeeded");
-    assert!(out.is_empty(), "{args:?} wrote to stdout: {out}");
-    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-    assert!(err.contains(needle), "{args:?}: {err:?} lacks {needle:?}");
-    assert!(!err.contains("panicked"));
 }
 
 #[test]
@@ -163,52 +137,41 @@ fn bad_input_is_one_sentence_and_a_failure() {
         std::fs::write(&p, text).unwrap();
         p.display().to_string()
     };
-    let empty = w("empty.gpx", "");
-    fails(
-        &["race", "--t", "0", "--race", &empty],
-        "empty.gpx: the file is empty.",
-    );
-    let txt = w("race.txt", "x");
-    fails(
-        &["race", "--t", "0", "--race", &txt],
-        "unknown file extension \".txt\"",
-    );
-    let csv = w(
+    // Writes a race file and expects `race` to refuse it with one sentence naming `needle`.
+    let refused = |name: &str, text: &str, needle: &str| {
+        fails_with(&["race", "--t", "0", "--race", &w(name, text)], needle);
+    };
+    refused("empty.gpx", "", "empty.gpx: the file is empty.");
+    refused("race.txt", "x", "unknown file extension \".txt\"");
+    refused(
         "log.csv",
         "time,lat,lon\n2025-01-01 00:00:00,39.4,-0.3\n2025-01-01 00:00:01,abc,-0.3\n",
-    );
-    fails(
-        &["race", "--t", "0", "--race", &csv],
         "log.csv line 3: lat is \"abc\", not a number.",
     );
-    let nan = w("nan.csv", "time,lat,lon\n2025-01-01 00:00:00,NaN,-0.3\n");
-    fails(
-        &["race", "--t", "0", "--race", &nan],
+    refused(
+        "nan.csv",
+        "time,lat,lon\n2025-01-01 00:00:00,NaN,-0.3\n",
         "nan.csv line 2: latitude NaN",
     );
-    let notime = w(
+    refused(
         "nt.gpx",
         r#"<gpx version="1.1" creator="x"><trk><trkseg><trkpt lat="1" lon="2"></trkpt></trkseg></trk></gpx>"#,
-    );
-    fails(
-        &["race", "--t", "0", "--race", &notime],
         "nt.gpx: track 1 segment 1 point 1 has no <time>",
     );
-    let json = w("bad.json", "{\"boats\": [");
-    fails(&["race", "--t", "0", "--race", &json], "bad.json line 1:");
-    let noboat = w("nb.json", r#"{"boats": [{"id": "A", "track": []}]}"#);
-    fails(
-        &["race", "--t", "0", "--race", &noboat],
+    refused("bad.json", "{\"boats\": [", "bad.json line 1:");
+    refused(
+        "nb.json",
+        r#"{"boats": [{"id": "A", "track": []}]}"#,
         "has no track points",
     );
     let g = data("valencia/2025-06-21-ESP30782-P01.gpx");
-    fails(&["race", "--t", "0", "--race", &g, &g], "appears twice");
-    fails(
+    fails_with(&["race", "--t", "0", "--race", &g, &g], "appears twice");
+    fails_with(
         &["race", "--t", "0", "--race", "/nonexistent/r.gpx"],
         "/nonexistent/r.gpx: could not be read",
     );
-    fails(&["race"], "needs --t");
-    fails(&["race", "--t", "nan"], "--t is NaN");
+    fails_with(&["race"], "needs --t");
+    fails_with(&["race", "--t", "nan"], "--t is NaN");
     std::fs::remove_dir_all(&dir).ok();
 }
 

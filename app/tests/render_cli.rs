@@ -2,21 +2,10 @@
 //! and its planner record is JSON on stdout; bad inputs exit non-zero with one sentence naming
 //! the flag or file.
 
-use std::process::Command;
+mod common;
 
+use common::{fails_with, regatta};
 use serde_json::Value;
-
-fn regatta(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_regatta"))
-        .args(args)
-        .output()
-        .expect("run regatta");
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
-}
 
 fn tmp(name: &str) -> String {
     std::env::temp_dir()
@@ -74,10 +63,6 @@ fn bad_inputs_are_one_sentence_naming_what_is_wrong() {
     ] {
         let mut all = vec!["render", "--out", out.as_str()];
         all.extend(args.iter().copied());
-        let (code, stdout, err) = regatta(&all);
-        assert_ne!(code, 0, "{args:?} succeeded");
-        assert!(stdout.is_empty(), "{args:?}: {stdout}");
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-        assert!(err.contains(needle), "{args:?}: {err}");
+        fails_with(&all, needle);
     }
 }

@@ -1,16 +1,12 @@
 //! `regatta sea` through the built binary: its output is a sea file that probe accepts.
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::{Command, Output};
+
+use common::{fails_with, far_race, run};
 
 use ocean::WaveSet;
-
-fn regatta(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_regatta"))
-        .args(args)
-        .output()
-        .expect("the regatta binary runs")
-}
 
 fn ndbc(name: &str) -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -22,7 +18,7 @@ fn ndbc(name: &str) -> String {
 
 #[test]
 fn jonswap_sea_file_is_valid_and_reports_its_scaling() {
-    let out = regatta(&[
+    let out = run(&[
         "sea", "--hs", "3", "--tp", "5", "--waves", "24", "--seed", "7",
     ]);
     assert!(
@@ -41,15 +37,8 @@ fn jonswap_sea_file_is_valid_and_reports_its_scaling() {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("sea_jonswap.json");
     std::fs::write(&path, &text).unwrap();
     // (With a race far away, so the test does not depend on the embedded sample race.)
-    let race = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("sea_far_race.json");
-    std::fs::write(
-        &race,
-        r##"{"name": "far", "origin": null, "start_time": null, "marks": [],
-            "boats": [{"id": "F", "name": "F", "color": "#ff0000",
-                       "track": [[0, 50000, 0], [1000, 50000, 5000]]}]}"##,
-    )
-    .unwrap();
-    let p = regatta(&[
+    let race = far_race("sea_far_race.json");
+    let p = run(&[
         "probe",
         "--t",
         "60",
@@ -65,7 +54,7 @@ fn jonswap_sea_file_is_valid_and_reports_its_scaling() {
 
 #[test]
 fn ndbc_sea_file_from_the_buoy() {
-    let out = regatta(&[
+    let out = run(&[
         "sea",
         "--ndbc",
         &ndbc("41010.data_spec"),
@@ -123,11 +112,6 @@ fn bad_sea_arguments_fail_with_one_sentence() {
             })
             .collect();
         let args: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
-        let out = regatta(&args);
-        assert!(!out.status.success(), "{args:?}");
-        assert!(out.stdout.is_empty());
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-        assert!(err.contains(needle), "{args:?}: {err}");
+        fails_with(&args, needle);
     }
 }

@@ -3,8 +3,8 @@
 //! carries out the session state machine's [`Command`]s and answers with [`Event`]s; all
 //! decisions are in `ar::arcore::session`.
 //!
-//! What runs here per frame is only `ArSession_update`; the camera pose, projection, CPU image
-//! and light estimate are not read yet (see README "On a phone").
+//! Per frame: `ArSession_update` here, then `frame.rs` reads the camera, its image, the planes
+//! and the light estimate into an [`ar::CameraFrame`] ([`ar::FrameSource`] for [`ArCore`]).
 
 use std::ffi::c_void;
 
@@ -31,9 +31,10 @@ struct Api {
     session_resume: unsafe extern "C" fn(*mut Opaque) -> Status,
     session_pause: unsafe extern "C" fn(*mut Opaque) -> Status,
     session_update: unsafe extern "C" fn(*mut Opaque, *mut Opaque) -> Status,
+    session_set_display_geometry: unsafe extern "C" fn(*mut Opaque, i32, i32, i32),
     frame_create: unsafe extern "C" fn(*const Opaque, *mut *mut Opaque),
     frame_destroy: unsafe extern "C" fn(*mut Opaque),
-    _library: libloading::Library,
+    pub(super) library: libloading::Library,
 }
 
 impl Api {
@@ -56,9 +57,10 @@ impl Api {
                 session_resume: *lib.get(b"ArSession_resume\0")?,
                 session_pause: *lib.get(b"ArSession_pause\0")?,
                 session_update: *lib.get(b"ArSession_update\0")?,
+                session_set_display_geometry: *lib.get(b"ArSession_setDisplayGeometry\0")?,
                 frame_create: *lib.get(b"ArFrame_create\0")?,
                 frame_destroy: *lib.get(b"ArFrame_destroy\0")?,
-                _library: lib,
+                library: lib,
             })
         }
     }
@@ -73,8 +75,12 @@ const TEXTURE_HARDWARE_BUFFER: i32 = 1;
 /// The loaded API (if any) and the live session and frame.
 pub struct ArCore {
     api: Option<Api>,
-    session: *mut Opaque,
-    frame: *mut Opaque,
+    /// The per-frame reads (camera, image, planes, light), from the same library.
+    pub(super) frame_api: Option<super::frame::FrameApi>,
+    pub(super) session: *mut Opaque,
+    pub(super) frame: *mut Opaque,
+    /// What the last [`ar::FrameSource::next_frame`] read besides the camera frame.
+    pub view: Option<super::frame::DisplayCamera>,
 }
 
 impl ArCore {
@@ -87,10 +93,17 @@ impl ArCore {
                 None
             }
         };
+        let frame_api = api.as_ref().and_then(|a| {
+            super::frame::FrameApi::load(&a.library)
+                .map_err(|e| log::warn!("regatta: ARCore frame functions missing: {e}"))
+                .ok()
+        });
         Self {
             api,
+            frame_api,
             session: std::ptr::null_mut(),
             frame: std::ptr::null_mut(),
+            view: None,
         }
     }
 
@@ -147,7 +160,7 @@ impl ArCore {
         }
     }
 
-    fn live_session(&self) -> Option<*mut Opaque> {
+    pub(super) fn live_session(&self) -> Option<*mut Opaque> {
         (!self.session.is_null()).then_some(self.session)
     }
 
@@ -176,6 +189,56 @@ impl ArCore {
         let st = unsafe { (api.session_update)(session, self.frame) };
         (st != status::SUCCESS).then_some(Event::Updated { status: st })
     }
+}
+
+impl ArCore {
+    /// Tells ARCore the view's size (pixels) and the display rotation (`Surface.ROTATION_*`), so
+    /// that its view and projection matrices and the display UV transform match the screen.
+    pub fn set_display_geometry(&mut self, rotation: i32, width: u32, height: u32) {
+        let (Some(api), Some(session)) = (self.api.as_ref(), self.live_session()) else {
+            return;
+        };
+        let (w, h) = (
+            width.min(i32::MAX as u32) as i32,
+            height.min(i32::MAX as u32) as i32,
+        );
+        // SAFETY: a live session.
+        unsafe { (api.session_set_display_geometry)(session, rotation, w, h) };
+    }
+}
+
+/// The display rotation (`Display.getRotation()`, `Surface.ROTATION_0..270` = 0..3) through JNI;
+/// 0 when it cannot be read.
+pub fn display_rotation() -> i32 {
+    let ctx = ndk_context::android_context();
+    // SAFETY: as in with_activity.
+    let vm = unsafe { jni::JavaVM::from_raw(ctx.vm().cast()) };
+    let result = vm.attach_current_thread(|env| -> jni::errors::Result<i32> {
+        // SAFETY: the activity is a live global reference owned by the native activity.
+        let activity = unsafe { JObject::from_raw(env, ctx.context().cast()) };
+        let wm = env
+            .call_method(
+                &activity,
+                jni_str!("getWindowManager"),
+                jni_sig!("()Landroid/view/WindowManager;"),
+                &[],
+            )?
+            .l()?;
+        let display = env
+            .call_method(
+                &wm,
+                jni_str!("getDefaultDisplay"),
+                jni_sig!("()Landroid/view/Display;"),
+                &[],
+            )?
+            .l()?;
+        env.call_method(&display, jni_str!("getRotation"), jni_sig!("()I"), &[])?
+            .i()
+    });
+    result.unwrap_or_else(|e| {
+        log::warn!("regatta: display rotation not read ({e}); assuming 0");
+        0
+    })
 }
 
 impl Drop for ArCore {

@@ -9,18 +9,28 @@
 //! AR: [`arcore::ArCore`] loads `libarcore_sdk_c.so` with libloading and the pure session state
 //! machine (`ar::arcore::session`) decides what happens; where the library is missing (an APK
 //! built without `--arcore-aar`) the app says so and runs the 3D race view without the camera.
+//! Each frame `frame.rs` reads ARCore's frame into an `ar::CameraFrame`; once a tap has put the
+//! course on a detected plane, [`ar_view`] draws the race over the camera image with ARCore's
+//! camera and light. Touch: tap places, two fingers scale and turn the course (or, before it is
+//! placed, orbit and zoom the 3D view); the volume-up key starts and stops a recording.
 
 use std::time::{Duration, Instant};
 
-use android_activity::input::{InputEvent, MotionAction};
+use std::sync::Arc;
+
+use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent};
+use ar::FrameSource;
 use ar::arcore::{Command, Event, SessionState, TwoFingerGesture};
 use glam::{DVec2, DVec3};
+use render::effects::passes::{ArConfig, add_effect_passes};
 use render::{OrbitCamera, RenderOptions, Renderer};
 
 use crate::cli::render::{FAR_M, scene_at};
 
+mod ar_view;
 mod arcore;
+mod frame;
 
 // std's `_Unwind_*` come from the `unwinding` crate (see app/Cargo.toml); naming the crate links it.
 use unwinding as _;
@@ -91,7 +101,30 @@ struct Graphics {
     gpu: render::Gpu,
     renderer: Renderer,
     surface: Option<render::gpu::SurfaceTarget>,
+    wake: Option<Arc<ocean::wake::Wake>>,
 }
+
+/// A renderer for the surface's `format`, with the race's wakes.
+fn fresh_renderer(
+    gpu: &render::Gpu,
+    wake: Option<Arc<ocean::wake::Wake>>,
+    format: wgpu::TextureFormat,
+) -> Renderer {
+    let mut renderer = Renderer::new(
+        gpu,
+        format,
+        RenderOptions {
+            measure_gpu_time: false,
+            ..Default::default()
+        },
+    );
+    renderer.set_wake(wake);
+    renderer
+}
+
+/// A touch that may become a tap: where and when the finger went down.
+const TAP_MAX_PX: f64 = 20.0;
+const TAP_MAX_S: f64 = 0.3;
 
 struct App {
     race: race::Race,
@@ -105,6 +138,12 @@ struct App {
     /// One-finger drag start (pixels), or the two-finger gesture.
     drag: Option<DVec2>,
     pinch: Option<TwoFingerGesture>,
+    touch_down: Option<(DVec2, Instant)>,
+    ar_view: ar_view::ArView,
+    /// Display rotation (`Surface.ROTATION_*`) and the geometry last given to ARCore.
+    rotation: i32,
+    geometry_set: Option<(i32, u32, u32)>,
+    data_dir: Option<std::path::PathBuf>,
 }
 
 impl App {
@@ -134,6 +173,11 @@ impl App {
             session: SessionState::Start,
             drag: None,
             pinch: None,
+            touch_down: None,
+            ar_view: ar_view::ArView::default(),
+            rotation: 0,
+            geometry_set: None,
+            data_dir: None,
         })
     }
 
@@ -144,7 +188,11 @@ impl App {
     /// Returns true when the app must end.
     fn on_main_event(&mut self, app: &AndroidApp, event: MainEvent<'_>) -> bool {
         match event {
-            MainEvent::InitWindow { .. } => self.attach_window(app),
+            MainEvent::InitWindow { .. } => {
+                self.data_dir = app.internal_data_path();
+                self.rotation = arcore::display_rotation();
+                self.attach_window(app);
+            }
             // Drop the surface while its window still exists (wgpu issue 2302).
             MainEvent::TerminateWindow { .. } => {
                 if let Some(g) = self.graphics.as_mut() {
@@ -152,6 +200,7 @@ impl App {
                 }
             }
             MainEvent::WindowResized { .. } | MainEvent::ConfigChanged { .. } => {
+                self.rotation = arcore::display_rotation();
                 if let (Some(g), Some(w)) = (self.graphics.as_mut(), app.native_window())
                     && let Some(s) = g.surface.as_mut()
                 {
@@ -172,6 +221,9 @@ impl App {
             }
             MainEvent::Pause => {
                 self.resumed = false;
+                if self.ar_view.recorder.is_some() {
+                    self.ar_view.toggle_recording(None);
+                }
                 self.clock.set_running(false);
                 self.session_event(Event::AppPaused);
             }
@@ -245,23 +297,15 @@ impl App {
                 // SAFETY: as above.
                 match unsafe { render::Gpu::for_raw_window(raw_display, raw_window, w, h) } {
                     Ok((gpu, surface)) => {
-                        let mut renderer = Renderer::new(
-                            &gpu,
-                            surface.config.format,
-                            RenderOptions {
-                                measure_gpu_time: false,
-                                ..Default::default()
-                            },
-                        );
-                        match crate::cli::render::race_wake(&self.race) {
-                            Ok(wake) => renderer.set_wake(Some(wake)),
-                            Err(e) => log::warn!("regatta: {e}; drawing no wakes"),
-                        }
+                        let wake = crate::cli::render::race_wake(&self.race)
+                            .map_err(|e| log::warn!("regatta: {e}; drawing no wakes"))
+                            .ok();
                         log::info!("regatta: drawing on {}", gpu.describe());
                         self.graphics = Some(Graphics {
+                            renderer: fresh_renderer(&gpu, wake.clone(), surface.config.format),
                             gpu,
-                            renderer,
                             surface: Some(surface),
+                            wake,
                         });
                     }
                     Err(e) => log::error!("regatta: {e}"),
@@ -270,22 +314,36 @@ impl App {
         }
     }
 
-    /// Touch: one finger orbits the 3D view, two fingers pinch (zoom) and twist (turn).
+    /// Touch: a tap places the course on the table; one finger orbits the 3D view; two fingers
+    /// pinch and twist (the course once placed, else the 3D view). Volume-up toggles recording.
     fn handle_input(&mut self, app: &AndroidApp) {
         let Ok(mut iter) = app.input_events_iter() else {
             return;
         };
+        let size = self.view_size();
+        let play_area = scene_at(&self.race, &self.sea, self.clock.t, None).play_area;
+        let table_depth = ArConfig::default().table_depth;
         loop {
-            let more = iter.next(|event| {
-                if let InputEvent::MotionEvent(m) = event {
+            let more = iter.next(|event| match event {
+                InputEvent::KeyEvent(k) if k.key_code() == Keycode::VolumeUp => {
+                    if k.action() == KeyAction::Down {
+                        self.ar_view.toggle_recording(self.data_dir.as_deref());
+                    }
+                    InputStatus::Handled
+                }
+                InputEvent::MotionEvent(m) => {
                     let pts: Vec<DVec2> = m
                         .pointers()
                         .map(|p| DVec2::new(f64::from(p.x()), f64::from(p.y())))
                         .collect();
                     match (m.action(), pts.as_slice()) {
-                        (MotionAction::Down, [p]) => self.drag = Some(*p),
+                        (MotionAction::Down, [p]) => {
+                            self.drag = Some(*p);
+                            self.touch_down = Some((*p, Instant::now()));
+                        }
                         (MotionAction::PointerDown, [a, b, ..]) => {
                             self.drag = None;
+                            self.touch_down = None;
                             self.pinch = Some(TwoFingerGesture::new(*a, *b));
                         }
                         (MotionAction::Move, [p]) => {
@@ -299,20 +357,40 @@ impl App {
                         (MotionAction::Move, [a, b, ..]) => {
                             if let Some(g) = self.pinch.as_mut() {
                                 let (pinch, twist) = g.update(*a, *b);
-                                self.orbit.distance =
-                                    (self.orbit.distance / pinch).clamp(5.0, 5000.0);
-                                self.orbit.yaw += twist;
+                                match self.ar_view.placement.as_mut() {
+                                    Some(p) => p.apply_gesture_about(
+                                        ar_view::course_pivot(play_area, table_depth),
+                                        pinch,
+                                        twist,
+                                    ),
+                                    None => {
+                                        self.orbit.distance =
+                                            (self.orbit.distance / pinch).clamp(5.0, 5000.0);
+                                        self.orbit.yaw += twist;
+                                    }
+                                }
                             }
+                        }
+                        (MotionAction::Up, [p]) => {
+                            if let Some((down, at)) = self.touch_down.take()
+                                && (*p - down).length() < TAP_MAX_PX
+                                && at.elapsed().as_secs_f64() < TAP_MAX_S
+                            {
+                                self.ar_view.tap(*p, size, play_area, table_depth);
+                            }
+                            self.drag = None;
+                            self.pinch = None;
                         }
                         (MotionAction::Up | MotionAction::Cancel, _) => {
                             self.drag = None;
                             self.pinch = None;
+                            self.touch_down = None;
                         }
                         _ => {}
                     }
-                    return InputStatus::Handled;
+                    InputStatus::Handled
                 }
-                InputStatus::Unhandled
+                _ => InputStatus::Unhandled,
             });
             if !more {
                 break;
@@ -320,13 +398,39 @@ impl App {
         }
     }
 
+    /// The window's size in pixels (1 × 1 without one).
+    fn view_size(&self) -> [u32; 2] {
+        self.graphics
+            .as_ref()
+            .and_then(|g| g.surface.as_ref())
+            .map_or([1, 1], |s| [s.config.width, s.config.height])
+    }
+
+    /// Steps ARCore: display geometry when it changed, `ArSession_update`, then the frame.
+    fn update_ar(&mut self) {
+        if !self.session.is_running() {
+            return;
+        }
+        let [w, h] = self.view_size();
+        let geometry = (self.rotation, w, h);
+        if self.geometry_set != Some(geometry) {
+            self.ar.set_display_geometry(self.rotation, w, h);
+            self.geometry_set = Some(geometry);
+        }
+        if let Some(answer) = self.ar.update() {
+            self.session_event(answer);
+            return;
+        }
+        match self.ar.next_frame() {
+            Ok(Some(frame)) => self.ar_view.on_frame(frame, self.ar.view.as_ref()),
+            Ok(None) => {}
+            Err(e) => log::warn!("regatta: {e}"),
+        }
+    }
+
     fn draw(&mut self) {
         self.clock.tick();
-        if self.session.is_running()
-            && let Some(answer) = self.ar.update()
-        {
-            self.session_event(answer);
-        }
+        self.update_ar();
         let mut scene = scene_at(&self.race, &self.sea, self.clock.t, None);
         if !scene.boats.is_empty() {
             let c =
@@ -338,6 +442,37 @@ impl App {
             return;
         };
         let Some(s) = g.surface.as_mut() else { return };
+        // On the table once placed: ARCore's camera and light, the camera image behind.
+        if let (Some(p), Some(view), Some(frame)) = (
+            self.ar_view.placement,
+            self.ar.view.as_ref(),
+            self.ar_view.frame.as_ref(),
+        ) {
+            scene.camera = ar_view::ArView::camera(&p, view);
+            if let Some(l) = view.light_towards {
+                scene.sun = ar_view::ArView::sun(&p, l);
+            }
+            let min_len = ar_view::ArView::boat_length(&p);
+            for b in &mut scene.boats {
+                b.length = b.length.max(min_len);
+            }
+            if self
+                .ar_view
+                .background_at
+                .is_none_or(|t| t.elapsed().as_secs_f64() >= ar_view::BACKGROUND_REFRESH_S)
+            {
+                let rebuild = Instant::now();
+                let mut fresh = fresh_renderer(&g.gpu, g.wake.clone(), s.config.format);
+                let background = ar_view::ArView::background(&p, frame);
+                add_effect_passes(&mut fresh, &g.gpu, ArConfig::default(), background);
+                g.renderer = fresh;
+                self.ar_view.background_at = Some(Instant::now());
+                log::debug!(
+                    "regatta: effect passes rebuilt over the camera image in {:.1} ms",
+                    rebuild.elapsed().as_secs_f64() * 1e3
+                );
+            }
+        }
         let frame = match s.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
             | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,

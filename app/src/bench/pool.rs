@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use glam::DVec3;
+use render::gpu::texture_2d;
 use render::pool::caustics::CausticMap;
 use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, render_pool_image};
 use render::{Camera, Gpu, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
@@ -31,22 +32,14 @@ fn water_only_scene(t: f64) -> Scene {
 }
 
 fn offscreen(gpu: &Gpu, size: [u32; 2]) -> wgpu::TextureView {
-    gpu.device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some("bench offscreen"),
-            size: wgpu::Extent3d {
-                width: size[0],
-                height: size[1],
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: OFFSCREEN_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        })
-        .create_view(&Default::default())
+    texture_2d(
+        &gpu.device,
+        "bench offscreen",
+        size,
+        OFFSCREEN_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    )
+    .create_view(&Default::default())
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -98,6 +98,23 @@ fn errors(f: &Field, values: &[f64]) -> (f64, f64, f64) {
     ((e2 / n).sqrt(), emax, (r2 / n).sqrt())
 }
 
+/// A wake model on the field: its values on the grid, its cost (ns per point) and its cusp
+/// half-angle (°) measured 10 λ behind the boat.
+fn sample(
+    ctx: &BenchContext,
+    f: &Field,
+    model: impl Fn([f64; 2]) -> f64,
+) -> (Vec<f64>, f64, Option<f64>) {
+    let values = f.grid.iter().map(|&p| model(p)).collect();
+    let ns = time_ns(reps(ctx), f.grid.len(), || {
+        for &p in &f.grid {
+            black_box(model(black_box(p)));
+        }
+    });
+    let angle = cusp_half_angle_deg(&|xi, y| model([xi, y]), f.lambda, 10.0 * f.lambda);
+    (values, ns, angle)
+}
+
 fn kelvin_wake(f: &Field, prm: WakeParams) -> CliResult<Wake> {
     Wake::new(&[&f.track], prm).map_err(|e| CliError::new(e.to_string()))
 }
@@ -247,14 +264,7 @@ fn models_table(ctx: &BenchContext) -> CliResult<Table> {
                 ..boat
             };
             let wake = kelvin_wake(&f, prm)?;
-            let kv: Vec<f64> = f.grid.iter().map(|&p| wake.height(p, T_END)).collect();
-            let k_ns = time_ns(reps(ctx), f.grid.len(), || {
-                for &p in &f.grid {
-                    black_box(wake.height(black_box(p), T_END));
-                }
-            });
-            let kf = |xi: f64, y: f64| wake.height([xi, y], T_END);
-            let k_angle = cusp_half_angle_deg(&kf, f.lambda, 10.0 * f.lambda);
+            let (kv, k_ns, k_angle) = sample(ctx, &f, |p| wake.height(p, T_END));
             // 003: n rings a fixed time apart over the same reach.
             let rp = RingParams {
                 points: n,
@@ -262,14 +272,7 @@ fn models_table(ctx: &BenchContext) -> CliResult<Table> {
                 ..ring0
             };
             let ring = RingWake::new(&[&f.track], rp).map_err(|e| CliError::new(e.to_string()))?;
-            let rv: Vec<f64> = f.grid.iter().map(|&p| ring.strength(p, T_END)).collect();
-            let r_ns = time_ns(reps(ctx), f.grid.len(), || {
-                for &p in &f.grid {
-                    black_box(ring.strength(black_box(p), T_END));
-                }
-            });
-            let rf = |xi: f64, y: f64| ring.strength([xi, y], T_END);
-            let r_angle = cusp_half_angle_deg(&rf, f.lambda, 10.0 * f.lambda);
+            let (rv, r_ns, r_angle) = sample(ctx, &f, |p| ring.strength(p, T_END));
             // Least-squares scale of the ring strength onto the reference.
             let num: f64 = rv.iter().zip(&f.reference).map(|(a, b)| a * b).sum();
             let den: f64 = rv.iter().map(|a| a * a).sum();

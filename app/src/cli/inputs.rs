@@ -1,11 +1,25 @@
 //! Inputs shared by several subcommands: the sea (`--sea`). Races (`--race`) join here when the
 //! race crate lands.
 
+use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 use ocean::WaveSet;
 
 use crate::error::{CliError, CliResult};
+
+/// Parse `--size WxH` (or `WXH`) with each side in `sides` pixels; a bad size is the sentence
+/// `--size "S" is not {expected}`.
+pub fn parse_size_in(s: &str, sides: RangeInclusive<u32>, expected: &str) -> CliResult<[u32; 2]> {
+    let bad = || CliError::new(format!("--size \"{s}\" is not {expected}"));
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if !sides.contains(&w) || !sides.contains(&h) {
+        return Err(bad());
+    }
+    Ok([w, h])
+}
 
 /// Read a file into a string, with the path named in the error.
 pub fn read_text(path: &Path) -> CliResult<String> {

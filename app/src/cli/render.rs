@@ -7,7 +7,7 @@ use clap::Args;
 use glam::{DVec2, DVec3};
 use render::{Boat, Camera, Mark, RenderOptions, Renderer, Scene};
 
-use crate::cli::inputs::{load_race, load_sea};
+use crate::cli::inputs::{load_race, load_sea, parse_size_in};
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
@@ -60,18 +60,11 @@ pub enum SceneKind {
 
 /// Parse `WIDTHxHEIGHT` (each 1..=8192).
 pub fn parse_size(s: &str) -> CliResult<[u32; 2]> {
-    let bad = || {
-        CliError::new(format!(
-            "--size \"{s}\" is not WIDTHxHEIGHT with each between 1 and 8192 pixels"
-        ))
-    };
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let w: u32 = w.trim().parse().map_err(|_| bad())?;
-    let h: u32 = h.trim().parse().map_err(|_| bad())?;
-    if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
-        return Err(bad());
-    }
-    Ok([w, h])
+    parse_size_in(
+        s,
+        1..=8192,
+        "WIDTHxHEIGHT with each between 1 and 8192 pixels",
+    )
 }
 
 /// Parse `--camera` (six finite numbers; the eye must differ from the target and not look

@@ -14,6 +14,7 @@ use ar::{ReplayFeed, SynthConfig};
 use clap::{Args, Subcommand};
 use serde_json::json;
 
+use crate::cli::inputs::parse_size_in;
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
@@ -92,17 +93,11 @@ fn synth(a: SynthArgs) -> CliResult {
 
 /// `WxH` with both in 16..=4096 pixels.
 pub fn parse_size(s: &str) -> CliResult<(u32, u32)> {
-    let bad = || {
-        CliError::new(format!(
-            "--size \"{s}\" is not WxH with width and height from 16 to 4096 pixels"
-        ))
-    };
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let w: u32 = w.trim().parse().map_err(|_| bad())?;
-    let h: u32 = h.trim().parse().map_err(|_| bad())?;
-    if !(16..=4096).contains(&w) || !(16..=4096).contains(&h) {
-        return Err(bad());
-    }
+    let [w, h] = parse_size_in(
+        s,
+        16..=4096,
+        "WxH with width and height from 16 to 4096 pixels",
+    )?;
     Ok((w, h))
 }
 

@@ -31,6 +31,31 @@ impl Camera {
         }
     }
 
+    /// The camera of a view matrix (world to camera, camera looking down −z, y up) and an
+    /// OpenGL projection (clip z in −w..w, e.g. ARCore's `ArCamera_getProjectionMatrix`).
+    ///
+    /// `view` may scale uniformly (a race world placed on a table: race metres in, AR metres
+    /// out); near and far come back in the world's metres. What [`Camera`] cannot hold is lost:
+    /// roll about the viewing axis (the up vector is world y) and an off-centre principal point
+    /// (ARCore's is within about 1 % of the image centre); the vertical field of view is the
+    /// projection's, the aspect is the viewport's at draw time.
+    pub fn from_view_projection(view: DMat4, projection_gl: DMat4) -> Camera {
+        let to_world = view.inverse();
+        let eye = to_world.transform_point3(DVec3::ZERO);
+        let forward = to_world.transform_vector3(DVec3::NEG_Z).normalize();
+        // Camera metres per world metre.
+        let scale = view.x_axis.truncate().length();
+        // OpenGL perspective: m22 = −(f + n)/(f − n), m32 = −2 f n/(f − n).
+        let (m22, m32) = (projection_gl.z_axis.z, projection_gl.w_axis.z);
+        Camera {
+            eye,
+            target: eye + forward,
+            fov_y: 2.0 * (1.0 / projection_gl.y_axis.y).atan(),
+            near: m32 / (m22 - 1.0) / scale,
+            far: m32 / (m22 + 1.0) / scale,
+        }
+    }
+
     /// World-to-clip matrix for points given relative to `origin` (x, z) on the sea level,
     /// in f64; wgpu depth range [0, 1].
     pub fn view_proj_local(&self, origin: DVec2, aspect: f64) -> DMat4 {
@@ -150,6 +175,42 @@ mod tests {
         // The target projects to the screen centre.
         let c = cam.view_proj_local(DVec2::ZERO, 1.5) * DVec4::new(0.0, 0.0, -100.0, 1.0);
         assert!((c.x / c.w).abs() < 1e-9 && (c.y / c.w).abs() < 1e-9);
+    }
+
+    /// A view and a GL projection built by glam give back a camera whose view-projection puts
+    /// every point where glam's own matrices (depth remapped to wgpu's 0..1) put it, also when
+    /// the view scales the world (a course on a table).
+    #[test]
+    fn camera_from_view_and_gl_projection_matches_glam() {
+        let eye = DVec3::new(3.0, 2.0, 5.0);
+        let target = DVec3::new(-1.0, 0.5, -2.0);
+        let aspect = 0.5;
+        let view = glam::dcamera::rh::view::look_at_mat4(eye, target, DVec3::Y);
+        let proj = glam::dcamera::rh::proj::opengl::perspective(1.1, aspect, 0.1, 50.0);
+        // z' = (z + w)/2: GL clip depth to wgpu's.
+        let gl_to_wgpu = DMat4::from_cols_array(&[
+            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 0.5, 1.0,
+        ]);
+        for s in [1.0, 1.0 / 2000.0] {
+            // World metres → view metres scaled by s: the camera sits at eye / s in the world.
+            let scaled_view = view * DMat4::from_scale(DVec3::splat(s));
+            let cam = Camera::from_view_projection(scaled_view, proj);
+            assert!((cam.eye - eye / s).length() < 1e-9 / s);
+            assert!((cam.near - 0.1 / s).abs() < 1e-9 / s && (cam.far - 50.0 / s).abs() < 1e-6 / s);
+            assert!((cam.fov_y - 1.1).abs() < 1e-12);
+            let ours = cam.view_proj_local(DVec2::ZERO, aspect);
+            let theirs = gl_to_wgpu * proj * scaled_view;
+            for p in [
+                target / s,
+                DVec3::new(0.5, 0.0, 0.0) / s,
+                DVec3::new(-2.0, 1.0, -4.0) / s,
+            ] {
+                let a = ours * p.extend(1.0);
+                let b = theirs * p.extend(1.0);
+                let (a, b) = (a.truncate() / a.w, b.truncate() / b.w);
+                assert!((a - b).length() < 1e-9, "{p}: {a} vs {b}");
+            }
+        }
     }
 
     #[test]

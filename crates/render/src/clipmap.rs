@@ -25,7 +25,8 @@
 //! √2 s along the diagonal ([`extent_along`]). A dropped wave errs by A (ocean's
 //! [`WaveSet::cull`]). The error in pixels of a level is
 //! largest at its inner edge, so [`ClipMapConfig::for_view`] builds the map greedily: the
-//! coarsest s₀ (a power of two) that meets the target at the eye's height, then each level
+//! coarsest s₀ (on a ladder 2^(e + i/8), the cheapest of the eight) that meets the target at
+//! the eye's height, then each level
 //! just wide enough that the next, twice as coarse, meets it at its inner edge; levels are
 //! added until the map reaches the far edge of the play area or of the view.
 //!
@@ -53,13 +54,38 @@ pub const MAX_WAVES: usize = 64;
 pub struct ErrorTarget {
     /// Largest height error of the mesh against the analytic sea, in pixels.
     pub pixels: f64,
+    /// How the allowed error grows with distance: at d metres it is
+    /// `pixels · max(1, d / GRADED_FROM)^distance_exponent` ([`ErrorTarget::pixels_at`]); 0 is
+    /// a uniform target (the renderer's). The bound is more conservative far away (dropped
+    /// waves counted at full amplitude, every wave's worst case added), so a graded target
+    /// can meet the same *measured* error with fewer far-field triangles (the mesh bench).
+    pub distance_exponent: f64,
     /// Viewport height in pixels.
     pub viewport_height: u32,
     /// Vertical field of view, radians.
     pub fov_y: f64,
 }
 
+/// Distance from which a graded [`ErrorTarget`] grows, metres.
+pub const GRADED_FROM: f64 = 10.0;
+
 impl ErrorTarget {
+    /// A target of `pixels` everywhere on a viewport `viewport_height` pixels high with a
+    /// vertical field of view `fov_y` radians.
+    pub fn uniform(pixels: f64, viewport_height: u32, fov_y: f64) -> ErrorTarget {
+        ErrorTarget {
+            pixels,
+            distance_exponent: 0.0,
+            viewport_height,
+            fov_y,
+        }
+    }
+
+    /// Error allowed at distance `d` metres, pixels.
+    pub fn pixels_at(&self, d: f64) -> f64 {
+        self.pixels * (d / GRADED_FROM).max(1.0).powf(self.distance_exponent)
+    }
+
     /// Metres that one pixel spans at distance `d`.
     pub fn metres_per_pixel(&self, d: f64) -> f64 {
         d * 2.0 * (self.fov_y / 2.0).tan() / f64::from(self.viewport_height)
@@ -95,6 +121,8 @@ pub struct LevelPlan {
     pub interpolation_bound: f64,
     /// (dropped + interpolation) in pixels at `nearest`.
     pub error_px: f64,
+    /// Error the target allows at `nearest`, pixels.
+    pub allowed_px: f64,
 }
 
 impl ClipMapConfig {
@@ -150,7 +178,8 @@ impl ClipMapConfig {
                 let r = (self.half_extent(l - 1) - cell).max(0.0);
                 (h * h + r * r).sqrt()
             };
-            let budget = target.pixels * target.metres_per_pixel(nearest);
+            let allowed_px = target.pixels_at(nearest);
+            let budget = allowed_px * target.metres_per_pixel(nearest);
             // A wave shorter than π s errs by half its amplitude or more when interpolated
             // (A k² L²/8 with k s ≥ 2, L ≥ s): the level drops it (ocean counts it in the bound).
             let culled = sea.cull(budget * 0.5, std::f64::consts::PI * cell);
@@ -178,6 +207,7 @@ impl ClipMapConfig {
                 dropped_bound,
                 interpolation_bound,
                 error_px: (dropped_bound + interpolation_bound) / target.metres_per_pixel(nearest),
+                allowed_px,
             });
         }
         out
@@ -187,29 +217,52 @@ impl ClipMapConfig {
     /// (greedy, see the module docs), for an eye `eye_height` metres up that must see water out
     /// to `reach` metres. Where the target cannot be met (16 levels, 1024 cells) the map is the
     /// closest one; its plan says what it reaches.
+    ///
+    /// Cell sizes double level by level, so the base cell fixes every level's cell. A ladder of
+    /// powers of two alone would make the far field, where most triangles are, up to 2× too
+    /// fine (4× the triangles), so the base cell is chosen on [`BASE_LADDER_STEPS`] ladders
+    /// s₀ = 2^(e + i/steps) and the map with the fewest triangles is kept.
     pub fn for_view(
         sea: &WaveSet,
         target: &ErrorTarget,
         eye_height: f64,
         reach: f64,
     ) -> ClipMapConfig {
+        (0..BASE_LADDER_STEPS)
+            .map(|i| {
+                let scale = 2f64.powf(f64::from(i) / f64::from(BASE_LADDER_STEPS));
+                Self::for_view_on_ladder(sea, target, eye_height, reach, scale)
+            })
+            .min_by_key(ClipMapConfig::full_triangles)
+            .expect("at least one ladder")
+    }
+
+    /// [`ClipMapConfig::for_view`] with the base cell restricted to `scale` · 2^e metres
+    /// (`scale` in [1, 2)).
+    pub fn for_view_on_ladder(
+        sea: &WaveSet,
+        target: &ErrorTarget,
+        eye_height: f64,
+        reach: f64,
+        scale: f64,
+    ) -> ClipMapConfig {
         const MAX_CELLS: u32 = 1024;
-        let error_at = |cfg: &ClipMapConfig| {
+        let meets = |cfg: &ClipMapConfig| {
             let plan = cfg.plan(sea, target, eye_height);
-            plan.last().map_or(0.0, |p| p.error_px)
+            plan.last().is_none_or(|p| p.error_px <= p.allowed_px)
         };
-        // Coarsest power-of-two base cell meeting the target at level 0.
+        // Coarsest base cell on the ladder meeting the target at level 0.
         let mut cfg = ClipMapConfig {
             cells: vec![8],
-            base_cell: 2f64.powi(-8),
+            base_cell: scale * 2f64.powi(-8),
             morph_band: DEFAULT_MORPH_BAND,
         };
         for e in (-8..=8).rev() {
             let c = ClipMapConfig {
-                base_cell: 2f64.powi(e),
+                base_cell: scale * 2f64.powi(e),
                 ..cfg.clone()
             };
-            if error_at(&c) <= target.pixels {
+            if meets(&c) {
                 cfg = c;
                 break;
             }
@@ -230,7 +283,7 @@ impl ClipMapConfig {
                 let mut next = cfg.clone();
                 next.cells
                     .push((cfg.cells[l as usize] / 2 + 2).next_multiple_of(4).max(8));
-                if error_at(&next) <= target.pixels || cfg.cells[l as usize] >= MAX_CELLS {
+                if meets(&next) || cfg.cells[l as usize] >= MAX_CELLS {
                     cfg = next;
                     break;
                 }
@@ -239,6 +292,9 @@ impl ClipMapConfig {
         }
     }
 }
+
+/// Ladders of base cell sizes that [`ClipMapConfig::for_view`] tries: s₀ = 2^(e + i/steps).
+pub const BASE_LADDER_STEPS: u32 = 8;
 
 /// The largest extent, in cells, of one of the mesh's triangles along the unit direction `d`:
 /// the triangles are (0,0),(0,1),(1,1) and (0,0),(1,1),(1,0) in cell units. Between 1 (a wave
@@ -556,11 +612,7 @@ mod tests {
         // where a vertex of level L + 1 is: same rest point, same evaluated waves.
         let sea = WaveSet::default_sea();
         let c = config();
-        let target = ErrorTarget {
-            pixels: 0.5,
-            viewport_height: 720,
-            fov_y: 1.0,
-        };
+        let target = ErrorTarget::uniform(0.5, 720, 1.0);
         let plan = c.plan(&sea, &target, 8.0);
         assert!(
             plan.windows(2).any(|p| p[1].kept.len() < p[0].kept.len()),
@@ -607,11 +659,7 @@ mod tests {
         // above can fail.
         let sea = WaveSet::default_sea();
         let c = config();
-        let target = ErrorTarget {
-            pixels: 0.5,
-            viewport_height: 720,
-            fov_y: 1.0,
-        };
+        let target = ErrorTarget::uniform(0.5, 720, 1.0);
         let plan = c.plan(&sea, &target, 8.0);
         let (eye, t) = (DVec2::ZERO, 1234.5);
         let m = c.build(eye, &Culling::default());
@@ -725,13 +773,55 @@ mod tests {
     }
 
     #[test]
+    fn graded_target_allows_more_far_away_and_costs_fewer_cells() {
+        let sea = WaveSet::default_sea();
+        let uniform = ErrorTarget::uniform(0.5, 720, 55f64.to_radians());
+        let graded = ErrorTarget {
+            distance_exponent: 0.5,
+            ..uniform
+        };
+        // Closed form: pixels · max(1, d / 10 m)^γ.
+        assert_eq!(graded.pixels_at(4.0), 0.5);
+        assert!((graded.pixels_at(1000.0) - 5.0).abs() < 1e-12);
+        assert_eq!(uniform.pixels_at(1000.0), 0.5);
+        let c = ClipMapConfig::for_view(&sea, &graded, 12.0, 1000.0);
+        assert!(c.half_extent(c.levels() - 1) >= 1000.0);
+        for (l, p) in c.plan(&sea, &graded, 12.0).iter().enumerate() {
+            let allowed = 0.5 * (p.nearest / GRADED_FROM).max(1.0).sqrt();
+            assert!((p.allowed_px - allowed).abs() < 1e-12, "level {l}");
+            assert!(
+                p.error_px <= allowed,
+                "level {l}: {} > {allowed} px",
+                p.error_px
+            );
+        }
+        let u = ClipMapConfig::for_view(&sea, &uniform, 12.0, 1000.0);
+        assert!(
+            c.full_triangles() < u.full_triangles(),
+            "{} vs {}",
+            c.full_triangles(),
+            u.full_triangles()
+        );
+    }
+
+    #[test]
+    fn finer_base_ladders_are_never_worse_than_powers_of_two() {
+        let sea = WaveSet::default_sea();
+        for px in [0.5, 1.0, 3.0] {
+            let target = ErrorTarget::uniform(px, 720, 55f64.to_radians());
+            let best = ClipMapConfig::for_view(&sea, &target, 12.0, 1000.0);
+            let pow2 = ClipMapConfig::for_view_on_ladder(&sea, &target, 12.0, 1000.0, 1.0);
+            assert!(best.full_triangles() <= pow2.full_triangles(), "{px} px");
+            for p in best.plan(&sea, &target, 12.0) {
+                assert!(p.error_px <= px, "{px} px: {}", p.error_px);
+            }
+        }
+    }
+
+    #[test]
     fn chosen_config_meets_its_error_target() {
         let sea = WaveSet::default_sea();
-        let target = ErrorTarget {
-            pixels: 2.0,
-            viewport_height: 720,
-            fov_y: 55f64.to_radians(),
-        };
+        let target = ErrorTarget::uniform(2.0, 720, 55f64.to_radians());
         let c = ClipMapConfig::for_view(&sea, &target, 12.0, 1000.0);
         let plan = c.plan(&sea, &target, 12.0);
         assert!(c.half_extent(c.levels() - 1) >= 1000.0);

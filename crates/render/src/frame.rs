@@ -57,11 +57,7 @@ impl<'a> FrameContext<'a> {
     pub fn new(scene: &'a Scene, size: [u32; 2], error_px: f64) -> FrameContext<'a> {
         let cam = &scene.camera;
         let aspect = f64::from(size[0]) / f64::from(size[1].max(1));
-        let error_target = ErrorTarget {
-            pixels: error_px,
-            viewport_height: size[1].max(1),
-            fov_y: cam.fov_y,
-        };
+        let error_target = ErrorTarget::uniform(error_px, size[1].max(1), cam.fov_y);
         let eye_xz = DVec2::new(cam.eye.x, cam.eye.z);
         // The map must reach the farthest corner of the play area that the far plane allows.
         let [ax, az, bx, bz] = scene.play_area;

@@ -10,6 +10,8 @@ use std::sync::Arc;
 
 use wgpu::{Backends, Features};
 
+use crate::renderer::DEPTH_FORMAT;
+
 /// Features Regatta uses when the adapter has them; none is required.
 pub const OPTIONAL_FEATURES: Features = Features::TIMESTAMP_QUERY
     .union(Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
@@ -232,10 +234,42 @@ impl Gpu {
         Ok(bytes)
     }
 
+    /// Draw with `draw` into an offscreen `format` texture of `size` pixels and read it back:
+    /// the image and what `draw` returned.
+    pub fn render_offscreen<R>(
+        &self,
+        size: [u32; 2],
+        format: wgpu::TextureFormat,
+        draw: impl FnOnce(&wgpu::TextureView) -> R,
+    ) -> Result<(image::RgbaImage, R), GpuError> {
+        let tex = texture_2d(
+            &self.device,
+            "offscreen",
+            size,
+            format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
+        let drawn = draw(&tex.create_view(&Default::default()));
+        Ok((self.read_texture(&tex)?, drawn))
+    }
+
     /// Copy an RGBA8 texture (it must have `COPY_SRC`) into an image.
     pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<image::RgbaImage, GpuError> {
+        let pixels = self.read_texture_bytes(texture, 4)?;
+        image::RgbaImage::from_raw(texture.width(), texture.height(), pixels)
+            .ok_or_else(|| GpuError("a read-back texture had the wrong size".into()))
+    }
+
+    /// Copy a texture (it must have `COPY_SRC`) whose texels are `texel_bytes` bytes wide back
+    /// to the CPU: its rows packed one after another (the copy's row padding dropped), row 0
+    /// first.
+    pub fn read_texture_bytes(
+        &self,
+        texture: &wgpu::Texture,
+        texel_bytes: u32,
+    ) -> Result<Vec<u8>, GpuError> {
         let (w, h) = (texture.width(), texture.height());
-        let row = w * 4;
+        let row = w * texel_bytes;
         let padded =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
@@ -264,8 +298,71 @@ impl Gpu {
             let start = y * padded as usize;
             pixels.extend_from_slice(&bytes[start..start + row as usize]);
         }
-        image::RgbaImage::from_raw(w, h, pixels)
-            .ok_or_else(|| GpuError("a read-back texture had the wrong size".into()))
+        Ok(pixels)
+    }
+}
+
+/// A plain 2-D texture of `size` pixels: one mip level, one sample, no extra view formats.
+pub fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: size[0],
+            height: size[1],
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
+/// A renderer's depth buffer ([`DEPTH_FORMAT`]), kept between frames and made again only when
+/// the frame's size changes.
+pub struct DepthBuffer {
+    label: &'static str,
+    texture: Option<(wgpu::Texture, wgpu::TextureView)>,
+}
+
+impl DepthBuffer {
+    /// No texture yet: the first [`DepthBuffer::view`] makes it.
+    pub fn new(label: &'static str) -> DepthBuffer {
+        DepthBuffer {
+            label,
+            texture: None,
+        }
+    }
+
+    /// A view of a depth buffer of `size` pixels.
+    pub fn view(&mut self, gpu: &Gpu, size: [u32; 2]) -> wgpu::TextureView {
+        let fits = self
+            .texture
+            .as_ref()
+            .is_some_and(|(t, _)| t.width() == size[0] && t.height() == size[1]);
+        if !fits {
+            let tex = texture_2d(
+                &gpu.device,
+                self.label,
+                size,
+                DEPTH_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            );
+            let view = tex.create_view(&Default::default());
+            self.texture = Some((tex, view));
+        }
+        self.texture
+            .as_ref()
+            .map(|(_, v)| v.clone())
+            .expect("set above")
     }
 }
 

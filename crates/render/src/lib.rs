@@ -42,6 +42,8 @@ pub mod clipmap;
 pub mod compute;
 pub mod effects;
 pub mod frame;
+#[doc(hidden)]
+pub mod golden;
 pub mod gpu;
 pub mod hull;
 pub mod mesh_error;

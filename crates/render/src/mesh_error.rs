@@ -45,6 +45,8 @@ pub struct Measured {
     pub p99_px: f64,
     pub mean_px: f64,
     pub samples: usize,
+    /// Distance from the eye of the sample with the largest error, metres.
+    pub worst_distance: f64,
 }
 
 /// Measure the height error of `cfg` (waves `kept[level]` per level) at `view`, at time `t`.
@@ -84,16 +86,19 @@ pub fn measure(
             };
             let truth = sea.displace([x0.x, x0.y], t)[1];
             let d = (p - cam.eye).length();
-            errs.push((h - truth).abs() * cam.pixels_per_metre(d, view.size[1]));
+            errs.push(((h - truth).abs() * cam.pixels_per_metre(d, view.size[1]), d));
         }
     }
-    errs.sort_by(f64::total_cmp);
+    errs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let worst_distance = errs.last().map_or(0.0, |e| e.1);
+    let errs: Vec<f64> = errs.into_iter().map(|e| e.0).collect();
     let n = errs.len();
     Measured {
         max_px: errs.last().copied().unwrap_or(0.0),
         p99_px: errs.get(n * 99 / 100).copied().unwrap_or(0.0),
         mean_px: errs.iter().sum::<f64>() / n.max(1) as f64,
         samples: n,
+        worst_distance,
     }
 }
 

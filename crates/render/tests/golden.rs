@@ -1,7 +1,5 @@
 //! Golden-image tests on lavapipe: a fixed scene rendered small and compared with a PNG in
-//! `tests/golden/`. The tolerance lets driver rounding through and catches a broken shader:
-//! mean absolute difference ≤ 2 levels (of 255) per channel, and ≤ 1 % of pixels off by more
-//! than 24 levels in any channel.
+//! `tests/golden/` by the crate's shared check (`render::golden`, which states the limits).
 //!
 //! Regenerate after an intended change of the picture:
 //! `REGATTA_UPDATE_GOLDEN=1 cargo test -p render --test golden`, then look at the PNGs.
@@ -10,12 +8,9 @@ use std::path::PathBuf;
 
 use glam::{DVec2, DVec3};
 use ocean::WaveSet;
+use render::golden::{MAX_OFF_FRACTION, MEAN_TOLERANCE, compare};
 use render::gpu::test_gpu;
 use render::{Boat, Camera, Mark, RenderOptions, Renderer, Scene};
-
-const MEAN_TOLERANCE: f64 = 2.0;
-const PIXEL_TOLERANCE: u8 = 24;
-const MAX_OFF_FRACTION: f64 = 0.01;
 
 fn golden_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -23,49 +18,11 @@ fn golden_path(name: &str) -> PathBuf {
         .join(format!("{name}.png"))
 }
 
-/// Mean absolute difference per channel (levels) and the fraction of pixels off by more than
-/// `PIXEL_TOLERANCE` in some channel.
-fn compare(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
-    assert_eq!(a.dimensions(), b.dimensions());
-    let (mut sum, mut off) = (0.0, 0usize);
-    for (p, q) in a.pixels().zip(b.pixels()) {
-        let d: Vec<u8> = (0..3).map(|c| p[c].abs_diff(q[c])).collect();
-        sum += d.iter().map(|&x| f64::from(x)).sum::<f64>();
-        off += usize::from(d.iter().any(|&x| x > PIXEL_TOLERANCE));
-    }
-    let n = (a.width() * a.height()) as f64;
-    (sum / (3.0 * n), off as f64 / n)
-}
-
 fn check(name: &str, scene: &Scene, size: [u32; 2]) {
     let Some(gpu) = test_gpu() else { return };
     let mut r = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, RenderOptions::default());
     let (img, _) = render::render_image(&gpu, &mut r, scene, size).unwrap();
-    let path = golden_path(name);
-    if std::env::var_os("REGATTA_UPDATE_GOLDEN").is_some() {
-        img.save(&path).unwrap();
-        eprintln!("wrote {}", path.display());
-        return;
-    }
-    let golden = image::open(&path)
-        .unwrap_or_else(|e| {
-            panic!(
-                "{}: {e}; regenerate with REGATTA_UPDATE_GOLDEN=1",
-                path.display()
-            )
-        })
-        .to_rgba8();
-    let (mean, off) = compare(&img, &golden);
-    if mean > MEAN_TOLERANCE || off > MAX_OFF_FRACTION {
-        let got = std::env::temp_dir().join(format!("regatta-{name}-got.png"));
-        let _ = img.save(&got);
-        panic!(
-            "{name}: mean difference {mean:.2} levels, {:.2} % pixels off (limits {MEAN_TOLERANCE}, {:.0} %); got {}",
-            off * 100.0,
-            MAX_OFF_FRACTION * 100.0,
-            got.display()
-        );
-    }
+    render::golden::check(&golden_path(name), &img).unwrap_or_else(|e| panic!("{e}"));
 }
 
 fn race_scene(t: f64) -> Scene {

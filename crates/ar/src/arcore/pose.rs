@@ -95,6 +95,21 @@ impl CoursePlacement {
             self.yaw = (self.yaw + twist).rem_euclid(std::f64::consts::TAU);
         }
     }
+
+    /// Moves the course, keeping its turn and scale, so that the race point `race` (race
+    /// metres) lands on the AR point `ar` (e.g. the play area's centre on a tapped table point).
+    pub fn put(&mut self, race: DVec3, ar: DVec3) {
+        let turned = DQuat::from_rotation_y(self.yaw) * (race * self.course_to_table);
+        self.anchor = ar - turned;
+    }
+
+    /// [`Self::apply_gesture`] about the race point `pivot` instead of the race origin: the
+    /// pivot stays where it is on the table while the course scales and turns under the fingers.
+    pub fn apply_gesture_about(&mut self, pivot: DVec3, pinch: f64, twist: f64) {
+        let on_table = self.race_to_ar().transform_point3(pivot);
+        self.apply_gesture(pinch, twist);
+        self.put(pivot, on_table);
+    }
 }
 
 #[cfg(test)]
@@ -196,6 +211,27 @@ mod tests {
         assert!((top - DVec3::new(0.2, -0.6, -0.5)).length() < 1e-12);
         let back = p.ar_to_race().transform_point3(q);
         assert!((back - DVec3::new(100.0, 0.0, 0.0)).length() < 1e-9);
+    }
+
+    #[test]
+    fn put_and_gestures_about_a_pivot_keep_the_pivot_on_the_table() {
+        let mut p = CoursePlacement {
+            anchor: DVec3::ZERO,
+            yaw: 0.7,
+            course_to_table: 1.0 / 2000.0,
+        };
+        let centre = DVec3::new(800.0, -30.0, -500.0);
+        let tap = DVec3::new(0.2, 0.75, -0.4);
+        p.put(centre, tap);
+        assert!((p.race_to_ar().transform_point3(centre) - tap).length() < 1e-12);
+        // A point 2000 race metres east of the centre is 1 AR metre away, turned by the yaw
+        // (counter-clockwise from above: east (+x) turns towards north (−z)).
+        let east = p.race_to_ar().transform_point3(centre + DVec3::X * 2000.0) - tap;
+        assert!((east - DVec3::new(0.7f64.cos(), 0.0, -0.7f64.sin())).length() < 1e-12);
+        p.apply_gesture_about(centre, 2.0, FRAC_PI_2);
+        assert!((p.race_to_ar().transform_point3(centre) - tap).length() < 1e-12);
+        assert!((p.course_to_table - 1.0 / 1000.0).abs() < 1e-15);
+        assert!((p.yaw - (0.7 + FRAC_PI_2)).abs() < 1e-12);
     }
 
     #[test]

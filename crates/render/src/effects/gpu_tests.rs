@@ -10,17 +10,13 @@ use glam::{DVec2, DVec3};
 use wgpu::util::DeviceExt;
 
 use super::camera_frame::CameraFrame;
-use super::passes::{ArConfig, add_effect_passes};
+use super::passes::{ArConfig, OFFSCREEN_REUSED, add_effect_passes};
 use super::{Effect, EffectSet};
+use crate::golden::compare;
 use crate::gpu::{Gpu, test_gpu};
 use crate::optics::{N_AIR, N_WATER, fresnel, refract, schlick};
 use crate::{OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene, render_image};
 
-/// The race scene's golden limits: mean difference ≤ 2 levels per channel, ≤ 1 % of pixels
-/// off by more than 24 levels.
-const MEAN_TOLERANCE: f64 = 2.0;
-const PIXEL_TOLERANCE: u8 = 24;
-const MAX_OFF_FRACTION: f64 = 0.01;
 const SIZE: [u32; 2] = [128, 96];
 
 fn table_scene(t: f64) -> Scene {
@@ -58,48 +54,13 @@ fn render_with(gpu: &Gpu, scene: &Scene, effects: Option<EffectSet>) -> image::R
     render_image(gpu, &mut r, scene, SIZE).expect("render").0
 }
 
-fn compare(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
-    assert_eq!(a.dimensions(), b.dimensions());
-    let (mut sum, mut off) = (0.0, 0usize);
-    for (p, q) in a.pixels().zip(b.pixels()) {
-        let d = [0, 1, 2].map(|c| p[c].abs_diff(q[c]));
-        sum += d.iter().map(|&x| f64::from(x)).sum::<f64>();
-        off += usize::from(d.iter().any(|&x| x > PIXEL_TOLERANCE));
-    }
-    let n = f64::from(a.width() * a.height());
-    (sum / (3.0 * n), off as f64 / n)
-}
-
 fn golden(name: &str, effects: EffectSet) {
     let Some(gpu) = test_gpu() else { return };
     let img = render_with(&gpu, &table_scene(40.0), Some(effects));
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("src/effects/golden")
         .join(format!("{name}.png"));
-    if std::env::var_os("REGATTA_UPDATE_GOLDEN").is_some() {
-        std::fs::create_dir_all(path.parent().expect("has a parent")).expect("golden folder");
-        img.save(&path).expect("write golden");
-        eprintln!("wrote {}", path.display());
-        return;
-    }
-    let want = image::open(&path)
-        .unwrap_or_else(|e| {
-            panic!(
-                "{}: {e}; regenerate with REGATTA_UPDATE_GOLDEN=1",
-                path.display()
-            )
-        })
-        .to_rgba8();
-    let (mean, off) = compare(&img, &want);
-    if mean > MEAN_TOLERANCE || off > MAX_OFF_FRACTION {
-        let got = std::env::temp_dir().join(format!("regatta-{name}-got.png"));
-        let _ = img.save(&got);
-        panic!(
-            "{name}: mean difference {mean:.2} levels, {:.2} % pixels off; got {}",
-            off * 100.0,
-            got.display()
-        );
-    }
+    crate::golden::check(&path, &img).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]
@@ -321,8 +282,14 @@ fn wakes_shape_the_effect_shaded_water_near_the_boat() {
         .iter()
         .find(|p| p.name == "ar_water")
         .expect("the effects shade the water");
-    assert!(water.ran && water.reason.contains("wake sources"), "{water:?}");
-    assert!(!report.passes.iter().any(|p| p.name == "water"), "shaded once");
+    assert!(
+        water.ran && water.reason.contains("wake sources"),
+        "{water:?}"
+    );
+    assert!(
+        !report.passes.iter().any(|p| p.name == "water"),
+        "shaded once"
+    );
     // Pixel of a world point on the water through the scene's camera.
     let cam = &scene.camera;
     let aspect = f64::from(SIZE[0]) / f64::from(SIZE[1]);
@@ -337,7 +304,9 @@ fn wakes_shape_the_effect_shaded_water_near_the_boat() {
         )
     };
     // The last 10 s of the track (30 m behind the boat), as pixels.
-    let trail: Vec<DVec2> = (0..=20).map(|k| pixel(at(t - 0.5 * f64::from(k)))).collect();
+    let trail: Vec<DVec2> = (0..=20)
+        .map(|k| pixel(at(t - 0.5 * f64::from(k))))
+        .collect();
     let near_trail = |x: u32, y: u32| {
         let q = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
         trail.iter().any(|p| p.distance(q) < 12.0)
@@ -355,6 +324,49 @@ fn wakes_shape_the_effect_shaded_water_near_the_boat() {
         }
     }
     // The wake's slope and foam change the shading behind the boat, and only there.
-    assert!(near > 100, "only {near} pixels changed near the boat ({far} elsewhere)");
-    assert!(far * 10 < near, "{far} pixels changed away from the boat, {near} near it");
+    assert!(
+        near > 100,
+        "only {near} pixels changed near the boat ({far} elsewhere)"
+    );
+    assert!(
+        far * 10 < near,
+        "{far} pixels changed away from the boat, {near} near it"
+    );
+}
+
+#[test]
+fn a_paused_still_frame_reuses_the_reflection_and_caustics_and_looks_the_same() {
+    let Some(gpu) = test_gpu() else { return };
+    let scene = table_scene(40.0);
+    let mut r = Renderer::new(&gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+    let cfg = config(EffectSet::ALL);
+    let frame = frame_for(&scene, &cfg);
+    add_effect_passes(&mut r, &gpu, cfg, frame);
+    let reason = |report: &crate::FrameReport| {
+        let p = report.passes.iter().find(|p| p.name == "ar_water");
+        p.expect("ar_water").reason.clone()
+    };
+    let (first, report) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert!(!reason(&report).contains(OFFSCREEN_REUSED));
+    // Same time, camera and scene: nothing offscreen is redone, and the picture is the same.
+    let (again, report) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert!(
+        reason(&report).contains(OFFSCREEN_REUSED),
+        "{}",
+        reason(&report)
+    );
+    assert_eq!(compare(&first, &again), (0.0, 0.0));
+    // The timeline moves: the caustics are recomputed (the picture changes).
+    let later = table_scene(41.0);
+    let (moved, report) = render_image(&gpu, &mut r, &later, SIZE).expect("render");
+    assert!(!reason(&report).contains(OFFSCREEN_REUSED));
+    assert_eq!(
+        compare(&moved, &render_with(&gpu, &later, Some(EffectSet::ALL))),
+        (0.0, 0.0)
+    );
+    // The camera moves while paused: the reflection is redrawn.
+    let mut turned = later.clone();
+    turned.camera.eye.x += 2.0;
+    let (_, report) = render_image(&gpu, &mut r, &turned, SIZE).expect("render");
+    assert!(!reason(&report).contains(OFFSCREEN_REUSED));
 }

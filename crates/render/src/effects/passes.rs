@@ -10,8 +10,9 @@
 //!   texture (a fraction of the screen) with the reflection matrix and oblique near-plane
 //!   clipping at the water.
 //!
-//! Both share bind group 2 (group 1 is the water's wake sources) (`shaders/effects_common.wgsl`): the [`EffectsUniform`], the camera
-//! image, the reflection texture, the caustic map and a sampler. The caustic map is the f64
+//! Both share bind group 2 (`shaders/effects_common.wgsl`; group 1 is the water's wake
+//! sources): the [`EffectsUniform`], the camera image, the reflection texture, the caustic map
+//! and a sampler. The caustic map is the f64
 //! area-ratio map of [`super::caustics`] at the frame's race time, uploaded each frame.
 
 use std::cell::RefCell;
@@ -475,11 +476,10 @@ fn fx_pipeline(
     fx_layout: &wgpu::BindGroupLayout,
     targets: Targets,
     label: &str,
-    parts: &[&str],
+    module: &wgpu::ShaderModule,
     draw: FxDraw,
 ) -> wgpu::RenderPipeline {
     let device = &gpu.device;
-    let module = shader::module(device, label, parts);
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: &[Some(frame_layout), draw.wake_layout, Some(fx_layout)],
@@ -489,7 +489,7 @@ fn fx_pipeline(
         label: Some(label),
         layout: Some(&layout),
         vertex: wgpu::VertexState {
-            module: &module,
+            module,
             entry_point: Some("vs_main"),
             compilation_options: Default::default(),
             buffers: draw.buffers,
@@ -504,7 +504,7 @@ fn fx_pipeline(
         }),
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
-            module: &module,
+            module,
             entry_point: Some(draw.fragment),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
@@ -559,10 +559,12 @@ impl Pass for BackgroundPass {
 pub struct ArWaterPass {
     /// The water pass it replaces: mesh, wakes, and the plain shading when no effect runs.
     water: WaterPass,
-    /// The water mesh with `ar_water.wgsl`'s fragment shader.
+    /// The water mesh with `ar_water.wgsl`'s fragment shader (after the water's and the
+    /// effects' files). Effects that do not run are skipped by uniform branches: specialising
+    /// a pipeline per set of effects (a WGSL `override` or a `const` mask) crashes lavapipe.
     pipeline: wgpu::RenderPipeline,
-    /// Does an effect run this frame (else the plain water shading draws)?
-    effects_run: bool,
+    /// The effect bits of this frame (0: none runs, the plain water shading draws).
+    mask: u32,
     shared: Rc<RefCell<Shared>>,
     group: Option<wgpu::BindGroup>,
     /// The planar reflection: its own frame bindings (reflected camera) and boats pass.
@@ -570,6 +572,46 @@ pub struct ArWaterPass {
     reflection_boats: BoatsPass,
     /// Effect decisions of the last planned frame.
     pub last_decisions: Vec<EffectDecision>,
+    /// What the reflection texture and caustic map on the GPU were made from, and whether the
+    /// reflection was drawn.
+    last_offscreen: Option<OffscreenInputs>,
+    reflection_drawn: bool,
+}
+
+/// The plan's note when the offscreen work of the last frame is reused.
+pub const OFFSCREEN_REUSED: &str =
+    "timeline paused and camera still: reflection texture and caustic map of the last frame reused";
+
+/// Everything the reflection texture and the caustic map depend on (the camera image and the
+/// configuration are fixed for the pass's life).
+#[derive(Debug, Clone, PartialEq)]
+struct OffscreenInputs {
+    t: f64,
+    sea: ocean::WaveSet,
+    boats: Vec<crate::Boat>,
+    marks: Vec<crate::Mark>,
+    play_area: [f64; 4],
+    sun: DVec3,
+    camera: crate::Camera,
+    size: [u32; 2],
+    mask: u32,
+}
+
+impl OffscreenInputs {
+    fn of(frame: &FrameContext, mask: u32) -> OffscreenInputs {
+        let s = frame.scene;
+        OffscreenInputs {
+            t: s.t,
+            sea: s.sea.clone(),
+            boats: s.boats.clone(),
+            marks: s.marks.clone(),
+            play_area: s.play_area,
+            sun: s.sun,
+            camera: s.camera,
+            size: frame.size,
+            mask,
+        }
+    }
 }
 
 const WATER_EFFECTS: [Effect; 4] = [
@@ -579,11 +621,26 @@ const WATER_EFFECTS: [Effect; 4] = [
     Effect::FlowMap,
 ];
 
+/// The effect bits (`Effects.flags.x`) of the decisions that run.
+fn mask_of(ds: &[EffectDecision]) -> u32 {
+    ds.iter()
+        .filter(|d| d.run)
+        .fold(0u32, |m, d| m | 1 << d.effect as u32)
+}
+
 fn result(d: EffectDecision) -> Result<String, String> {
     if d.run { Ok(d.reason) } else { Err(d.reason) }
 }
 
 impl ArWaterPass {
+    /// Are this frame's scene and effects (`mask`) the ones the offscreen textures were last
+    /// made from?
+    fn reuses(&self, frame: &FrameContext, mask: u32) -> bool {
+        self.last_offscreen
+            .as_ref()
+            .is_some_and(|l| *l == OffscreenInputs::of(frame, mask))
+    }
+
     fn decisions(&self, frame: &FrameContext) -> Vec<EffectDecision> {
         let f = effect_frame(frame, &self.shared.borrow().cfg);
         WATER_EFFECTS.iter().map(|&e| decide(e, &f)).collect()
@@ -678,6 +735,9 @@ impl Pass for ArWaterPass {
             .collect::<Vec<_>>()
             .join("; ");
         match water {
+            Ok(w) if ds.iter().any(|d| d.run) && self.reuses(frame, mask_of(&ds)) => {
+                Ok(format!("{w}; {text}; {OFFSCREEN_REUSED}"))
+            }
             Ok(w) if ds.iter().any(|d| d.run) => Ok(format!("{w}; {text}")),
             Ok(w) => Ok(format!("{w}; plain water shading: {text}")),
             Err(w) => Err(format!("{w}; {text}")),
@@ -686,26 +746,32 @@ impl Pass for ArWaterPass {
     fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext) {
         self.water.prepare(gpu, frame);
         let ds = self.decisions(frame);
-        self.effects_run = ds.iter().any(|d| d.run);
         let runs = |e: Effect| ds.iter().any(|d| d.effect == e && d.run);
-        let mask = ds
-            .iter()
-            .filter(|d| d.run)
-            .fold(0u32, |m, d| m | 1 << d.effect as u32);
-        let reflection_drawn = runs(Effect::Reflection) && self.draw_reflection(gpu, frame);
+        let mask = mask_of(&ds);
+        // Paused timeline, still camera, same scene and effects: the reflection texture and
+        // the caustic map on the GPU are this frame's already.
+        let reuse = self.reuses(frame, mask);
+        let reflection_drawn = if reuse {
+            self.reflection_drawn
+        } else {
+            runs(Effect::Reflection) && self.draw_reflection(gpu, frame)
+        };
         let mut shared = self.shared.borrow_mut();
-        if runs(Effect::Caustics) && !shared.cfg.cheap_caustics {
+        if !reuse && runs(Effect::Caustics) && !shared.cfg.cheap_caustics {
             shared.upload_caustics(gpu, frame);
         }
+        self.reflection_drawn = reflection_drawn;
+        self.last_offscreen = Some(OffscreenInputs::of(frame, mask));
         let u = shared.uniform(frame, mask, reflection_drawn);
         gpu.queue
             .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
         self.group = Some(shared.bind_group(&gpu.device));
+        self.mask = mask;
         self.last_decisions = ds;
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
         match &self.group {
-            Some(group) if self.effects_run => {
+            Some(group) if self.mask != 0 => {
                 pass.set_bind_group(2, group, &[]);
                 self.water.draw_with(pass, &self.pipeline)
             }
@@ -729,7 +795,7 @@ pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, came
             &fx_layout,
             targets,
             "background",
-            &[EFFECTS_COMMON, BACKGROUND],
+            &shader::module(&gpu.device, "background", &[EFFECTS_COMMON, BACKGROUND]),
             FxDraw {
                 wake_layout: None,
                 buffers: &[],
@@ -765,7 +831,7 @@ pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, came
         &fx_layout,
         targets,
         "ar_water",
-        &parts,
+        &shader::module(&gpu.device, "ar_water", &parts),
         FxDraw {
             wake_layout: water.wake_layout(),
             buffers: &[Some(vertex_layout())],
@@ -777,12 +843,14 @@ pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, came
     let water = ArWaterPass {
         water,
         pipeline,
-        effects_run: false,
+        mask: 0,
         shared,
         group: None,
         reflection_bindings: FrameBindings::new(&gpu.device),
         reflection_boats: BoatsPass::new(&gpu.device, &frame_layout, targets),
         last_decisions: Vec::new(),
+        last_offscreen: None,
+        reflection_drawn: false,
     };
     renderer.add_pass(Box::new(background));
     if !renderer.replace_pass("water", Box::new(water)) {

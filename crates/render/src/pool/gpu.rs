@@ -28,7 +28,7 @@ use super::scene::PoolScene;
 use crate::camera::Camera;
 use crate::clipmap::MAX_WAVES;
 use crate::frame::{FrameBindings, FrameUniform, PassRecord};
-use crate::gpu::{Gpu, GpuError};
+use crate::gpu::{DepthBuffer, Gpu, GpuError, texture_2d};
 use crate::renderer::DEPTH_FORMAT;
 use crate::shader;
 
@@ -288,7 +288,7 @@ pub struct PoolRenderer {
     /// Indices of the caustic and water grids' triangles over their (n + 1)² vertices.
     caustic_indices: (wgpu::Buffer, u32),
     water_indices: (wgpu::Buffer, u32),
-    depth: Option<(wgpu::Texture, wgpu::TextureView)>,
+    depth: DepthBuffer,
 }
 
 struct PipelineParts<'a> {
@@ -398,22 +398,15 @@ impl PoolRenderer {
             ],
         });
         let n = settings.caustic_size.max(1);
-        let caustic_texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("pool caustics map"),
-            size: wgpu::Extent3d {
-                width: n,
-                height: n,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: CAUSTIC_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+        let caustic_texture = texture_2d(
+            device,
+            "pool caustics map",
+            [n, n],
+            CAUSTIC_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        );
         let caustic_view = caustic_texture.create_view(&Default::default());
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("pool caustics"),
@@ -507,42 +500,13 @@ impl PoolRenderer {
             caustics,
             scene,
             water,
-            depth: None,
+            depth: DepthBuffer::new("pool depth"),
         }
     }
 
     /// The colour format the pipelines draw into.
     pub fn colour_format(&self) -> wgpu::TextureFormat {
         self.colour_format
-    }
-
-    fn depth_view(&mut self, gpu: &Gpu, size: [u32; 2]) -> wgpu::TextureView {
-        let fits = self
-            .depth
-            .as_ref()
-            .is_some_and(|(t, _)| t.width() == size[0] && t.height() == size[1]);
-        if !fits {
-            let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("pool depth"),
-                size: wgpu::Extent3d {
-                    width: size[0],
-                    height: size[1],
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: DEPTH_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            });
-            let view = tex.create_view(&Default::default());
-            self.depth = Some((tex, view));
-        }
-        self.depth
-            .as_ref()
-            .map(|(_, v)| v.clone())
-            .expect("set above")
     }
 
     /// Draw `frame` into `target` (its size is `frame.size`).
@@ -558,7 +522,7 @@ impl PoolRenderer {
             0,
             bytemuck::bytes_of(frame.pool.as_ref()),
         );
-        let depth = self.depth_view(gpu, frame.size);
+        let depth = self.depth.view(gpu, frame.size);
         let sun_up = frame.frame.sun[1] > 0.0;
         let caustic_cells = u64::from(self.settings.caustic_grid).pow(2);
         let water_cells = u64::from(self.settings.water_grid).pow(2);
@@ -677,42 +641,12 @@ impl PoolRenderer {
 
     /// Read the caustics map back as f32 (irradiance / E), row-major, row 0 at the net's −z edge.
     pub fn read_caustics(&self, gpu: &Gpu) -> Result<Vec<f32>, GpuError> {
-        let tex = &self.caustic_texture;
-        let (w, h) = (tex.width(), tex.height());
-        let row = w * 2;
-        let padded =
-            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("pool caustics readback"),
-            size: u64::from(padded * h),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        enc.copy_texture_to_buffer(
-            tex.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded),
-                    rows_per_image: Some(h),
-                },
-            },
-            tex.size(),
-        );
-        gpu.queue.submit([enc.finish()]);
-        let bytes = gpu.read_buffer(&buffer)?;
-        let mut out = Vec::with_capacity((w * h) as usize);
-        for y in 0..h as usize {
-            let start = y * padded as usize;
-            out.extend(
-                bytes[start..start + row as usize]
-                    .chunks_exact(2)
-                    .map(|b| f16_to_f32(u16::from_le_bytes([b[0], b[1]]))),
-            );
-        }
-        Ok(out)
+        // `CAUSTIC_FORMAT` texels are one f16: two bytes each.
+        let bytes = gpu.read_texture_bytes(&self.caustic_texture, 2)?;
+        Ok(bytes
+            .chunks_exact(2)
+            .map(|b| f16_to_f32(u16::from_le_bytes([b[0], b[1]])))
+            .collect())
     }
 }
 
@@ -752,24 +686,8 @@ pub fn render_pool_image(
     renderer: &mut PoolRenderer,
     frame: &PoolFrame,
 ) -> Result<(image::RgbaImage, PoolReport), GpuError> {
-    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("pool offscreen"),
-        size: wgpu::Extent3d {
-            width: frame.size[0],
-            height: frame.size[1],
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: renderer.colour_format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
-    let view = tex.create_view(&Default::default());
-    let report = renderer.render(gpu, &view, frame);
-    let img = gpu.read_texture(&tex)?;
-    Ok((img, report))
+    let format = renderer.colour_format;
+    gpu.render_offscreen(frame.size, format, |view| renderer.render(gpu, view, frame))
 }
 
 #[cfg(test)]

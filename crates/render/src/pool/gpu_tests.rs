@@ -13,12 +13,6 @@ use super::scene::PoolScene;
 use crate::gpu::test_gpu;
 use crate::renderer::OFFSCREEN_FORMAT;
 
-/// Same limits as the race scene's golden images: mean difference ≤ 2 levels per channel and
-/// ≤ 1 % of pixels off by more than 24 levels.
-const MEAN_TOLERANCE: f64 = 2.0;
-const PIXEL_TOLERANCE: u8 = 24;
-const MAX_OFF_FRACTION: f64 = 0.01;
-
 fn small_settings() -> PoolSettings {
     PoolSettings {
         caustic_grid: 96,
@@ -39,37 +33,7 @@ fn golden(name: &str, t: f64, size: [u32; 2]) {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("src/pool/golden")
         .join(format!("{name}.png"));
-    if std::env::var_os("REGATTA_UPDATE_GOLDEN").is_some() {
-        img.save(&path).unwrap();
-        eprintln!("wrote {}", path.display());
-        return;
-    }
-    let want = image::open(&path)
-        .unwrap_or_else(|e| {
-            panic!(
-                "{}: {e}; regenerate with REGATTA_UPDATE_GOLDEN=1",
-                path.display()
-            )
-        })
-        .to_rgba8();
-    assert_eq!(img.dimensions(), want.dimensions());
-    let (mut sum, mut off) = (0.0, 0usize);
-    for (p, q) in img.pixels().zip(want.pixels()) {
-        let d = [0, 1, 2].map(|c| p[c].abs_diff(q[c]));
-        sum += d.iter().map(|&x| f64::from(x)).sum::<f64>();
-        off += usize::from(d.iter().any(|&x| x > PIXEL_TOLERANCE));
-    }
-    let n = f64::from(img.width() * img.height());
-    let (mean, off) = (sum / (3.0 * n), off as f64 / n);
-    if mean > MEAN_TOLERANCE || off > MAX_OFF_FRACTION {
-        let got = std::env::temp_dir().join(format!("regatta-pool-{name}-got.png"));
-        let _ = img.save(&got);
-        panic!(
-            "{name}: mean difference {mean:.2} levels, {:.2} % pixels off; got {}",
-            off * 100.0,
-            got.display()
-        );
-    }
+    crate::golden::check(&path, &img).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]
