@@ -204,7 +204,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         view.size[0], view.size[1]
     ));
     table.note(
-        "Source rows model 003's clip-map (4r × 4r cells per level, 2r hole, all waves, no culling) reaching the same far edge; its triangles are the published Table 2. Regatta's row in each line is the cheapest clip-map whose measured maximum is within the source's, over error targets from ½× to 4× the source's measured error (25 steps), graded with distance as px · max(1, d/10 m)^γ for γ in 0, 0.15, 0.3, 0.45, 0.6 (the bound is more conservative far away), on 8 base-cell ladders s0 = 2^(e + i/8); with tile culling and per-level wave culling. 'at distance' is where the worst sample lies: the source's error is its far level's, Regatta's mostly the near field's. Default row: the renderer's default uniform target.",
+        "Source rows model 003's clip-map (4r × 4r cells per level, 2r hole, all waves, no culling) reaching the same far edge; its triangles are the published Table 2. Regatta's row in each line is the cheapest clip-map whose measured maximum is within the source's, over error targets from ½× to 4× the source's measured error (49 steps), graded with distance as px · max(1, d/10 m)^γ for γ in 0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.45 (the bound is more conservative far away), on 8 base-cell ladders s0 = 2^(e + i/8); with tile culling and per-level wave culling. 'at distance' is where the worst sample lies: the source's error is its far level's. Default row: the renderer's default uniform target.",
     );
     table.note(format!(
         "Goal: ≤ 10 % of the source's triangles at equal or lower error. Worst ratio {:.4}; Regatta's measured max error ≤ the source's in every row: {all_within}.",
