@@ -27,7 +27,7 @@ fn fs_ar(in: VertexOut) -> @location(0) vec4<f32> {
     let cos_i = max(dot(n, -view), 0.0);
     let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);
 
-    var reflected = sky_colour(reflect_dir(view, n));
+    var reflected = sky_colour_rough(reflect_dir(view, n), sf.slope_variance);
     if fx_on(FX_REFLECTION) {
         reflected = reflection_colour(p, reflect_dir(view, n), screen_uv, n);
     }

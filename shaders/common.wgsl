@@ -72,6 +72,9 @@ struct SurfaceFrame {
     normal: vec3<f32>,
     // Determinant of the horizontal map's Jacobian: < 1 where crests bunch up (foam).
     jacobian: f32,
+    // Slope variance of the faded-out waves, Σ (1 − fade²)·(k a)²/2 (LEAN/Toksvig): the
+    // roughness the pixel still covers, to blur the reflection instead of losing it.
+    slope_variance: f32,
 }
 
 fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
@@ -80,14 +83,18 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
     var dzdz = 1.0;
     var dydx = 0.0;
     var dydz = 0.0;
+    var variance = 0.0;
     for (var i = 0u; i < n; i = i + 1u) {
         let w = waves[i];
-        // A wave shorter than about two footprints aliases: fade it out instead.
-        let fade = 1.0 - smoothstep(0.25, 0.5, w.k * footprint / (2.0 * PI));
+        // Band-limit: a wave whose phase changes by more than π/2 across the pixel's footprint
+        // (wavelength under four footprints) aliases into moiré; fade it out from k·footprint
+        // = π/4 to π/2 and keep its slope variance (a cos wave's mean square slope is (ka)²/2).
+        let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, w.k * footprint);
+        let ka = w.k * w.amplitude;
+        variance += (1.0 - fade * fade) * 0.5 * ka * ka;
         let theta = wave_phase(w, p);
         let s = sin(theta) * fade;
         let c = cos(theta) * fade;
-        let ka = w.k * w.amplitude;
         let d = w.direction;
         dxdx -= d.x * d.x * ka * s;
         dxdz -= d.x * d.y * ka * s;
@@ -100,12 +107,21 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
     var out: SurfaceFrame;
     out.normal = normalize(cross(tz, tx));
     out.jacobian = dxdx * dzdz - dxdz * dxdz;
+    out.slope_variance = variance;
     return out;
 }
 
 // The sky seen along unit direction dir: a gradient from horizon haze to zenith blue, and the
 // sun's disc and glow. Linear colour.
 fn sky_colour(dir: vec3<f32>) -> vec3<f32> {
+    return sky_colour_rough(dir, 0.0);
+}
+
+// The sky reflected by a facet whose normal varies with slope variance `variance` inside the
+// pixel (the band-limited waves' lost slopes): the sun's lobes widen as in Toksvig's filtered
+// Phong, power n → n / (1 + n·2σ²) (a reflected ray turns twice the normal's angle), with
+// their energy kept by the (n' + 1)/(n + 1) normalisation; the disc spreads into a glint.
+fn sky_colour_rough(dir: vec3<f32>, variance: f32) -> vec3<f32> {
     let up = clamp(dir.y, -1.0, 1.0);
     let zenith = vec3<f32>(0.10, 0.28, 0.62);
     let horizon = vec3<f32>(0.62, 0.74, 0.86);
@@ -115,8 +131,13 @@ fn sky_colour(dir: vec3<f32>) -> vec3<f32> {
     let below = mix(horizon * 0.85, vec3<f32>(0.05, 0.2, 0.27), clamp(-up * 3.0, 0.0, 1.0));
     c = select(c, below, up < 0.0);
     let s = max(dot(dir, frame.sun.xyz), 0.0);
-    let glow = pow(s, 64.0) * 0.6 + pow(s, 8.0) * 0.15;
-    let disc = smoothstep(0.9995, 0.9998, s) * 30.0;
+    let v2 = 2.0 * variance;
+    let n64 = 64.0 / (1.0 + 64.0 * v2);
+    let n8 = 8.0 / (1.0 + 8.0 * v2);
+    let glow = pow(s, n64) * 0.6 * (n64 + 1.0) / 65.0 + pow(s, n8) * 0.15 * (n8 + 1.0) / 9.0;
+    // The disc (solid angle ≈ 2π·3e-4 sr at the smoothstep's edge) spreads over the lobe.
+    let n_disc = 1.0 / (3e-4 + v2);
+    let disc = select(smoothstep(0.9995, 0.9998, s) * 30.0, pow(s, n_disc) * 30.0 * 3e-4 * (n_disc + 1.0), variance > 1e-6);
     return c + vec3<f32>(1.0, 0.92, 0.78) * (glow + disc) * frame.sun.w;
 }
 

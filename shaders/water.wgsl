@@ -56,7 +56,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     if in.rest.x < pa.x || in.rest.y < pa.y || in.rest.x > pa.z || in.rest.y > pa.w {
         discard;
     }
-    // Footprint of this pixel on the rest plane, metres: waves shorter than two footprints fade.
+    // Footprint of this pixel on the rest plane, metres: waves shorter than four footprints fade.
     let footprint = max(length(dpdx(in.rest)), length(dpdy(in.rest)));
     let sf = surface_frame(in.rest, frame.counts.x, footprint);
     // Total surface y = h_sea(X) + w(X): add the wake's slope to the sea's.
@@ -65,7 +65,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let to_eye = normalize(frame.eye.xyz - in.world);
     let cos_i = max(dot(n, to_eye), 0.0);
     let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);
-    let reflected = sky_colour(reflect_dir(-to_eye, n));
+    let reflected = sky_colour_rough(reflect_dir(-to_eye, n), sf.slope_variance);
     // Light from the water body: more scatter where the sun lights a facet facing the eye.
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);
     let body = DEEP_WATER + SHALLOW_SCATTER * (0.25 + 0.75 * sun_in) * (1.0 - cos_i * 0.5);

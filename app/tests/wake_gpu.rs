@@ -90,40 +90,15 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let read = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read"),
-        size,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: sources.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: pts.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: out.as_entire_binding(),
-            },
-        ],
-    });
-    let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
-    }
-    enc.copy_buffer_to_buffer(&out, 0, &read, 0, size);
-    gpu.queue.submit([enc.finish()]);
-    let bytes = gpu.read_buffer(&read).unwrap();
+    let bind = render::gpu::buffer_group(
+        device,
+        "wake test",
+        &pipeline.get_bind_group_layout(0),
+        &[&sources, &pts, &out],
+    );
+    let bytes = gpu
+        .dispatch_and_read(&pipeline, &[&bind], points.len(), &out)
+        .unwrap();
     let got: Vec<[f32; 2]> = bytes
         .chunks_exact(8)
         .map(|c| {

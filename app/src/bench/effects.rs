@@ -55,20 +55,13 @@ impl Case {
             );
             add_effect_passes(&mut renderer, gpu, cfg, frame);
         }
-        let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("bench target"),
-            size: wgpu::Extent3d {
-                width: size[0],
-                height: size[1],
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: OFFSCREEN_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        });
+        let tex = render::gpu::texture_2d(
+            &gpu.device,
+            "bench target",
+            size,
+            OFFSCREEN_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
         let view = tex.create_view(&Default::default());
         Case { renderer, view }
     }

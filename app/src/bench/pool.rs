@@ -4,11 +4,10 @@
 
 use std::time::Instant;
 
-use glam::DVec3;
 use render::gpu::texture_2d;
 use render::pool::caustics::CausticMap;
 use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, render_pool_image};
-use render::{Camera, Gpu, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
+use render::{Gpu, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
 use serde_json::json;
 
 use crate::bench::{BenchContext, Table};
@@ -17,17 +16,8 @@ use crate::error::{CliError, CliResult};
 /// The race scene with nothing but its sea: no boats, no marks, a camera over the water.
 fn water_only_scene(t: f64) -> Scene {
     Scene {
-        t,
-        sea: ocean::WaveSet::default_sea(),
-        boats: vec![],
         marks: vec![],
-        play_area: [-2000.0, -2000.0, 2000.0, 2000.0],
-        sun: Scene::default_sun(),
-        camera: Camera::look_at(
-            DVec3::new(25.0, 14.0, 45.0),
-            DVec3::new(-2.0, 0.0, -5.0),
-            5000.0,
-        ),
+        ..render::golden::test_scene(t, vec![])
     }
 }
 

@@ -264,20 +264,14 @@ impl Overlay {
         };
         let path = std::path::PathBuf::from(path);
         let format = self.format;
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("screenshot"),
-            size: wgpu::Extent3d {
-                width: size[0],
-                height: size[1],
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+        let texture = render::gpu::texture_2d_with_views(
+            &gpu.device,
+            "screenshot",
+            size,
             format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[format.remove_srgb_suffix()],
-        });
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            &[format.remove_srgb_suffix()],
+        );
         let view = texture.create_view(&Default::default());
         renderer.render(gpu, &view, size, scene);
         self.paint(window, &gpu.device, &gpu.queue, &texture, size, race);

@@ -72,37 +72,8 @@ pub fn gpu_displacements(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let read = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("displaced read"),
-        size: out_size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let io = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("wave heights io"),
-        layout: &io_layout,
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bindings.group, &[]);
-        pass.set_bind_group(1, &io, &[]);
-        pass.dispatch_workgroups((points.len() as u32).div_ceil(64), 1, 1);
-    }
-    enc.copy_buffer_to_buffer(&output, 0, &read, 0, out_size);
-    gpu.queue.submit([enc.finish()]);
-    let bytes = gpu.read_buffer(&read)?;
+    let io = crate::gpu::buffer_group(device, "wave heights io", &io_layout, &[&input, &output]);
+    let bytes = gpu.dispatch_and_read(&pipeline, &[&bindings.group, &io], points.len(), &output)?;
     let v: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
     Ok(v.iter().map(|d| [d[0], d[1], d[2]]).collect())
 }

@@ -8,6 +8,28 @@
 
 use std::path::Path;
 
+/// The race scene the golden and GPU tests draw (and the pool bench's baseline): the default sea
+/// at race time `t` s with `boats`, one mark 20 m east and 25 m north of the origin, and a fixed
+/// camera 14 m up looking down over the water. A test fixture, not an API.
+#[doc(hidden)]
+pub fn test_scene(t: f64, boats: Vec<crate::Boat>) -> crate::Scene {
+    crate::Scene {
+        t,
+        sea: ocean::WaveSet::default_sea(),
+        boats,
+        marks: vec![crate::Mark {
+            position: glam::DVec2::new(20.0, -25.0),
+        }],
+        play_area: [-2000.0, -2000.0, 2000.0, 2000.0],
+        sun: crate::Scene::default_sun(),
+        camera: crate::Camera::look_at(
+            glam::DVec3::new(25.0, 14.0, 45.0),
+            glam::DVec3::new(-2.0, 0.0, -5.0),
+            5000.0,
+        ),
+    }
+}
+
 /// Largest mean absolute difference per channel, levels.
 pub const MEAN_TOLERANCE: f64 = 2.0;
 /// A pixel is off when some channel differs by more than this many levels.

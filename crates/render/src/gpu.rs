@@ -234,6 +234,35 @@ impl Gpu {
         Ok(bytes)
     }
 
+    /// Run `pipeline` once per item of `items` (its WGSL workgroups hold 64 invocations) with
+    /// `groups` bound at 0, 1, …, then read `output` (it must have `COPY_SRC`) back as bytes.
+    pub fn dispatch_and_read(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        groups: &[&wgpu::BindGroup],
+        items: usize,
+        output: &wgpu::Buffer,
+    ) -> Result<Vec<u8>, GpuError> {
+        let read = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("compute read-back"),
+            size: output.size(),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            for (i, group) in groups.iter().enumerate() {
+                pass.set_bind_group(i as u32, *group, &[]);
+            }
+            pass.dispatch_workgroups((items as u32).div_ceil(64), 1, 1);
+        }
+        enc.copy_buffer_to_buffer(output, 0, &read, 0, output.size());
+        self.queue.submit([enc.finish()]);
+        self.read_buffer(&read)
+    }
+
     /// Draw with `draw` into an offscreen `format` texture of `size` pixels and read it back:
     /// the image and what `draw` returned.
     pub fn render_offscreen<R>(
@@ -302,6 +331,65 @@ impl Gpu {
     }
 }
 
+/// A bind group of `buffers`, each bound whole, at bindings 0, 1, … in order.
+pub fn buffer_group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    buffers: &[&wgpu::Buffer],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// A colour attachment that is stored: cleared to `clear` first, or (`None`) drawn over what is
+/// there.
+pub fn colour_attachment(
+    view: &wgpu::TextureView,
+    clear: Option<wgpu::Color>,
+) -> wgpu::RenderPassColorAttachment<'_> {
+    wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: clear.map_or(wgpu::LoadOp::Load, wgpu::LoadOp::Clear),
+            store: wgpu::StoreOp::Store,
+        },
+    }
+}
+
+/// A depth attachment without stencil that is stored: cleared to the far plane (1.0) first when
+/// `clear`, else tested against what earlier passes wrote.
+pub fn depth_attachment(
+    view: &wgpu::TextureView,
+    clear: bool,
+) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: if clear {
+                wgpu::LoadOp::Clear(1.0)
+            } else {
+                wgpu::LoadOp::Load
+            },
+            store: wgpu::StoreOp::Store,
+        }),
+        stencil_ops: None,
+    }
+}
+
 /// A plain 2-D texture of `size` pixels: one mip level, one sample, no extra view formats.
 pub fn texture_2d(
     device: &wgpu::Device,
@@ -309,6 +397,19 @@ pub fn texture_2d(
     size: [u32; 2],
     format: wgpu::TextureFormat,
     usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    texture_2d_with_views(device, label, size, format, usage, &[])
+}
+
+/// [`texture_2d`] that may also be viewed as `view_formats` (e.g. the sRGB-less twin of its
+/// format, for a painter that writes linear values).
+pub fn texture_2d_with_views(
+    device: &wgpu::Device,
+    label: &str,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    view_formats: &[wgpu::TextureFormat],
 ) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
@@ -322,7 +423,7 @@ pub fn texture_2d(
         dimension: wgpu::TextureDimension::D2,
         format,
         usage,
-        view_formats: &[],
+        view_formats,
     })
 }
 

@@ -58,7 +58,7 @@ pub struct Renderer {
     pub options: RenderOptions,
     bindings: FrameBindings,
     passes: Vec<Box<dyn Pass>>,
-    depth: Option<(wgpu::Texture, wgpu::TextureView)>,
+    depth: crate::gpu::DepthBuffer,
     timer: Option<Timer>,
     stats: Option<Stats>,
     wake: Option<Arc<ocean::wake::Wake>>,
@@ -148,7 +148,7 @@ impl Renderer {
             options,
             bindings,
             passes,
-            depth: None,
+            depth: crate::gpu::DepthBuffer::new("depth"),
             timer,
             stats,
             wake: None,
@@ -182,35 +182,6 @@ impl Renderer {
         &self.bindings.layout
     }
 
-    fn depth_view(&mut self, gpu: &Gpu, size: [u32; 2]) -> wgpu::TextureView {
-        let fits = self
-            .depth
-            .as_ref()
-            .is_some_and(|(t, _)| t.width() == size[0] && t.height() == size[1]);
-        if !fits {
-            let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("depth"),
-                size: wgpu::Extent3d {
-                    width: size[0],
-                    height: size[1],
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: DEPTH_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            });
-            let view = tex.create_view(&Default::default());
-            self.depth = Some((tex, view));
-        }
-        self.depth
-            .as_ref()
-            .map(|(_, v)| v.clone())
-            .expect("set above")
-    }
-
     /// Plan and draw `scene` into `target` (`size` pixels); returns the frame's record.
     pub fn render(
         &mut self,
@@ -235,7 +206,7 @@ impl Renderer {
         }
         self.bindings
             .upload(&gpu.queue, &frame.uniform, &frame.waves);
-        let depth = self.depth_view(gpu, size);
+        let depth = self.depth.view(gpu, size);
         let mut records = Vec::new();
         let mut run = Vec::new();
         for (i, p) in self.passes.iter_mut().enumerate() {
@@ -268,7 +239,10 @@ impl Renderer {
             // Nothing is needed: still clear, so the frame shows no stale image.
             enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("clear"),
-                color_attachments: &[Some(colour_attachment(target, true))],
+                color_attachments: &[Some(crate::gpu::colour_attachment(
+                    target,
+                    Some(wgpu::Color::BLACK),
+                ))],
                 depth_stencil_attachment: None,
                 timestamp_writes: None,
                 occlusion_query_set: None,
@@ -279,19 +253,11 @@ impl Renderer {
             let first = k == 0;
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(self.passes[i].name()),
-                color_attachments: &[Some(colour_attachment(target, first))],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth,
-                    depth_ops: Some(wgpu::Operations {
-                        load: if first {
-                            wgpu::LoadOp::Clear(1.0)
-                        } else {
-                            wgpu::LoadOp::Load
-                        },
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                color_attachments: &[Some(crate::gpu::colour_attachment(
+                    target,
+                    first.then_some(wgpu::Color::BLACK),
+                ))],
+                depth_stencil_attachment: Some(crate::gpu::depth_attachment(&depth, first)),
                 timestamp_writes: timer.map(|t| wgpu::RenderPassTimestampWrites {
                     query_set: &t.queries,
                     beginning_of_pass_write_index: Some(2 * k as u32),
@@ -373,22 +339,6 @@ impl Renderer {
     }
 }
 
-fn colour_attachment(view: &wgpu::TextureView, clear: bool) -> wgpu::RenderPassColorAttachment<'_> {
-    wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load: if clear {
-                wgpu::LoadOp::Clear(wgpu::Color::BLACK)
-            } else {
-                wgpu::LoadOp::Load
-            },
-            store: wgpu::StoreOp::Store,
-        },
-    }
-}
-
 /// Render `scene` offscreen at `size` and read it back: the image and the frame's record.
 pub fn render_image(
     gpu: &Gpu,
@@ -396,24 +346,9 @@ pub fn render_image(
     scene: &Scene,
     size: [u32; 2],
 ) -> Result<(image::RgbaImage, FrameReport), crate::gpu::GpuError> {
-    let tex = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("offscreen"),
-        size: wgpu::Extent3d {
-            width: size[0],
-            height: size[1],
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: renderer.targets.colour,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
-    let view = tex.create_view(&Default::default());
-    let report = renderer.render(gpu, &view, size, scene);
-    let img = gpu.read_texture(&tex)?;
-    Ok((img, report))
+    gpu.render_offscreen(size, renderer.targets.colour, |view| {
+        renderer.render(gpu, view, size, scene)
+    })
 }
 
 /// The offscreen colour format: 8-bit sRGB, what PNGs hold.

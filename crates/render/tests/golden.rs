@@ -6,11 +6,10 @@
 
 use std::path::PathBuf;
 
-use glam::{DVec2, DVec3};
-use ocean::WaveSet;
+use glam::DVec2;
 use render::golden::{MAX_OFF_FRACTION, MEAN_TOLERANCE, compare};
 use render::gpu::test_gpu;
-use render::{Boat, Camera, Mark, RenderOptions, Renderer, Scene};
+use render::{Boat, RenderOptions, Renderer, Scene};
 
 fn golden_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -39,21 +38,7 @@ fn race_scene(t: f64) -> Scene {
         length: 10.0,
     })
     .collect();
-    Scene {
-        t,
-        sea: WaveSet::default_sea(),
-        boats,
-        marks: vec![Mark {
-            position: DVec2::new(20.0, -25.0),
-        }],
-        play_area: [-2000.0, -2000.0, 2000.0, 2000.0],
-        sun: Scene::default_sun(),
-        camera: Camera::look_at(
-            DVec3::new(25.0, 14.0, 45.0),
-            DVec3::new(-2.0, 0.0, -5.0),
-            5000.0,
-        ),
-    }
+    render::golden::test_scene(t, boats)
 }
 
 #[test]

@@ -6,7 +6,7 @@
 use glam::{DVec2, DVec3};
 use ocean::WaveSet;
 use render::gpu::{test_gpu, test_gpu_on};
-use render::{Boat, Camera, Mark, RenderOptions, Renderer, Scene};
+use render::{Boat, Camera, RenderOptions, Renderer, Scene};
 
 fn scene(t: f64) -> Scene {
     let boats = vec![
@@ -23,21 +23,7 @@ fn scene(t: f64) -> Scene {
             length: 10.0,
         },
     ];
-    Scene {
-        t,
-        sea: WaveSet::default_sea(),
-        boats,
-        marks: vec![Mark {
-            position: DVec2::new(20.0, -25.0),
-        }],
-        play_area: [-2000.0, -2000.0, 2000.0, 2000.0],
-        sun: Scene::default_sun(),
-        camera: Camera::look_at(
-            DVec3::new(25.0, 14.0, 45.0),
-            DVec3::new(-2.0, 0.0, -5.0),
-            5000.0,
-        ),
-    }
+    render::golden::test_scene(t, boats)
 }
 
 #[test]

@@ -25,6 +25,29 @@ fn gpu_builder(size: Vec2) -> Option<HarnessBuilder<()>> {
     Some(Harness::builder().with_size(size).wgpu_setup(setup))
 }
 
+/// Renders `app` at `size` with the test GPU and compares it with `tests/snapshots/<name>.png`;
+/// skips without a GPU (see [`gpu_builder`]).
+fn snapshot(name: &str, size: Vec2, app: impl FnMut(&mut egui::Ui) + 'static) {
+    let Some(b) = gpu_builder(size) else {
+        return;
+    };
+    let mut h = b.build_ui(app);
+    h.run();
+    h.snapshot(name);
+}
+
+/// A timeline harness over `span` (race seconds) whose state is the clock.
+fn timeline_harness(ev: &[TimelineEvent], span: (f64, f64)) -> Harness<'_, RaceClock> {
+    Harness::builder()
+        .with_size(Vec2::new(900.0, 90.0))
+        .build_ui_state(
+            |ui, clock: &mut RaceClock| {
+                timeline_ui(ui, clock, ev);
+            },
+            RaceClock::new(span),
+        )
+}
+
 fn events() -> Vec<TimelineEvent> {
     let red = egui::Color32::from_rgb(220, 40, 40);
     let blue = egui::Color32::from_rgb(40, 90, 230);
@@ -98,14 +121,7 @@ fn toggles() -> Vec<EffectToggle> {
 #[test]
 fn play_button_and_mark_jumps_drive_the_clock() {
     let ev = events();
-    let mut h = Harness::builder()
-        .with_size(Vec2::new(900.0, 90.0))
-        .build_ui_state(
-            |ui, clock: &mut RaceClock| {
-                timeline_ui(ui, clock, &ev);
-            },
-            RaceClock::new((-60.0, 900.0)),
-        );
+    let mut h = timeline_harness(&ev, (-60.0, 900.0));
     h.get_by_label("▶ Play").click();
     h.run();
     assert!(h.state().is_playing());
@@ -132,14 +148,7 @@ fn play_button_and_mark_jumps_drive_the_clock() {
 #[test]
 fn clicking_the_track_scrubs_to_that_fraction_of_the_race() {
     let ev = events();
-    let mut h = Harness::builder()
-        .with_size(Vec2::new(900.0, 90.0))
-        .build_ui_state(
-            |ui, clock: &mut RaceClock| {
-                timeline_ui(ui, clock, &ev);
-            },
-            RaceClock::new((0.0, 1000.0)),
-        );
+    let mut h = timeline_harness(&ev, (0.0, 1000.0));
     let track = h.get_by_label("Race time");
     let r = track.rect();
     let x = r.left() + 0.25 * r.width();
@@ -176,62 +185,43 @@ fn effect_checkboxes_toggle_their_effect() {
 
 #[test]
 fn snapshot_timeline() {
-    let Some(b) = gpu_builder(Vec2::new(900.0, 80.0)) else {
-        return;
-    };
     let ev = events();
     let mut clock = RaceClock::new((-60.0, 900.0));
     clock.scrub_to(420.0);
     clock.set_speed(16.0);
-    let mut h = b.build_ui(move |ui| {
+    snapshot("timeline", Vec2::new(900.0, 80.0), move |ui| {
         timeline_ui(ui, &mut clock, &ev);
     });
-    h.run();
-    h.snapshot("timeline");
 }
 
 #[test]
 fn snapshot_leaderboard() {
-    let Some(b) = gpu_builder(Vec2::new(420.0, 280.0)) else {
-        return;
-    };
     let race = race::Race::sample();
     let (t0, t1) = race.time_span();
     let rows: Vec<LeaderboardRow> = leaderboard_rows(&race, t0 + 0.5 * (t1 - t0));
-    let mut h = b.build_ui(move |ui| leaderboard_ui(ui, &rows));
-    h.run();
-    h.snapshot("leaderboard");
+    snapshot("leaderboard", Vec2::new(420.0, 280.0), move |ui| {
+        leaderboard_ui(ui, &rows)
+    });
 }
 
 #[test]
 fn snapshot_perf_overlay() {
-    let Some(b) = gpu_builder(Vec2::new(480.0, 150.0)) else {
-        return;
-    };
     let stats = perf_stats();
-    let mut h = b.build_ui(move |ui| perf_ui(ui, &stats));
-    h.run();
-    h.snapshot("perf_overlay");
+    snapshot("perf_overlay", Vec2::new(480.0, 150.0), move |ui| {
+        perf_ui(ui, &stats)
+    });
 }
 
 #[test]
 fn snapshot_effects() {
-    let Some(b) = gpu_builder(Vec2::new(260.0, 110.0)) else {
-        return;
-    };
     let mut t = toggles();
-    let mut h = b.build_ui(move |ui| {
+    snapshot("effects", Vec2::new(260.0, 110.0), move |ui| {
         effects_ui(ui, &mut t);
     });
-    h.run();
-    h.snapshot("effects");
 }
 
 #[test]
 fn snapshot_whole_layout() {
-    let Some(b) = gpu_builder(Vec2::new(1024.0, 576.0)) else {
-        return;
-    };
     let race = race::Race::sample();
     let (t0, t1) = race.time_span();
     let t = t0 + 0.5 * (t1 - t0);
@@ -243,7 +233,7 @@ fn snapshot_whole_layout() {
     let mut app = RegattaUi::new(clock, toggles());
     app.show_effects = true;
     let title = format!("{} · synthetic feed", race.name);
-    let mut h = b.build_ui(move |ui| {
+    snapshot("layout", Vec2::new(1024.0, 576.0), move |ui| {
         // A table-coloured backdrop stands in for the scene.
         ui.painter()
             .rect_filled(ui.max_rect(), 0.0, egui::Color32::from_rgb(150, 110, 70));
@@ -257,6 +247,4 @@ fn snapshot_whole_layout() {
             },
         );
     });
-    h.run();
-    h.snapshot("layout");
 }

@@ -188,36 +188,15 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let read = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("optics read"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("optics parity"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((cosines.len() as u32).div_ceil(64), 1, 1);
-    }
-    enc.copy_buffer_to_buffer(&output, 0, &read, 0, size);
-    gpu.queue.submit([enc.finish()]);
-    let bytes = gpu.read_buffer(&read).expect("read back");
+    let group = crate::gpu::buffer_group(
+        device,
+        "optics parity",
+        &pipeline.get_bind_group_layout(0),
+        &[&input, &output],
+    );
+    let bytes = gpu
+        .dispatch_and_read(&pipeline, &[&group], cosines.len(), &output)
+        .expect("read back");
     bytemuck::cast_slice(&bytes).to_vec()
 }
 

@@ -23,6 +23,27 @@ pub mod refraction;
 
 use std::fmt;
 
+/// The effects' test camera: a 640×480 pinhole at `eye` looking at `target`, focal length
+/// `focal` px. Looking straight down, "up" in the image is north.
+#[cfg(test)]
+fn test_camera(eye: glam::DVec3, target: glam::DVec3, focal: f64) -> crate::optics::PinholeCamera {
+    use glam::DVec3;
+    let up = if (target - eye).normalize().y.abs() > 0.999 {
+        DVec3::NEG_Z
+    } else {
+        DVec3::Y
+    };
+    crate::optics::PinholeCamera {
+        fx: focal,
+        fy: focal,
+        cx: 320.0,
+        cy: 240.0,
+        width: 640.0,
+        height: 480.0,
+        pose: glam::dcamera::rh::view::look_at_mat4(eye, target, up).inverse(),
+    }
+}
+
 use glam::{DVec2, DVec3};
 use ocean::{Wave, WaveSet};
 

@@ -173,6 +173,7 @@ struct Shared {
     colour_format: wgpu::TextureFormat,
 }
 
+/// A plain 2-D texture, never empty (a zero-sized frame still gets one texel).
 fn texture(
     device: &wgpu::Device,
     label: &str,
@@ -180,20 +181,13 @@ fn texture(
     format: wgpu::TextureFormat,
     usage: wgpu::TextureUsages,
 ) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: size[0].max(1),
-            height: size[1].max(1),
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
+    crate::gpu::texture_2d(
+        device,
+        label,
+        [size[0].max(1), size[1].max(1)],
         format,
         usage,
-        view_formats: &[],
-    })
+    )
 }
 
 fn write_rgba(gpu: &Gpu, tex: &wgpu::Texture, size: [u32; 2], bytes: &[u8]) {
@@ -479,43 +473,20 @@ fn fx_pipeline(
     module: &wgpu::ShaderModule,
     draw: FxDraw,
 ) -> wgpu::RenderPipeline {
-    let device = &gpu.device;
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(frame_layout), draw.wake_layout, Some(fx_layout)],
-        immediate_size: 0,
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(&layout),
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
+    crate::passes::render_pipeline(
+        &gpu.device,
+        label,
+        module,
+        &[Some(frame_layout), draw.wake_layout, Some(fx_layout)],
+        targets,
+        crate::passes::Raster {
             buffers: draw.buffers,
+            fragment: draw.fragment,
+            depth_write: draw.depth_write,
+            depth_compare: draw.depth_compare,
+            cull: None,
         },
-        primitive: Default::default(),
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: targets.depth,
-            depth_write_enabled: Some(draw.depth_write),
-            depth_compare: Some(draw.depth_compare),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some(draw.fragment),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format: targets.colour,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+    )
 }
 
 /// The camera frame behind everything.
@@ -687,23 +658,11 @@ impl ArWaterPass {
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("planar reflection"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &cv,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &dv,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                color_attachments: &[Some(crate::gpu::colour_attachment(
+                    &cv,
+                    Some(wgpu::Color::TRANSPARENT),
+                ))],
+                depth_stencil_attachment: Some(crate::gpu::depth_attachment(&dv, true)),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,

@@ -91,21 +91,7 @@ mod tests {
     use glam::DQuat;
 
     fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
-        // Looking straight down, "up" in the image is north.
-        let up = if (target - eye).normalize().y.abs() > 0.999 {
-            DVec3::NEG_Z
-        } else {
-            DVec3::Y
-        };
-        PinholeCamera {
-            fx: 400.0,
-            fy: 400.0,
-            cx: 320.0,
-            cy: 240.0,
-            width: 640.0,
-            height: 480.0,
-            pose: glam::dcamera::rh::view::look_at_mat4(eye, target, up).inverse(),
-        }
+        super::super::test_camera(eye, target, 400.0)
     }
 
     #[test]

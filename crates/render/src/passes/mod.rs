@@ -30,39 +30,74 @@ pub fn pipeline(
         .chain(spec.extra_layouts.iter().copied())
         .map(Some)
         .collect();
+    render_pipeline(
+        device,
+        spec.label,
+        spec.module,
+        &layouts,
+        targets,
+        Raster {
+            buffers: spec.buffers,
+            fragment: "fs_main",
+            depth_write: spec.depth_write,
+            depth_compare: if spec.depth_test {
+                wgpu::CompareFunction::Less
+            } else {
+                wgpu::CompareFunction::Always
+            },
+            cull: spec.cull,
+        },
+    )
+}
+
+/// A pipeline's vertex input, fragment entry point and depth/cull state.
+pub(crate) struct Raster<'a> {
+    pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub fragment: &'a str,
+    pub depth_write: bool,
+    pub depth_compare: wgpu::CompareFunction,
+    pub cull: Option<wgpu::Face>,
+}
+
+/// A render pipeline with bind groups `layouts` (a `None` is an unused slot) into the shared
+/// colour/depth `targets`, vertex entry point `vs_main`: the one place the descriptor is spelt.
+pub(crate) fn render_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    layouts: &[Option<&wgpu::BindGroupLayout>],
+    targets: Targets,
+    raster: Raster,
+) -> wgpu::RenderPipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(spec.label),
-        bind_group_layouts: &layouts,
+        label: Some(label),
+        bind_group_layouts: layouts,
         immediate_size: 0,
     });
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(spec.label),
+        label: Some(label),
         layout: Some(&layout),
         vertex: wgpu::VertexState {
-            module: spec.module,
+            module,
             entry_point: Some("vs_main"),
             compilation_options: Default::default(),
-            buffers: spec.buffers,
+            buffers: raster.buffers,
         },
         primitive: wgpu::PrimitiveState {
-            cull_mode: spec.cull,
+            cull_mode: raster.cull,
             ..Default::default()
         },
         depth_stencil: Some(wgpu::DepthStencilState {
             format: targets.depth,
-            depth_write_enabled: Some(spec.depth_write),
-            depth_compare: Some(if spec.depth_test {
-                wgpu::CompareFunction::Less
-            } else {
-                wgpu::CompareFunction::Always
-            }),
+            depth_write_enabled: Some(raster.depth_write),
+            depth_compare: Some(raster.depth_compare),
             stencil: Default::default(),
             bias: Default::default(),
         }),
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
-            module: spec.module,
-            entry_point: Some("fs_main"),
+            module,
+            entry_point: Some(raster.fragment),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: targets.colour,

@@ -530,15 +530,10 @@ impl PoolRenderer {
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("pool caustics"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.caustic_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
+                color_attachments: &[Some(crate::gpu::colour_attachment(
+                    &self.caustic_view,
+                    Some(wgpu::Color::TRANSPARENT),
+                ))],
                 depth_stencil_attachment: None,
                 timestamp_writes: None,
                 occlusion_query_set: None,
@@ -556,27 +551,11 @@ impl PoolRenderer {
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("pool scene and water"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: if frame.over_camera_image {
-                            wgpu::LoadOp::Load
-                        } else {
-                            wgpu::LoadOp::Clear(wgpu::Color::BLACK)
-                        },
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &depth,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                color_attachments: &[Some(crate::gpu::colour_attachment(
+                    target,
+                    (!frame.over_camera_image).then_some(wgpu::Color::BLACK),
+                ))],
+                depth_stencil_attachment: Some(crate::gpu::depth_attachment(&depth, true)),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,
