@@ -1,12 +1,27 @@
 // The AR water: the water pass's mesh (water.wgsl's vs_main: waves and wakes) shaded once with
-// the effects this frame needs (flags.x), mixed by the full Fresnel equations (source 004):
+// the effects this frame needs, mixed by the full Fresnel equations (source 004):
 // R·reflection + (1 − R)·the table seen through the water (refracted, lit by caustics,
 // absorbed along the path), then foam. Replaces water.wgsl's fs_main when an effect runs, so
-// no water pixel is shaded twice. Appended after the water pass's files and the effect files.
+// no water pixel is shaded twice. Appended after the water pass's files and the effect files;
+// the pass appends the pipeline's constants last:
+//
+//   const FX_MASK: u32            the effects this pipeline shades (FX_* bits);
+//   const FX_CHEAP_CAUSTICS: bool the overhead-sun caustics instead of the area-ratio map.
+//
+// One pipeline per set of effects (render::effects::passes::ArPipelines): the effects that do
+// not run are constant-false branches, gone from the compiled shader (lavapipe runs both sides
+// of a uniform branch under execution masks, so a flag in the uniform saves nothing there).
+// Every function of the effect files has one exit: Mesa 22.3's lavapipe crashed drawing some
+// of these pipelines when an inlined function returned early (see ArPipelines).
 
 // Light lost per metre of water path, relative to the table's depth (so a scaled table looks
 // the same): red goes first.
 const ABSORPTION: vec3<f32> = vec3<f32>(0.9, 0.35, 0.25);
+
+// Does this pipeline shade with effect `bit`?
+fn fx_on(bit: u32) -> bool {
+    return (FX_MASK & bit) != 0u;
+}
 
 @fragment
 fn fs_ar(in: VertexOut) -> @location(0) vec4<f32> {

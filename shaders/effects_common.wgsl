@@ -3,7 +3,7 @@
 // full-screen triangle, and the camera image through the camera's intrinsics and pose.
 // Appended to common.wgsl and optics.wgsl; mirrored in f64 by crates/render/src/effects/*.rs.
 
-// Bits of Effects.flags.x, as render::effects::Effect's discriminants.
+// Effect bits, as render::effects::Effect's discriminants (the AR water's FX_MASK).
 const FX_BACKGROUND: u32 = 1u;
 const FX_REFLECTION: u32 = 2u;
 const FX_REFRACTION: u32 = 4u;
@@ -27,10 +27,21 @@ struct Effects {
     flow_b: vec4<f32>,
     // Far current x, z (m/s), mark radius (m), detail tile size (m).
     current: vec4<f32>,
-    // Planar reflection of boats and marks: 1 where the reflection texture was drawn.
-    // x = effect bits, y = marks, z = cheap caustics tier, w = reflection texture drawn.
+    // y = marks. x = effect bits, z = cheap caustics tier, w = reflection texture drawn are
+    // for the record only: the AR water's pipeline constants decide (FX_MASK), and the
+    // background pass writes this uniform after it with no effect bits.
     flags: vec4<u32>,
     marks: array<vec4<f32>, 8>,
+}
+
+// How the camera image is stored (render::effects::passes::CameraFormatUniform).
+struct CameraFormat {
+    // YUV -> gamma-encoded R'G'B': rgb = (to_rgb * vec4(y, u, v, 1)).rgb, the BT.601 matrix of
+    // camera_image::YuvToRgb::to_gpu_columns (offset in the last column).
+    to_rgb: mat4x4<f32>,
+    // x: 1 when camera_image holds the luma and camera_chroma the (U, V) planes of YUV 4:2:0,
+    // 0 when camera_image is sRGB RGBA (decoded to linear by the sampler).
+    planes: vec4<u32>,
 }
 
 @group(2) @binding(0) var<uniform> fx: Effects;
@@ -38,10 +49,8 @@ struct Effects {
 @group(2) @binding(2) var reflection_image: texture_2d<f32>;
 @group(2) @binding(3) var caustic_map: texture_2d<f32>;
 @group(2) @binding(4) var linear_clamp: sampler;
-
-fn fx_on(bit: u32) -> bool {
-    return (fx.flags.x & bit) != 0u;
-}
+@group(2) @binding(5) var camera_chroma: texture_2d<f32>;
+@group(2) @binding(6) var<uniform> camera_format: CameraFormat;
 
 struct ScreenOut {
     @builtin(position) clip: vec4<f32>,
@@ -65,12 +74,12 @@ fn ndc_to_uv(ndc: vec2<f32>) -> vec2<f32> {
 // Camera-image uv of a local world point (the pinhole of effects/refraction.rs); z of the
 // result is 1 in front of the camera, 0 behind it.
 fn camera_uv(p: vec3<f32>) -> vec3<f32> {
+    // One exit, no early return: Mesa 22.3's lavapipe crashed drawing some AR water pipelines
+    // that inlined this function with an early return (see ar_water.wgsl).
     let c = fx.camera_view * vec4<f32>(p, 1.0);
-    if c.z >= 0.0 {
-        return vec3<f32>(0.5, 0.5, 0.0);
-    }
     let q = c.xy / -c.z;
-    return vec3<f32>(fx.intrinsics.z + fx.intrinsics.x * q.x, fx.intrinsics.w - fx.intrinsics.y * q.y, 1.0);
+    let uv = vec3<f32>(fx.intrinsics.z + fx.intrinsics.x * q.x, fx.intrinsics.w - fx.intrinsics.y * q.y, 1.0);
+    return select(uv, vec3<f32>(0.5, 0.5, 0.0), c.z >= 0.0);
 }
 
 // 1 inside the image, falling to 0 at EDGE_FADE outside it (effects::refraction::edge_weight).
@@ -80,6 +89,24 @@ fn edge_weight(uv: vec2<f32>) -> f32 {
     return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);
 }
 
+// The sRGB transfer function's inverse (IEC 61966-2-1), as the Rgba8UnormSrgb sampler applies it.
+fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
+    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
+}
+
+// Linear RGB of the camera image at uv (clamped to the image). RGBA: filtered by the sampler.
+// YUV 4:2:0: the luma filtered the same way, the chroma of the pixel's 2x2 block (replicated,
+// as the CPU reference camera_image::Yuv420::to_rgba8), converted with BT.601 to R'G'B' and
+// decoded to linear like the sRGB texture.
 fn sample_camera(uv: vec2<f32>) -> vec3<f32> {
-    return textureSampleLevel(camera_image, linear_clamp, clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0)), 0.0).rgb;
+    let c = clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0));
+    let s = textureSampleLevel(camera_image, linear_clamp, c, 0.0);
+    if camera_format.planes.x == 0u {
+        return s.rgb;
+    }
+    let size = textureDimensions(camera_image);
+    let pixel = min(vec2<u32>(c * vec2<f32>(size)), size - 1u);
+    let chroma = textureLoad(camera_chroma, pixel / 2u, 0).rg;
+    let rgb = (camera_format.to_rgb * vec4<f32>(s.r, chroma, 1.0)).rgb;
+    return srgb_to_linear(clamp(rgb, vec3<f32>(0.0), vec3<f32>(1.0)));
 }

@@ -5,27 +5,21 @@
 // reduced from the CPU.
 
 fn current_at(p: vec2<f32>) -> vec2<f32> {
+    // In complex numbers (x + i z) the field past a mark at offset ζ is v = U − a² conj(U) ζ²/|ζ|⁴,
+    // the same as effects::flowmap::current_at without turning into the current's frame (no
+    // square root, no division by the speed) and without an early return (see camera_uv).
     let u = fx.current.xy;
-    let speed = length(u);
-    if speed == 0.0 {
-        return vec2<f32>(0.0);
-    }
-    let along = u / speed;
-    let across = vec2<f32>(-along.y, along.x);
-    var v = u;
     let a2 = fx.current.z * fx.current.z;
+    var v = u;
+    var inside = false;
     for (var i = 0u; i < min(fx.flags.y, 8u); i = i + 1u) {
         let d = p - fx.marks[i].xy;
-        let x = dot(d, along);
-        let z = dot(d, across);
-        let r2 = x * x + z * z;
-        if r2 <= a2 {
-            return vec2<f32>(0.0);
-        }
-        let r4 = r2 * r2;
-        v += (along * (-a2 * (x * x - z * z) / r4) + across * (-2.0 * a2 * x * z / r4)) * speed;
+        let r2 = dot(d, d);
+        inside = inside || r2 <= a2;
+        let d2 = vec2<f32>(d.x * d.x - d.y * d.y, 2.0 * d.x * d.y);
+        v -= a2 / (r2 * r2) * vec2<f32>(u.x * d2.x + u.y * d2.y, u.x * d2.y - u.y * d2.x);
     }
-    return v;
+    return select(v, vec2<f32>(0.0), inside);
 }
 
 // Slopes (d/dx, d/dz) of a tiling detail height field on the unit square (a stand-in for a

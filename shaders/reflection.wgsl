@@ -14,21 +14,17 @@
 // 3. Elsewhere: the sky.
 
 fn ring_hit(p: vec3<f32>, r: vec3<f32>) -> vec4<f32> {
-    // Solve |(p + s r).xz - c| = R for the exit (s > 0) of the ray from inside the ring.
+    // Solve |(p + s r).xz - c| = R for the exit (s > 0) of the ray from inside the ring; w = 0
+    // when the ray runs downwards or misses (one exit: see camera_uv).
     let c = fx.table.zw;
     let o = p.xz - c;
     let d = r.xz;
     let a = dot(d, d);
-    if a < 1e-8 || r.y <= 0.0 {
-        return vec4<f32>(0.0);
-    }
     let b = dot(o, d);
     let k = b * b - a * (dot(o, o) - fx.table.y * fx.table.y);
-    if k < 0.0 {
-        return vec4<f32>(0.0);
-    }
-    let s = (-b + sqrt(k)) / a;
-    return vec4<f32>(p + r * s, select(0.0, 1.0, s > 0.0));
+    let s = (-b + sqrt(max(k, 0.0))) / max(a, 1e-8);
+    let hit = a >= 1e-8 && r.y > 0.0 && k >= 0.0 && s > 0.0;
+    return select(vec4<f32>(0.0), vec4<f32>(p + r * s, 1.0), hit);
 }
 
 fn reflection_colour(p: vec3<f32>, r: vec3<f32>, screen_uv: vec2<f32>, n: vec3<f32>) -> vec3<f32> {
@@ -39,11 +35,10 @@ fn reflection_colour(p: vec3<f32>, r: vec3<f32>, screen_uv: vec2<f32>, n: vec3<f
         let w = edge_weight(uv.xy) * uv.z;
         colour = mix(colour, sample_camera(uv.xy), w);
     }
-    if fx.flags.w != 0u {
-        // Planar reflection: distort by the normal's horizontal tilt, as the surface does.
-        let suv = screen_uv + vec2<f32>(n.x, -n.z) * 0.05;
-        let boats = textureSampleLevel(reflection_image, linear_clamp, suv, 0.0);
-        colour = mix(colour, boats.rgb, boats.a);
-    }
-    return colour;
+    // Planar reflection: distort by the normal's horizontal tilt, as the surface does. Where
+    // nothing was drawn the texture is transparent (the pass clears it every frame the
+    // reflection runs, drawn or not), so no flag is needed.
+    let suv = screen_uv + vec2<f32>(n.x, -n.z) * 0.05;
+    let boats = textureSampleLevel(reflection_image, linear_clamp, suv, 0.0);
+    return mix(colour, boats.rgb, boats.a);
 }

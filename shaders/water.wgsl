@@ -2,7 +2,7 @@
 // wakes, shaded with per-pixel analytic normals, the full Fresnel equations (optics.wgsl), sky
 // and sun reflection, Jacobian foam and wake foam. Appended to common.wgsl, optics.wgsl and a
 // wake hook (water_wakes.wgsl after wake.wgsl, or water_no_wakes.wgsl) that defines
-// wake_at(p, e). The wake is evaluated per vertex (it sums many sources; the clip-map's cells
+// wake_at(p). The wake is evaluated per vertex (it sums many sources; the clip-map's cells
 // near the boats are finer than the wake's waves) and interpolated to the pixels.
 
 struct VertexIn {
@@ -35,7 +35,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     var out: VertexOut;
     out.wake = vec3<f32>(0.0);
     if frame.counts.z > 0u {
-        let w = wake_at(pos.xz, 0.25);
+        let w = wake_at(pos.xz);
         pos.y += w.x;
         out.wake = w.yzw;
     }

@@ -8,7 +8,7 @@ struct WakeGrid {
     origin: vec2<f32>,
     // 1 / bin size, 1/m.
     inv_cell: f32,
-    // Points within this distance of p may use p's bin (the gradient's stencil), m.
+    // Points within this distance of p may use p's bin, m.
     margin: f32,
     nx: u32,
     nz: u32,
@@ -31,21 +31,16 @@ fn wake_bin(p: vec2<f32>) -> vec2<u32> {
     return wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
 }
 
-// The wake at local point p: (height m, ∂w/∂x, ∂w/∂z, foam in [0, 1]), one pass over p's bin;
-// the slope by forward differences over e metres (≤ the grid's margin).
-fn wake_at(p: vec2<f32>, e_in: f32) -> vec4<f32> {
+// The wake at local point p: (height m, ∂w/∂x, ∂w/∂z, foam in [0, 1]), one pass over p's bin
+// with each source's closed-form gradient.
+fn wake_at(p: vec2<f32>) -> vec4<f32> {
     let bin = wake_bin(p);
-    let e = min(e_in, wake_grid.margin);
     var h = vec3<f32>(0.0);
     var f = 0.0;
     for (var i = 0u; i < bin.y; i = i + 1u) {
         let s = wake_sources[wake_index[bin.x + i]];
-        h += vec3<f32>(
-            wake_source_height(s, p),
-            wake_source_height(s, p + vec2<f32>(e, 0.0)),
-            wake_source_height(s, p + vec2<f32>(0.0, e)),
-        );
+        h += wake_source_height_grad(s, p);
         f += wake_source_foam(s, p);
     }
-    return vec4<f32>(h.x, (h.y - h.x) / e, (h.z - h.x) / e, wake_foam_from_density(f));
+    return vec4<f32>(h, wake_foam_from_density(f));
 }

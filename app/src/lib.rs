@@ -6,6 +6,8 @@ pub mod cli;
 #[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
+pub mod overlay;
+pub mod pool_play;
 pub mod wakes;
 
 #[cfg(target_os = "android")]

@@ -197,3 +197,16 @@ fn a_race_without_origin_has_no_lat_lon() {
     assert!((b["heading_deg"].as_f64().unwrap() - 36.869_897_6).abs() < 1e-4);
     assert_eq!(b["rank"], 1);
 }
+
+#[test]
+fn a_closed_stdout_is_one_clear_error_not_a_panic() {
+    for args in [
+        &["race", "--t", "300"][..],
+        &["probe", "--t", "1", "--at", "0,0"][..],
+    ] {
+        let (code, err) = common::into_closed_pipe(args);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(err.contains("could not write"), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}

@@ -1,17 +1,17 @@
 //! shaders/wake.wgsl on a real GPU (lavapipe in CI) against its CPU mirror and the f64 terms:
-//! a compute pass sums `wake_source_height`/`wake_source_foam` over a frame's source buffer at
-//! a grid of local points.
+//! a compute pass sums `wake_source_height`, `wake_source_height_grad` and `wake_source_foam`
+//! over a frame's source buffer at a grid of local points.
 
 use ocean::wake::{
     TrackSample, WAKE_WGSL, WGSL_SIN_ERROR, Wake, WakeParams, WakeView, f32_height_error_bound,
-    wake_foam_f32, wake_height_f32,
+    wake_foam_f32, wake_height_f32, wake_height_grad_f32,
 };
 use wgpu::util::DeviceExt;
 
 const MAIN: &str = r#"
 @group(0) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
 @group(0) @binding(1) var<storage, read> points: array<vec2<f32>>;
-@group(0) @binding(2) var<storage, read_write> out: array<vec2<f32>>;
+@group(0) @binding(2) var<storage, read_write> out: array<vec4<f32>>;
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -21,12 +21,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let p = points[i];
     var h = 0.0;
+    var grad = vec3<f32>(0.0);
     var foam = 0.0;
     for (var j = 0u; j < arrayLength(&wake_sources); j++) {
         h += wake_source_height(wake_sources[j], p);
+        grad += wake_source_height_grad(wake_sources[j], p);
         foam += wake_source_foam(wake_sources[j], p);
     }
-    out[i] = vec2<f32>(h, wake_foam_from_density(foam));
+    out[i] = vec4<f32>(h, grad.yz, wake_foam_from_density(foam));
 }
 "#;
 
@@ -83,7 +85,7 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
         .flat_map(|p| p.iter().flat_map(|v| v.to_le_bytes()))
         .collect();
     let pts = storage("points", &point_bytes);
-    let size = (points.len() * 8) as u64;
+    let size = (points.len() * 16) as u64;
     let out = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("out"),
         size,
@@ -99,17 +101,33 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
     let bytes = gpu
         .dispatch_and_read(&pipeline, &[&bind], points.len(), &out)
         .unwrap();
-    let got: Vec<[f32; 2]> = bytes
-        .chunks_exact(8)
+    let got: Vec<[f32; 4]> = bytes
+        .chunks_exact(16)
         .map(|c| {
-            let f = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-            [f(&c[0..4]), f(&c[4..8])]
+            std::array::from_fn(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().unwrap()))
         })
         .collect();
+    let slopes: Vec<[f32; 3]> = points
+        .iter()
+        .map(|p| wake_height_grad_f32(&frame.sources, *p))
+        .collect();
+    let peak_slope = slopes
+        .iter()
+        .map(|g| f64::from(g[1].hypot(g[2])))
+        .fold(0.0, f64::max);
 
     let mut worst = 0.0f64;
     let mut peak = 0.0f64;
-    for (p, g) in points.iter().zip(&got) {
+    let mut worst_slope = 0.0f64;
+    for ((p, g), cpu_slope) in points.iter().zip(&got).zip(&slopes) {
+        // The closed-form gradient: within 1e-3 of the field's steepest slope (f32 and the
+        // shader's sin/cos; the CPU mirror itself is checked against f64 in crates/ocean).
+        let ds = f64::from(g[1] - cpu_slope[1]).hypot(f64::from(g[2] - cpu_slope[2]));
+        assert!(
+            ds <= 1e-3 * peak_slope + 1e-6,
+            "{p:?}: slope GPU {g:?} vs CPU {cpu_slope:?}"
+        );
+        worst_slope = worst_slope.max(ds);
         let cpu = wake_height_f32(&frame.sources, *p) as f64;
         let bound = f32_height_error_bound(&frame.sources, *p, WGSL_SIN_ERROR);
         assert!(
@@ -119,14 +137,14 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
         );
         let foam = wake_foam_f32(&frame.sources, *p);
         assert!(
-            (g[1] - foam).abs() < 1e-4 && (0.0..=1.0).contains(&g[1]),
+            (g[3] - foam).abs() < 1e-4 && (0.0..=1.0).contains(&g[3]),
             "{p:?}"
         );
         worst = worst.max((g[0] as f64 - cpu).abs());
         peak = peak.max(cpu.abs());
     }
     eprintln!(
-        "{}: wake.wgsl vs CPU mirror, {} sources, max |Δh| {worst:.2e} m (peak {peak:.3} m)",
+        "{}: wake.wgsl vs CPU mirror, {} sources, max |Δh| {worst:.2e} m (peak {peak:.3} m), max |Δ∇h| {worst_slope:.2e} (peak {peak_slope:.3})",
         gpu.describe(),
         frame.sources.len()
     );

@@ -1,33 +1,32 @@
-//! The race on the table: where the course stands in ARCore's world ([`CoursePlacement`]), the
-//! render camera and sun from ARCore's camera and light, the camera image as the background
-//! pass's frame, and the record toggle writing the replay format.
+//! The race (or the pool) on the table: where it stands in ARCore's world
+//! ([`CoursePlacement`]), the render camera and sun from ARCore's camera and light, the camera
+//! image as the background pass's frame, and the record toggle writing the replay format.
 //!
-//! The background pass takes an RGBA camera frame when the effect passes are built
-//! (`render::effects::passes::add_effect_passes`), so the YUV image is converted on the CPU
-//! (`ar::FrameImage::to_rgba_image`, BT.601 full range) and the passes are rebuilt at most every
-//! [`BACKGROUND_REFRESH_S`]: a stop-gap until the pass takes a per-frame image (YUV planes as
-//! textures, `ar::arcore::yuv::YuvToRgb::to_gpu_columns` in the shader).
+//! The camera image goes to the GPU as ARCore gives it, YUV 4:2:0 planes
+//! (`ar::FrameImage::to_camera_image` only repacks the strided planes); the effect passes
+//! convert it in the shader. A new image reaches passes built once through
+//! `EffectsHandle::set_camera_frame`.
 
 use std::path::Path;
-use std::time::Instant;
 
 use ar::arcore::{CoursePlacement, hit_test, tap_ray};
 use ar::replay::{FrameFileFormat, TablePlane};
 use ar::{CameraFrame, PlaneKind, Pose, ReplayWriter};
 use glam::{DMat4, DQuat, DVec2, DVec3};
 use render::Camera;
-use render::effects::camera_frame::CameraFrame as RenderCameraFrame;
+use render::effects::camera_frame::{CameraFrame as RenderCameraFrame, CameraImage};
 use render::optics::PinholeCamera;
 
 use super::frame::DisplayCamera;
 
-/// Seconds between rebuilds of the effect passes over a new camera image (see module docs).
-pub const BACKGROUND_REFRESH_S: f64 = 0.25;
 /// Length of a boat model on the table, AR metres (a real boat at table scale is a speck; the
 /// desktop feed draws the same 5 cm models).
 const MODEL_BOAT_M: f64 = 0.05;
 /// Width of the table the course is first fitted to, AR metres.
 const FIRST_TABLE_M: f64 = 1.0;
+/// AR metres per pool metre when the pool is first placed: the 2 m × 1.6 m pool becomes a
+/// 30 cm tub on the table.
+pub const POOL_TO_TABLE: f64 = 0.15;
 
 /// The AR state of the app.
 #[derive(Default)]
@@ -35,8 +34,8 @@ pub struct ArView {
     pub placement: Option<CoursePlacement>,
     /// The latest camera frame (for taps, the background and recording).
     pub frame: Option<CameraFrame>,
-    /// When the effect passes last took a camera image.
-    pub background_at: Option<Instant>,
+    /// Counts the frames taken, so a frame is uploaded once.
+    pub frame_seq: u64,
     /// The hint shown last, so it is logged once per change.
     pub hint: Option<&'static str>,
     pub recorder: Option<Recorder>,
@@ -67,20 +66,13 @@ impl ArView {
             self.recorder = None;
         }
         self.frame = Some(frame);
+        self.frame_seq += 1;
     }
 
-    /// A tap at `px` (view pixels) on a view of `size` pixels: places the course's pivot on the
-    /// detected plane under the finger. Returns whether a plane was hit.
-    pub fn tap(
-        &mut self,
-        px: DVec2,
-        size: [u32; 2],
-        play_area: [f64; 4],
-        table_depth: f64,
-    ) -> bool {
-        let Some(frame) = &self.frame else {
-            return false;
-        };
+    /// The point (AR metres) of the detected plane under a tap at `px` (view pixels) on a view
+    /// of `size` pixels, if one is there.
+    pub fn hit(&self, px: DVec2, size: [u32; 2]) -> Option<DVec3> {
+        let frame = self.frame.as_ref()?;
         let screen = px / DVec2::new(f64::from(size[0].max(1)), f64::from(size[1].max(1)));
         let image_uv = frame
             .display_uv
@@ -88,10 +80,15 @@ impl ArView {
             .as_dvec2();
         let k = frame.intrinsics;
         let image_px = image_uv * DVec2::new(f64::from(k.width), f64::from(k.height));
-        let Some((_, point)) = hit_test(&tap_ray(frame, image_px), &frame.planes) else {
+        let hit = hit_test(&tap_ray(frame, image_px), &frame.planes).map(|(_, point)| point);
+        if hit.is_none() {
             log::info!("regatta: no table under the tap yet; move the phone slowly over it");
-            return false;
-        };
+        }
+        hit
+    }
+
+    /// Puts the course's pivot on `point` (AR metres), keeping its turn and scale once placed.
+    pub fn place_course(&mut self, point: DVec3, play_area: [f64; 4], table_depth: f64) {
         let [ax, az, bx, bz] = play_area;
         let mut placement = self.placement.unwrap_or(CoursePlacement {
             anchor: DVec3::ZERO,
@@ -104,7 +101,19 @@ impl ArView {
             1.0 / placement.course_to_table
         );
         self.placement = Some(placement);
-        true
+    }
+
+    /// The pool's placement with its centre on `point` (AR metres), keeping the turn and scale
+    /// of `current` once placed.
+    pub fn place_pool(current: Option<CoursePlacement>, point: DVec3) -> CoursePlacement {
+        let mut placement = current.unwrap_or(CoursePlacement {
+            anchor: DVec3::ZERO,
+            yaw: 0.0,
+            course_to_table: POOL_TO_TABLE,
+        });
+        placement.put(DVec3::ZERO, point);
+        log::info!("regatta: pool placed at {point:.3}");
+        placement
     }
 
     /// The render camera (race metres) for ARCore's display-oriented camera.
@@ -122,16 +131,20 @@ impl ArView {
         MODEL_BOAT_M / placement.course_to_table
     }
 
-    /// The background pass's frame: the image in RGBA, the physical camera in race metres.
-    pub fn background(placement: &CoursePlacement, frame: &CameraFrame) -> RenderCameraFrame {
+    /// The background pass's frame: the image as ARCore gave it (YUV planes, converted on the
+    /// GPU), the physical camera in the metres of the world `placement` puts on the table.
+    pub fn background(
+        placement: &CoursePlacement,
+        frame: &CameraFrame,
+    ) -> Result<RenderCameraFrame<CameraImage>, ar::ArError> {
         let ar_to_race = placement.ar_to_race();
         let c2w = frame.camera_to_world.as_dmat4();
         let (_, rot, pos) = c2w.to_scale_rotation_translation();
         let rot = DQuat::from_rotation_y(-placement.yaw) * rot;
         let k = frame.intrinsics;
         let d = frame.display_uv;
-        RenderCameraFrame {
-            image: frame.image.to_rgba_image(),
+        Ok(RenderCameraFrame {
+            image: frame.image.to_camera_image()?,
             camera: PinholeCamera {
                 fx: k.fx,
                 fy: k.fy,
@@ -153,7 +166,7 @@ impl ArView {
                     f64::from(d.translation.y),
                 ],
             ],
-        }
+        })
     }
 
     /// Starts or stops recording into a new folder under `root`.

@@ -2,10 +2,13 @@
 //!
 //! - `effects`: the cost of each AR effect alone and of all of them against a water-only
 //!   frame, in the form of source 000's Table 1 (min / max / average frames per second) plus
-//!   the ratios, measured in one run on the adapter at hand (lavapipe in CI).
+//!   the ratios, measured in one run on the adapter at hand (lavapipe in CI); each pass's GPU
+//!   time in the same run; and the area-ratio caustic map's CPU time against its error per
+//!   resolution (against a 512² f64 reference).
 //! - `fresnel`: the error Schlick's approximation would make against the full Fresnel
 //!   equations (source 004) at each angle, air → water and water → air, and what each costs.
 
+use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -67,14 +70,30 @@ impl Case {
     }
 
     /// Plan, draw and wait for one frame at race time `t`: wall seconds, and the passes'
-    /// GPU milliseconds from timestamp queries where the adapter has them.
-    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> (f64, Option<f64>) {
+    /// GPU milliseconds (all, and each pass's) from timestamp queries where the adapter has
+    /// them.
+    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> Timing {
         let scene = demo_table_scene(t);
         let t0 = Instant::now();
         let report = self.renderer.render(gpu, &self.view, size, &scene);
         gpu.wait();
-        (t0.elapsed().as_secs_f64(), report.gpu_ms)
+        Timing {
+            wall_s: t0.elapsed().as_secs_f64(),
+            gpu_ms: report.gpu_ms,
+            passes: report
+                .passes
+                .iter()
+                .filter_map(|p| Some((p.name.clone(), p.gpu_ms?)))
+                .collect(),
+        }
     }
+}
+
+/// One frame's times.
+struct Timing {
+    wall_s: f64,
+    gpu_ms: Option<f64>,
+    passes: Vec<(String, f64)>,
 }
 
 /// Section `effects`.
@@ -117,15 +136,19 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         .collect();
     let mut pooled: Vec<Vec<f64>> = vec![Vec::new(); cases.len()];
     let mut gpu_ms: Vec<Vec<f64>> = vec![Vec::new(); cases.len()];
+    let mut pass_ms: Vec<BTreeMap<String, Vec<f64>>> = vec![BTreeMap::new(); cases.len()];
     for i in 0..frames + 2 {
         if i % 10 == 0 {
             ctx.progress(format!("effects: frame {i} of {}", frames + 2));
         }
         for (k, case) in runs.iter_mut().enumerate() {
-            let (dt, g) = case.frame(&gpu, size, 40.0 + i as f64 / 30.0);
+            let f = case.frame(&gpu, size, 40.0 + i as f64 / 30.0);
             if i >= 2 {
-                pooled[k].push(dt);
-                gpu_ms[k].extend(g);
+                pooled[k].push(f.wall_s);
+                gpu_ms[k].extend(f.gpu_ms);
+                for (name, ms) in f.passes {
+                    pass_ms[k].entry(name).or_default().push(ms);
+                }
             }
         }
     }
@@ -176,10 +199,13 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     t.note(format!(
         "Goal: every case ≤ {GOAL_RATIO}× water only. Largest frame-time ratio: {:.2} ({}), \
          {}; largest GPU-time ratio (sum of the passes' timestamps): {:.2}. Each water pixel \
-         is shaded once (the AR water pass draws the water mesh in the water pass's place). \
-         What is left is the effect shader itself: lavapipe runs every branch of it whichever \
-         effects are on (one effect alone costs about as much as all), and specialising a \
-         pipeline per set of effects crashes lavapipe.",
+         is shaded once, by a pipeline made for the set of effects that runs (the effects as \
+         WGSL constants: lavapipe runs both sides of every branch, so a uniform flag made one \
+         effect cost as much as all). What is left on lavapipe: every camera-image or \
+         texture sample and every effect's arithmetic per water pixel costs about a tenth \
+         of a water-only frame (the pass table below), the background pass a fifth (the \
+         sky is still drawn under it), and the camera image's YUV branch runs even for an \
+         RGBA frame.",
         worst.0,
         worst.1,
         if worst.0 <= GOAL_RATIO {
@@ -189,7 +215,106 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         },
         worst_gpu
     ));
-    Ok(vec![t])
+    // Where the time goes: each pass's median GPU time per case.
+    let names: Vec<String> = pass_ms
+        .iter()
+        .flat_map(|m| m.keys().cloned())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let mut columns = vec!["effects".to_string()];
+    columns.extend(names.iter().map(|n| format!("{n} GPU ms")));
+    let cols: Vec<&str> = columns.iter().map(String::as_str).collect();
+    let mut p = Table::new(
+        "effects_passes",
+        "AR effects: median GPU time of each pass (timestamp queries), same run; ar_water \
+         shades the water with the effects (the plain water shader when none runs)",
+        &cols,
+    );
+    for ((name, _), m) in cases.iter().zip(&mut pass_ms) {
+        let mut row = vec![json!(name)];
+        for n in &names {
+            row.push(json!(m.get_mut(n).and_then(&median)));
+        }
+        p.row(row);
+    }
+    Ok(vec![t, p, caustic_resolution_table(ctx, size)])
+}
+
+/// The area-ratio caustic map's cost on the CPU against its error, per resolution (surface
+/// grid, output cells), for the demo scene's view at `size`: the error is that of the
+/// displayed light (clamped to the texture's range, 1 = flat water) against the f64 map of a
+/// 512² surface grid on the same output cells.
+fn caustic_resolution_table(ctx: &BenchContext, size: [u32; 2]) -> Table {
+    use render::effects::caustics::area_ratio;
+    use render::effects::passes::{CAUSTIC_SCALE, caustic_region};
+    let scene = demo_table_scene(40.0);
+    let cfg = ArConfig::default();
+    let region = caustic_region(&scene, size, &cfg);
+    let map = |src: usize, out: usize| {
+        area_ratio(
+            &scene.sea,
+            scene.t,
+            -scene.sun,
+            cfg.table_depth,
+            region,
+            src,
+            out,
+        )
+    };
+    let mut t = Table::new(
+        "caustic_resolution",
+        "Area-ratio caustic map: CPU time per frame against error, per resolution",
+        &[
+            "surface grid",
+            "output cells",
+            "ms per map",
+            "RMS error",
+            "99th percentile error",
+            "in use",
+        ],
+    );
+    let reps = if ctx.quick { 3 } else { 9 };
+    let mut references: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
+    let shown = |v: f64| v.clamp(0.0, CAUSTIC_SCALE);
+    for (src, out) in [(32, 48), (48, 64), (64, 64), (64, 96), (96, 96), (128, 128)] {
+        let reference = references.entry(out).or_insert_with(|| {
+            ctx.progress(format!("effects: caustic reference map, {out}² cells"));
+            map(512, out).intensity
+        });
+        let m = map(src, out);
+        let mut err: Vec<f64> = m
+            .intensity
+            .iter()
+            .zip(reference.iter())
+            .map(|(a, b)| (shown(*a) - shown(*b)).abs())
+            .collect();
+        let rms = (err.iter().map(|e| e * e).sum::<f64>() / err.len() as f64).sqrt();
+        err.sort_by(f64::total_cmp);
+        let p99 = err[(err.len() * 99 / 100).min(err.len() - 1)];
+        let ns = time_ns(reps, 1, || {
+            black_box(map(src, out));
+        });
+        t.row(vec![
+            json!(src),
+            json!(out),
+            json!(ns * 1e-6),
+            json!(rms),
+            json!(p99),
+            json!((src, out) == cfg.caustic_resolution),
+        ]);
+    }
+    t.note(format!(
+        "The demo table scene at race time {} s; the map covers the view cut to the water, a \
+         square {:.1} m wide (a surface grid of N² cells on it, plus a margin for light bent \
+         in from outside). Error: |displayed light − reference| per output cell, the light \
+         clamped to 0…{CAUSTIC_SCALE} as the 8-bit texture holds it (1 = flat water; the \
+         texture's own step is {:.3}). It is computed every frame the race time moves.",
+        scene.t,
+        region.size,
+        CAUSTIC_SCALE / 255.0
+    ));
+    t
 }
 
 /// Section `fresnel`.

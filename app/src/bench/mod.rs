@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use crate::error::{CliError, CliResult};
 
+pub mod budget;
 pub mod effects;
 pub mod mesh;
 pub mod pool;
@@ -182,6 +183,7 @@ pub const SECTIONS: &[Section] = &[
     ("race", race::run),
     ("wakes", wakes::run),
     ("pool", pool::run),
+    ("budget", budget::run),
 ];
 
 /// Run the sections (all, or those named in `only`) and write the report.

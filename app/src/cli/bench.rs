@@ -31,9 +31,8 @@ pub fn run(a: BenchArgs) -> CliResult {
         tables.len(),
         a.out.join("report.md").display()
     );
-    println!(
-        "{}",
-        serde_json::json!({ "out": a.out, "tables": tables.len() })
-    );
-    Ok(())
+    super::print_stdout(
+        "the bench summary",
+        &serde_json::json!({ "out": a.out, "tables": tables.len() }),
+    )
 }

@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand};
 
-use crate::error::CliResult;
+use crate::error::{CliError, CliResult};
 
 pub mod bench;
 pub mod inputs;
@@ -56,4 +56,12 @@ pub fn dispatch(cli: Cli) -> CliResult {
         #[cfg(not(target_os = "android"))]
         Some(Command::Run(a)) => crate::desktop::run(a),
     }
+}
+
+/// Print `what`'s JSON (or text) on stdout. A closed pipe (`regatta … | head`) is one clear
+/// error, not the panic `println!` makes of it.
+pub fn print_stdout(what: &str, text: &dyn std::fmt::Display) -> CliResult {
+    use std::io::Write;
+    writeln!(std::io::stdout().lock(), "{text}")
+        .map_err(|e| CliError::new(format!("could not write {what} to stdout: {e}")))
 }

@@ -124,8 +124,7 @@ pub fn run(a: ProbeArgs) -> CliResult {
         .iter()
         .map(|&at| probe_point(&sea, t, at, wake_at(at)))
         .collect::<CliResult<Vec<_>>>()?;
-    println!("{}", json!({ "t": t, "points": out }));
-    Ok(())
+    super::print_stdout("the probe JSON", &json!({ "t": t, "points": out }))
 }
 
 #[cfg(test)]

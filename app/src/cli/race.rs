@@ -41,10 +41,7 @@ pub fn run(a: RaceArgs) -> CliResult {
     } else {
         states_json(&race, a.t.unwrap_or(0.0))
     };
-    // A closed pipe (`| head`) is an error to report, not a panic as `println!` would make it.
-    use std::io::Write;
-    writeln!(std::io::stdout().lock(), "{out}")
-        .map_err(|e| CliError::new(format!("could not write the race JSON to stdout: {e}")))
+    super::print_stdout("the race JSON", &out)
 }
 
 /// The DESIGN.md JSON of `regatta race --t T`.

@@ -222,6 +222,7 @@ pub fn run(a: RenderArgs) -> CliResult {
         RenderOptions {
             error_px: a.error_px,
             measure_gpu_time: true,
+            ..Default::default()
         },
     );
     if !a.no_wakes {
@@ -244,8 +245,7 @@ fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> CliResult {
         std::fs::write(p, &json)
             .map_err(|e| CliError::new(format!("could not write {}: {e}", p.display())))?;
     }
-    println!("{json}");
-    Ok(())
+    super::print_stdout("the frame record", &json)
 }
 
 /// `--scene pool`: the pool at `--t` (default [`render::pool::DEFAULT_T`]).

@@ -121,6 +121,5 @@ fn print_summary(dir: &Path) -> CliResult {
                        "width": k.width, "height": k.height},
         "planes": planes,
     });
-    println!("{out}");
-    Ok(())
+    super::print_stdout("the replay summary", &out)
 }

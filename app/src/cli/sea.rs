@@ -184,6 +184,5 @@ pub fn run(a: SeaArgs) -> CliResult {
         g.unscaled_total_steepness,
         g.sea.total_steepness()
     );
-    println!("{}", g.sea.to_json_string());
-    Ok(())
+    super::print_stdout("the sea file", &g.sea.to_json_string())
 }

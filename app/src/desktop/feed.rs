@@ -7,8 +7,10 @@
 //! rest level (the refraction effect's table). The feed's camera poses, mapped the same way,
 //! become the render camera; its image, through the window's crop, the background.
 //!
-//! The effects take their camera frame when they are built (`add_effect_passes`), so a new feed
-//! frame rebuilds the renderer's passes: cheap next to a frame on a GPU, slow on lavapipe.
+//! The first feed frame builds the renderer with the effect passes (`add_effect_passes`); each
+//! later frame, and a resized window, goes through the returned `EffectsHandle`
+//! (`set_camera_frame`: the image is written into the same textures, RGBA as it is, YUV planes
+//! converted in the shader), so nothing is rebuilt per frame.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -16,7 +18,7 @@ use std::time::Instant;
 use ar::{CameraFrame, ReplayFeed, SynthConfig};
 use glam::{DMat4, DVec2, DVec3};
 use render::effects::camera_frame::CameraFrame as RenderCameraFrame;
-use render::effects::passes::{ArConfig, add_effect_passes};
+use render::effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use render::optics::PinholeCamera;
 use render::{Camera, RenderOptions, Renderer, Scene};
 
@@ -37,7 +39,10 @@ pub const SYNTH: &str = "synth";
 pub struct FeedView {
     source: Source,
     start: Instant,
-    shown: Option<usize>,
+    /// The frame the effects show, and the window size it was fitted to.
+    shown: Option<(usize, [u32; 2])>,
+    /// The effects' camera frame, once the renderer has them.
+    effects: Option<EffectsHandle>,
     /// The current frame's render camera.
     camera: Option<Camera>,
     map: Option<TableMap>,
@@ -97,6 +102,7 @@ impl FeedView {
             source,
             start: Instant::now(),
             shown: None,
+            effects: None,
             camera: None,
             map: None,
         })
@@ -113,8 +119,10 @@ impl FeedView {
         }
     }
 
-    /// Picks the feed frame for the wall clock; when it changed, rebuilds `renderer` with the
-    /// effects over the new frame. `scene` gives the play area; `size` is the window's.
+    /// Picks the feed frame for the wall clock; when it or the window's `size` changed, hands
+    /// it to the effects. The first time, `renderer` is built anew (for `format`, with `wake`)
+    /// with the effect passes; later frames only go through their handle. `scene` gives the
+    /// play area.
     pub fn prepare(
         &mut self,
         gpu: &render::Gpu,
@@ -129,14 +137,14 @@ impl FeedView {
             Source::Replay(f) => f.index_at(t),
             Source::Synth(c, _) => c.index_at(t),
         };
-        if self.shown == Some(i) {
+        if self.shown == Some((i, size)) {
             return Ok(());
         }
         let frame = match &mut self.source {
             Source::Replay(f) => f.frame(i).map_err(|e| CliError::new(e.to_string()))?,
             Source::Synth(c, cache) => cache[i].get_or_insert_with(|| c.frame(i)).clone(),
         };
-        let rebuild = Instant::now();
+        let started = Instant::now();
         let cfg = ArConfig::default();
         let (extent, centre) = match frame.planes.first() {
             Some(p) => (
@@ -147,37 +155,50 @@ impl FeedView {
             None => (DVec2::ONE, DVec3::ZERO),
         };
         let map = TableMap::fit(scene.play_area, centre, extent, cfg.table_depth);
-        let (camera, render_frame) = to_render(&frame, &map, size);
-        let mut fresh = Renderer::new(
-            gpu,
-            format,
-            RenderOptions {
-                measure_gpu_time: false,
-                ..Default::default()
-            },
-        );
-        fresh.set_wake(wake);
-        add_effect_passes(&mut fresh, gpu, cfg, render_frame);
-        *renderer = fresh;
+        let (camera, view) = to_render(&frame, &map, size);
+        let image = frame
+            .image
+            .to_camera_image()
+            .map_err(|e| CliError::new(format!("feed frame {i}: {e}")))?;
+        let render_frame = view.with_image(image);
+        match &self.effects {
+            Some(effects) => effects.set_camera_frame(gpu, render_frame),
+            None => {
+                let mut fresh = Renderer::new(
+                    gpu,
+                    format,
+                    RenderOptions {
+                        measure_gpu_time: false,
+                        // A new camera image is drawn even while the scene stands still: the
+                        // background pass's revision changes with it.
+                        keep_still_frames: true,
+                        ..Default::default()
+                    },
+                );
+                fresh.set_wake(wake);
+                self.effects = Some(add_effect_passes(&mut fresh, gpu, cfg, render_frame));
+                *renderer = fresh;
+            }
+        }
         log::debug!(
-            "feed frame {i}: renderer rebuilt in {:.1} ms",
-            rebuild.elapsed().as_secs_f64() * 1e3
+            "feed frame {i}: handed to the effects in {:.1} ms",
+            started.elapsed().as_secs_f64() * 1e3
         );
         self.camera = Some(camera);
         self.map = Some(map);
-        self.shown = Some(i);
+        self.shown = Some((i, size));
         Ok(())
     }
 }
 
-/// The render camera and the effects' camera frame for an AR frame, for a window of `size`:
-/// the image fills the window and is cropped to its aspect (display transform), and the render
-/// camera's field of view is the crop's.
+/// The render camera and the effects' camera and display transform (the frame without its
+/// image) for an AR frame, for a window of `size`: the image fills the window and is cropped to
+/// its aspect (display transform), and the render camera's field of view is the crop's.
 pub fn to_render(
     frame: &CameraFrame,
     map: &TableMap,
     size: [u32; 2],
-) -> (Camera, RenderCameraFrame) {
+) -> (Camera, RenderCameraFrame<()>) {
     let k = frame.intrinsics;
     let (iw, ih) = (f64::from(k.width), f64::from(k.height));
     let a_img = iw / ih;
@@ -205,11 +226,11 @@ pub fn to_render(
     let camera = Camera {
         eye,
         target: eye + forward,
+        up: rot * DVec3::Y,
         fov_y,
         near: (0.02 * map.scale).max(0.01),
         far: crate::cli::render::FAR_M,
     };
-    let image = frame.image.to_rgba_image();
     let pinhole = PinholeCamera {
         fx: k.fx,
         fy: k.fy,
@@ -222,7 +243,7 @@ pub fn to_render(
     (
         camera,
         RenderCameraFrame {
-            image,
+            image: (),
             camera: pinhole,
             display,
         },

@@ -280,6 +280,7 @@ impl ApplicationHandler for App {
                     surface.config.format,
                     RenderOptions {
                         measure_gpu_time: false,
+                        keep_still_frames: true,
                         ..Default::default()
                     },
                 );

@@ -1,6 +1,7 @@
 //! The egui panels over the desktop window: the race-timeline scrubber (which owns race time),
 //! the leaderboard, effect toggles and the performance overlay of `crates/ui`, wired to winit
-//! through egui-winit and painted with egui-wgpu after the scene, into the same surface texture.
+//! through egui-winit and painted after the scene, into the same surface texture, by the
+//! painter the phone uses too ([`crate::overlay::EguiPainter`]).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -8,15 +9,17 @@ use std::time::Instant;
 use ocean::wake::Wake;
 
 use render::FrameReport;
-use ui::{FpsMeter, PassStat, PerfStats, RaceClock, RegattaUi, TimelineEvent, UiFrame};
+use ui::{FpsMeter, PerfStats, RegattaUi, TimelineEvent};
 use winit::event::WindowEvent;
 use winit::window::Window;
 
-/// The panels, their egui context and painter.
+use crate::overlay::EguiPainter;
+pub use crate::overlay::{initial_clock, perf_stats};
+
+/// The panels, their egui-winit input and painter.
 pub struct Overlay {
-    ctx: egui::Context,
     input: egui_winit::State,
-    painter: egui_wgpu::Renderer,
+    painter: EguiPainter,
     pub panels: RegattaUi,
     events: Vec<TimelineEvent>,
     fps: FpsMeter,
@@ -32,17 +35,6 @@ pub struct Overlay {
     exit_after: Option<u64>,
     /// The surface's colour format (the screenshot texture uses it too).
     format: wgpu::TextureFormat,
-}
-
-/// The race clock the app starts with: paused at the start signal would show an empty sea, so
-/// it plays at 8× from the span's start (or from the start signal when the data begin earlier).
-pub fn initial_clock(race: &race::Race) -> RaceClock {
-    let mut clock = RaceClock::new(race.time_span());
-    clock.looping = true;
-    clock.jump_to_start();
-    clock.set_speed(8.0);
-    clock.play();
-    clock
 }
 
 /// The window's first size: 1280×720 points, or `REGATTA_WINDOW_SIZE=WxH` (physical pixels;
@@ -76,24 +68,17 @@ impl Overlay {
         title: String,
     ) -> Self {
         let format = surface.config.format;
-        let egui_format = format.remove_srgb_suffix();
-        if egui_format != format && !surface.config.view_formats.contains(&egui_format) {
-            surface.config.view_formats.push(egui_format);
-            surface.surface.configure(device, &surface.config);
-        }
-        let ctx = egui::Context::default();
+        // Desktop Vulkan, Metal and DX12 all take other view formats of the surface.
+        let painter = EguiPainter::new(device, surface, true);
         let input = egui_winit::State::new(
-            ctx.clone(),
+            painter.ctx.clone(),
             egui::ViewportId::ROOT,
             window,
             Some(window.scale_factor() as f32),
             None,
             Some(device.limits().max_texture_dimension_2d as usize),
         );
-        let painter =
-            egui_wgpu::Renderer::new(device, egui_format, egui_wgpu::RendererOptions::default());
         Self {
-            ctx,
             input,
             painter,
             panels: RegattaUi::new(initial_clock(race), effect_toggles()),
@@ -120,11 +105,11 @@ impl Overlay {
 
     /// True while the pointer is over a panel or egui has the keyboard.
     pub fn wants_pointer(&self) -> bool {
-        self.ctx.egui_wants_pointer_input()
+        self.painter.ctx.egui_wants_pointer_input()
     }
 
     pub fn wants_keyboard(&self) -> bool {
-        self.ctx.egui_wants_keyboard_input()
+        self.painter.ctx.egui_wants_keyboard_input()
     }
 
     /// Advances the clock by the wall time since the last call; returns the race time to draw.
@@ -181,68 +166,13 @@ impl Overlay {
         size: [u32; 2],
         race: &race::Race,
     ) {
-        let view = &texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(self.format.remove_srgb_suffix()),
-            ..Default::default()
-        });
         let raw = self.input.take_egui_input(window);
-        let rows = ui::leaderboard_rows(race, self.panels.clock.time());
         let (panels, events, perf, title) =
             (&mut self.panels, &self.events, &self.perf, &self.title);
-        let out = self.ctx.run_ui(raw, |ui| {
-            panels.show(
-                ui,
-                &UiFrame {
-                    rows: &rows,
-                    events,
-                    perf: Some(perf),
-                    title,
-                },
-            );
+        let platform = self.painter.paint(device, queue, texture, size, raw, |ui| {
+            crate::overlay::race_panels(ui, panels, race, events, Some(perf), title);
         });
-        self.input
-            .handle_platform_output(window, out.platform_output);
-        let jobs = self.ctx.tessellate(out.shapes, out.pixels_per_point);
-        let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: size,
-            pixels_per_point: out.pixels_per_point,
-        };
-        // Every frame's texture changes are applied and freed (and the delta marked handled),
-        // or egui's font atlas goes stale.
-        let mut delta = out.textures_delta;
-        for (id, image_delta) in &delta.set {
-            for d in image_delta {
-                self.painter.update_texture(device, queue, *id, d);
-            }
-        }
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("egui"),
-        });
-        let extra = self
-            .painter
-            .update_buffers(device, queue, &mut encoder, &jobs, &screen);
-        {
-            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("egui"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    resolve_target: None,
-                    depth_slice: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                ..Default::default()
-            });
-            self.painter
-                .render(&mut pass.forget_lifetime(), &jobs, &screen);
-        }
-        queue.submit(extra.into_iter().chain(std::iter::once(encoder.finish())));
-        for id in &delta.free {
-            self.painter.free_texture(id);
-        }
-        delta.clear();
+        self.input.handle_platform_output(window, platform);
     }
 }
 
@@ -270,7 +200,7 @@ impl Overlay {
             size,
             format,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            &[format.remove_srgb_suffix()],
+            &[self.painter.view_format()],
         );
         let view = texture.create_view(&Default::default());
         renderer.render(gpu, &view, size, scene);
@@ -292,27 +222,6 @@ impl Overlay {
                 path.display()
             )
         })
-    }
-}
-
-/// The overlay's numbers from the renderer's frame record and the app's frame meter.
-pub fn perf_stats(report: &FrameReport, fps: &FpsMeter) -> PerfStats {
-    PerfStats {
-        fps: fps.fps(),
-        frame_ms: fps.frame_ms(),
-        triangles: report.triangles,
-        adapter: report.adapter.clone(),
-        passes: report
-            .passes
-            .iter()
-            .map(|p| PassStat {
-                name: p.name.clone(),
-                ran: p.ran,
-                reason: p.reason.clone(),
-                triangles: p.triangles,
-                gpu_ms: p.gpu_ms,
-            })
-            .collect(),
     }
 }
 

@@ -2,45 +2,30 @@
 //! (or any moving) ball grabs it and the ball follows the pointer over the water, leaving
 //! ripples; elsewhere a left drag orbits as in the race.
 
-use glam::DVec3;
 use render::OrbitCamera;
-use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, pointer_ray};
+use render::pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 
 use super::State;
+use crate::pool_play::PoolPlay;
 
 pub struct PoolMode {
-    scene: PoolScene,
+    /// The scene and the grab and drag the phone's finger uses too.
+    play: PoolPlay,
     renderer: Option<PoolRenderer>,
-    /// The view of the last frame: pointer rays are cast through it.
-    view: Option<PoolView>,
-    /// The moving ball being dragged.
-    grabbed: Option<usize>,
 }
 
 impl PoolMode {
     /// The default pool, its waves replaced by `sea` when one was given.
     pub fn new(sea: Option<ocean::WaveSet>) -> PoolMode {
-        let mut scene = PoolScene::default();
-        if let Some(s) = sea {
-            scene.water.waves = s;
-        }
         PoolMode {
-            scene,
+            play: PoolPlay::new(sea),
             renderer: None,
-            view: None,
-            grabbed: None,
         }
     }
 
     /// The starting camera: above the pool's south-east corner.
     pub fn orbit() -> OrbitCamera {
-        OrbitCamera {
-            target: DVec3::new(0.0, -0.3, 0.0),
-            distance: 3.4,
-            yaw: 2.7,
-            pitch: 0.75,
-            far: render::pool::FAR_M,
-        }
+        PoolPlay::orbit()
     }
 
     pub fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) {
@@ -58,10 +43,10 @@ impl PoolMode {
             camera: orbit.camera(),
             ..PoolView::default_desktop(size)
         };
-        let frame = PoolFrame::new(&self.scene, t, &view, &settings);
+        let frame = PoolFrame::new(&self.play.scene, t, &view, &settings);
         let target = frame_tex.texture.create_view(&Default::default());
         renderer.render(&st.gpu, &target, &frame);
-        self.view = Some(view);
+        self.play.view = Some(view);
         st.window.pre_present_notify();
         st.gpu.queue.present(frame_tex);
         st.window
@@ -70,21 +55,10 @@ impl PoolMode {
 
     /// A left press or release at `cursor`; true when the press grabbed a ball.
     pub fn press(&mut self, pressed: bool, cursor: (f64, f64), t: f64) -> bool {
-        self.grabbed = None;
-        if !pressed {
-            return false;
-        }
-        let Some(view) = &self.view else {
-            return false;
-        };
-        self.grabbed = self.scene.grab(t, &pointer_ray(view, [cursor.0, cursor.1]));
-        self.grabbed.is_some()
+        self.play.press(pressed, [cursor.0, cursor.1], t)
     }
 
     pub fn pointer_moved(&mut self, cursor: (f64, f64), t: f64) {
-        if let (Some(i), Some(view)) = (self.grabbed, &self.view) {
-            let ray = pointer_ray(view, [cursor.0, cursor.1]);
-            self.scene.drag(i, t, &ray);
-        }
+        self.play.pointer_moved([cursor.0, cursor.1], t);
     }
 }

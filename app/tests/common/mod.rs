@@ -73,3 +73,19 @@ pub fn far_race(name: &str) -> PathBuf {
             "marks": []}"##,
     )
 }
+
+/// Runs the built binary with stdout on a pipe whose reading end is already closed (as
+/// `regatta … | head` after head exits): (exit code, stderr).
+pub fn into_closed_pipe(args: &[&str]) -> (i32, String) {
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    drop(reader);
+    let o = Command::new(env!("CARGO_BIN_EXE_regatta"))
+        .args(args)
+        .stdout(writer)
+        .output()
+        .expect("the regatta binary runs");
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}

@@ -10,7 +10,7 @@
 use glam::{Affine2, DMat4, DVec2, DVec3, Mat4, Vec2};
 
 use crate::ArError;
-use crate::arcore::yuv::{YuvRange, YuvToRgb};
+use camera_image::{CameraImage, StridedYuv420, Yuv420, YuvRange};
 
 /// The camera image of one frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,17 +46,46 @@ impl FrameImage {
         }
     }
 
-    /// The image as an `image` crate RGBA buffer (what the renderer's camera frame holds).
+    /// The image as an `image` crate RGBA buffer, converted on the CPU.
     pub fn to_rgba_image(&self) -> image::RgbaImage {
         let (w, h) = self.size();
         image::RgbaImage::from_raw(w, h, self.to_rgba8())
             .expect("to_rgba8 gives width × height × 4 bytes")
     }
 
-    /// The image as tightly packed RGBA8 (YUV through [`YuvToRgb`], BT.601 full range).
+    /// The image as tightly packed RGBA8 (YUV through the CPU reference,
+    /// [`camera_image::Yuv420::to_rgba8`], BT.601 full range). A YUV image whose planes do not
+    /// fit their strides comes out black, with an error logged (ARCore's reader checks them).
     pub fn to_rgba8(&self) -> Vec<u8> {
+        match self.to_camera_image() {
+            Ok(CameraImage::Rgba(img)) => img.into_raw(),
+            Ok(CameraImage::Yuv420(p)) => p.to_rgba8(),
+            Err(e) => {
+                log::error!("{e}");
+                let (w, h) = self.size();
+                [0, 0, 0, 255].repeat(w as usize * h as usize)
+            }
+        }
+    }
+
+    /// The image as the renderer takes it: RGBA as it is, YUV as normalised planes (tight luma,
+    /// interleaved chroma) that the renderer converts in the shader. Refuses an RGBA buffer of
+    /// the wrong length or YUV planes too short for their strides.
+    pub fn to_camera_image(&self) -> Result<CameraImage, ArError> {
         match self {
-            FrameImage::Rgba8 { data, .. } => data.clone(),
+            FrameImage::Rgba8 {
+                width,
+                height,
+                data,
+            } => image::RgbaImage::from_raw(*width, *height, data.clone())
+                .map(CameraImage::Rgba)
+                .ok_or_else(|| {
+                    ArError::new(format!(
+                        "RGBA image {width}×{height}: needs {} bytes, got {}",
+                        4 * *width as usize * *height as usize,
+                        data.len()
+                    ))
+                }),
             FrameImage::Yuv420 {
                 width,
                 height,
@@ -67,19 +96,19 @@ impl FrameImage {
                 uv_row_stride,
                 uv_pixel_stride,
             } => {
-                let (w, h) = (*width as usize, *height as usize);
-                // The same BT.601 full-range matrix the phone's shader applies.
-                let m = YuvToRgb::bt601(YuvRange::Full);
-                let mut out = vec![255u8; w * h * 4];
-                for j in 0..h {
-                    for i in 0..w {
-                        let c =
-                            (j / 2) * *uv_row_stride as usize + (i / 2) * *uv_pixel_stride as usize;
-                        let rgb = m.convert(y[j * *y_row_stride as usize + i], u[c], v[c]);
-                        out[(j * w + i) * 4..][..3].copy_from_slice(&rgb);
-                    }
-                }
-                out
+                let planes = StridedYuv420 {
+                    width: *width,
+                    height: *height,
+                    y,
+                    y_row_stride: *y_row_stride,
+                    u,
+                    v,
+                    uv_row_stride: *uv_row_stride,
+                    uv_pixel_stride: *uv_pixel_stride,
+                };
+                Yuv420::from_strided(&planes, YuvRange::Full)
+                    .map(CameraImage::Yuv420)
+                    .map_err(|e| ArError::new(e.0))
             }
         }
     }

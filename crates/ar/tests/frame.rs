@@ -101,3 +101,68 @@ fn yuv_converts_with_bt601_full_range() {
     };
     assert_eq!(&grey.to_rgba8()[12..16], &[128, 128, 128, 255]);
 }
+
+#[test]
+fn frame_images_become_the_renderers_camera_images() {
+    use camera_image::CameraImage;
+    // NV21 as ARCore gives it: V U pairs, chroma rows padded to 4 bytes.
+    let vu = vec![200u8, 60, 0, 0, 10, 250];
+    let img = FrameImage::Yuv420 {
+        width: 2,
+        height: 4,
+        y: vec![1, 2, 3, 4, 5, 6, 7, 8],
+        y_row_stride: 2,
+        u: vu[1..].to_vec(),
+        v: vu.clone(),
+        uv_row_stride: 4,
+        uv_pixel_stride: 2,
+    };
+    let Ok(CameraImage::Yuv420(p)) = img.to_camera_image() else {
+        panic!("YUV planes stay YUV");
+    };
+    assert_eq!(p.y(), &[1, 2, 3, 4, 5, 6, 7, 8]);
+    assert_eq!(p.uv(), &[60, 200, 250, 10]);
+    // The CPU conversion is the same reference.
+    assert_eq!(img.to_rgba8(), p.to_rgba8());
+    let rgba = FrameImage::Rgba8 {
+        width: 1,
+        height: 1,
+        data: vec![9, 8, 7, 255],
+    };
+    assert_eq!(
+        rgba.to_camera_image(),
+        Ok(CameraImage::Rgba(
+            image::RgbaImage::from_raw(1, 1, vec![9, 8, 7, 255]).unwrap()
+        ))
+    );
+}
+
+#[test]
+fn bad_frame_images_are_refused_with_a_sentence() {
+    let short = FrameImage::Yuv420 {
+        width: 4,
+        height: 4,
+        y: vec![0; 15],
+        y_row_stride: 4,
+        u: vec![128; 4],
+        v: vec![128; 4],
+        uv_row_stride: 2,
+        uv_pixel_stride: 1,
+    };
+    let e = short.to_camera_image().unwrap_err();
+    assert_eq!(
+        e.message(),
+        "YUV image 4×4: the y plane has 15 bytes, its layout needs 16"
+    );
+    // The CPU conversion does not panic on it: a black image.
+    assert_eq!(short.to_rgba8(), [0, 0, 0, 255].repeat(16));
+    let rgba = FrameImage::Rgba8 {
+        width: 2,
+        height: 1,
+        data: vec![0; 7],
+    };
+    assert_eq!(
+        rgba.to_camera_image().unwrap_err().message(),
+        "RGBA image 2×1: needs 8 bytes, got 7"
+    );
+}

@@ -1,4 +1,5 @@
-//! The camera: a pinhole looking from `eye` at `target`, in world metres (f64), and the
+//! The camera: a pinhole looking from `eye` at `target` with `up` towards the top of the image,
+//! in world metres (f64), and the
 //! view-projection that shaders get in *local* metres (world minus the frame's origin), so the
 //! matrix never holds a large coordinate. [`OrbitCamera`] is the desktop app's mouse camera.
 
@@ -11,6 +12,10 @@ pub struct Camera {
     pub eye: DVec3,
     /// The point looked at, world metres.
     pub target: DVec3,
+    /// The direction that is up in the image (world axes; need not be unit nor perpendicular
+    /// to the viewing direction, only not along it). World y ([`DVec3::Y`]) for the orbit
+    /// and desktop cameras; a phone held at an angle rolls it about the viewing axis.
+    pub up: DVec3,
     /// Vertical field of view, radians.
     pub fov_y: f64,
     /// Near and far clip distances, metres.
@@ -25,6 +30,7 @@ impl Camera {
         Camera {
             eye,
             target,
+            up: DVec3::Y,
             fov_y: 55f64.to_radians(),
             near: (eye.y.abs() * 0.02).clamp(0.05, 2.0),
             far,
@@ -35,14 +41,16 @@ impl Camera {
     /// OpenGL projection (clip z in −w..w, e.g. ARCore's `ArCamera_getProjectionMatrix`).
     ///
     /// `view` may scale uniformly (a race world placed on a table: race metres in, AR metres
-    /// out); near and far come back in the world's metres. What [`Camera`] cannot hold is lost:
-    /// roll about the viewing axis (the up vector is world y) and an off-centre principal point
-    /// (ARCore's is within about 1 % of the image centre); the vertical field of view is the
+    /// out); near and far come back in the world's metres. The camera's roll is kept (`up` is
+    /// the view's y axis in the world), so [`Camera::view_local`] gives `view` back (scale
+    /// removed). What [`Camera`] cannot hold is lost: an off-centre principal point (ARCore's
+    /// is within about 1 % of the image centre); the vertical field of view is the
     /// projection's, the aspect is the viewport's at draw time.
     pub fn from_view_projection(view: DMat4, projection_gl: DMat4) -> Camera {
         let to_world = view.inverse();
         let eye = to_world.transform_point3(DVec3::ZERO);
         let forward = to_world.transform_vector3(DVec3::NEG_Z).normalize();
+        let up = to_world.transform_vector3(DVec3::Y).normalize();
         // Camera metres per world metre.
         let scale = view.x_axis.truncate().length();
         // OpenGL perspective: m22 = −(f + n)/(f − n), m32 = −2 f n/(f − n).
@@ -50,6 +58,7 @@ impl Camera {
         Camera {
             eye,
             target: eye + forward,
+            up,
             fov_y: 2.0 * (1.0 / projection_gl.y_axis.y).atan(),
             near: m32 / (m22 - 1.0) / scale,
             far: m32 / (m22 + 1.0) / scale,
@@ -59,11 +68,17 @@ impl Camera {
     /// World-to-clip matrix for points given relative to `origin` (x, z) on the sea level,
     /// in f64; wgpu depth range [0, 1].
     pub fn view_proj_local(&self, origin: DVec2, aspect: f64) -> DMat4 {
-        let o = DVec3::new(origin.x, 0.0, origin.y);
-        let view = glam::dcamera::rh::view::look_at_mat4(self.eye - o, self.target - o, DVec3::Y);
         // wgpu's clip space is Direct3D's: depth in [0, 1], y up.
         glam::dcamera::rh::proj::directx::perspective(self.fov_y, aspect, self.near, self.far)
-            * view
+            * self.view_local(origin)
+    }
+
+    /// World-to-camera matrix (camera looking down −z, `up` towards +y) for points given
+    /// relative to `origin` (x, z) on the sea level; every pass that builds a view from this
+    /// camera should take it from here, so roll is never dropped.
+    pub fn view_local(&self, origin: DVec2) -> DMat4 {
+        let o = DVec3::new(origin.x, 0.0, origin.y);
+        glam::dcamera::rh::view::look_at_mat4(self.eye - o, self.target - o, self.up)
     }
 
     /// The same matrix in f32 for a shader (every entry is a local, small number).
@@ -211,6 +226,35 @@ mod tests {
                 assert!((a - b).length() < 1e-9, "{p}: {a} vs {b}");
             }
         }
+    }
+
+    /// A phone pose rolled 30° about its viewing axis (after a yaw and a downward pitch): the
+    /// camera made from its view matrix (the pose's inverse, as `ArCamera_getViewMatrix`
+    /// gives it) has that same view matrix, so the rolled image is drawn rolled; and a point
+    /// on the camera's rolled x axis projects onto the screen's horizontal centre line.
+    #[test]
+    fn a_rolled_pose_keeps_its_roll() {
+        let roll = 30f64.to_radians();
+        let rot = glam::DQuat::from_rotation_y(0.7)
+            * glam::DQuat::from_rotation_x(-0.5)
+            * glam::DQuat::from_rotation_z(roll);
+        let pose = DMat4::from_rotation_translation(rot, DVec3::new(0.4, 1.2, -0.3));
+        let view = pose.inverse();
+        let proj = glam::dcamera::rh::proj::opengl::perspective(1.0, 0.5, 0.01, 100.0);
+        let cam = Camera::from_view_projection(view, proj);
+        let ours = cam.view_local(DVec2::ZERO);
+        for (a, b) in ours.to_cols_array().iter().zip(view.to_cols_array()) {
+            assert!((a - b).abs() < 1e-9, "{ours} vs {view}");
+        }
+        // The image's up is the pose's y axis, 30° off world y about the viewing direction.
+        let level_up = (DVec3::Y - rot * DVec3::NEG_Z * (rot * DVec3::NEG_Z).y).normalize();
+        assert!((cam.up.angle_between(level_up) - roll).abs() < 1e-9);
+        // One metre along the pose's own x axis, 2 m ahead: on screen it stays at ndc y = 0.
+        let p = pose.transform_point3(DVec3::new(1.0, 0.0, -2.0));
+        let c = cam.view_proj_local(DVec2::ZERO, 0.5) * p.extend(1.0);
+        assert!((c.y / c.w).abs() < 1e-9 && c.x / c.w > 0.1);
+        // Without roll information, world y stays up.
+        assert_eq!(Camera::look_at(DVec3::ONE, DVec3::ZERO, 10.0).up, DVec3::Y);
     }
 
     #[test]

@@ -246,6 +246,11 @@ pub trait Pass {
     fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext);
     /// Record the draw calls; bind group 0 is already set. Returns triangles submitted.
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64;
+    /// Changes whenever an input of this pass outside the [`Scene`] changes (e.g. a new
+    /// camera image), so that the renderer does not re-present a stale frame.
+    fn revision(&self) -> u64 {
+        0
+    }
 }
 
 /// One pass's entry in the frame record.
@@ -287,6 +292,25 @@ pub struct FrameReport {
     pub clipmap: ClipMapRecord,
     /// The wakes of this frame, where the renderer has a wake.
     pub wakes: Option<WakeRecord>,
+    /// True when nothing was drawn: the last frame was re-presented (paused and still).
+    pub reused_last_frame: bool,
+}
+
+impl FrameReport {
+    /// The record of re-presenting the frame this one recorded: nothing ran, nothing drawn.
+    pub fn reused(&self) -> FrameReport {
+        let mut r = self.clone();
+        for p in &mut r.passes {
+            p.ran = false;
+            p.reason = crate::renderer::FRAME_REUSED.into();
+            p.triangles = 0;
+            p.gpu_ms = None;
+        }
+        r.triangles = 0;
+        r.gpu_ms = None;
+        r.reused_last_frame = true;
+        r
+    }
 }
 
 /// The wake sources of a frame.

@@ -157,8 +157,18 @@ impl Gpu {
             .find(|f| f.is_srgb())
             .or_else(|| caps.formats.first().copied())
             .ok_or_else(|| GpuError("the window surface offers no texture format".into()))?;
+        // Copies to and from the surface let the renderer keep a still frame and re-present
+        // it (RenderOptions::keep_still_frames), where the surface allows them. Not on
+        // phones: there the camera image changes every frame, and copy usages can cost a
+        // tiled GPU its framebuffer compression.
+        let copy = if cfg!(target_os = "android") {
+            wgpu::TextureUsages::empty()
+        } else {
+            wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST
+        };
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | (caps.usages & copy);
         let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            usage,
             format,
             width: width.max(1),
             height: height.max(1),

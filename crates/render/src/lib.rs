@@ -57,5 +57,5 @@ pub mod shader;
 pub use camera::{Camera, OrbitCamera};
 pub use frame::{FrameReport, Pass};
 pub use gpu::{Gpu, GpuError};
-pub use renderer::{OFFSCREEN_FORMAT, RenderOptions, Renderer, render_image};
+pub use renderer::{FRAME_REUSED, OFFSCREEN_FORMAT, RenderOptions, Renderer, render_image};
 pub use scene::{Boat, Mark, Scene};

@@ -47,6 +47,9 @@ pub struct Measured {
     pub samples: usize,
     /// Distance from the eye of the sample with the largest error, metres.
     pub worst_distance: f64,
+    /// Rays that meet the play area where the map has no mesh (a hole in the water; not in
+    /// the statistics above, so a map is only comparable when this is 0).
+    pub uncovered: usize,
 }
 
 /// Measure the height error of `cfg` (waves `kept[level]` per level) at `view`, at time `t`.
@@ -64,6 +67,7 @@ pub fn measure(
     let inv = cam.view_proj_local(DVec2::ZERO, aspect).inverse();
     let [ax, az, bx, bz] = view.play_area;
     let mut errs = Vec::new();
+    let mut uncovered = 0;
     for py in (0..view.size[1]).step_by(stride as usize) {
         for px in (0..view.size[0]).step_by(stride as usize) {
             let ndc = [
@@ -82,6 +86,7 @@ pub fn measure(
                 continue;
             }
             let Some(h) = cfg.interpolated_height(sea, kept, eye, x0, t) else {
+                uncovered += 1;
                 continue;
             };
             let truth = sea.displace([x0.x, x0.y], t)[1];
@@ -99,6 +104,7 @@ pub fn measure(
         mean_px: errs.iter().sum::<f64>() / n.max(1) as f64,
         samples: n,
         worst_distance,
+        uncovered,
     }
 }
 
@@ -113,5 +119,51 @@ pub fn regatta_triangles(sea: &WaveSet, cfg: &ClipMapConfig, view: &View) -> u64
         play_area: Some(view.play_area),
         max_displacement: sea.waves.iter().map(|w| w.amplitude()).sum(),
     };
-    cfg.build(eye, &culling).triangles()
+    cfg.triangles_drawn(eye, &culling)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::clipmap::{ErrorTarget, LevelRatio};
+
+    #[test]
+    fn chosen_maps_cover_every_sample_of_the_play_area() {
+        // The lattice is turned (the default sea's is), so covering the play area's corners
+        // takes a wider map than the world-axis reach: a hole would hide error from `measure`.
+        let sea = WaveSet::default_sea();
+        let view = bench_view();
+        for px in [0.3, 1.0, 4.0] {
+            let target = ErrorTarget::uniform(px, view.size[1], view.camera.fov_y);
+            let cfg = ClipMapConfig::for_view(&sea, &target, view.camera.eye.y, view.reach);
+            assert!(cfg.angle != 0.0, "the test needs a turned lattice");
+            let kept: Vec<Vec<usize>> = cfg
+                .plan(&sea, &target, view.camera.eye.y)
+                .into_iter()
+                .map(|p| p.kept)
+                .collect();
+            let m = measure(&sea, &cfg, &kept, &view, 10.0, 16);
+            assert_eq!(m.uncovered, 0, "{px} px: {cfg:?}");
+            assert!(m.samples > 1000);
+            // The map's error is measured against the sea: within a few times the target.
+            assert!(
+                m.max_px > 0.05 * px && m.max_px < 4.0 * px,
+                "{px}: {}",
+                m.max_px
+            );
+        }
+        // A map that stops short of the play area leaves uncovered rays, and says so.
+        let short = ClipMapConfig {
+            ratio: LevelRatio::DOUBLING,
+            ..ClipMapConfig::uniform(3, 64, 1.0)
+        };
+        let kept = vec![(0..sea.waves.len()).collect::<Vec<_>>(); 3];
+        let m = measure(&sea, &short, &kept, &view, 10.0, 16);
+        assert!(
+            m.uncovered > 100 && m.samples > 0,
+            "{} / {}",
+            m.uncovered,
+            m.samples
+        );
+    }
 }

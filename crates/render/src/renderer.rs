@@ -27,6 +27,11 @@ pub struct RenderOptions {
     /// Read back GPU timestamps after each frame (blocks until the GPU is done: for headless
     /// frames and benches; the window app leaves it off).
     pub measure_gpu_time: bool,
+    /// Keep a copy of a frame drawn twice in a row (timeline paused, camera still) and
+    /// re-present it instead of drawing it again while nothing changes. Costs one texture of
+    /// the target's size and one copy per re-presented frame; needs a target with `COPY_SRC |
+    /// COPY_DST` (otherwise every frame is drawn).
+    pub keep_still_frames: bool,
 }
 
 impl Default for RenderOptions {
@@ -34,6 +39,7 @@ impl Default for RenderOptions {
         RenderOptions {
             error_px: DEFAULT_ERROR_PX,
             measure_gpu_time: true,
+            keep_still_frames: false,
         }
     }
 }
@@ -53,6 +59,27 @@ struct Timer {
     capacity: u32,
 }
 
+/// The plan's reason for every pass when the last frame is re-presented.
+pub const FRAME_REUSED: &str =
+    "timeline paused and camera still: the last frame is re-presented (a copy), nothing is drawn";
+
+/// What a frame was drawn from, to tell whether the next one would look the same.
+#[derive(Debug, Clone, PartialEq)]
+struct FrameKey {
+    scene: Scene,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    /// [`Renderer::revision`] and the passes' own revisions (e.g. a new camera image).
+    revision: u64,
+}
+
+/// The last frame drawn twice in a row, kept for re-presenting.
+struct StillFrame {
+    key: FrameKey,
+    texture: wgpu::Texture,
+    report: FrameReport,
+}
+
 pub struct Renderer {
     pub targets: Targets,
     pub options: RenderOptions,
@@ -62,6 +89,11 @@ pub struct Renderer {
     timer: Option<Timer>,
     stats: Option<Stats>,
     wake: Option<Arc<ocean::wake::Wake>>,
+    /// Bumped when an input outside the [`Scene`] changes (wakes, passes).
+    revision: u64,
+    /// The key of the last frame drawn, and the kept copy of a still frame.
+    last: Option<FrameKey>,
+    still: Option<StillFrame>,
 }
 
 impl Renderer {
@@ -152,22 +184,34 @@ impl Renderer {
             timer,
             stats,
             wake: None,
+            revision: 0,
+            last: None,
+            still: None,
         }
+    }
+
+    /// Something the frame depends on changed outside the [`Scene`] (a camera image, a
+    /// setting): the next frame is drawn, not re-presented.
+    pub fn invalidate(&mut self) {
+        self.revision += 1;
     }
 
     /// The boats' wakes to draw (built once per race by the caller), or none.
     pub fn set_wake(&mut self, wake: Option<Arc<ocean::wake::Wake>>) {
         self.wake = wake;
+        self.invalidate();
     }
 
     /// Add a pass (effects, wakes, pool) after the built-in ones; it draws in that order.
     pub fn add_pass(&mut self, pass: Box<dyn Pass>) {
+        self.invalidate();
         self.passes.push(pass);
     }
 
     /// Put `pass` in the place of the pass named `name` (the AR effects replace "water" with
     /// a pass that draws the same mesh shaded once with the effects); false if there is none.
     pub fn replace_pass(&mut self, name: &str, pass: Box<dyn Pass>) -> bool {
+        self.invalidate();
         match self.passes.iter_mut().find(|p| p.name() == name) {
             Some(slot) => {
                 *slot = pass;
@@ -183,7 +227,53 @@ impl Renderer {
     }
 
     /// Plan and draw `scene` into `target` (`size` pixels); returns the frame's record.
+    ///
+    /// With [`RenderOptions::keep_still_frames`], a frame that looks like the last one (same
+    /// scene, size and inputs: the timeline paused and the camera still) is not drawn again:
+    /// the second identical frame is kept, and from the third on the kept copy is
+    /// re-presented, every pass recorded as skipped with [`FRAME_REUSED`].
     pub fn render(
+        &mut self,
+        gpu: &Gpu,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        scene: &Scene,
+    ) -> FrameReport {
+        let texture = target.texture();
+        let copy = wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
+        if !self.options.keep_still_frames || !texture.usage().contains(copy) {
+            self.last = None;
+            self.still = None;
+            return self.draw(gpu, target, size, scene);
+        }
+        let key = FrameKey {
+            scene: scene.clone(),
+            size,
+            format: texture.format(),
+            revision: self.revision + self.passes.iter().map(|p| p.revision()).sum::<u64>(),
+        };
+        if let Some(still) = self.still.as_ref().filter(|s| s.key == key) {
+            copy_whole(gpu, &still.texture, texture);
+            return still.report.reused();
+        }
+        self.still = None;
+        let report = self.draw(gpu, target, size, scene);
+        if self.last.as_ref() == Some(&key) {
+            // Drawn twice alike: keep it for the frames to come.
+            let kept = crate::gpu::texture_2d(&gpu.device, "still frame", size, key.format, copy);
+            copy_whole(gpu, texture, &kept);
+            self.still = Some(StillFrame {
+                key: key.clone(),
+                texture: kept,
+                report: report.clone(),
+            });
+        }
+        self.last = Some(key);
+        report
+    }
+
+    /// Plan and draw one frame.
+    fn draw(
         &mut self,
         gpu: &Gpu,
         target: &wgpu::TextureView,
@@ -335,8 +425,16 @@ impl Renderer {
                 culled: frame.wakes.culled,
                 cull_bound_m: frame.wakes.cull_bound,
             }),
+            reused_last_frame: false,
         }
     }
+}
+
+/// Copy all of `from` into `to` (same size and format).
+fn copy_whole(gpu: &Gpu, from: &wgpu::Texture, to: &wgpu::Texture) {
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    enc.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
+    gpu.queue.submit([enc.finish()]);
 }
 
 /// Render `scene` offscreen at `size` and read it back: the image and the frame's record.

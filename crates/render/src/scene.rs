@@ -27,7 +27,7 @@ pub struct Mark {
 }
 
 /// Everything one frame shows.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
     /// Race time, seconds since the start (f64; reduced on the CPU before any shader).
     pub t: f64,

@@ -191,3 +191,87 @@ fn wakes_draw_foam_behind_a_boat_and_are_recorded() {
         .count();
     assert!(whiter > 30, "only {whiter} pixels whiter with the wake");
 }
+
+/// A paused timeline under a still camera: the second identical frame is kept, the third is a
+/// copy of it (nothing drawn, every pass recorded as skipped with the reason), and any change
+/// of race time draws again.
+#[test]
+fn a_still_frame_is_re_presented_not_drawn_again() {
+    let Some(gpu) = test_gpu() else { return };
+    let size = [96, 64];
+    let copy = wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
+    let (mut renderer, target, view) = keeping_renderer(&gpu, size, copy);
+    let paused = scene(120.0);
+    let first = renderer.render(&gpu, &view, size, &paused);
+    let drawn = gpu.read_texture(&target).unwrap();
+    let second = renderer.render(&gpu, &view, size, &paused);
+    assert!(!first.reused_last_frame && !second.reused_last_frame);
+    assert!(second.passes.iter().any(|p| p.ran));
+    // Spoil the target: a re-presented frame must put the kept pixels back.
+    gpu.queue.write_texture(
+        target.as_image_copy(),
+        &vec![255u8; (size[0] * size[1] * 4) as usize],
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * size[0]),
+            rows_per_image: Some(size[1]),
+        },
+        target.size(),
+    );
+    let third = renderer.render(&gpu, &view, size, &paused);
+    assert!(third.reused_last_frame);
+    assert!(
+        third
+            .passes
+            .iter()
+            .all(|p| !p.ran && p.reason == render::FRAME_REUSED)
+    );
+    assert_eq!(third.triangles, 0);
+    assert_eq!(gpu.read_texture(&target).unwrap(), drawn);
+    // The timeline moves on: drawn again, and it looks different.
+    let moved = renderer.render(&gpu, &view, size, &scene(121.0));
+    assert!(!moved.reused_last_frame && moved.passes.iter().any(|p| p.ran));
+    assert_ne!(gpu.read_texture(&target).unwrap(), drawn);
+    // A changed input outside the scene (here: invalidate) is drawn too.
+    renderer.render(&gpu, &view, size, &scene(121.0));
+    renderer.invalidate();
+    let after = renderer.render(&gpu, &view, size, &scene(121.0));
+    assert!(!after.reused_last_frame);
+}
+
+/// Without copy usages on the target (or without the option) every frame is drawn.
+#[test]
+fn frames_are_always_drawn_when_they_cannot_be_kept() {
+    let Some(gpu) = test_gpu() else { return };
+    let size = [32, 32];
+    let (mut renderer, _target, view) = keeping_renderer(&gpu, size, wgpu::TextureUsages::empty());
+    for _ in 0..3 {
+        let r = renderer.render(&gpu, &view, size, &scene(5.0));
+        assert!(!r.reused_last_frame && r.passes.iter().any(|p| p.ran));
+    }
+}
+
+/// A renderer that keeps still frames, and a `size` target with `usage` besides rendering.
+fn keeping_renderer(
+    gpu: &render::Gpu,
+    size: [u32; 2],
+    usage: wgpu::TextureUsages,
+) -> (Renderer, wgpu::Texture, wgpu::TextureView) {
+    let renderer = Renderer::new(
+        gpu,
+        render::OFFSCREEN_FORMAT,
+        RenderOptions {
+            keep_still_frames: true,
+            ..Default::default()
+        },
+    );
+    let target = render::gpu::texture_2d(
+        &gpu.device,
+        "target",
+        size,
+        render::OFFSCREEN_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | usage,
+    );
+    let view = target.create_view(&Default::default());
+    (renderer, target, view)
+}

@@ -19,12 +19,16 @@ pub struct TimelineEvent {
 /// Height of the scrub track, points.
 const TRACK_HEIGHT: f32 = 26.0;
 
+/// Below this width (points; a phone held upright is about 400) the transport row wraps onto
+/// several lines instead of running off the screen's edge.
+pub const NARROW_WIDTH: f32 = 640.0;
+
 /// Draws the timeline into `ui` (full width); returns true when the user moved race time or
 /// changed play state.
 pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent]) -> bool {
     let before = (clock.time(), clock.is_playing(), clock.speed());
     let times: Vec<f64> = events.iter().map(|e| e.t).collect();
-    ui.horizontal(|ui| {
+    let row = |ui: &mut Ui| {
         if ui
             .button("⏮ Start")
             .on_hover_text("Jump to the start signal")
@@ -82,7 +86,12 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
             .size(18.0)
             .strong(),
         );
-    });
+    };
+    if ui.available_width() < NARROW_WIDTH {
+        ui.horizontal_wrapped(row);
+    } else {
+        ui.horizontal(row);
+    }
     scrub_track(ui, clock, events);
     let after = (clock.time(), clock.is_playing(), clock.speed());
     before != after

@@ -118,6 +118,43 @@ fn toggles() -> Vec<EffectToggle> {
     ]
 }
 
+/// On a phone held upright (380 points) the transport row wraps: every control stays on
+/// screen and the row takes more than one line; at 900 points it stays one line.
+#[test]
+fn the_transport_row_wraps_on_a_narrow_screen() {
+    let ev = events();
+    let controls = [
+        "⏮ Start",
+        "⏪ Mark",
+        "◀ Step",
+        "▶ Play",
+        "Step ▶",
+        "Mark ⏩",
+    ];
+    for (width, one_line) in [(380.0, false), (900.0, true)] {
+        let mut h = Harness::builder()
+            .with_size(Vec2::new(width, 200.0))
+            .build_ui_state(
+                |ui, clock: &mut RaceClock| {
+                    timeline_ui(ui, clock, &ev);
+                },
+                RaceClock::new((-60.0, 900.0)),
+            );
+        h.run();
+        let rects: Vec<egui::Rect> = controls.iter().map(|c| h.get_by_label(c).rect()).collect();
+        for (c, r) in controls.iter().zip(&rects) {
+            assert!(
+                r.right() <= width,
+                "{c} at {r:?} is off a {width}-point screen"
+            );
+        }
+        let same_line = rects
+            .iter()
+            .all(|r| (r.center().y - rects[0].center().y).abs() < 1.0);
+        assert_eq!(same_line, one_line, "{width}: {rects:?}");
+    }
+}
+
 #[test]
 fn play_button_and_mark_jumps_drive_the_clock() {
     let ev = events();

@@ -166,6 +166,47 @@ pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
     -amp * bracket * (d[0] * s.dx[0] + d[1] * s.dx[1]) / r
 }
 
+/// One source's height term and its gradient at local point `p`, (w, ∂w/∂x, ∂w/∂z) in m and
+/// m/m, f32, exactly as `wake_source_height_grad` in WGSL (the closed-form derivative of
+/// [`source_height_f32`]).
+pub fn source_height_grad_f32(s: &GpuWakeSource, p: [f32; 2]) -> [f32; 3] {
+    let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
+    let r2 = d[0] * d[0] + d[1] * d[1];
+    if r2 > s.cull_r2 || r2 < MIN_R2 {
+        return [0.0; 3];
+    }
+    let k = s.q / r2;
+    let g = k * k * s.gauss;
+    if g.is_nan() || g > GAUSS_CUTOFF as f32 {
+        return [0.0; 3];
+    }
+    let r = r2.sqrt();
+    let phi = s.q / r;
+    let tau = std::f32::consts::TAU;
+    let phi_r = phi - tau * (phi / tau).round_ties_even();
+    let (sn, cs) = phi_r.sin_cos();
+    let c = -s.strength * k * k / r2 * (-g).exp();
+    let bracket = sn + (4.0 * g - 3.0) / phi * cs;
+    let f = c * bracket;
+    let df = c / r
+        * ((4.0 * g - 6.0) * bracket - phi * cs - (12.0 * g + 3.0) / phi * cs
+            + (4.0 * g - 3.0) * sn);
+    let proj = d[0] * s.dx[0] + d[1] * s.dx[1];
+    [
+        f * proj,
+        df * proj * d[0] / r + f * s.dx[0],
+        df * proj * d[1] / r + f * s.dx[1],
+    ]
+}
+
+/// Wake height and gradient at local point `p`, f32: the mirror of `wake_at` in WGSL.
+pub fn wake_height_grad_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> [f32; 3] {
+    sources.iter().fold([0.0; 3], |acc, s| {
+        let g = source_height_grad_f32(s, p);
+        [acc[0] + g[0], acc[1] + g[1], acc[2] + g[2]]
+    })
+}
+
 /// Wake height at local point `p`, m, f32: the mirror of `wake_height` in WGSL.
 pub fn wake_height_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> f32 {
     sources.iter().map(|s| source_height_f32(s, p)).sum()

@@ -255,6 +255,68 @@ fn f32_buffer_matches_f64_within_the_stated_bounds_far_from_the_origin() {
     assert!(peak > 1e-3, "the test field has no wake: {peak}");
 }
 
+/// The closed-form gradient the shaders use (one evaluation per point instead of three)
+/// against central differences of the f64 terms of the same sources, and its height against
+/// the f32 height: a boat 10 h into a race, 4 km from the origin.
+#[test]
+fn closed_form_gradient_matches_f64_central_differences() {
+    let t_end = 36_000.0;
+    let track: Vec<TrackSample> = (0..=240)
+        .map(|i| {
+            let t = t_end - 120.0 + i as f64 * 0.5;
+            let a = (t - t_end) / 40.0;
+            TrackSample {
+                t,
+                x: 4000.0 + 120.0 * a.sin(),
+                z: -1000.0 + 120.0 * (1.0 - a.cos()),
+            }
+        })
+        .collect();
+    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
+    let origin = [3990.0, -1000.0];
+    let view = WakeView::around([3990.0, -1000.0], 60.0);
+    let eps = 1e-6;
+    let frame = wake.gpu_sources(t_end, origin, &view, eps);
+    assert!(frame.sources.len() > 50);
+    let h = 1e-4;
+    let (mut worst, mut peak) = (0.0f64, 0.0f64);
+    let mut cases = Vec::new();
+    for i in 0..48 {
+        for j in 0..48 {
+            // Off the grid's symmetry: 1.37 m and 1.29 m steps.
+            let p = [-40.0 + 1.37 * i as f64, -35.0 + 1.29 * j as f64];
+            let f64_at = |dx: f64, dz: f64| {
+                frame_height_f64(&wake, t_end, origin, &view, eps, [p[0] + dx, p[1] + dz])
+            };
+            let fd = [
+                (f64_at(h, 0.0) - f64_at(-h, 0.0)) / (2.0 * h),
+                (f64_at(0.0, h) - f64_at(0.0, -h)) / (2.0 * h),
+            ];
+            let pf = [p[0] as f32, p[1] as f32];
+            let g = wake_height_grad_f32(&frame.sources, pf);
+            // The same height, rounded in another order.
+            let h32 = wake_height_f32(&frame.sources, pf);
+            assert!(
+                (g[0] - h32).abs() <= 1e-5 * h32.abs() + 1e-7,
+                "{p:?}: {} vs {h32}",
+                g[0]
+            );
+            cases.push((p, fd, [g[1] as f64, g[2] as f64]));
+            peak = peak.max(fd[0].hypot(fd[1]));
+        }
+    }
+    for (p, fd, g) in &cases {
+        let err = (g[0] - fd[0]).hypot(g[1] - fd[1]);
+        worst = worst.max(err);
+        assert!(
+            err <= 2e-3 * peak + 1e-6,
+            "{p:?}: {g:?} vs {fd:?} (peak {peak})"
+        );
+    }
+    eprintln!("closed-form wake gradient: max error {worst:.2e} of a peak slope {peak:.3}");
+    assert!(peak > 5e-3, "no wake slope in the test field: {peak}");
+}
+
 #[test]
 fn culling_drops_far_sources_within_its_bound() {
     let track = straight(6.0, 80.0, 100.0);

@@ -1,6 +1,7 @@
-//! The camera frame the effects draw over: an RGBA image, the pinhole camera that took it (in
-//! the scene's world frame) and the display's UV transform. ARCore and the replay feed
-//! (`crates/ar`) hand one over per frame; until a frame source is wired in, [`CameraFrame::synthetic`]
+//! The camera frame the effects draw over: the image (RGBA, or YUV 4:2:0 planes that the shader
+//! converts), the pinhole camera that took it (in the scene's world frame) and the display's UV
+//! transform. ARCore and the replay feed (`crates/ar`) hand one over per frame
+//! (`EffectsHandle::set_camera_frame`); without a frame source, [`CameraFrame::synthetic`]
 //! draws what a camera at the render camera's pose would see of a checkered table under the
 //! water and a striped room around it.
 
@@ -9,11 +10,13 @@ use glam::{DMat4, DVec2, DVec3};
 use crate::camera::Camera;
 use crate::optics::{PinholeCamera, Plane};
 
-/// One camera frame.
+pub use camera_image::{CameraImage, LayoutError, StridedYuv420, Yuv420, YuvRange, YuvToRgb};
+
+/// One camera frame; `CameraFrame<()>` is its camera and display transform without the image.
 #[derive(Debug, Clone)]
-pub struct CameraFrame {
-    /// sRGB-encoded RGBA pixels.
-    pub image: image::RgbaImage,
+pub struct CameraFrame<I = CameraImage> {
+    /// The image: sRGB-encoded RGBA, or YUV planes.
+    pub image: I,
     /// The camera that took it: intrinsics in the image's pixels, pose in world metres.
     pub camera: PinholeCamera,
     /// Screen uv → image uv as a 2×3 affine map (rows), e.g. for a rotated display; identity
@@ -24,13 +27,47 @@ pub struct CameraFrame {
 /// The identity display transform.
 pub const DISPLAY_IDENTITY: [[f64; 3]; 2] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 
+impl<I> CameraFrame<I> {
+    /// The image, and the frame without it.
+    pub fn split(self) -> (I, CameraFrame<()>) {
+        let CameraFrame {
+            image,
+            camera,
+            display,
+        } = self;
+        (
+            image,
+            CameraFrame {
+                image: (),
+                camera,
+                display,
+            },
+        )
+    }
+
+    /// This frame's camera and display with `image`.
+    pub fn with_image<J>(self, image: J) -> CameraFrame<J> {
+        CameraFrame {
+            image,
+            camera: self.camera,
+            display: self.display,
+        }
+    }
+
+    /// World → camera matrix for points given relative to `origin` (x, z), as the shaders
+    /// get them.
+    pub fn view_local(&self, origin: DVec2) -> DMat4 {
+        self.camera.pose.inverse() * DMat4::from_translation(DVec3::new(origin.x, 0.0, origin.y))
+    }
+}
+
 impl CameraFrame {
     /// The pinhole camera equivalent to the render camera `cam` on an image of `size` pixels
     /// (square pixels, principal point at the centre).
     pub fn pinhole(cam: &Camera, size: [u32; 2]) -> PinholeCamera {
         let (w, h) = (f64::from(size[0]), f64::from(size[1]));
         let f = 0.5 * h / (0.5 * cam.fov_y).tan();
-        let view = glam::dcamera::rh::view::look_at_mat4(cam.eye, cam.target, DVec3::Y);
+        let view = glam::dcamera::rh::view::look_at_mat4(cam.eye, cam.target, cam.up);
         PinholeCamera {
             fx: f,
             fy: f,
@@ -85,16 +122,10 @@ impl CameraFrame {
             image::Rgba([s[0], s[1], s[2], 255])
         });
         CameraFrame {
-            image,
+            image: CameraImage::Rgba(image),
             camera,
             display: DISPLAY_IDENTITY,
         }
-    }
-
-    /// World → camera matrix for points given relative to `origin` (x, z), as the shaders
-    /// get them.
-    pub fn view_local(&self, origin: DVec2) -> DMat4 {
-        self.camera.pose.inverse() * DMat4::from_translation(DVec3::new(origin.x, 0.0, origin.y))
     }
 }
 
@@ -133,11 +164,14 @@ mod tests {
     fn the_synthetic_frame_shows_the_table_below_and_the_room_above() {
         let cam = Camera::look_at(DVec3::new(0.0, 10.0, 20.0), DVec3::ZERO, 1e3);
         let f = CameraFrame::synthetic(&cam, [64, 48], 1.0, DVec2::ZERO, 15.0, 2.0);
-        assert_eq!(f.image.dimensions(), (64, 48));
+        let CameraImage::Rgba(img) = &f.image else {
+            panic!("synthetic frames are RGBA");
+        };
+        assert_eq!(img.dimensions(), (64, 48));
         // Bottom centre sees the table (wood: red > blue); some rows see the room.
-        let bottom = f.image.get_pixel(32, 47);
+        let bottom = img.get_pixel(32, 47);
         assert!(bottom[0] > bottom[2], "{bottom:?}");
-        let top = f.image.get_pixel(32, 0);
+        let top = img.get_pixel(32, 0);
         assert_ne!(top, bottom);
     }
 }

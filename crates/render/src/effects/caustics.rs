@@ -31,6 +31,43 @@ pub struct CausticRegion {
     pub periodic: bool,
 }
 
+impl CausticRegion {
+    /// The square of the table whose caustics can be seen in a view: around `target` (the point
+    /// looked at, world x, z), `view_width` metres wide, cut to the `play_area` (min x, min z,
+    /// max x, max z) grown by `margin` metres, since light only reaches the table under the
+    /// water (the margin covers table points seen through the water near its edge, and light
+    /// bent out past it). Without an overlap, the play area's square.
+    pub fn in_view(
+        target: [f64; 2],
+        view_width: f64,
+        play_area: [f64; 4],
+        margin: f64,
+    ) -> CausticRegion {
+        let half = view_width / 2.0;
+        let lo = [
+            (target[0] - half).max(play_area[0] - margin),
+            (target[1] - half).max(play_area[1] - margin),
+        ];
+        let hi = [
+            (target[0] + half).min(play_area[2] + margin),
+            (target[1] + half).min(play_area[3] + margin),
+        ];
+        if hi[0] > lo[0] && hi[1] > lo[1] {
+            CausticRegion {
+                min: lo,
+                size: (hi[0] - lo[0]).max(hi[1] - lo[1]),
+                periodic: false,
+            }
+        } else {
+            CausticRegion {
+                min: [play_area[0] - margin, play_area[1] - margin],
+                size: (play_area[2] - play_area[0]).max(play_area[3] - play_area[1]) + 2.0 * margin,
+                periodic: false,
+            }
+        }
+    }
+}
+
 /// Caustic irradiance on a regular grid over a [`CausticRegion`] of the table; 1 is the
 /// irradiance under flat water.
 #[derive(Debug, Clone, PartialEq)]
@@ -235,6 +272,23 @@ mod tests {
                 })
                 .collect(),
         }
+    }
+
+    #[test]
+    fn the_view_region_is_cut_to_the_water() {
+        let water = [-30.0, -30.0, 30.0, 30.0];
+        // A view 136 m wide around the middle: the play area and its margin, no more.
+        let r = CausticRegion::in_view([0.0, 0.0], 136.0, water, 6.0);
+        assert_eq!((r.min, r.size), ([-36.0, -36.0], 72.0));
+        // A narrow view inside the water keeps its own square.
+        let r = CausticRegion::in_view([10.0, -5.0], 20.0, water, 6.0);
+        assert_eq!((r.min, r.size), ([0.0, -15.0], 20.0));
+        // A view over the edge: from the view's side to the grown edge.
+        let r = CausticRegion::in_view([30.0, 0.0], 40.0, water, 6.0);
+        assert_eq!((r.min, r.size), ([10.0, -20.0], 40.0));
+        // A view beside the water: the whole play area.
+        let r = CausticRegion::in_view([200.0, 0.0], 20.0, water, 6.0);
+        assert_eq!((r.min, r.size), ([-36.0, -36.0], 72.0));
     }
 
     #[test]

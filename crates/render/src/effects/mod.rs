@@ -12,6 +12,8 @@
 //! - [`planner`]: when each effect pass runs, and why it does not.
 
 pub mod camera_frame;
+#[cfg(test)]
+mod camera_gpu_tests;
 pub mod caustics;
 pub mod flowmap;
 #[cfg(test)]

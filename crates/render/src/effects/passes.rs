@@ -11,8 +11,10 @@
 //!   clipping at the water.
 //!
 //! Both share bind group 2 (`shaders/effects_common.wgsl`; group 1 is the water's wake
-//! sources): the [`EffectsUniform`], the camera image, the reflection texture, the caustic map
-//! and a sampler. The caustic map is the f64
+//! sources): the [`EffectsUniform`], the camera image (binding 1: RGBA, or the luma of YUV
+//! 4:2:0 with the chroma at binding 5 and the decoding matrix at binding 6), the reflection
+//! texture, the caustic map and a sampler. [`add_effect_passes`] returns an [`EffectsHandle`]
+//! that writes each new camera frame into the same textures. The caustic map is the f64
 //! area-ratio map of [`super::caustics`] at the frame's race time, uploaded each frame.
 
 use std::cell::RefCell;
@@ -20,7 +22,7 @@ use std::rc::Rc;
 
 use glam::{DMat4, DVec2, DVec3};
 
-use super::camera_frame::CameraFrame;
+use super::camera_frame::{CameraFrame, CameraImage};
 use super::caustics::{CausticRegion, area_ratio};
 use super::flowmap::{DEFAULT_JUMP, flow_phases};
 use super::planner::{EffectDecision, EffectFrame, decide};
@@ -42,7 +44,7 @@ pub const FLOWMAP: &str = include_str!("../../../../shaders/flowmap.wgsl");
 pub const AR_WATER: &str = include_str!("../../../../shaders/ar_water.wgsl");
 
 /// Largest caustic intensity the 8-bit caustic texture holds (times flat water).
-const CAUSTIC_SCALE: f64 = 4.0;
+pub const CAUSTIC_SCALE: f64 = 4.0;
 
 /// How the effects are set up.
 #[derive(Debug, Clone, PartialEq)]
@@ -82,7 +84,7 @@ impl Default for ArConfig {
             flow_period: 2.0,
             detail_tile: 12.0,
             cheap_caustics: false,
-            caustic_resolution: (64, 96),
+            caustic_resolution: (48, 64),
         }
     }
 }
@@ -162,15 +164,74 @@ pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
 /// Resources shared by the effect passes.
 struct Shared {
     cfg: ArConfig,
-    camera: CameraFrame,
+    /// The current frame's camera and display transform (its image is on the GPU).
+    camera: CameraFrame<()>,
     layout: wgpu::BindGroupLayout,
     uniform: wgpu::Buffer,
-    camera_tex: wgpu::Texture,
+    camera_image: CameraTextures,
+    /// `CameraFormat` in `shaders/effects_common.wgsl`.
+    camera_format: wgpu::Buffer,
     caustic_tex: wgpu::Texture,
     reflection: Option<(wgpu::Texture, wgpu::Texture)>,
     sampler: wgpu::Sampler,
     group: Option<wgpu::BindGroup>,
     colour_format: wgpu::TextureFormat,
+    /// Camera frames set so far: the background pass's revision, so that the renderer draws
+    /// a still scene again over a new image.
+    revision: u64,
+}
+
+/// The camera image on the GPU. RGBA: one `Rgba8UnormSrgb` texture (the sampler decodes it to
+/// linear) and a 1×1 chroma placeholder. YUV 4:2:0: the luma as `R8Unorm` and the chroma as
+/// `Rg8Unorm` (U, V) at half resolution; the shader converts (`sample_camera`).
+struct CameraTextures {
+    yuv: bool,
+    size: [u32; 2],
+    /// RGBA, or the luma.
+    main: wgpu::Texture,
+    chroma: wgpu::Texture,
+}
+
+impl CameraTextures {
+    fn new(device: &wgpu::Device, image: &CameraImage) -> CameraTextures {
+        let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+        let size = image.size();
+        let (yuv, main_format, chroma_size) = match image {
+            CameraImage::Rgba(_) => (false, wgpu::TextureFormat::Rgba8UnormSrgb, [1, 1]),
+            CameraImage::Yuv420(_) => (
+                true,
+                wgpu::TextureFormat::R8Unorm,
+                camera_image::Yuv420::chroma_size(size[0], size[1]),
+            ),
+        };
+        CameraTextures {
+            yuv,
+            size,
+            main: texture(device, "camera image", size, main_format, usage),
+            chroma: texture(
+                device,
+                "camera chroma",
+                chroma_size,
+                wgpu::TextureFormat::Rg8Unorm,
+                usage,
+            ),
+        }
+    }
+
+    /// Can `image` be written into these textures?
+    fn fits(&self, image: &CameraImage) -> bool {
+        self.yuv == matches!(image, CameraImage::Yuv420(_)) && self.size == image.size()
+    }
+}
+
+/// `CameraFormat` in `shaders/effects_common.wgsl`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+struct CameraFormatUniform {
+    /// YUV → gamma-encoded RGB: `camera_image::YuvToRgb::to_gpu_columns` (offset last).
+    to_rgb: [[f32; 4]; 4],
+    /// x: 1 for YUV planes, 0 for RGBA.
+    planes: [u32; 4],
 }
 
 /// A plain 2-D texture, never empty (a zero-sized frame still gets one texel).
@@ -190,7 +251,12 @@ fn texture(
     )
 }
 
-fn write_rgba(gpu: &Gpu, tex: &wgpu::Texture, size: [u32; 2], bytes: &[u8]) {
+/// Write `size` texels of `texel_bytes` bytes each, rows tightly packed, into `tex`; nothing
+/// for an empty image.
+fn write_texels(gpu: &Gpu, tex: &wgpu::Texture, size: [u32; 2], texel_bytes: u32, bytes: &[u8]) {
+    if size[0] == 0 || size[1] == 0 {
+        return;
+    }
     gpu.queue.write_texture(
         wgpu::TexelCopyTextureInfo {
             texture: tex,
@@ -201,7 +267,7 @@ fn write_rgba(gpu: &Gpu, tex: &wgpu::Texture, size: [u32; 2], bytes: &[u8]) {
         bytes,
         wgpu::TexelCopyBufferLayout {
             offset: 0,
-            bytes_per_row: Some(4 * size[0]),
+            bytes_per_row: Some(texel_bytes * size[0]),
             rows_per_image: Some(size[1]),
         },
         wgpu::Extent3d {
@@ -213,7 +279,13 @@ fn write_rgba(gpu: &Gpu, tex: &wgpu::Texture, size: [u32; 2], bytes: &[u8]) {
 }
 
 impl Shared {
-    fn new(gpu: &Gpu, targets: Targets, cfg: ArConfig, camera: CameraFrame) -> Shared {
+    fn new(
+        gpu: &Gpu,
+        targets: Targets,
+        cfg: ArConfig,
+        camera: CameraFrame<()>,
+        image: &CameraImage,
+    ) -> Shared {
         let device = &gpu.device;
         let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
             binding,
@@ -247,6 +319,17 @@ impl Shared {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
+                tex_entry(5),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 6,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
             ],
         });
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
@@ -255,16 +338,13 @@ impl Shared {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let camera_format = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("camera image format"),
+            size: size_of::<CameraFormatUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-        let size = [camera.image.width(), camera.image.height()];
-        let camera_tex = texture(
-            device,
-            "camera image",
-            size,
-            wgpu::TextureFormat::Rgba8UnormSrgb,
-            usage,
-        );
-        write_rgba(gpu, &camera_tex, size, camera.image.as_raw());
         let n = cfg.caustic_resolution.1 as u32;
         let caustic_tex = texture(
             device,
@@ -279,18 +359,53 @@ impl Shared {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        Shared {
+        let mut shared = Shared {
             cfg,
             camera,
             layout,
             uniform,
-            camera_tex,
+            camera_image: CameraTextures::new(device, image),
+            camera_format,
             caustic_tex,
             reflection: None,
             sampler,
             group: None,
             colour_format: targets.colour,
+            revision: 0,
+        };
+        shared.set_image(gpu, image);
+        shared
+    }
+
+    /// Write `image` into the camera textures, made anew (and the bind group dropped) only
+    /// when its kind or size differs from the last image's.
+    fn set_image(&mut self, gpu: &Gpu, image: &CameraImage) {
+        if !self.camera_image.fits(image) {
+            self.camera_image = CameraTextures::new(&gpu.device, image);
+            self.group = None;
         }
+        let t = &self.camera_image;
+        let format = match image {
+            CameraImage::Rgba(img) => {
+                write_texels(gpu, &t.main, t.size, 4, img.as_raw());
+                CameraFormatUniform {
+                    to_rgb: [[0.0; 4]; 4],
+                    planes: [0; 4],
+                }
+            }
+            CameraImage::Yuv420(p) => {
+                write_texels(gpu, &t.main, t.size, 1, p.y());
+                let chroma = camera_image::Yuv420::chroma_size(t.size[0], t.size[1]);
+                write_texels(gpu, &t.chroma, chroma, 2, p.uv());
+                CameraFormatUniform {
+                    to_rgb: p.to_rgb().to_gpu_columns(),
+                    planes: [1, 0, 0, 0],
+                }
+            }
+        };
+        gpu.queue
+            .write_buffer(&self.camera_format, 0, bytemuck::bytes_of(&format));
+        self.revision += 1;
     }
 
     /// The reflection textures (colour, depth) at `size`, made when the size changes.
@@ -339,7 +454,7 @@ impl Shared {
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_tex)),
+                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.main)),
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
@@ -352,6 +467,14 @@ impl Shared {
                 wgpu::BindGroupEntry {
                     binding: 4,
                     resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.chroma)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: self.camera_format.as_entire_binding(),
                 },
             ],
         });
@@ -414,18 +537,8 @@ impl Shared {
         }
     }
 
-    /// The square of the table the caustic map covers: around the point looked at, as wide as
-    /// the view there (world metres).
     fn caustic_region(&self, frame: &FrameContext) -> CausticRegion {
-        let cam = &frame.scene.camera;
-        let dist = (cam.target - cam.eye).length();
-        let aspect = f64::from(frame.size[0]) / f64::from(frame.size[1].max(1));
-        let size = 2.0 * dist * (0.5 * cam.fov_y).tan() * aspect.max(1.0) * 1.5;
-        CausticRegion {
-            min: [cam.target.x - size / 2.0, cam.target.z - size / 2.0],
-            size,
-            periodic: false,
-        }
+        caustic_region(frame.scene, frame.size, &self.cfg)
     }
 
     /// Compute the area-ratio caustic map of this frame's sea and time and upload it.
@@ -449,8 +562,25 @@ impl Shared {
                 [b, b, b, 255]
             })
             .collect();
-        write_rgba(gpu, &self.caustic_tex, [out as u32, out as u32], &bytes);
+        write_texels(gpu, &self.caustic_tex, [out as u32, out as u32], 4, &bytes);
     }
+}
+
+/// The square of the table the caustic map covers for `scene` seen at `size` pixels: around
+/// the point looked at, as wide as the view there (world metres), cut to the water (the play
+/// area and a margin of twice the depth: table points seen through the water's edge at up to
+/// 63° from straight down).
+pub fn caustic_region(scene: &crate::Scene, size: [u32; 2], cfg: &ArConfig) -> CausticRegion {
+    let cam = &scene.camera;
+    let dist = (cam.target - cam.eye).length();
+    let aspect = f64::from(size[0]) / f64::from(size[1].max(1));
+    let width = 2.0 * dist * (0.5 * cam.fov_y).tan() * aspect.max(1.0) * 1.5;
+    CausticRegion::in_view(
+        [cam.target.x, cam.target.z],
+        width,
+        scene.play_area,
+        2.0 * cfg.table_depth,
+    )
 }
 
 /// How an effect pipeline draws: a full-screen triangle (the background) or the water mesh.
@@ -524,16 +654,18 @@ impl Pass for BackgroundPass {
         pass.draw(0..3, 0..1);
         1
     }
+    fn revision(&self) -> u64 {
+        self.shared.borrow().revision
+    }
 }
 
 /// The water over the table with reflection, refraction, caustics and flow map.
 pub struct ArWaterPass {
     /// The water pass it replaces: mesh, wakes, and the plain shading when no effect runs.
     water: WaterPass,
-    /// The water mesh with `ar_water.wgsl`'s fragment shader (after the water's and the
-    /// effects' files). Effects that do not run are skipped by uniform branches: specialising
-    /// a pipeline per set of effects (a WGSL `override` or a `const` mask) crashes lavapipe.
-    pipeline: wgpu::RenderPipeline,
+    /// The water mesh with `ar_water.wgsl`'s fragment shader, one pipeline per set of
+    /// effects, made when first needed.
+    pipelines: ArPipelines,
     /// The effect bits of this frame (0: none runs, the plain water shading draws).
     mask: u32,
     shared: Rc<RefCell<Shared>>,
@@ -547,6 +679,129 @@ pub struct ArWaterPass {
     /// reflection was drawn.
     last_offscreen: Option<OffscreenInputs>,
     reflection_drawn: bool,
+    /// This frame's target size and the scissor rectangle of the play area in it.
+    size: [u32; 2],
+    scissor: Option<Scissor>,
+}
+
+/// A scissor rectangle, pixels: x, y, width, height.
+type Scissor = [u32; 4];
+
+/// Largest height of the boats' wakes above or below the sea surface that the scissor allows
+/// for, metres (a Kelvin wake of a keelboat stays well under this).
+const WAKE_HEIGHT_MARGIN: f64 = 1.0;
+
+/// The screen rectangle that holds every pixel of the water inside the play area, or `None`
+/// when that is the whole screen. Every fragment outside the play area is discarded by the
+/// shader anyway, but lavapipe runs the whole fragment shader for it first (measured: a shader
+/// that discards every fragment costs as much as the full one), so the AR water draws only
+/// inside this rectangle (in the bench's view it cuts 30 % of the rows, about 5 % of the
+/// pass's time): the play area grown by the waves' largest displacement (Σ amplitudes,
+/// horizontally and vertically, plus WAKE_HEIGHT_MARGIN vertically) as a box, its eight
+/// corners projected.
+/// Exact culling, no approximation: a corner behind the camera gives the whole screen.
+fn play_area_scissor(frame: &FrameContext) -> Option<Scissor> {
+    let s = frame.scene;
+    let reach: f64 = s.sea.waves.iter().map(|w| w.amplitude()).sum();
+    let [ax, az, bx, bz] = s.play_area;
+    let o = frame.origin;
+    let (w, h) = (f64::from(frame.size[0]), f64::from(frame.size[1]));
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for k in 0..8 {
+        let x = if k & 1 == 0 { ax - reach } else { bx + reach } - o.x;
+        let z = if k & 2 == 0 { az - reach } else { bz + reach } - o.y;
+        let y = if k & 4 == 0 { -1.0 } else { 1.0 } * (reach + WAKE_HEIGHT_MARGIN);
+        let c = frame.view_proj * glam::DVec4::new(x, y, z, 1.0);
+        if c.w <= 1e-9 {
+            return None;
+        }
+        let px = DVec2::new((c.x / c.w + 1.0) * 0.5 * w, (1.0 - c.y / c.w) * 0.5 * h);
+        lo = lo.min(px);
+        hi = hi.max(px);
+    }
+    let x0 = lo.x.floor().clamp(0.0, w) as u32;
+    let y0 = lo.y.floor().clamp(0.0, h) as u32;
+    let x1 = hi.x.ceil().clamp(0.0, w) as u32;
+    let y1 = hi.y.ceil().clamp(0.0, h) as u32;
+    let rect = [x0, y0, x1 - x0, y1 - y0];
+    (rect != [0, 0, frame.size[0], frame.size[1]]).then_some(rect)
+}
+
+/// The AR water's pipelines, one per set of water effects (`mask`, at most 16), made when first
+/// needed. Each module ends with the set as constants (`FX_MASK`, `FX_CHEAP_CAUSTICS`), so the
+/// effects that do not run are constant-false branches the driver removes: lavapipe runs both
+/// sides of every branch of a fragment shader under execution masks, so with a uniform flag
+/// one effect costs about as much as all. (The effects uniform could not carry the flags
+/// anyway: the background pass, prepared after this one, writes it with none set.)
+///
+/// Mesa 22.3's lavapipe crashes (SIGSEGV in its queue thread; by the disassembly at the fault,
+/// its uniform inlining reading `const_buffer[slot − 1]` with slot 0) drawing some of these
+/// pipelines when an inlined function returns early; the effect shaders are written with one exit per function, and
+/// `gpu_tests::every_set_of_water_effects_draws_and_each_effect_shows` draws all 16.
+struct ArPipelines {
+    frame_layout: wgpu::BindGroupLayout,
+    fx_layout: wgpu::BindGroupLayout,
+    targets: Targets,
+    wakes: bool,
+    /// The overhead-sun caustics instead of the area-ratio map (fixed for the pass's life).
+    cheap_caustics: bool,
+    /// Indexed by [`ArPipelines::slot`].
+    made: [Option<wgpu::RenderPipeline>; 16],
+}
+
+impl ArPipelines {
+    /// The index of the water effects `mask` (FX_* bits; the background's bit 0 is not the
+    /// water's).
+    fn slot(mask: u32) -> usize {
+        ((mask >> 1) & 15) as usize
+    }
+
+    /// Make the pipeline for the water effects `mask` unless it exists.
+    fn make(&mut self, gpu: &Gpu, mask: u32, wake_layout: Option<&wgpu::BindGroupLayout>) {
+        let key = Self::slot(mask);
+        if self.made[key].is_some() {
+            return;
+        }
+        let label = format!("ar_water {mask:#x}");
+        // The water pass's own files first (its vs_main, VertexOut, foam colour), then the
+        // effects, then this pipeline's constants.
+        let hook: &[&str] = if self.wakes {
+            &[shader::WAKE, shader::WATER_WAKES]
+        } else {
+            &[shader::WATER_NO_WAKES]
+        };
+        let constants = format!(
+            "const FX_MASK: u32 = {}u;\nconst FX_CHEAP_CAUSTICS: bool = {};",
+            key << 1,
+            self.cheap_caustics
+        );
+        let effects = [
+            shader::WATER,
+            EFFECTS_COMMON,
+            REFLECTION,
+            REFRACTION,
+            CAUSTICS,
+            FLOWMAP,
+            AR_WATER,
+            &constants,
+        ];
+        let parts: Vec<&str> = hook.iter().chain(&effects).copied().collect();
+        self.made[key] = Some(fx_pipeline(
+            gpu,
+            &self.frame_layout,
+            &self.fx_layout,
+            self.targets,
+            &label,
+            &shader::module(&gpu.device, &label, &parts),
+            FxDraw {
+                wake_layout,
+                buffers: &[Some(vertex_layout())],
+                fragment: "fs_ar",
+                depth_write: true,
+                depth_compare: wgpu::CompareFunction::Less,
+            },
+        ));
+    }
 }
 
 /// The plan's note when the offscreen work of the last frame is reused.
@@ -619,30 +874,31 @@ impl ArWaterPass {
 
     /// Draw boats and marks as the water mirrors them into the reflection texture: view ×
     /// reflection matrix (000 eq. 1), near plane moved onto the water (000 eq. 2, wgpu depth).
-    /// Returns false when it cannot (camera at or below the water).
+    /// The texture is cleared to transparent first, so where nothing is mirrored (or nothing
+    /// can be: camera at or below the water, when this returns false) the shader's sample of
+    /// it changes nothing.
     fn draw_reflection(&mut self, gpu: &Gpu, frame: &FrameContext) -> bool {
         let s = frame.scene;
         let cam = &s.camera;
-        let o = DVec3::new(frame.origin.x, 0.0, frame.origin.y);
-        let view = glam::dcamera::rh::view::look_at_mat4(cam.eye - o, cam.target - o, DVec3::Y);
+        // The screen's view, roll included, so the texture lines up with the pixels.
+        let view = cam.view_local(frame.origin);
         let water = Plane::horizontal(0.0);
         let refl_view = view * reflection_matrix(&water);
         let aspect = f64::from(frame.size[0]) / f64::from(frame.size[1].max(1));
         let proj =
             glam::dcamera::rh::proj::directx::perspective(cam.fov_y, aspect, cam.near, cam.far);
-        let Some(oblique) =
-            oblique_near_plane(proj, &water.transformed(refl_view), DepthRange::ZeroToOne)
-        else {
-            return false;
-        };
-        let view_proj: DMat4 = oblique * refl_view;
-        let mut u: FrameUniform = frame.uniform;
-        u.view_proj = view_proj.as_mat4().to_cols_array_2d();
-        u.inv_view_proj = view_proj.inverse().as_mat4().to_cols_array_2d();
-        u.eye[1] = -u.eye[1];
-        self.reflection_bindings
-            .upload(&gpu.queue, &u, &frame.waves);
-        self.reflection_boats.prepare(gpu, frame);
+        let oblique =
+            oblique_near_plane(proj, &water.transformed(refl_view), DepthRange::ZeroToOne);
+        if let Some(oblique) = oblique {
+            let view_proj: DMat4 = oblique * refl_view;
+            let mut u: FrameUniform = frame.uniform;
+            u.view_proj = view_proj.as_mat4().to_cols_array_2d();
+            u.inv_view_proj = view_proj.inverse().as_mat4().to_cols_array_2d();
+            u.eye[1] = -u.eye[1];
+            self.reflection_bindings
+                .upload(&gpu.queue, &u, &frame.waves);
+            self.reflection_boats.prepare(gpu, frame);
+        }
         let mut shared = self.shared.borrow_mut();
         let frac = shared.cfg.reflection_fraction;
         let size = frame
@@ -667,11 +923,13 @@ impl ArWaterPass {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_bind_group(0, &self.reflection_bindings.group, &[]);
-            self.reflection_boats.draw(&mut pass);
+            if oblique.is_some() {
+                pass.set_bind_group(0, &self.reflection_bindings.group, &[]);
+                self.reflection_boats.draw(&mut pass);
+            }
         }
         gpu.queue.submit([enc.finish()]);
-        true
+        oblique.is_some()
     }
 }
 
@@ -725,26 +983,80 @@ impl Pass for ArWaterPass {
         gpu.queue
             .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
         self.group = Some(shared.bind_group(&gpu.device));
+        if mask != 0 {
+            self.pipelines.make(gpu, mask, self.water.wake_layout());
+        }
         self.mask = mask;
+        self.size = frame.size;
+        self.scissor = play_area_scissor(frame);
         self.last_decisions = ds;
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
         match &self.group {
             Some(group) if self.mask != 0 => {
+                let Some(pipeline) = &self.pipelines.made[ArPipelines::slot(self.mask)] else {
+                    return self.water.draw(pass);
+                };
+                let Some([x, y, w, h]) = self.scissor else {
+                    pass.set_bind_group(2, group, &[]);
+                    return self.water.draw_with(pass, pipeline);
+                };
+                if w == 0 || h == 0 {
+                    return 0;
+                }
+                pass.set_scissor_rect(x, y, w, h);
                 pass.set_bind_group(2, group, &[]);
-                self.water.draw_with(pass, &self.pipeline)
+                let triangles = self.water.draw_with(pass, pipeline);
+                // The passes after this one draw on the whole target.
+                pass.set_scissor_rect(0, 0, self.size[0], self.size[1]);
+                triangles
             }
             _ => self.water.draw(pass),
         }
     }
 }
 
-/// Add the background pass for `cfg` over `camera`'s frames to `renderer` and put the AR
+/// The camera frame of the effect passes, for their owner to change: from
+/// [`add_effect_passes`]. Cheap to clone; it outlives the passes harmlessly.
+#[derive(Clone)]
+pub struct EffectsHandle {
+    shared: Rc<RefCell<Shared>>,
+}
+
+impl EffectsHandle {
+    /// Draw the next frames over `frame`: its image is written into the textures the passes
+    /// already bind (made anew only when the image's kind (RGBA or YUV) or size changes), its
+    /// camera and display transform go into the next frame's uniform, and the renderer draws
+    /// the next frame even if the scene stands still. No pass or pipeline is rebuilt.
+    pub fn set_camera_frame(&self, gpu: &Gpu, frame: CameraFrame) {
+        let (image, camera) = frame.split();
+        let mut shared = self.shared.borrow_mut();
+        shared.set_image(gpu, &image);
+        shared.camera = camera;
+    }
+
+    /// Size of the camera image now on the GPU, pixels.
+    pub fn camera_image_size(&self) -> [u32; 2] {
+        self.shared.borrow().camera_image.size
+    }
+}
+
+/// Add the background pass for `cfg` over `camera`'s frame to `renderer` and put the AR
 /// water pass in the water pass's place. Effects that are not in `cfg.effects` never run (the
-/// passes report "not requested").
-pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, camera: CameraFrame) {
+/// passes report "not requested"). Later frames go in through the returned handle
+/// ([`EffectsHandle::set_camera_frame`]).
+pub fn add_effect_passes(
+    renderer: &mut Renderer,
+    gpu: &Gpu,
+    cfg: ArConfig,
+    camera: CameraFrame,
+) -> EffectsHandle {
     let targets = renderer.targets;
-    let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera)));
+    let (image, camera) = camera.split();
+    let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera, &image)));
+    let handle = EffectsHandle {
+        shared: shared.clone(),
+    };
     let frame_layout = renderer.frame_layout().clone();
     let fx_layout = shared.borrow().layout.clone();
     let background = BackgroundPass {
@@ -768,53 +1080,34 @@ pub fn add_effect_passes(renderer: &mut Renderer, gpu: &Gpu, cfg: ArConfig, came
     };
     let wakes = supports_wakes(&gpu.adapter);
     let water = WaterPass::new(&gpu.device, &frame_layout, targets, wakes);
-    // The water pass's own files first (its vs_main, VertexOut, foam colour), then the effects.
-    let hook: &[&str] = if wakes {
-        &[shader::WAKE, shader::WATER_WAKES]
-    } else {
-        &[shader::WATER_NO_WAKES]
-    };
-    let effects = [
-        shader::WATER,
-        EFFECTS_COMMON,
-        REFLECTION,
-        REFRACTION,
-        CAUSTICS,
-        FLOWMAP,
-        AR_WATER,
-    ];
-    let parts: Vec<&str> = hook.iter().chain(&effects).copied().collect();
-    let pipeline = fx_pipeline(
-        gpu,
-        &frame_layout,
-        &fx_layout,
+    let pipelines = ArPipelines {
+        frame_layout,
+        fx_layout,
         targets,
-        "ar_water",
-        &shader::module(&gpu.device, "ar_water", &parts),
-        FxDraw {
-            wake_layout: water.wake_layout(),
-            buffers: &[Some(vertex_layout())],
-            fragment: "fs_ar",
-            depth_write: true,
-            depth_compare: wgpu::CompareFunction::Less,
-        },
-    );
+        wakes,
+        cheap_caustics: shared.borrow().cfg.cheap_caustics,
+        made: Default::default(),
+    };
+    let reflection_boats = BoatsPass::new(&gpu.device, &pipelines.frame_layout, targets);
     let water = ArWaterPass {
         water,
-        pipeline,
+        pipelines,
         mask: 0,
         shared,
         group: None,
         reflection_bindings: FrameBindings::new(&gpu.device),
-        reflection_boats: BoatsPass::new(&gpu.device, &frame_layout, targets),
+        reflection_boats,
         last_decisions: Vec::new(),
         last_offscreen: None,
         reflection_drawn: false,
+        size: [0, 0],
+        scissor: None,
     };
     renderer.add_pass(Box::new(background));
     if !renderer.replace_pass("water", Box::new(water)) {
         log::warn!("no water pass to shade with the effects: the renderer has none");
     }
+    handle
 }
 
 /// The effects for a scene without a frame source yet: the default [`ArConfig`] with
@@ -826,7 +1119,7 @@ pub fn add_scene_effects(
     scene: &crate::Scene,
     size: [u32; 2],
     effects: EffectSet,
-) {
+) -> EffectsHandle {
     let cfg = ArConfig {
         effects,
         ..ArConfig::default()
@@ -845,5 +1138,65 @@ pub fn add_scene_effects(
         cfg.ring_radius_for(scene.play_area),
         square,
     );
-    add_effect_passes(renderer, gpu, cfg, frame);
+    add_effect_passes(renderer, gpu, cfg, frame)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scissor_holds_every_water_point_of_the_play_area() {
+        // The demo table seen from its camera: the rectangle is smaller than the screen (so it
+        // saves work) and holds the projection of the f64 sea surface over the whole play
+        // area, including its displaced edges, at any race time.
+        let size = [640, 480];
+        for t in [0.0, 40.0, 1234.5] {
+            let scene = super::super::demo_table_scene(t);
+            let frame = FrameContext::new(&scene, size, 1.0);
+            let [x, y, w, h] = play_area_scissor(&frame).expect("the play area is not all");
+            assert!(w * h < size[0] * size[1] * 9 / 10, "{:?}", [x, y, w, h]);
+            let [ax, az, bx, bz] = scene.play_area;
+            let n = 40;
+            for i in 0..=n {
+                for j in 0..=n {
+                    let rest = [
+                        ax + (bx - ax) * f64::from(i) / f64::from(n),
+                        az + (bz - az) * f64::from(j) / f64::from(n),
+                    ];
+                    let p = scene.sea.surface(rest, t).position;
+                    let local =
+                        glam::DVec4::new(p[0] - frame.origin.x, p[1], p[2] - frame.origin.y, 1.0);
+                    let c = frame.view_proj * local;
+                    let px = (c.x / c.w + 1.0) * 0.5 * f64::from(size[0]);
+                    let py = (1.0 - c.y / c.w) * 0.5 * f64::from(size[1]);
+                    let inside_screen = (0.0..f64::from(size[0])).contains(&px)
+                        && (0.0..f64::from(size[1])).contains(&py);
+                    if inside_screen {
+                        assert!(
+                            px >= f64::from(x)
+                                && px <= f64::from(x + w)
+                                && py >= f64::from(y)
+                                && py <= f64::from(y + h),
+                            "t = {t}: water at ({px:.1}, {py:.1}) outside {:?}",
+                            [x, y, w, h]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_camera_inside_the_grown_play_area_box_gets_the_whole_screen() {
+        // Eye below the box's top (a corner behind the camera): no scissor.
+        let mut scene = super::super::demo_table_scene(40.0);
+        scene.camera = crate::Camera::look_at(
+            glam::DVec3::new(0.0, 0.5, 0.0),
+            glam::DVec3::new(10.0, 0.0, 0.0),
+            500.0,
+        );
+        let frame = FrameContext::new(&scene, [320, 240], 1.0);
+        assert_eq!(play_area_scissor(&frame), None);
+    }
 }

@@ -43,6 +43,30 @@ pub struct WakeBins {
 }
 
 impl WakeBins {
+    /// Bin `sources` over the rectangle their cull circles (grown by `margin`) cover, clipped
+    /// to the square [−half, half]² (local metres).
+    pub fn over_reach(
+        sources: &[ocean::wake::GpuWakeSource],
+        half: f32,
+        max_bins: u32,
+        margin: f32,
+    ) -> WakeBins {
+        let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
+        for s in sources {
+            let r = s.cull_r2.max(0.0).sqrt() + margin;
+            for a in 0..2 {
+                lo[a] = lo[a].min(s.pos[a] - r);
+                hi[a] = hi[a].max(s.pos[a] + r);
+            }
+        }
+        let (lo, hi) = (lo.map(|v| v.max(-half)), hi.map(|v| v.min(half)));
+        if lo[0] >= hi[0] || lo[1] >= hi[1] {
+            // Nothing reaches the square: one empty bin.
+            return WakeBins::new(&[], [-half, -half], [half, half], 1, margin);
+        }
+        WakeBins::new(sources, lo, hi, max_bins, margin)
+    }
+
     /// Bin `sources` over the local rectangle [lo, hi] with at most `max_bins` per side.
     pub fn new(
         sources: &[ocean::wake::GpuWakeSource],
@@ -96,9 +120,10 @@ impl WakeBins {
     }
 }
 
-/// Bins per side of the wake grid, and how far (m) a gradient stencil may reach.
-const WAKE_BINS: u32 = 64;
-const WAKE_MARGIN_M: f32 = 2.0;
+/// Bins per side of the wake grid, and how far (m) around a bin its list reaches: the
+/// gradient is closed-form, so the margin only covers rounding of the bin lookup.
+const WAKE_BINS: u32 = 128;
+const WAKE_MARGIN_M: f32 = 0.5;
 
 pub struct WaterPass {
     pipeline: wgpu::RenderPipeline,
@@ -275,15 +300,10 @@ impl Pass for WaterPass {
         );
         self.index_count = frame.mesh.indices.len() as u32;
         if let Some(w) = self.wakes.as_mut() {
-            // Bin over the clip-map's square around the local origin.
+            // Bin over where the sources reach, inside the clip-map's square around the local
+            // origin: the bins are as small as the fleet's wake allows, not the whole sea's.
             let h = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
-            let bins = WakeBins::new(
-                &frame.wakes.sources,
-                [-h, -h],
-                [h, h],
-                WAKE_BINS,
-                WAKE_MARGIN_M,
-            );
+            let bins = WakeBins::over_reach(&frame.wakes.sources, h, WAKE_BINS, WAKE_MARGIN_M);
             // Buffers are never empty (a zeroed entry is never read: counts say what is live).
             let zero = [ocean::wake::GpuWakeSource::default()];
             let sources: &[ocean::wake::GpuWakeSource] = if frame.wakes.sources.is_empty() {
@@ -379,5 +399,66 @@ mod tests {
         }
         // And binning saves work: far fewer than all sources per point on average.
         assert!(listed < 97 * 89 * sources.len() / 5, "{listed}");
+    }
+
+    /// The sources a point sums: its bin's list, or none outside the grid (as `wake_bin`).
+    fn listed_at(bins: &WakeBins, p: [f32; 2]) -> &[u32] {
+        let g = bins.grid;
+        let (x, z) = (
+            (p[0] - g.origin[0]) * g.inv_cell,
+            (p[1] - g.origin[1]) * g.inv_cell,
+        );
+        if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
+            return &[];
+        }
+        let [first, count] = bins.bins[(z as u32 * g.nx + x as u32) as usize];
+        &bins.indices[first as usize..(first + count) as usize]
+    }
+
+    #[test]
+    fn bins_cover_only_where_the_sources_reach() {
+        // A fleet's wake 120 m across, 900 m from the origin of a 4 km clip-map.
+        let sources: Vec<GpuWakeSource> = (0..200)
+            .map(|k| {
+                let f = k as f32;
+                GpuWakeSource {
+                    pos: [900.0 + (f * 37.3) % 120.0, -300.0 + (f * 91.7) % 80.0],
+                    cull_r2: (2.0 + (f * 13.1) % 20.0).powi(2),
+                    ..Default::default()
+                }
+            })
+            .collect();
+        let bins = WakeBins::over_reach(&sources, 2000.0, 128, 0.5);
+        let whole = WakeBins::new(&sources, [-2000.0; 2], [2000.0; 2], 128, 0.5);
+        // The grid spans the reach (≤ 164 m) in the smallest bins (2 m), not the whole
+        // square's 31 m bins.
+        let g = bins.grid;
+        let cell = 1.0 / g.inv_cell;
+        assert!(cell <= 2.0 + 1e-3, "{g:?}");
+        assert!(
+            g.nx as f32 * cell <= 166.0 && g.nz as f32 * cell <= 166.0,
+            "{g:?}"
+        );
+        let (mut fine, mut coarse) = (0usize, 0usize);
+        for a in 0..200 {
+            for b in 0..150 {
+                let p = [860.0 + a as f32 * 1.01, -340.0 + b as f32 * 1.07];
+                let list = listed_at(&bins, p);
+                for (k, s) in sources.iter().enumerate() {
+                    let d2 = (p[0] - s.pos[0]).powi(2) + (p[1] - s.pos[1]).powi(2);
+                    if d2 <= s.cull_r2 {
+                        assert!(list.contains(&(k as u32)), "source {k} missing at {p:?}");
+                    }
+                }
+                fine += list.len();
+                coarse += listed_at(&whole, p).len();
+            }
+        }
+        // Far fewer sources to loop over per point than with bins over the whole square.
+        assert!(fine * 3 < coarse, "{fine} vs {coarse}");
+        assert!(listed_at(&bins, [0.0, 0.0]).is_empty());
+        // No source in reach: an empty grid.
+        let none = WakeBins::over_reach(&sources, 100.0, 128, 0.5);
+        assert!(none.indices.is_empty() && listed_at(&none, [0.0, 0.0]).is_empty());
     }
 }
