@@ -146,3 +146,17 @@ fn ray_dir(ndc: vec2<f32>) -> vec3<f32> {
     let far = frame.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0);
     return normalize(far.xyz / far.w - frame.eye.xyz);
 }
+
+// A clip-map vertex's rest point displaced by the sea (local metres): the waves its level
+// evaluates, those the next coarser level drops faded by `fade` (0 on the level's outer
+// border, so border vertices land exactly where the coarser level's do).
+fn sea_displaced(rest: vec2<f32>, fade: f32, level: u32) -> vec3<f32> {
+    var pos = vec3<f32>(rest.x, 0.0, rest.y);
+    for (var i = 0u; i < frame.counts.x; i = i + 1u) {
+        if wave_in_level(i, level) {
+            let weight = select(fade, 1.0, wave_in_level(i, level + 1u));
+            pos += gerstner(waves[i], rest) * weight;
+        }
+    }
+    return pos;
+}

@@ -1,5 +1,5 @@
 // Shared by the AR effect passes (background, reflection, refraction, caustics, flow map):
-// their uniform and textures (bind group 2; group 1 is the water pass's wakes), the
+// their uniform and textures (bind group 2; group 1 is unused), the
 // full-screen triangle, and the camera image through the camera's intrinsics and pose.
 // Appended to common.wgsl and optics.wgsl; mirrored in f64 by crates/render/src/effects/*.rs.
 

@@ -1,18 +1,11 @@
 // The water pass: the clip-map mesh displaced by the analytic Gerstner sea and the boats'
 // wakes, shaded with per-pixel analytic normals, the full Fresnel equations (optics.wgsl), sky
 // and sun reflection, Jacobian foam and wake foam. Appended to common.wgsl, optics.wgsl and a
-// wake hook (water_wakes.wgsl after wake.wgsl, or water_no_wakes.wgsl) that defines
-// wake_at(p). The wake is evaluated per vertex (it sums many sources; the clip-map's cells
-// near the boats are finer than the wake's waves) and interpolated to the pixels.
-
-struct VertexIn {
-    // Rest point in local metres, already morphed towards the next coarser level (CPU side).
-    @location(0) rest: vec2<f32>,
-    // Weight of the waves that this level has and the next coarser one drops: 1 inside the
-    // level, 0 on its outer border, so border vertices evaluate exactly the coarser level's sea.
-    @location(1) fade: f32,
-    @location(2) level: u32,
-}
+// vertex stage that defines vs_main: water_displaced.wgsl (the vertices were displaced by the
+// pass's compute stage, water_vertices.wgsl, sea and wakes) or water_no_wakes.wgsl (the sea
+// displaced in the vertex shader, no wakes: adapters without compute). The wake is evaluated
+// per vertex (it sums many sources; the clip-map's cells near the boats are finer than the
+// wake's waves) and interpolated to the pixels.
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -20,29 +13,6 @@ struct VertexOut {
     @location(1) world: vec3<f32>,
     // Wake slope (∂w/∂x, ∂w/∂z) and foam at this vertex.
     @location(2) wake: vec3<f32>,
-}
-
-@vertex
-fn vs_main(v: VertexIn) -> VertexOut {
-    var pos = vec3<f32>(v.rest.x, 0.0, v.rest.y);
-    for (var i = 0u; i < frame.counts.x; i = i + 1u) {
-        if wave_in_level(i, v.level) {
-            let weight = select(v.fade, 1.0, wave_in_level(i, v.level + 1u));
-            pos += gerstner(waves[i], v.rest) * weight;
-        }
-    }
-    // The wake is a height at a world point: where this vertex has gone.
-    var out: VertexOut;
-    out.wake = vec3<f32>(0.0);
-    if frame.counts.z > 0u {
-        let w = wake_at(pos.xz);
-        pos.y += w.x;
-        out.wake = w.yzw;
-    }
-    out.clip = frame.view_proj * vec4<f32>(pos, 1.0);
-    out.rest = v.rest;
-    out.world = pos;
-    return out;
 }
 
 // Colour of light scattered up out of the water body (what refraction shows in open water).

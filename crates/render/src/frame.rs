@@ -244,6 +244,18 @@ pub trait Pass {
     fn plan(&self, frame: &FrameContext) -> Result<String, String>;
     /// Upload what the pass draws (only called when it runs).
     fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext);
+    /// True for a pass that draws every pixel nothing else covers (the camera image): the
+    /// backdrop passes are then skipped.
+    fn fills_background(&self) -> bool {
+        false
+    }
+    /// True for a pass that only draws behind everything (the sky).
+    fn is_backdrop(&self) -> bool {
+        false
+    }
+    /// Record compute work that must run before the pass draws (e.g. displacing vertices);
+    /// bind group 0 is already set. Timed with the pass. Most passes have none.
+    fn dispatch(&self, _pass: &mut wgpu::ComputePass<'_>) {}
     /// Record the draw calls; bind group 0 is already set. Returns triangles submitted.
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64;
     /// Changes whenever an input of this pass outside the [`Scene`] changes (e.g. a new

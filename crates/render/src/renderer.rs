@@ -119,7 +119,8 @@ impl Renderer {
             .features
             .contains(wgpu::Features::TIMESTAMP_QUERY)
             .then(|| {
-                let capacity = 2 * 16;
+                // Per pass: its compute stage's and its render pass's begin and end.
+                let capacity = 4 * 16;
                 let size = u64::from(capacity) * 8;
                 Timer {
                     queries: device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -299,8 +300,25 @@ impl Renderer {
         let depth = self.depth.view(gpu, size);
         let mut records = Vec::new();
         let mut run = Vec::new();
-        for (i, p) in self.passes.iter_mut().enumerate() {
-            let decision = p.plan(&frame);
+        let mut decisions: Vec<Result<String, String>> =
+            self.passes.iter().map(|p| p.plan(&frame)).collect();
+        // A pass that fills every pixel behind the scene (the camera image) hides the sky.
+        if let Some(cover) = self
+            .passes
+            .iter()
+            .zip(&decisions)
+            .find(|(p, d)| p.fills_background() && d.is_ok())
+            .map(|(p, _)| p.name())
+        {
+            for (p, d) in self.passes.iter().zip(&mut decisions) {
+                if p.is_backdrop() && d.is_ok() {
+                    *d = Err(format!(
+                        "hidden: the {cover} pass fills every pixel behind the scene"
+                    ));
+                }
+            }
+        }
+        for ((i, p), decision) in self.passes.iter_mut().enumerate().zip(decisions) {
             if decision.is_ok() {
                 p.prepare(gpu, &frame);
                 run.push(i);
@@ -318,7 +336,7 @@ impl Renderer {
         let timer = self
             .timer
             .as_ref()
-            .filter(|t| self.options.measure_gpu_time && run.len() * 2 <= t.capacity as usize);
+            .filter(|t| self.options.measure_gpu_time && run.len() * 4 <= t.capacity as usize);
         // Pipeline statistics block on a read-back too: only when measuring.
         let stats = self
             .stats
@@ -341,6 +359,20 @@ impl Renderer {
         }
         for (k, &i) in run.iter().enumerate() {
             let first = k == 0;
+            {
+                // The pass's compute stage (empty for most; always begun, so that its
+                // timestamps are written).
+                let mut compute = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(self.passes[i].name()),
+                    timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
+                        query_set: &t.queries,
+                        beginning_of_pass_write_index: Some(4 * k as u32 + 2),
+                        end_of_pass_write_index: Some(4 * k as u32 + 3),
+                    }),
+                });
+                compute.set_bind_group(0, &self.bindings.group, &[]);
+                self.passes[i].dispatch(&mut compute);
+            }
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(self.passes[i].name()),
                 color_attachments: &[Some(crate::gpu::colour_attachment(
@@ -350,8 +382,8 @@ impl Renderer {
                 depth_stencil_attachment: Some(crate::gpu::depth_attachment(&depth, first)),
                 timestamp_writes: timer.map(|t| wgpu::RenderPassTimestampWrites {
                     query_set: &t.queries,
-                    beginning_of_pass_write_index: Some(2 * k as u32),
-                    end_of_pass_write_index: Some(2 * k as u32 + 1),
+                    beginning_of_pass_write_index: Some(4 * k as u32),
+                    end_of_pass_write_index: Some(4 * k as u32 + 1),
                 }),
                 occlusion_query_set: None,
                 multiview_mask: None,
@@ -375,7 +407,7 @@ impl Renderer {
         if let Some(t) = timer
             && !run.is_empty()
         {
-            let n = 2 * run.len() as u32;
+            let n = 4 * run.len() as u32;
             enc.resolve_query_set(&t.queries, 0..n, &t.resolve, 0);
             enc.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, u64::from(n) * 8);
         }
@@ -388,8 +420,9 @@ impl Renderer {
                     let ticks: &[u64] = bytemuck::cast_slice(&bytes);
                     let period_ns = f64::from(gpu.queue.get_timestamp_period());
                     for (k, &i) in run.iter().enumerate() {
-                        let (a, b) = (ticks[2 * k], ticks[2 * k + 1]);
-                        records[i].gpu_ms = Some(b.saturating_sub(a) as f64 * period_ns * 1e-6);
+                        let q = &ticks[4 * k..4 * k + 4];
+                        let ticks = q[1].saturating_sub(q[0]) + q[3].saturating_sub(q[2]);
+                        records[i].gpu_ms = Some(ticks as f64 * period_ns * 1e-6);
                     }
                 }
                 Err(e) => log::warn!("no GPU timings this frame: {e}"),

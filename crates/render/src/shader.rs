@@ -11,8 +11,10 @@ pub const BOATS: &str = include_str!("../../../shaders/boats.wgsl");
 pub const WAVE_HEIGHTS: &str = include_str!("../../../shaders/wave_heights.wgsl");
 /// The boats' wake sources (the wakes engineer's file; ocean::wake::gpu mirrors it in f32).
 pub const WAKE: &str = include_str!("../../../shaders/wake.wgsl");
-/// The water pass's wake hook with wakes (bind group 1) and without.
-pub const WATER_WAKES: &str = include_str!("../../../shaders/water_wakes.wgsl");
+/// The water pass's compute stage (sea and wakes per vertex, bind group 1) and the vertex
+/// stages that draw its output, or displace by the sea alone without compute.
+pub const WATER_VERTICES: &str = include_str!("../../../shaders/water_vertices.wgsl");
+pub const WATER_DISPLACED: &str = include_str!("../../../shaders/water_displaced.wgsl");
 pub const WATER_NO_WAKES: &str = include_str!("../../../shaders/water_no_wakes.wgsl");
 
 /// The full source of a pass: the shared files then `parts`.

@@ -492,3 +492,38 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     // f32 arithmetic on metre-sized offsets: a millionth of the 0.65 m/s current.
     assert!(worst < 1e-5, "worst WGSL vs f64 difference {worst:e} m/s");
 }
+
+/// The camera image fills every pixel behind the scene, so the sky is not drawn under it: the
+/// sky pass is skipped with the reason while the background runs, and runs without it (the
+/// picture is the same either way: the golden images cover that).
+#[test]
+fn the_sky_is_skipped_under_the_camera_background_only() {
+    let Some(gpu) = test_gpu() else { return };
+    let scene = table_scene(40.0);
+    let report = |effects: EffectSet| {
+        let mut r = Renderer::new(&gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+        let cfg = config(effects);
+        let frame = frame_for(&scene, &cfg);
+        add_effect_passes(&mut r, &gpu, cfg, frame);
+        let (_, report) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+        let pass = |name: &str| {
+            report
+                .passes
+                .iter()
+                .find(|p| p.name == name)
+                .cloned()
+                .expect("the pass is recorded")
+        };
+        (pass("sky"), pass("background"))
+    };
+    let (sky, background) = report(EffectSet::ALL);
+    assert!(background.ran);
+    assert!(
+        !sky.ran && sky.reason.contains("background"),
+        "{}",
+        sky.reason
+    );
+    let (sky, background) = report(EffectSet::only(Effect::Reflection));
+    assert!(!background.ran);
+    assert!(sky.ran, "{}", sky.reason);
+}

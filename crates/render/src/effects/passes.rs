@@ -10,8 +10,7 @@
 //!   texture (a fraction of the screen) with the reflection matrix and oblique near-plane
 //!   clipping at the water.
 //!
-//! Both share bind group 2 (`shaders/effects_common.wgsl`; group 1 is the water's wake
-//! sources): the [`EffectsUniform`], the camera image (binding 1: RGBA, or the luma of YUV
+//! Both share bind group 2 (`shaders/effects_common.wgsl`; group 1 is unused): the [`EffectsUniform`], the camera image (binding 1: RGBA, or the luma of YUV
 //! 4:2:0 with the chroma at binding 5 and the decoding matrix at binding 6), the reflection
 //! texture, the caustic map and a sampler. [`add_effect_passes`] returns an [`EffectsHandle`]
 //! that writes each new camera frame into the same textures. The caustic map is the f64
@@ -31,7 +30,7 @@ use crate::frame::{FrameBindings, FrameContext, FrameUniform, Pass, Targets};
 use crate::gpu::Gpu;
 use crate::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
 use crate::passes::boats::BoatsPass;
-use crate::passes::water::{WaterPass, supports_wakes, vertex_layout};
+use crate::passes::water::{WaterPass, supports_wakes, vertex_stage};
 use crate::renderer::{DEPTH_FORMAT, Renderer};
 use crate::shader;
 
@@ -585,15 +584,14 @@ pub fn caustic_region(scene: &crate::Scene, size: [u32; 2], cfg: &ArConfig) -> C
 
 /// How an effect pipeline draws: a full-screen triangle (the background) or the water mesh.
 struct FxDraw<'a> {
-    /// Bind group 1: the water's wake sources, if any.
-    wake_layout: Option<&'a wgpu::BindGroupLayout>,
     buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     fragment: &'a str,
     depth_write: bool,
     depth_compare: wgpu::CompareFunction,
 }
 
-/// A pipeline of bind groups 0 (frame), 1 (wakes or none) and 2 (effects).
+/// A pipeline of bind groups 0 (frame) and 2 (effects); group 1 is unused (it was the water's
+/// wake sources, which its compute stage now reads).
 fn fx_pipeline(
     gpu: &Gpu,
     frame_layout: &wgpu::BindGroupLayout,
@@ -607,7 +605,7 @@ fn fx_pipeline(
         &gpu.device,
         label,
         module,
-        &[Some(frame_layout), draw.wake_layout, Some(fx_layout)],
+        &[Some(frame_layout), None, Some(fx_layout)],
         targets,
         crate::passes::Raster {
             buffers: draw.buffers,
@@ -629,6 +627,9 @@ pub struct BackgroundPass {
 impl Pass for BackgroundPass {
     fn name(&self) -> &'static str {
         "background"
+    }
+    fn fills_background(&self) -> bool {
+        true
     }
     fn condition(&self) -> &'static str {
         "a camera frame is available (it fills every pixel no water, boat or mark covers)"
@@ -757,7 +758,7 @@ impl ArPipelines {
     }
 
     /// Make the pipeline for the water effects `mask` unless it exists.
-    fn make(&mut self, gpu: &Gpu, mask: u32, wake_layout: Option<&wgpu::BindGroupLayout>) {
+    fn make(&mut self, gpu: &Gpu, mask: u32) {
         let key = Self::slot(mask);
         if self.made[key].is_some() {
             return;
@@ -765,11 +766,7 @@ impl ArPipelines {
         let label = format!("ar_water {mask:#x}");
         // The water pass's own files first (its vs_main, VertexOut, foam colour), then the
         // effects, then this pipeline's constants.
-        let hook: &[&str] = if self.wakes {
-            &[shader::WAKE, shader::WATER_WAKES]
-        } else {
-            &[shader::WATER_NO_WAKES]
-        };
+        let (stage, buffer) = vertex_stage(self.wakes);
         let constants = format!(
             "const FX_MASK: u32 = {}u;\nconst FX_CHEAP_CAUSTICS: bool = {};",
             key << 1,
@@ -785,7 +782,7 @@ impl ArPipelines {
             AR_WATER,
             &constants,
         ];
-        let parts: Vec<&str> = hook.iter().chain(&effects).copied().collect();
+        let parts: Vec<&str> = std::iter::once(&stage).chain(&effects).copied().collect();
         self.made[key] = Some(fx_pipeline(
             gpu,
             &self.frame_layout,
@@ -794,8 +791,7 @@ impl ArPipelines {
             &label,
             &shader::module(&gpu.device, &label, &parts),
             FxDraw {
-                wake_layout,
-                buffers: &[Some(vertex_layout())],
+                buffers: &[Some(buffer)],
                 fragment: "fs_ar",
                 depth_write: true,
                 depth_compare: wgpu::CompareFunction::Less,
@@ -984,12 +980,15 @@ impl Pass for ArWaterPass {
             .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
         self.group = Some(shared.bind_group(&gpu.device));
         if mask != 0 {
-            self.pipelines.make(gpu, mask, self.water.wake_layout());
+            self.pipelines.make(gpu, mask);
         }
         self.mask = mask;
         self.size = frame.size;
         self.scissor = play_area_scissor(frame);
         self.last_decisions = ds;
+    }
+    fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>) {
+        self.water.dispatch(pass);
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
         match &self.group {
@@ -1068,7 +1067,6 @@ pub fn add_effect_passes(
             "background",
             &shader::module(&gpu.device, "background", &[EFFECTS_COMMON, BACKGROUND]),
             FxDraw {
-                wake_layout: None,
                 buffers: &[],
                 fragment: "fs_main",
                 depth_write: false,

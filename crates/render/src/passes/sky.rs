@@ -32,6 +32,9 @@ impl Pass for SkyPass {
     fn name(&self) -> &'static str {
         "sky"
     }
+    fn is_backdrop(&self) -> bool {
+        true
+    }
     fn condition(&self) -> &'static str {
         "some pixel's view ray misses the water of the play area (horizon or beyond the area in view)"
     }

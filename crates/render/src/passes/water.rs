@@ -2,8 +2,13 @@
 //! boats' wakes (`shaders/wake.wgsl`, sources from `ocean::wake`), with Fresnel-mixed sky
 //! reflection, water-body light, Jacobian foam and wake foam.
 //!
-//! Wakes need storage buffers in vertex shaders; on an adapter without them (OpenGL ES 3.0)
-//! the pass is built with the no-wake hook and the report says so.
+//! Where the adapter has compute shaders, a compute stage (`shaders/water_vertices.wgsl`)
+//! displaces every clip-map vertex by the sea and the wakes once per frame into a vertex
+//! buffer, and the vertex shader (`shaders/water_displaced.wgsl`) only projects it: a vertex
+//! shader summing hundreds of wake sources starves a GPU's vertex pipeline (13× the water
+//! pass on an H200) and runs on one thread in lavapipe. Without compute (OpenGL ES 3.0) the
+//! vertex shader displaces by the sea alone (`shaders/water_no_wakes.wgsl`) and the report
+//! says that wakes are skipped.
 
 use crate::clipmap::ClipVertex;
 use crate::frame::{FrameContext, Pass, Targets};
@@ -11,15 +16,20 @@ use crate::gpu::Gpu;
 use crate::passes::{PipelineSpec, pipeline};
 use crate::shader;
 
-/// The wake sources' bind group (group 1) of the water pass.
-struct WakeBinding {
-    layout: wgpu::BindGroupLayout,
-    /// Sources, bins, indices, grid.
-    buffers: [Option<wgpu::Buffer>; 4],
+/// The water pass's compute stage: its pipeline and bind group 1.
+struct VertexCompute {
+    pipeline: wgpu::ComputePipeline,
+    /// Wake sources, bins, indices, grid, the clip-map vertices and the displaced vertices.
+    buffers: [Option<wgpu::Buffer>; 6],
     group: Option<wgpu::BindGroup>,
+    /// Vertices to displace this frame.
+    vertex_count: u32,
 }
 
-/// `WakeGrid` of `shaders/water_wakes.wgsl` (32 bytes).
+/// Bytes of one displaced vertex (`DisplacedVertex` of `shaders/water_vertices.wgsl`).
+const DISPLACED_VERTEX_BYTES: u64 = 32;
+
+/// `WakeGrid` of `shaders/water_vertices.wgsl` (32 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct WakeGrid {
@@ -127,20 +137,41 @@ const WAKE_MARGIN_M: f32 = 0.5;
 
 pub struct WaterPass {
     pipeline: wgpu::RenderPipeline,
+    /// The clip-map vertices (drawn directly without the compute stage).
     vertices: Option<wgpu::Buffer>,
     indices: Option<wgpu::Buffer>,
     index_count: u32,
-    wakes: Option<WakeBinding>,
+    compute: Option<VertexCompute>,
 }
 
-/// Can this adapter read storage buffers in vertex shaders (what wakes need)?
+/// Can this adapter run the water's compute stage (sea and wakes per vertex)?
 pub fn supports_wakes(adapter: &wgpu::Adapter) -> bool {
     adapter
         .get_downlevel_capabilities()
         .flags
-        .contains(wgpu::DownlevelFlags::VERTEX_STORAGE)
-        && adapter.limits().max_storage_buffers_per_shader_stage >= 3
+        .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS)
+        && adapter.limits().max_storage_buffers_per_shader_stage >= 5
 }
+
+/// The vertex stage of a pipeline that draws the water mesh: the WGSL file that defines
+/// `vs_main` and its vertex buffer layout. `wakes`: the compute stage's displaced vertices.
+pub fn vertex_stage(wakes: bool) -> (&'static str, wgpu::VertexBufferLayout<'static>) {
+    if wakes {
+        (
+            shader::WATER_DISPLACED,
+            wgpu::VertexBufferLayout {
+                array_stride: DISPLACED_VERTEX_BYTES,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &DISPLACED_ATTRIBUTES,
+            },
+        )
+    } else {
+        (shader::WATER_NO_WAKES, vertex_layout())
+    }
+}
+
+const DISPLACED_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
+    wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
 
 impl WaterPass {
     /// The water pass; `wakes` builds it with the wake hook (see [`supports_wakes`]).
@@ -150,51 +181,70 @@ impl WaterPass {
         t: Targets,
         wakes: bool,
     ) -> Self {
-        let wakes = wakes.then(|| WakeBinding {
-            layout: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("wake sources"),
-                entries: &[0, 1, 2, 3].map(|binding| wgpu::BindGroupLayoutEntry {
+        let compute = wakes.then(|| {
+            let storage = |read_only| wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            };
+            let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("water vertices"),
+                entries: &[0, 1, 2, 3, 4, 5].map(|binding| wgpu::BindGroupLayoutEntry {
                     binding,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: if binding == 3 {
-                            wgpu::BufferBindingType::Uniform
-                        } else {
-                            wgpu::BufferBindingType::Storage { read_only: true }
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: match binding {
+                        3 => wgpu::BindingType::Buffer {
+                            ty: wgpu::BufferBindingType::Uniform,
+                            has_dynamic_offset: false,
+                            min_binding_size: None,
                         },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
+                        5 => storage(false),
+                        _ => storage(true),
                     },
                     count: None,
                 }),
-            }),
-            buffers: [None, None, None, None],
-            group: None,
-        });
-        let module = match wakes {
-            Some(_) => shader::module(
+            });
+            let module = shader::module(
                 device,
-                "water",
-                &[shader::WAKE, shader::WATER_WAKES, shader::WATER],
-            ),
-            None => shader::module(device, "water", &[shader::WATER_NO_WAKES, shader::WATER]),
-        };
-        let extra: Vec<&wgpu::BindGroupLayout> = wakes.iter().map(|w| &w.layout).collect();
+                "water vertices",
+                &[shader::WAKE, shader::WATER_VERTICES],
+            );
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("water vertices"),
+                bind_group_layouts: &[Some(frame_layout), Some(&layout)],
+                immediate_size: 0,
+            });
+            VertexCompute {
+                pipeline: device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("water vertices"),
+                    layout: Some(&layout),
+                    module: &module,
+                    entry_point: Some("cs_displace"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                }),
+                buffers: Default::default(),
+                group: None,
+                vertex_count: 0,
+            }
+        });
+        let (stage, buffer) = vertex_stage(wakes);
+        let module = shader::module(device, "water", &[stage, shader::WATER]);
         let spec = PipelineSpec {
             label: "water",
             module: &module,
-            buffers: &[Some(vertex_layout())],
+            buffers: &[Some(buffer)],
             depth_write: true,
             depth_test: true,
             cull: None,
-            extra_layouts: &extra,
+            extra_layouts: &[],
         };
         WaterPass {
             pipeline: pipeline(device, frame_layout, t, spec),
             vertices: None,
             indices: None,
             index_count: 0,
-            wakes,
+            compute,
         }
     }
 }
@@ -214,25 +264,21 @@ pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
 }
 
 impl WaterPass {
-    /// The wake sources' bind group layout (group 1), when built with wakes.
-    pub fn wake_layout(&self) -> Option<&wgpu::BindGroupLayout> {
-        self.wakes.as_ref().map(|w| &w.layout)
-    }
-
-    /// Draw this frame's mesh (and wakes, group 1) with `pipeline`, which shares the water's
-    /// vertex shader and layout; returns the triangles drawn.
+    /// Draw this frame's mesh with `pipeline`, which shares the water's vertex stage
+    /// ([`vertex_stage`]); returns the triangles drawn.
     pub fn draw_with(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         pipeline: &wgpu::RenderPipeline,
     ) -> u64 {
-        let (Some(v), Some(i)) = (&self.vertices, &self.indices) else {
+        let drawn = match &self.compute {
+            Some(c) => c.buffers[5].as_ref(),
+            None => self.vertices.as_ref(),
+        };
+        let (Some(v), Some(i)) = (drawn, &self.indices) else {
             return 0;
         };
         pass.set_pipeline(pipeline);
-        if let Some(g) = self.wakes.as_ref().and_then(|w| w.group.as_ref()) {
-            pass.set_bind_group(1, g, &[]);
-        }
         pass.set_vertex_buffer(0, v.slice(..));
         pass.set_index_buffer(i.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..self.index_count, 0, 0..1);
@@ -274,8 +320,8 @@ impl Pass for WaterPass {
     }
     fn plan(&self, frame: &FrameContext) -> Result<String, String> {
         let drawn: u32 = frame.mesh.levels.iter().map(|l| l.tiles_drawn).sum();
-        let wakes = match (&self.wakes, frame.wakes.sources.len()) {
-            (None, n) if n > 0 => "; wakes skipped: no storage buffers in vertex shaders".into(),
+        let wakes = match (&self.compute, frame.wakes.sources.len()) {
+            (None, n) if n > 0 => "; wakes skipped: the adapter has no compute shaders".into(),
             (_, 0) => String::new(),
             (_, n) => format!("; {n} wake sources ({} culled)", frame.wakes.culled),
         };
@@ -286,12 +332,7 @@ impl Pass for WaterPass {
         }
     }
     fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext) {
-        upload(
-            gpu,
-            &mut self.vertices,
-            wgpu::BufferUsages::VERTEX,
-            bytemuck::cast_slice(&frame.mesh.vertices),
-        );
+        let vertex_bytes: &[u8] = bytemuck::cast_slice(&frame.mesh.vertices);
         upload(
             gpu,
             &mut self.indices,
@@ -299,56 +340,94 @@ impl Pass for WaterPass {
             bytemuck::cast_slice(&frame.mesh.indices),
         );
         self.index_count = frame.mesh.indices.len() as u32;
-        if let Some(w) = self.wakes.as_mut() {
-            // Bin over where the sources reach, inside the clip-map's square around the local
-            // origin: the bins are as small as the fleet's wake allows, not the whole sea's.
-            let h = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
-            let bins = WakeBins::over_reach(&frame.wakes.sources, h, WAKE_BINS, WAKE_MARGIN_M);
-            // Buffers are never empty (a zeroed entry is never read: counts say what is live).
-            let zero = [ocean::wake::GpuWakeSource::default()];
-            let sources: &[ocean::wake::GpuWakeSource] = if frame.wakes.sources.is_empty() {
-                &zero
-            } else {
-                &frame.wakes.sources
-            };
-            let indices: &[u32] = if bins.indices.is_empty() {
-                &[0]
-            } else {
-                &bins.indices
-            };
-            let data: [(&[u8], wgpu::BufferUsages); 4] = [
-                (bytemuck::cast_slice(sources), wgpu::BufferUsages::STORAGE),
-                (
-                    bytemuck::cast_slice(&bins.bins),
-                    wgpu::BufferUsages::STORAGE,
-                ),
-                (bytemuck::cast_slice(indices), wgpu::BufferUsages::STORAGE),
-                (bytemuck::bytes_of(&bins.grid), wgpu::BufferUsages::UNIFORM),
-            ];
-            let mut regrouped = w.group.is_none();
-            for (slot, (bytes, usage)) in w.buffers.iter_mut().zip(data) {
-                let old = slot.as_ref().map(|b| b.size());
-                upload(gpu, slot, usage, bytes);
-                regrouped |= slot.as_ref().map(|b| b.size()) != old;
-            }
-            if regrouped {
-                let entries: Vec<wgpu::BindGroupEntry> = w
-                    .buffers
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(i, b)| {
-                        b.as_ref().map(|b| wgpu::BindGroupEntry {
-                            binding: i as u32,
-                            resource: b.as_entire_binding(),
-                        })
-                    })
-                    .collect();
-                w.group = Some(gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("wake sources"),
-                    layout: &w.layout,
-                    entries: &entries,
-                }));
-            }
+        let Some(c) = self.compute.as_mut() else {
+            upload(
+                gpu,
+                &mut self.vertices,
+                wgpu::BufferUsages::VERTEX,
+                vertex_bytes,
+            );
+            return;
+        };
+        // Bin over where the sources reach, inside the clip-map's square around the local
+        // origin: the bins are as small as the fleet's wake allows, not the whole sea's.
+        let h = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
+        let bins = WakeBins::over_reach(&frame.wakes.sources, h, WAKE_BINS, WAKE_MARGIN_M);
+        // Buffers are never empty (a zeroed entry is never read: counts say what is live).
+        let zero = [ocean::wake::GpuWakeSource::default()];
+        let sources: &[ocean::wake::GpuWakeSource] = if frame.wakes.sources.is_empty() {
+            &zero
+        } else {
+            &frame.wakes.sources
+        };
+        let indices: &[u32] = if bins.indices.is_empty() {
+            &[0]
+        } else {
+            &bins.indices
+        };
+        let n = frame.mesh.vertices.len();
+        let storage = wgpu::BufferUsages::STORAGE;
+        let data: [(&[u8], wgpu::BufferUsages); 5] = [
+            (bytemuck::cast_slice(sources), storage),
+            (bytemuck::cast_slice(&bins.bins), storage),
+            (bytemuck::cast_slice(indices), storage),
+            (bytemuck::bytes_of(&bins.grid), wgpu::BufferUsages::UNIFORM),
+            (vertex_bytes, storage),
+        ];
+        for (slot, (bytes, usage)) in c.buffers.iter_mut().zip(data) {
+            upload(gpu, slot, usage, bytes);
+        }
+        // The displaced vertices: written by the compute stage, drawn as a vertex buffer.
+        let need = (n as u64 * DISPLACED_VERTEX_BYTES).max(DISPLACED_VERTEX_BYTES);
+        if c.buffers[5].as_ref().is_none_or(|b| b.size() < need) {
+            c.buffers[5] = Some(gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("displaced water vertices"),
+                size: need.next_power_of_two(),
+                usage: storage | wgpu::BufferUsages::VERTEX,
+                mapped_at_creation: false,
+            }));
+        }
+        // Made each frame: the vertex bindings are sized to this frame's mesh, so the
+        // shader's arrayLength is the vertex count.
+        let entries: Vec<wgpu::BindGroupEntry> = c
+            .buffers
+            .iter()
+            .enumerate()
+            .filter_map(|(i, b)| {
+                let size = match i {
+                    4 => std::num::NonZeroU64::new(vertex_bytes.len() as u64),
+                    5 => std::num::NonZeroU64::new(n as u64 * DISPLACED_VERTEX_BYTES),
+                    _ => None,
+                };
+                b.as_ref().map(|buffer| wgpu::BindGroupEntry {
+                    binding: i as u32,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer,
+                        offset: 0,
+                        size,
+                    }),
+                })
+            })
+            .collect();
+        c.vertex_count = 0;
+        if n == 0 {
+            return;
+        }
+        c.group = Some(gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("water vertices"),
+            layout: &c.pipeline.get_bind_group_layout(1),
+            entries: &entries,
+        }));
+        c.vertex_count = n as u32;
+    }
+    fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>) {
+        if let Some(c) = &self.compute
+            && let Some(group) = &c.group
+            && c.vertex_count > 0
+        {
+            pass.set_pipeline(&c.pipeline);
+            pass.set_bind_group(1, group, &[]);
+            pass.dispatch_workgroups(c.vertex_count.div_ceil(64), 1, 1);
         }
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {

@@ -1,0 +1,21 @@
+// Vertex stage of the water pass with its compute stage (water_vertices.wgsl): every clip-map
+// vertex was displaced by the sea and the wakes this frame, once, in a compute pass; the vertex
+// shader only projects it. (A vertex shader summing hundreds of wake sources starves a GPU's
+// vertex pipeline and runs on one thread in lavapipe; a compute pass runs at full width.)
+
+struct VertexIn {
+    // Displaced position (local metres) and the rest point's x.
+    @location(0) pos_rest_x: vec4<f32>,
+    // The rest point's z, the wake slope (∂w/∂x, ∂w/∂z) and wake foam.
+    @location(1) rest_z_wake: vec4<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    out.clip = frame.view_proj * vec4<f32>(v.pos_rest_x.xyz, 1.0);
+    out.rest = vec2<f32>(v.pos_rest_x.w, v.rest_z_wake.x);
+    out.world = v.pos_rest_x.xyz;
+    out.wake = v.rest_z_wake.yzw;
+    return out;
+}

@@ -1,0 +1,82 @@
+// Compute stage of the water pass: displaces every clip-map vertex by the sea and the boats'
+// wakes (shaders/wake.wgsl, bind group 1) once per frame into the vertex buffer the water's
+// vertex shader (water_displaced.wgsl) draws. The CPU bins the wake sources on a grid over
+// where they reach (render::passes::water::WakeBins): a point sums only the sources listed for
+// its bin, which holds every source whose cull circle, grown by the grid's margin, reaches the
+// bin. Appended to common.wgsl, optics.wgsl and wake.wgsl.
+
+struct WakeGrid {
+    // Local (x, z) of the grid's corner, m.
+    origin: vec2<f32>,
+    // 1 / bin size, 1/m.
+    inv_cell: f32,
+    // Points within this distance of p may use p's bin, m.
+    margin: f32,
+    nx: u32,
+    nz: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+@group(1) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
+// Per bin: (first index into wake_index, count).
+@group(1) @binding(1) var<storage, read> wake_bins: array<vec2<u32>>;
+@group(1) @binding(2) var<storage, read> wake_index: array<u32>;
+@group(1) @binding(3) var<uniform> wake_grid: WakeGrid;
+
+// The (first, count) of the sources that can reach local point p.
+fn wake_bin(p: vec2<f32>) -> vec2<u32> {
+    let g = (p - wake_grid.origin) * wake_grid.inv_cell;
+    if frame.counts.z == 0u || g.x < 0.0 || g.y < 0.0 || g.x >= f32(wake_grid.nx) || g.y >= f32(wake_grid.nz) {
+        return vec2<u32>(0u, 0u);
+    }
+    return wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
+}
+
+// The wake at local point p: (height m, ∂w/∂x, ∂w/∂z, foam in [0, 1]), one pass over p's bin
+// with each source's closed-form gradient.
+fn wake_at(p: vec2<f32>) -> vec4<f32> {
+    let bin = wake_bin(p);
+    var h = vec3<f32>(0.0);
+    var f = 0.0;
+    for (var i = 0u; i < bin.y; i = i + 1u) {
+        let s = wake_sources[wake_index[bin.x + i]];
+        h += wake_source_height_grad(s, p);
+        f += wake_source_foam(s, p);
+    }
+    return vec4<f32>(h, wake_foam_from_density(f));
+}
+
+// A clip-map vertex as the CPU builds it (render::clipmap::ClipVertex, 16 bytes).
+struct ClipVertex {
+    rest: vec2<f32>,
+    fade: f32,
+    level: u32,
+}
+
+// What the vertex shader draws (water_displaced.wgsl's VertexIn, 32 bytes).
+struct DisplacedVertex {
+    pos_rest_x: vec4<f32>,
+    rest_z_wake: vec4<f32>,
+}
+
+@group(1) @binding(4) var<storage, read> clip_vertices: array<ClipVertex>;
+@group(1) @binding(5) var<storage, read_write> displaced: array<DisplacedVertex>;
+
+@compute @workgroup_size(64)
+fn cs_displace(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&clip_vertices) {
+        return;
+    }
+    let v = clip_vertices[i];
+    var pos = sea_displaced(v.rest, v.fade, v.level);
+    // The wake is a height at a world point: where this vertex has gone.
+    var wake = vec3<f32>(0.0);
+    if frame.counts.z > 0u {
+        let w = wake_at(pos.xz);
+        pos.y += w.x;
+        wake = w.yzw;
+    }
+    displaced[i] = DisplacedVertex(vec4<f32>(pos, v.rest.x), vec4<f32>(v.rest.y, wake));
+}
