@@ -36,7 +36,7 @@ use render::pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 use render::{Camera, OrbitCamera, RenderOptions, Renderer};
 use ui::{RegattaUi, TimelineEvent};
 
-use crate::cli::render::{FAR_M, scene_at};
+use crate::cli::render::scene_at;
 use crate::overlay::banner::{ArStatus, Tone, banner};
 use crate::overlay::touch::{Finger, Touch, TouchAction, TouchInput, over_egui};
 use crate::overlay::{EguiPainter, SceneChoice, phone_bar, race_panels};
@@ -205,13 +205,7 @@ impl App {
             last_tick: Instant::now(),
             started: Instant::now(),
             scene: SceneChoice::Race,
-            orbit: OrbitCamera {
-                target: DVec3::ZERO,
-                distance: 90.0,
-                yaw: 2.4,
-                pitch: 0.35,
-                far: FAR_M,
-            },
+            orbit: crate::cli::render::race_orbit(),
             pool_orbit: PoolPlay::orbit(),
             pool: PoolPlay::new(None),
             pool_placement: None,

@@ -154,14 +154,7 @@ fn pass_times(gpu: &render::Gpu, size: [u32; 2], frames: usize) -> CliResult<(Pa
     let mut renderer = Renderer::new(gpu, OFFSCREEN_FORMAT, RenderOptions::default());
     renderer.set_wake(Some(race_wake(&race)?));
     render::effects::passes::add_scene_effects(&mut renderer, gpu, &scene, size, EffectSet::ALL);
-    let target = render::gpu::texture_2d(
-        &gpu.device,
-        "budget target",
-        size,
-        OFFSCREEN_FORMAT,
-        wgpu::TextureUsages::RENDER_ATTACHMENT,
-    );
-    let view = target.create_view(&Default::default());
+    let view = crate::bench::offscreen(gpu, size);
     renderer.render(gpu, &view, size, &scene); // warm-up: pipelines, buffers
     let mut runs = Vec::new();
     let mut wall = Vec::new();

@@ -186,6 +186,19 @@ pub const SECTIONS: &[Section] = &[
     ("budget", budget::run),
 ];
 
+/// A render target of `size` pixels in the offscreen format that the GPU sections draw
+/// their timed frames into (never read back).
+pub fn offscreen(gpu: &render::Gpu, size: [u32; 2]) -> wgpu::TextureView {
+    render::gpu::texture_2d(
+        &gpu.device,
+        "bench offscreen",
+        size,
+        render::OFFSCREEN_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    )
+    .create_view(&Default::default())
+}
+
 /// Run the sections (all, or those named in `only`) and write the report.
 pub fn run_all(ctx: &BenchContext, only: &[String]) -> CliResult<Vec<Table>> {
     std::fs::create_dir_all(&ctx.out_dir).map_err(|e| {

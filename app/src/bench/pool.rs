@@ -4,13 +4,12 @@
 
 use std::time::Instant;
 
-use render::gpu::texture_2d;
 use render::pool::caustics::CausticMap;
 use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, render_pool_image};
 use render::{Gpu, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
 use serde_json::json;
 
-use crate::bench::{BenchContext, Table};
+use crate::bench::{BenchContext, Table, offscreen};
 use crate::error::{CliError, CliResult};
 
 /// The race scene with nothing but its sea: no boats, no marks, a camera over the water.
@@ -19,17 +18,6 @@ fn water_only_scene(t: f64) -> Scene {
         marks: vec![],
         ..render::golden::test_scene(t, vec![])
     }
-}
-
-fn offscreen(gpu: &Gpu, size: [u32; 2]) -> wgpu::TextureView {
-    texture_2d(
-        &gpu.device,
-        "bench offscreen",
-        size,
-        OFFSCREEN_FORMAT,
-        wgpu::TextureUsages::RENDER_ATTACHMENT,
-    )
-    .create_view(&Default::default())
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

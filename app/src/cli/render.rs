@@ -123,6 +123,18 @@ pub const PLAY_AREA_MARGIN_M: f64 = 1500.0;
 /// Far clip distance, metres.
 pub const FAR_M: f64 = 20_000.0;
 
+/// The orbit the race views open with, before the course is framed or dragged: 90 m from the
+/// course origin, from the north-west, 20° up.
+pub fn race_orbit() -> render::OrbitCamera {
+    render::OrbitCamera {
+        target: glam::DVec3::ZERO,
+        distance: 90.0,
+        yaw: 2.4,
+        pitch: 0.35,
+        far: FAR_M,
+    }
+}
+
 /// The scene of `race` on `sea` at time `t`: boats that have data at t (not inside a gap),
 /// the course marks, a play area around every track and mark, and `camera` (or one framing
 /// the fleet).

@@ -18,7 +18,7 @@ use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
 use crate::cli::inputs::{load_race, load_sea};
-use crate::cli::render::{FAR_M, SceneKind, scene_at};
+use crate::cli::render::{SceneKind, scene_at};
 use crate::error::{CliError, CliResult};
 
 pub mod feed;
@@ -71,13 +71,7 @@ pub fn run(a: RunArgs) -> CliResult {
         sea,
         span: (t0, t1.max(t0 + 1.0)),
         state: None,
-        orbit: OrbitCamera {
-            target: DVec3::ZERO,
-            distance: 90.0,
-            yaw: 2.4,
-            pitch: 0.35,
-            far: FAR_M,
-        },
+        orbit: crate::cli::render::race_orbit(),
         clock: Clock {
             t: t0,
             playing: true,

@@ -32,19 +32,12 @@ pub fn gpu_displacements(
         ..bytemuck::Zeroable::zeroed()
     };
     bindings.upload(&gpu.queue, &uniform, &waves);
-    let storage = |read_only: bool| wgpu::BindGroupLayoutEntry {
-        binding: u32::from(!read_only),
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
     let io_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("wave heights io"),
-        entries: &[storage(true), storage(false)],
+        entries: &[
+            crate::gpu::layout::storage(0, wgpu::ShaderStages::COMPUTE, true),
+            crate::gpu::layout::storage(1, wgpu::ShaderStages::COMPUTE, false),
+        ],
     });
     let module = shader::module(device, "wave heights", &[shader::WAVE_HEIGHTS]);
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

@@ -172,28 +172,17 @@ pub struct FrameBindings {
 
 impl FrameBindings {
     pub fn new(device: &wgpu::Device) -> FrameBindings {
-        let entry = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
+        let entry = |binding| {
+            crate::gpu::layout::uniform(
+                binding,
+                wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE,
+            )
         };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("frame"),
             entries: &[entry(0), entry(1)],
         });
-        let buffer = |label, size| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
+        let buffer = |label, size| crate::gpu::uniform_buffer(device, label, size);
         let uniform = buffer("frame uniform", size_of::<FrameUniform>() as u64);
         let waves = buffer("waves", (MAX_WAVES * size_of::<ocean::GpuWave>()) as u64);
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {

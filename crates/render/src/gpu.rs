@@ -507,3 +507,62 @@ pub fn test_gpu() -> Option<Arc<Gpu>> {
 pub fn test_device() -> Option<(wgpu::Device, wgpu::Queue)> {
     test_gpu().map(|g| (g.device.clone(), g.queue.clone()))
 }
+
+/// Bind group layout entries, spelt once: a uniform buffer, a storage buffer, a filterable 2-D
+/// float texture and a filtering sampler at `binding`, seen by `stages`.
+pub mod layout {
+    use wgpu::{BindGroupLayoutEntry, BindingType, BufferBindingType, ShaderStages};
+
+    fn buffer(binding: u32, stages: ShaderStages, ty: BufferBindingType) -> BindGroupLayoutEntry {
+        BindGroupLayoutEntry {
+            binding,
+            visibility: stages,
+            ty: BindingType::Buffer {
+                ty,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        }
+    }
+
+    pub fn uniform(binding: u32, stages: ShaderStages) -> BindGroupLayoutEntry {
+        buffer(binding, stages, BufferBindingType::Uniform)
+    }
+
+    pub fn storage(binding: u32, stages: ShaderStages, read_only: bool) -> BindGroupLayoutEntry {
+        buffer(binding, stages, BufferBindingType::Storage { read_only })
+    }
+
+    pub fn texture(binding: u32, stages: ShaderStages) -> BindGroupLayoutEntry {
+        BindGroupLayoutEntry {
+            binding,
+            visibility: stages,
+            ty: BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        }
+    }
+
+    pub fn sampler(binding: u32, stages: ShaderStages) -> BindGroupLayoutEntry {
+        BindGroupLayoutEntry {
+            binding,
+            visibility: stages,
+            ty: BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            count: None,
+        }
+    }
+}
+
+/// A uniform buffer of `size` bytes that the queue writes each frame.
+pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}

@@ -286,63 +286,30 @@ impl Shared {
         image: &CameraImage,
     ) -> Shared {
         let device = &gpu.device;
-        let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        use crate::gpu::layout;
+        let fs = wgpu::ShaderStages::FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("effects"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                tex_entry(1),
-                tex_entry(2),
-                tex_entry(3),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 4,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-                tex_entry(5),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 6,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                layout::uniform(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
+                layout::texture(1, fs),
+                layout::texture(2, fs),
+                layout::texture(3, fs),
+                layout::sampler(4, fs),
+                layout::texture(5, fs),
+                layout::uniform(6, fs),
             ],
         });
-        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("effects uniform"),
-            size: size_of::<EffectsUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let camera_format = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("camera image format"),
-            size: size_of::<CameraFormatUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let uniform = crate::gpu::uniform_buffer(
+            device,
+            "effects uniform",
+            size_of::<EffectsUniform>() as u64,
+        );
+        let camera_format = crate::gpu::uniform_buffer(
+            device,
+            "camera image format",
+            size_of::<CameraFormatUniform>() as u64,
+        );
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let n = cfg.caustic_resolution.1 as u32;
         let caustic_tex = texture(

@@ -182,26 +182,13 @@ impl WaterPass {
         wakes: bool,
     ) -> Self {
         let compute = wakes.then(|| {
-            let storage = |read_only| wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            };
+            use crate::gpu::layout;
+            let cs = wgpu::ShaderStages::COMPUTE;
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("water vertices"),
-                entries: &[0, 1, 2, 3, 4, 5].map(|binding| wgpu::BindGroupLayoutEntry {
-                    binding,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: match binding {
-                        3 => wgpu::BindingType::Buffer {
-                            ty: wgpu::BufferBindingType::Uniform,
-                            has_dynamic_offset: false,
-                            min_binding_size: None,
-                        },
-                        5 => storage(false),
-                        _ => storage(true),
-                    },
-                    count: None,
+                entries: &[0, 1, 2, 3, 4, 5].map(|binding| match binding {
+                    3 => layout::uniform(binding, cs),
+                    _ => layout::storage(binding, cs, binding != 5),
                 }),
             });
             let module = shader::module(

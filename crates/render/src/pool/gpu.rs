@@ -347,27 +347,15 @@ fn depth_state(compare: wgpu::CompareFunction) -> Option<wgpu::DepthStencilState
 impl PoolRenderer {
     /// Pipelines drawing into `colour` textures (linear shader output; use an sRGB format).
     pub fn new(gpu: &Gpu, colour: wgpu::TextureFormat, settings: PoolSettings) -> PoolRenderer {
+        use crate::gpu::layout;
         let device = &gpu.device;
         let bindings = FrameBindings::new(device);
         let pool_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("pool"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            }],
+            entries: &[layout::uniform(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
         });
-        let pool_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("pool uniform"),
-            size: size_of::<PoolUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let pool_buffer =
+            crate::gpu::uniform_buffer(device, "pool uniform", size_of::<PoolUniform>() as u64);
         let pool_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("pool"),
             layout: &pool_layout,
@@ -379,22 +367,8 @@ impl PoolRenderer {
         let caustic_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("pool caustics map"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+                layout::texture(0, wgpu::ShaderStages::FRAGMENT),
+                layout::sampler(1, wgpu::ShaderStages::FRAGMENT),
             ],
         });
         let n = settings.caustic_size.max(1);
