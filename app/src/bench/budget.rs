@@ -2,7 +2,8 @@
 //!
 //! No phone is reachable from these machines, so the budget is an estimate with its method in
 //! the open: the frame of the embedded race with wakes and every AR effect is drawn at the
-//! phones' screen sizes on the adapter at hand, each pass timed with GPU timestamps, and the
+//! phones' screen sizes and at render scales of ¾ and ½ (what the phone's compositor would
+//! stretch to the screen) on the adapter at hand, each pass timed with GPU timestamps, and the
 //! times are scaled by the ratio of the adapter's *measured* FP32 throughput (an FMA-chain
 //! compute kernel, [`measure_gflops`]) to each phone GPU's spec-sheet FP32 peak. That assumes
 //! the passes are arithmetic-bound (Gerstner sums, wake sources, optics) and that a phone GPU
@@ -188,8 +189,10 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     ctx.progress("budget: measuring the adapter's FP32 throughput");
     let gflops = measure_gflops(&gpu, if ctx.quick { 0.05 } else { 0.25 })
         .map_err(|e| CliError::new(format!("budget: {e}")))?;
-    // Quick: a quarter of each screen's pixels, so CI-sized machines finish in seconds.
-    let scale = if ctx.quick { 2 } else { 1 };
+    // Render scales: the frame drawn at a fraction of the screen per side, which the phone's
+    // compositor stretches to the screen (the clip-map's pixel error target follows the
+    // render size). Quick: the half scale only, so small machines finish in seconds.
+    let scales: &[f64] = if ctx.quick { &[0.5] } else { &[1.0, 0.75, 0.5] };
     let frames = if ctx.quick { 2 } else { 5 };
     let mut passes_table = Table::new(
         "budget_passes",
@@ -204,6 +207,8 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
             "GPU",
             "FP32 peak GFLOP/s",
             "screen",
+            "render scale",
+            "render size",
             "measured here ms",
             "estimated phone ms",
             "estimated fps",
@@ -211,8 +216,13 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
             "speed-up still needed",
         ],
     );
-    for phone in &PHONES {
-        let size = phone.screen.map(|v| v / scale);
+    for (phone, &scale) in PHONES
+        .iter()
+        .flat_map(|p| scales.iter().map(move |s| (p, s)))
+    {
+        let size = phone
+            .screen
+            .map(|v| ((f64::from(v) * scale).round() as u32).max(1));
         ctx.progress(format!(
             "budget: {} frame at {}×{}",
             phone.name, size[0], size[1]
@@ -228,14 +238,15 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         }
         // GPU timestamps where the adapter has them, else the frame's wall time.
         let here = gpu_total.unwrap_or(wall_ms);
-        let pixels = f64::from(phone.screen[0] * phone.screen[1]) / f64::from(size[0] * size[1]);
-        let est = here * pixels * gflops / phone.gflops;
+        let est = here * gflops / phone.gflops;
         let budget_ms = 1e3 / phone.goal_fps;
         phones.row(vec![
             json!(phone.name),
             json!(phone.gpu),
             json!(phone.gflops),
             json!(format!("{}×{}", phone.screen[0], phone.screen[1])),
+            json!(scale),
+            json!(format!("{}×{}", size[0], size[1])),
             json!(here),
             json!(est),
             json!(1e3 / est),
@@ -246,18 +257,14 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let adapter = gpu.describe();
     passes_table.note(format!(
         "{adapter}; race time 600 s, the default camera, {frames} frames after one warm-up, \
-         median GPU time per pass from timestamp queries (empty where the adapter has none){}.",
-        if ctx.quick {
-            "; --quick: half each screen side"
-        } else {
-            ""
-        }
+         median GPU time per pass from timestamp queries (empty where the adapter has none)."
     ));
     phones.note(format!(
         "This adapter's measured FP32 throughput: {gflops:.1} GFLOP/s (an FMA-chain compute \
-         kernel, 2^20 invocations). Estimated phone ms = measured ms × (screen pixels / measured \
-         pixels) × {gflops:.1} / the phone's FP32 peak. Assumes arithmetic-bound passes and the \
-         same fraction of peak on the phone as here; bandwidth, tiling and thermal limits are not \
+         kernel, 2^20 invocations). Estimated phone ms = measured ms at the render size × \
+         {gflops:.1} / the phone's FP32 peak. Assumes arithmetic-bound passes and the same \
+         fraction of peak on the phone as here (a big GPU that a phone-sized frame cannot fill \
+         makes the estimate pessimistic); bandwidth, tiling and thermal limits are not \
          modelled, and no phone was measured."
     ));
     Ok(vec![phones, passes_table])
