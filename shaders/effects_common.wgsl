@@ -39,9 +39,6 @@ struct CameraFormat {
     // YUV -> gamma-encoded R'G'B': rgb = (to_rgb * vec4(y, u, v, 1)).rgb, the BT.601 matrix of
     // camera_image::YuvToRgb::to_gpu_columns (offset in the last column).
     to_rgb: mat4x4<f32>,
-    // x: 1 when camera_image holds the luma and camera_chroma the (U, V) planes of YUV 4:2:0,
-    // 0 when camera_image is sRGB RGBA (decoded to linear by the sampler).
-    planes: vec4<u32>,
 }
 
 @group(2) @binding(0) var<uniform> fx: Effects;
@@ -101,7 +98,10 @@ fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
 fn sample_camera(uv: vec2<f32>) -> vec3<f32> {
     let c = clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0));
     let s = textureSampleLevel(camera_image, linear_clamp, c, 0.0);
-    if camera_format.planes.x == 0u {
+    // CAMERA_YUV (a constant each pipeline appends): camera_image holds the luma and
+    // camera_chroma the (U, V) planes of YUV 4:2:0; else camera_image is sRGB RGBA, decoded to
+    // linear by the sampler. A constant, not a uniform: lavapipe runs both sides of a branch.
+    if !CAMERA_YUV {
         return s.rgb;
     }
     let size = textureDimensions(camera_image);

@@ -197,8 +197,8 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
          effect cost as much as all). The sky is not drawn under the camera background. What \
          is left on lavapipe: every camera-image or texture sample and every effect's \
          arithmetic per water pixel costs about a tenth of a water-only frame (the pass \
-         table below), and the camera image's YUV branch runs even for an RGBA frame. The \
-         frame time includes the f64 caustic map on the CPU (table caustic_resolution), \
+         table below); the camera image's kind (RGBA or YUV) is compiled in too. The frame \
+         time includes the f64 caustic map on the CPU (table caustic_resolution), \
          which dominates on a fast GPU.",
         worst.0,
         worst.1,

@@ -404,6 +404,7 @@ fn wgsl_current_matches_the_f64_potential_flow() {
         .collect();
     let src = crate::shader::source(&[
         super::passes::EFFECTS_COMMON,
+        "const CAMERA_YUV: bool = false;",
         super::passes::FLOWMAP,
         r#"
 @group(0) @binding(10) var<storage, read> points: array<vec2<f32>>;

@@ -229,8 +229,11 @@ impl CameraTextures {
 struct CameraFormatUniform {
     /// YUV → gamma-encoded RGB: `camera_image::YuvToRgb::to_gpu_columns` (offset last).
     to_rgb: [[f32; 4]; 4],
-    /// x: 1 for YUV planes, 0 for RGBA.
-    planes: [u32; 4],
+}
+
+/// The WGSL constant that compiles the camera image's kind into a pipeline.
+fn camera_constant(yuv: bool) -> String {
+    format!("const CAMERA_YUV: bool = {yuv};")
 }
 
 /// A plain 2-D texture, never empty (a zero-sized frame still gets one texel).
@@ -356,7 +359,6 @@ impl Shared {
                 write_texels(gpu, &t.main, t.size, 4, img.as_raw());
                 CameraFormatUniform {
                     to_rgb: [[0.0; 4]; 4],
-                    planes: [0; 4],
                 }
             }
             CameraImage::Yuv420(p) => {
@@ -365,7 +367,6 @@ impl Shared {
                 write_texels(gpu, &t.chroma, chroma, 2, p.uv());
                 CameraFormatUniform {
                     to_rgb: p.to_rgb().to_gpu_columns(),
-                    planes: [1, 0, 0, 0],
                 }
             }
         };
@@ -586,7 +587,8 @@ fn fx_pipeline(
 
 /// The camera frame behind everything.
 pub struct BackgroundPass {
-    pipeline: wgpu::RenderPipeline,
+    /// For an RGBA camera image and for YUV planes.
+    pipelines: [wgpu::RenderPipeline; 2],
     shared: Rc<RefCell<Shared>>,
     group: Option<wgpu::BindGroup>,
 }
@@ -617,7 +619,8 @@ impl Pass for BackgroundPass {
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
         let Some(group) = &self.group else { return 0 };
-        pass.set_pipeline(&self.pipeline);
+        let yuv = self.shared.borrow().camera_image.yuv;
+        pass.set_pipeline(&self.pipelines[usize::from(yuv)]);
         pass.set_bind_group(2, group, &[]);
         pass.draw(0..3, 0..1);
         1
@@ -636,6 +639,8 @@ pub struct ArWaterPass {
     pipelines: ArPipelines,
     /// The effect bits of this frame (0: none runs, the plain water shading draws).
     mask: u32,
+    /// Whether this frame's camera image is YUV planes (part of the pipeline's key).
+    yuv: bool,
     shared: Rc<RefCell<Shared>>,
     group: Option<wgpu::BindGroup>,
     /// The planar reflection: its own frame bindings (reflected camera) and boats pass.
@@ -714,19 +719,21 @@ struct ArPipelines {
     /// The overhead-sun caustics instead of the area-ratio map (fixed for the pass's life).
     cheap_caustics: bool,
     /// Indexed by [`ArPipelines::slot`].
-    made: [Option<wgpu::RenderPipeline>; 16],
+    made: [Option<wgpu::RenderPipeline>; 32],
 }
 
 impl ArPipelines {
     /// The index of the water effects `mask` (FX_* bits; the background's bit 0 is not the
     /// water's).
-    fn slot(mask: u32) -> usize {
-        ((mask >> 1) & 15) as usize
+    /// and the camera image's kind.
+    fn slot(mask: u32, yuv: bool) -> usize {
+        ((mask >> 1) & 15) as usize + 16 * usize::from(yuv)
     }
 
-    /// Make the pipeline for the water effects `mask` unless it exists.
-    fn make(&mut self, gpu: &Gpu, mask: u32) {
-        let key = Self::slot(mask);
+    /// Make the pipeline for the water effects `mask` over a camera image of that kind unless
+    /// it exists.
+    fn make(&mut self, gpu: &Gpu, mask: u32, yuv: bool) {
+        let key = Self::slot(mask, yuv);
         if self.made[key].is_some() {
             return;
         }
@@ -735,9 +742,10 @@ impl ArPipelines {
         // effects, then this pipeline's constants.
         let (stage, buffer) = vertex_stage(self.wakes);
         let constants = format!(
-            "const FX_MASK: u32 = {}u;\nconst FX_CHEAP_CAUSTICS: bool = {};",
-            key << 1,
-            self.cheap_caustics
+            "const FX_MASK: u32 = {}u;\nconst FX_CHEAP_CAUSTICS: bool = {};\n{}",
+            mask & 0b1_1110,
+            self.cheap_caustics,
+            camera_constant(yuv)
         );
         let effects = [
             shader::WATER,
@@ -946,8 +954,9 @@ impl Pass for ArWaterPass {
         gpu.queue
             .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
         self.group = Some(shared.bind_group(&gpu.device));
+        self.yuv = shared.camera_image.yuv;
         if mask != 0 {
-            self.pipelines.make(gpu, mask);
+            self.pipelines.make(gpu, mask, self.yuv);
         }
         self.mask = mask;
         self.size = frame.size;
@@ -960,7 +969,8 @@ impl Pass for ArWaterPass {
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
         match &self.group {
             Some(group) if self.mask != 0 => {
-                let Some(pipeline) = &self.pipelines.made[ArPipelines::slot(self.mask)] else {
+                let Some(pipeline) = &self.pipelines.made[ArPipelines::slot(self.mask, self.yuv)]
+                else {
                     return self.water.draw(pass);
                 };
                 let Some([x, y, w, h]) = self.scissor else {
@@ -1025,21 +1035,29 @@ pub fn add_effect_passes(
     };
     let frame_layout = renderer.frame_layout().clone();
     let fx_layout = shared.borrow().layout.clone();
-    let background = BackgroundPass {
-        pipeline: fx_pipeline(
+    let background_pipeline = |yuv: bool| {
+        let constant = camera_constant(yuv);
+        fx_pipeline(
             gpu,
             &frame_layout,
             &fx_layout,
             targets,
             "background",
-            &shader::module(&gpu.device, "background", &[EFFECTS_COMMON, BACKGROUND]),
+            &shader::module(
+                &gpu.device,
+                "background",
+                &[EFFECTS_COMMON, BACKGROUND, &constant],
+            ),
             FxDraw {
                 buffers: &[],
                 fragment: "fs_main",
                 depth_write: false,
                 depth_compare: wgpu::CompareFunction::LessEqual,
             },
-        ),
+        )
+    };
+    let background = BackgroundPass {
+        pipelines: [background_pipeline(false), background_pipeline(true)],
         shared: shared.clone(),
         group: None,
     };
@@ -1058,6 +1076,7 @@ pub fn add_effect_passes(
         water,
         pipelines,
         mask: 0,
+        yuv: false,
         shared,
         group: None,
         reflection_bindings: FrameBindings::new(&gpu.device),
