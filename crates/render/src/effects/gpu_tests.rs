@@ -528,3 +528,78 @@ fn the_sky_is_skipped_under_the_camera_background_only() {
     assert!(!background.ran);
     assert!(sky.ran, "{}", sky.reason);
 }
+
+/// An IEEE half-float's bits as f32.
+fn f16_to_f32(h: u16) -> f32 {
+    let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
+    let exp = i32::from((h >> 10) & 0x1f);
+    let frac = f32::from(h & 0x3ff);
+    match exp {
+        0 => sign * frac * 2f32.powi(-24),
+        31 => sign * f32::INFINITY,
+        _ => sign * (1.0 + frac / 1024.0) * 2f32.powi(exp - 15),
+    }
+}
+
+/// The caustic map the GPU draws (shaders/caustic_map.wgsl) against the f64 area-ratio
+/// reference on the same surface grid, region and sun, at two race times: the same triangles
+/// land on the same cell centres, so cells agree but for f32 positions (a centre on the other
+/// side of an edge) and half-float rounding.
+#[test]
+fn gpu_caustic_map_matches_the_f64_area_ratio() {
+    use super::caustic_map::{CAUSTIC_MAP_FORMAT, CausticMapPass};
+    use super::caustics::{CausticRegion, area_ratio};
+    use crate::frame::{FrameBindings, FrameContext};
+    let Some(gpu) = test_gpu() else { return };
+    let (src, out, depth) = (48usize, 64u32, 3.0);
+    let mut pass = CausticMapPass::new(&gpu, &FrameBindings::new(&gpu.device).layout);
+    let bindings = FrameBindings::new(&gpu.device);
+    let target = crate::gpu::texture_2d(
+        &gpu.device,
+        "caustic map",
+        [out, out],
+        CAUSTIC_MAP_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    );
+    for t in [40.0, 3.6e4] {
+        let scene = table_scene(t);
+        let frame = FrameContext::new(&scene, SIZE, 1.0);
+        bindings.upload(&gpu.queue, &frame.uniform, &frame.waves);
+        let region = CausticRegion {
+            min: [-20.0, -25.0],
+            size: 40.0,
+            periodic: false,
+        };
+        pass.draw(&gpu, &frame, &bindings.group, &region, depth, src, &target);
+        let bytes = gpu.read_texture_bytes(&target, 2).expect("read back");
+        let got: Vec<f64> = bytes
+            .chunks_exact(2)
+            .map(|b| f64::from(f16_to_f32(u16::from_le_bytes([b[0], b[1]]))))
+            .collect();
+        let reference = area_ratio(&scene.sea, t, -scene.sun, depth, region, src, out as usize);
+        let mut diffs: Vec<f64> = got
+            .iter()
+            .zip(&reference.intensity)
+            .map(|(g, r)| (g - r).abs())
+            .collect();
+        let mean_ref = reference.intensity.iter().sum::<f64>() / diffs.len() as f64;
+        let mean_gpu = got.iter().sum::<f64>() / diffs.len() as f64;
+        diffs.sort_by(f64::total_cmp);
+        let median = diffs[diffs.len() / 2];
+        let p95 = diffs[diffs.len() * 95 / 100];
+        eprintln!(
+            "t = {t}: caustic map GPU vs f64: median |Δ| {median:.2e}, p95 {p95:.3}, mean light {mean_gpu:.4} vs {mean_ref:.4}"
+        );
+        // Half-float rounding of a value near 1 is 5e-4; an edge case moves a cell by a
+        // triangle's irradiance.
+        assert!(median < 2e-3, "median {median}");
+        assert!(p95 < 0.02, "p95 {p95}");
+        assert!(
+            (mean_gpu - mean_ref).abs() < 0.01 * mean_ref,
+            "{mean_gpu} vs {mean_ref}"
+        );
+        // Not a flat map: the waves focus light.
+        let max = got.iter().copied().fold(0.0, f64::max);
+        assert!(max > 1.3, "max {max}");
+    }
+}

@@ -22,7 +22,8 @@ use std::rc::Rc;
 use glam::{DMat4, DVec2, DVec3};
 
 use super::camera_frame::{CameraFrame, CameraImage};
-use super::caustics::{CausticRegion, area_ratio};
+use super::caustic_map::{CAUSTIC_MAP_FORMAT, CausticMapPass};
+use super::caustics::CausticRegion;
 use super::flowmap::{DEFAULT_JUMP, flow_phases};
 use super::planner::{EffectDecision, EffectFrame, decide};
 use super::{Effect, EffectSet};
@@ -41,9 +42,7 @@ pub const REFRACTION: &str = include_str!("../../../../shaders/refraction.wgsl")
 pub const CAUSTICS: &str = include_str!("../../../../shaders/caustics.wgsl");
 pub const FLOWMAP: &str = include_str!("../../../../shaders/flowmap.wgsl");
 pub const AR_WATER: &str = include_str!("../../../../shaders/ar_water.wgsl");
-
-/// Largest caustic intensity the 8-bit caustic texture holds (times flat water).
-pub const CAUSTIC_SCALE: f64 = 4.0;
+pub const CAUSTIC_MAP: &str = include_str!("../../../../shaders/caustic_map.wgsl");
 
 /// How the effects are set up.
 #[derive(Debug, Clone, PartialEq)]
@@ -313,14 +312,15 @@ impl Shared {
             "camera image format",
             size_of::<CameraFormatUniform>() as u64,
         );
-        let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let n = cfg.caustic_resolution.1 as u32;
         let caustic_tex = texture(
             device,
             "caustic map",
             [n, n],
-            wgpu::TextureFormat::Rgba8Unorm,
-            usage,
+            CAUSTIC_MAP_FORMAT,
+            wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC,
         );
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("effects linear clamp"),
@@ -484,7 +484,7 @@ impl Shared {
                 f(region.min[0] - o.x),
                 f(region.min[1] - o.y),
                 f(region.size),
-                f(CAUSTIC_SCALE),
+                1.0,
             ],
             flow_a: [f(a.progress), f(a.weight), f(a.offset.x), f(a.offset.y)],
             flow_b: [f(b.progress), f(b.weight), f(b.offset.x), f(b.offset.y)],
@@ -506,30 +506,6 @@ impl Shared {
 
     fn caustic_region(&self, frame: &FrameContext) -> CausticRegion {
         caustic_region(frame.scene, frame.size, &self.cfg)
-    }
-
-    /// Compute the area-ratio caustic map of this frame's sea and time and upload it.
-    fn upload_caustics(&self, gpu: &Gpu, frame: &FrameContext) {
-        let s = frame.scene;
-        let (src, out) = self.cfg.caustic_resolution;
-        let map = area_ratio(
-            &s.sea,
-            s.t,
-            -s.sun,
-            self.cfg.table_depth,
-            self.caustic_region(frame),
-            src,
-            out,
-        );
-        let bytes: Vec<u8> = map
-            .intensity
-            .iter()
-            .flat_map(|&v| {
-                let b = ((v / CAUSTIC_SCALE).clamp(0.0, 1.0) * 255.0).round() as u8;
-                [b, b, b, 255]
-            })
-            .collect();
-        write_texels(gpu, &self.caustic_tex, [out as u32, out as u32], 4, &bytes);
     }
 }
 
@@ -645,6 +621,9 @@ pub struct ArWaterPass {
     group: Option<wgpu::BindGroup>,
     /// The planar reflection: its own frame bindings (reflected camera) and boats pass.
     reflection_bindings: FrameBindings,
+    /// The caustic map's pass and its own frame bindings (this frame's waves).
+    caustic_map: CausticMapPass,
+    caustic_bindings: FrameBindings,
     reflection_boats: BoatsPass,
     /// Effect decisions of the last planned frame.
     pub last_decisions: Vec<EffectDecision>,
@@ -946,7 +925,20 @@ impl Pass for ArWaterPass {
         };
         let mut shared = self.shared.borrow_mut();
         if !reuse && runs(Effect::Caustics) && !shared.cfg.cheap_caustics {
-            shared.upload_caustics(gpu, frame);
+            // The area-ratio map of this frame's sea and time, drawn on the GPU.
+            self.caustic_bindings
+                .upload(&gpu.queue, &frame.uniform, &frame.waves);
+            let region = shared.caustic_region(frame);
+            let (depth, src) = (shared.cfg.table_depth, shared.cfg.caustic_resolution.0);
+            self.caustic_map.draw(
+                gpu,
+                frame,
+                &self.caustic_bindings.group,
+                &region,
+                depth,
+                src,
+                &shared.caustic_tex,
+            );
         }
         self.reflection_drawn = reflection_drawn;
         self.last_offscreen = Some(OffscreenInputs::of(frame, mask));
@@ -1072,6 +1064,7 @@ pub fn add_effect_passes(
         made: Default::default(),
     };
     let reflection_boats = BoatsPass::new(&gpu.device, &pipelines.frame_layout, targets);
+    let caustic_map = CausticMapPass::new(gpu, &pipelines.frame_layout);
     let water = ArWaterPass {
         water,
         pipelines,
@@ -1080,6 +1073,8 @@ pub fn add_effect_passes(
         shared,
         group: None,
         reflection_bindings: FrameBindings::new(&gpu.device),
+        caustic_map,
+        caustic_bindings: FrameBindings::new(&gpu.device),
         reflection_boats,
         last_decisions: Vec::new(),
         last_offscreen: None,
