@@ -44,7 +44,7 @@ fn fs_ar(in: VertexOut) -> @location(0) vec4<f32> {
 
     var reflected = sky_colour_rough(reflect_dir(view, n), sf.slope_variance);
     if fx_on(FX_REFLECTION) {
-        reflected = reflection_colour(p, reflect_dir(view, n), screen_uv, n);
+        reflected = reflection_colour(reflected, screen_uv, n);
     }
 
     // The table under the water (q), straight through or refracted, and its colour and

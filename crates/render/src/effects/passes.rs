@@ -43,6 +43,7 @@ pub const CAUSTICS: &str = include_str!("../../../../shaders/caustics.wgsl");
 pub const FLOWMAP: &str = include_str!("../../../../shaders/flowmap.wgsl");
 pub const AR_WATER: &str = include_str!("../../../../shaders/ar_water.wgsl");
 pub const CAUSTIC_MAP: &str = include_str!("../../../../shaders/caustic_map.wgsl");
+pub const REFLECTION_ROOM: &str = include_str!("../../../../shaders/reflection_room.wgsl");
 
 /// How the effects are set up.
 #[derive(Debug, Clone, PartialEq)]
@@ -165,6 +166,10 @@ struct Shared {
     /// The current frame's camera and display transform (its image is on the GPU).
     camera: CameraFrame<()>,
     layout: wgpu::BindGroupLayout,
+    /// Group 2 of the room in the reflection texture: the uniform and the camera image, not
+    /// the reflection texture it draws into.
+    room_layout: wgpu::BindGroupLayout,
+    room_group: Option<wgpu::BindGroup>,
     uniform: wgpu::Buffer,
     camera_image: CameraTextures,
     /// `CameraFormat` in `shaders/effects_common.wgsl`.
@@ -302,6 +307,16 @@ impl Shared {
                 layout::uniform(6, fs),
             ],
         });
+        let room_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("reflected room"),
+            entries: &[
+                layout::uniform(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
+                layout::texture(1, fs),
+                layout::sampler(4, fs),
+                layout::texture(5, fs),
+                layout::uniform(6, fs),
+            ],
+        });
         let uniform = crate::gpu::uniform_buffer(
             device,
             "effects uniform",
@@ -332,6 +347,8 @@ impl Shared {
             cfg,
             camera,
             layout,
+            room_layout,
+            room_group: None,
             uniform,
             camera_image: CameraTextures::new(device, image),
             camera_format,
@@ -352,6 +369,7 @@ impl Shared {
         if !self.camera_image.fits(image) {
             self.camera_image = CameraTextures::new(&gpu.device, image);
             self.group = None;
+            self.room_group = None;
         }
         let t = &self.camera_image;
         let format = match image {
@@ -400,6 +418,7 @@ impl Shared {
         );
         self.reflection = Some((colour, depth));
         self.group = None;
+        self.room_group = None;
     }
 
     fn bind_group(&mut self, device: &wgpu::Device) -> wgpu::BindGroup {
@@ -446,6 +465,42 @@ impl Shared {
             ],
         });
         self.group = Some(group.clone());
+        group
+    }
+
+    /// Group 2 of the reflected room: the uniform and the camera image.
+    fn room_group(&mut self, device: &wgpu::Device) -> wgpu::BindGroup {
+        if let Some(g) = &self.room_group {
+            return g.clone();
+        }
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("reflected room"),
+            layout: &self.room_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.main)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.chroma)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 6,
+                    resource: self.camera_format.as_entire_binding(),
+                },
+            ],
+        });
+        self.room_group = Some(group.clone());
         group
     }
 
@@ -621,6 +676,8 @@ pub struct ArWaterPass {
     group: Option<wgpu::BindGroup>,
     /// The planar reflection: its own frame bindings (reflected camera) and boats pass.
     reflection_bindings: FrameBindings,
+    /// The room and sky drawn first into the reflection texture (RGBA and YUV camera images).
+    room_pipelines: [wgpu::RenderPipeline; 2],
     /// The caustic map's pass and its own frame bindings (this frame's waves).
     caustic_map: CausticMapPass,
     caustic_bindings: FrameBindings,
@@ -850,6 +907,8 @@ impl ArWaterPass {
             self.reflection_boats.prepare(gpu, frame);
         }
         let mut shared = self.shared.borrow_mut();
+        let room = shared.room_group(&gpu.device);
+        let room_pipeline = &self.room_pipelines[usize::from(shared.camera_image.yuv)];
         let frac = shared.cfg.reflection_fraction;
         let size = frame
             .size
@@ -875,6 +934,10 @@ impl ArWaterPass {
             });
             if oblique.is_some() {
                 pass.set_bind_group(0, &self.reflection_bindings.group, &[]);
+                // The room and the sky behind everything, then boats, sails and marks.
+                pass.set_pipeline(room_pipeline);
+                pass.set_bind_group(2, &room, &[]);
+                pass.draw(0..3, 0..1);
                 self.reflection_boats.draw(&mut pass);
             }
         }
@@ -918,6 +981,14 @@ impl Pass for ArWaterPass {
         // Paused timeline, still camera, same scene and effects: the reflection texture and
         // the caustic map on the GPU are this frame's already.
         let reuse = self.reuses(frame, mask);
+        {
+            // Before the reflection pass, which draws the room with it (a queued write lands
+            // before the next submission).
+            let shared = self.shared.borrow();
+            let u = shared.uniform(frame, mask, runs(Effect::Reflection));
+            gpu.queue
+                .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
+        }
         let reflection_drawn = if reuse {
             self.reflection_drawn
         } else {
@@ -942,9 +1013,6 @@ impl Pass for ArWaterPass {
         }
         self.reflection_drawn = reflection_drawn;
         self.last_offscreen = Some(OffscreenInputs::of(frame, mask));
-        let u = shared.uniform(frame, mask, reflection_drawn);
-        gpu.queue
-            .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
         self.group = Some(shared.bind_group(&gpu.device));
         self.yuv = shared.camera_image.yuv;
         if mask != 0 {
@@ -1065,6 +1133,29 @@ pub fn add_effect_passes(
     };
     let reflection_boats = BoatsPass::new(&gpu.device, &pipelines.frame_layout, targets);
     let caustic_map = CausticMapPass::new(gpu, &pipelines.frame_layout);
+    let room_layout = shared.borrow().room_layout.clone();
+    let room_pipeline = |yuv: bool| {
+        let constant = camera_constant(yuv);
+        fx_pipeline(
+            gpu,
+            &pipelines.frame_layout,
+            &room_layout,
+            targets,
+            "reflected room",
+            &shader::module(
+                &gpu.device,
+                "reflected room",
+                &[EFFECTS_COMMON, REFLECTION, REFLECTION_ROOM, &constant],
+            ),
+            FxDraw {
+                buffers: &[],
+                fragment: "fs_main",
+                depth_write: false,
+                depth_compare: wgpu::CompareFunction::Always,
+            },
+        )
+    };
+    let room_pipelines = [room_pipeline(false), room_pipeline(true)];
     let water = ArWaterPass {
         water,
         pipelines,
@@ -1074,6 +1165,7 @@ pub fn add_effect_passes(
         group: None,
         reflection_bindings: FrameBindings::new(&gpu.device),
         caustic_map,
+        room_pipelines,
         caustic_bindings: FrameBindings::new(&gpu.device),
         reflection_boats,
         last_decisions: Vec::new(),

@@ -1,0 +1,33 @@
+// The real room in the planar reflection texture (source 000 § 3.2.1, improved; f64 reference
+// of the ring: effects/reflection.rs). Drawn first in the planar reflection pass, at the
+// texture's fraction of the screen, with the reflection pass's frame bindings: the camera
+// mirrored in the water (000 eq. 1) with its near plane on the water (000 eq. 2). In those
+// coordinates a pixel's ray leaves the mirrored eye below the water, crosses the water at p and
+// goes on up as the reflected ray of the flat water. The room is the camera image on a vertical
+// ring of radius R around the water (000's background plane on a circle, here a whole
+// cylinder): the ring point that ray meets is projected through the camera's pose and
+// intrinsics, so the ring turns with the camera by construction. Only ring points above the
+// water are used, and only where the camera sees them: looking steeply down, the ring leaves
+// the image and the sky is reflected instead of the table (000's "parts below the water"
+// limitation). The ring's coverage is the alpha: the water shows its own per-pixel sky (sun
+// glints shaped by the waves) where the ring is not. Boats, sails and marks are drawn over it.
+//
+// Appended to effects_common.wgsl and reflection.wgsl (ring_hit); binds only the effects'
+// uniform and camera image (group 2 without the reflection texture it draws into).
+
+@vertex
+fn vs_main(@builtin(vertex_index) i: u32) -> ScreenOut {
+    return full_screen(i, 1.0);
+}
+
+@fragment
+fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
+    let r = ray_dir(in.ndc);
+    let eye = frame.eye.xyz;
+    // Where the ray crosses the water (it rises from the mirrored eye below).
+    let s = -eye.y / max(r.y, 1e-6);
+    let ring = ring_hit(eye + r * s, r);
+    let uv = camera_uv(ring.xyz);
+    let w = select(0.0, edge_weight(uv.xy) * uv.z, ring.w > 0.0);
+    return vec4<f32>(sample_camera(uv.xy), w);
+}
