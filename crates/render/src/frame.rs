@@ -242,6 +242,11 @@ pub trait Pass {
     fn is_backdrop(&self) -> bool {
         false
     }
+    /// Command buffers `prepare` recorded for offscreen targets (a reflection texture, a
+    /// caustic map): the renderer submits them with the frame, in one submission.
+    fn take_offscreen(&mut self) -> Vec<wgpu::CommandBuffer> {
+        Vec::new()
+    }
     /// Record compute work that must run before the pass draws (e.g. displacing vertices);
     /// bind group 0 is already set. Timed with the pass. Most passes have none.
     fn dispatch(&self, _pass: &mut wgpu::ComputePass<'_>) {}

@@ -411,7 +411,13 @@ impl Renderer {
             enc.resolve_query_set(&t.queries, 0..n, &t.resolve, 0);
             enc.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, u64::from(n) * 8);
         }
-        gpu.queue.submit([enc.finish()]);
+        // The passes' offscreen work first, then the frame: one submission.
+        let mut buffers: Vec<wgpu::CommandBuffer> = run
+            .iter()
+            .flat_map(|&i| self.passes[i].take_offscreen())
+            .collect();
+        buffers.push(enc.finish());
+        gpu.queue.submit(buffers);
         if let Some(t) = timer
             && !run.is_empty()
         {

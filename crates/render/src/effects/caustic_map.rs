@@ -123,9 +123,10 @@ impl CausticMapPass {
         }
     }
 
-    /// Draw the caustics of `frame`'s sea on a table `depth` metres down over `region` (world
-    /// metres) into `target` (a [`CAUSTIC_MAP_FORMAT`] map), from a `src_res`² surface grid.
-    /// `frame_group` is bind group 0 with this frame's waves.
+    /// Record the caustics of `frame`'s sea on a table `depth` metres down over `region`
+    /// (world metres) into `target` (a [`CAUSTIC_MAP_FORMAT`] map), from a `src_res`² surface
+    /// grid, for submission with the frame. `frame_group` is bind group 0 with this frame's
+    /// waves.
     #[allow(clippy::too_many_arguments)]
     pub fn draw(
         &mut self,
@@ -136,7 +137,7 @@ impl CausticMapPass {
         depth: f64,
         src_res: usize,
         target: &wgpu::Texture,
-    ) {
+    ) -> Option<wgpu::CommandBuffer> {
         let s = frame.scene;
         let (origin, step, side) = surface_grid(region, &s.sea, depth, src_res);
         let o = frame.origin;
@@ -182,9 +183,7 @@ impl CausticMapPass {
                 .write_buffer(&buffer, 0, bytemuck::cast_slice(&idx));
             self.indices = Some((side, buffer, idx.len() as u32));
         }
-        let Some((_, indices, count)) = &self.indices else {
-            return;
-        };
+        let (_, indices, count) = self.indices.as_ref()?;
         let view = target.create_view(&Default::default());
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         {
@@ -205,6 +204,6 @@ impl CausticMapPass {
             pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..*count, 0, 0..1);
         }
-        gpu.queue.submit([enc.finish()]);
+        Some(enc.finish())
     }
 }

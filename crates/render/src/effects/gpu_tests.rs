@@ -570,7 +570,8 @@ fn gpu_caustic_map_matches_the_f64_area_ratio() {
             size: 40.0,
             periodic: false,
         };
-        pass.draw(&gpu, &frame, &bindings.group, &region, depth, src, &target);
+        let map = pass.draw(&gpu, &frame, &bindings.group, &region, depth, src, &target);
+        gpu.queue.submit(map);
         let bytes = gpu.read_texture_bytes(&target, 2).expect("read back");
         let got: Vec<f64> = bytes
             .chunks_exact(2)

@@ -678,6 +678,8 @@ pub struct ArWaterPass {
     reflection_bindings: FrameBindings,
     /// The room and sky drawn first into the reflection texture (RGBA and YUV camera images).
     room_pipelines: [wgpu::RenderPipeline; 2],
+    /// This frame's reflection texture and caustic map, recorded, for the renderer to submit.
+    offscreen: Vec<wgpu::CommandBuffer>,
     /// The caustic map's pass and its own frame bindings (this frame's waves).
     caustic_map: CausticMapPass,
     caustic_bindings: FrameBindings,
@@ -879,7 +881,7 @@ impl ArWaterPass {
         WATER_EFFECTS.iter().map(|&e| decide(e, &f)).collect()
     }
 
-    /// Draw boats and marks as the water mirrors them into the reflection texture: view ×
+    /// Record boats and marks as the water mirrors them into the reflection texture (submitted with the frame): view ×
     /// reflection matrix (000 eq. 1), near plane moved onto the water (000 eq. 2, wgpu depth).
     /// The texture is cleared to transparent first, so where nothing is mirrored (or nothing
     /// can be: camera at or below the water, when this returns false) the shader's sample of
@@ -941,7 +943,7 @@ impl ArWaterPass {
                 self.reflection_boats.draw(&mut pass);
             }
         }
-        gpu.queue.submit([enc.finish()]);
+        self.offscreen.push(enc.finish());
         oblique.is_some()
     }
 }
@@ -1001,7 +1003,7 @@ impl Pass for ArWaterPass {
                 .upload(&gpu.queue, &frame.uniform, &frame.waves);
             let region = shared.caustic_region(frame);
             let (depth, src) = (shared.cfg.table_depth, shared.cfg.caustic_resolution.0);
-            self.caustic_map.draw(
+            let map = self.caustic_map.draw(
                 gpu,
                 frame,
                 &self.caustic_bindings.group,
@@ -1010,6 +1012,7 @@ impl Pass for ArWaterPass {
                 src,
                 &shared.caustic_tex,
             );
+            self.offscreen.extend(map);
         }
         self.reflection_drawn = reflection_drawn;
         self.last_offscreen = Some(OffscreenInputs::of(frame, mask));
@@ -1022,6 +1025,9 @@ impl Pass for ArWaterPass {
         self.size = frame.size;
         self.scissor = play_area_scissor(frame);
         self.last_decisions = ds;
+    }
+    fn take_offscreen(&mut self) -> Vec<wgpu::CommandBuffer> {
+        std::mem::take(&mut self.offscreen)
     }
     fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>) {
         self.water.dispatch(pass);
@@ -1166,6 +1172,7 @@ pub fn add_effect_passes(
         reflection_bindings: FrameBindings::new(&gpu.device),
         caustic_map,
         room_pipelines,
+        offscreen: Vec::new(),
         caustic_bindings: FrameBindings::new(&gpu.device),
         reflection_boats,
         last_decisions: Vec::new(),
