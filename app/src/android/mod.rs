@@ -101,6 +101,12 @@ struct Graphics {
     egui: EguiPainter,
 }
 
+/// The scene is drawn at this fraction of the screen per side and stretched onto it (the
+/// panels are painted at full resolution over it). From the budget bench (README, "On a
+/// phone"): at ½ the Pixel 2 XL reaches 60 fps on paper, at full size about 17; not yet
+/// measured on a phone.
+const PHONE_RENDER_SCALE: f64 = 0.5;
+
 /// A renderer for the surface's `format`, with the race's wakes.
 fn fresh_renderer(
     gpu: &render::Gpu,
@@ -112,6 +118,7 @@ fn fresh_renderer(
         format,
         RenderOptions {
             measure_gpu_time: false,
+            render_scale: PHONE_RENDER_SCALE,
             ..Default::default()
         },
     );

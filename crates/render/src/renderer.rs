@@ -32,6 +32,11 @@ pub struct RenderOptions {
     /// the target's size and one copy per re-presented frame; needs a target with `COPY_SRC |
     /// COPY_DST` (otherwise every frame is drawn).
     pub keep_still_frames: bool,
+    /// Draw the frame at this fraction of the target's size per side and stretch it onto the
+    /// target (bilinear): 0.5 shades a quarter of the pixels. 1: the target's size. The
+    /// clip-map's pixel error target is in the drawn frame's pixels. (Phones: see the budget
+    /// bench.)
+    pub render_scale: f64,
 }
 
 impl Default for RenderOptions {
@@ -40,6 +45,7 @@ impl Default for RenderOptions {
             error_px: DEFAULT_ERROR_PX,
             measure_gpu_time: true,
             keep_still_frames: false,
+            render_scale: 1.0,
         }
     }
 }
@@ -73,6 +79,97 @@ struct FrameKey {
     revision: u64,
 }
 
+/// The frame drawn at [`RenderOptions::render_scale`] and the pass that stretches it onto the
+/// target (`shaders/upscale.wgsl`).
+struct Upscale {
+    pipeline: wgpu::RenderPipeline,
+    sampler: wgpu::Sampler,
+    /// The smaller frame and its bind group, remade when its size changes.
+    frame: Option<(wgpu::Texture, wgpu::BindGroup)>,
+}
+
+impl Upscale {
+    fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Upscale {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("upscale"),
+            source: wgpu::ShaderSource::Wgsl(crate::shader::UPSCALE.into()),
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("upscale"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("upscale"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Upscale {
+            pipeline,
+            sampler,
+            frame: None,
+        }
+    }
+
+    /// The smaller frame's view and bind group at `size`.
+    fn frame(
+        &mut self,
+        device: &wgpu::Device,
+        size: [u32; 2],
+        format: wgpu::TextureFormat,
+    ) -> (wgpu::TextureView, wgpu::BindGroup) {
+        let fits = self
+            .frame
+            .as_ref()
+            .is_some_and(|(t, _)| [t.width(), t.height()] == size);
+        if !fits {
+            let texture = crate::gpu::texture_2d(
+                device,
+                "scaled frame",
+                size,
+                format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            );
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("upscale"),
+                layout: &self.pipeline.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(
+                            &texture.create_view(&Default::default()),
+                        ),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::Sampler(&self.sampler),
+                    },
+                ],
+            });
+            self.frame = Some((texture, group));
+        }
+        let (texture, group) = self.frame.as_ref().expect("made above");
+        (texture.create_view(&Default::default()), group.clone())
+    }
+}
+
 /// The last frame drawn twice in a row, kept for re-presenting.
 struct StillFrame {
     key: FrameKey,
@@ -94,6 +191,7 @@ pub struct Renderer {
     /// The key of the last frame drawn, and the kept copy of a still frame.
     last: Option<FrameKey>,
     still: Option<StillFrame>,
+    upscale: Option<Upscale>,
 }
 
 impl Renderer {
@@ -188,6 +286,7 @@ impl Renderer {
             revision: 0,
             last: None,
             still: None,
+            upscale: None,
         }
     }
 
@@ -245,7 +344,7 @@ impl Renderer {
         if !self.options.keep_still_frames || !texture.usage().contains(copy) {
             self.last = None;
             self.still = None;
-            return self.draw(gpu, target, size, scene);
+            return self.draw_scaled(gpu, target, size, scene);
         }
         let key = FrameKey {
             scene: scene.clone(),
@@ -258,7 +357,7 @@ impl Renderer {
             return still.report.reused();
         }
         self.still = None;
-        let report = self.draw(gpu, target, size, scene);
+        let report = self.draw_scaled(gpu, target, size, scene);
         if self.last.as_ref() == Some(&key) {
             // Drawn twice alike: keep it for the frames to come.
             let kept = crate::gpu::texture_2d(&gpu.device, "still frame", size, key.format, copy);
@@ -270,6 +369,48 @@ impl Renderer {
             });
         }
         self.last = Some(key);
+        report
+    }
+
+    /// Draw one frame at [`RenderOptions::render_scale`] of `size` and stretch it onto
+    /// `target`; the record's size is the drawn frame's.
+    fn draw_scaled(
+        &mut self,
+        gpu: &Gpu,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        scene: &Scene,
+    ) -> FrameReport {
+        let scale = self.options.render_scale;
+        if !(scale > 0.0 && scale < 1.0) {
+            return self.draw(gpu, target, size, scene);
+        }
+        let inner = size.map(|v| ((f64::from(v) * scale).round() as u32).max(1));
+        let format = self.targets.colour;
+        let up = self
+            .upscale
+            .get_or_insert_with(|| Upscale::new(&gpu.device, format));
+        let (view, group) = up.frame(&gpu.device, inner, format);
+        let pipeline = up.pipeline.clone();
+        let report = self.draw(gpu, &view, inner, scene);
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("upscale"),
+                color_attachments: &[Some(crate::gpu::colour_attachment(
+                    target,
+                    Some(wgpu::Color::BLACK),
+                ))],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &group, &[]);
+            pass.draw(0..3, 0..1);
+        }
+        gpu.queue.submit([enc.finish()]);
         report
     }
 

@@ -6,6 +6,8 @@ pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
 /// Fresnel, Snell, reflection (the effects' optics, mirrored in f64 by `optics.rs`).
 pub const OPTICS: &str = include_str!("../../../shaders/optics.wgsl");
 pub const SKY: &str = include_str!("../../../shaders/sky.wgsl");
+/// The stretch of a frame drawn at a fraction of the screen (no shared files).
+pub const UPSCALE: &str = include_str!("../../../shaders/upscale.wgsl");
 pub const WATER: &str = include_str!("../../../shaders/water.wgsl");
 pub const BOATS: &str = include_str!("../../../shaders/boats.wgsl");
 pub const WAVE_HEIGHTS: &str = include_str!("../../../shaders/wave_heights.wgsl");

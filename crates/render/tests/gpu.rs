@@ -275,3 +275,40 @@ fn keeping_renderer(
     let view = target.create_view(&Default::default());
     (renderer, target, view)
 }
+
+/// A frame drawn at half scale and stretched onto the target: the record gives the drawn size,
+/// and the stretched picture, averaged back over 2×2 pixels, is the frame drawn directly at
+/// that size (within bilinear filtering's blur).
+#[test]
+fn a_frame_drawn_at_half_scale_is_stretched_onto_the_target() {
+    let Some(gpu) = test_gpu() else { return };
+    let scene = scene(300.0);
+    let mut half = Renderer::new(
+        &gpu,
+        render::OFFSCREEN_FORMAT,
+        RenderOptions {
+            render_scale: 0.5,
+            ..Default::default()
+        },
+    );
+    let (big, report) = render::render_image(&gpu, &mut half, &scene, [128, 96]).unwrap();
+    assert_eq!(report.size, [64, 48]);
+    assert!(report.passes.iter().any(|p| p.ran));
+    let mut direct = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, RenderOptions::default());
+    let (small, _) = render::render_image(&gpu, &mut direct, &scene, [64, 48]).unwrap();
+    let mut diff = 0.0f64;
+    for y in 0..48 {
+        for x in 0..64 {
+            for c in 0..3 {
+                let avg: f64 = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                    .iter()
+                    .map(|(dx, dy)| f64::from(big.get_pixel(2 * x + dx, 2 * y + dy)[c]))
+                    .sum::<f64>()
+                    / 4.0;
+                diff += (avg - f64::from(small.get_pixel(x, y)[c])).abs();
+            }
+        }
+    }
+    let mean = diff / (64.0 * 48.0 * 3.0);
+    assert!(mean < 6.0, "mean difference {mean} levels");
+}
