@@ -566,3 +566,34 @@ pub fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Bu
         mapped_at_creation: false,
     })
 }
+
+/// A uniform buffer alone in its own bind group (binding 0), as a pass's per-frame parameters.
+pub struct UniformGroup {
+    pub layout: wgpu::BindGroupLayout,
+    pub buffer: wgpu::Buffer,
+    pub group: wgpu::BindGroup,
+}
+
+impl UniformGroup {
+    /// A uniform of `size` bytes seen by the vertex and fragment stages.
+    pub fn new(device: &wgpu::Device, label: &str, size: u64) -> UniformGroup {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries: &[layout::uniform(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
+        });
+        let buffer = uniform_buffer(device, label, size);
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout: &layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: buffer.as_entire_binding(),
+            }],
+        });
+        UniformGroup {
+            layout,
+            buffer,
+            group,
+        }
+    }
+}

@@ -58,23 +58,11 @@ pub fn surface_grid(
 impl CausticMapPass {
     pub fn new(gpu: &Gpu, frame_layout: &wgpu::BindGroupLayout) -> CausticMapPass {
         let device = &gpu.device;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("caustic grid"),
-            entries: &[crate::gpu::layout::uniform(
-                0,
-                wgpu::ShaderStages::VERTEX_FRAGMENT,
-            )],
-        });
-        let uniform =
-            crate::gpu::uniform_buffer(device, "caustic grid", size_of::<CausticGrid>() as u64);
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("caustic grid"),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform.as_entire_binding(),
-            }],
-        });
+        let crate::gpu::UniformGroup {
+            layout,
+            buffer: uniform,
+            group,
+        } = crate::gpu::UniformGroup::new(device, "caustic grid", size_of::<CausticGrid>() as u64);
         let module = shader::module(device, "caustic map", &[super::passes::CAUSTIC_MAP]);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("caustic map"),

@@ -425,83 +425,64 @@ impl Shared {
         if self.reflection.is_none() {
             self.reflection_targets(device, [1, 1]);
         }
-        if let Some(g) = &self.group {
-            return g.clone();
+        if self.group.is_none() {
+            self.group = Some(self.make_group(device, false));
         }
-        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let refl = view(&self.reflection.as_ref().expect("made above").0);
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("effects"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.uniform.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.main)),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&refl),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&view(&self.caustic_tex)),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 5,
-                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.chroma)),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 6,
-                    resource: self.camera_format.as_entire_binding(),
-                },
-            ],
-        });
-        self.group = Some(group.clone());
-        group
+        self.group.clone().expect("made above")
     }
 
     /// Group 2 of the reflected room: the uniform and the camera image.
     fn room_group(&mut self, device: &wgpu::Device) -> wgpu::BindGroup {
-        if let Some(g) = &self.room_group {
-            return g.clone();
+        if self.room_group.is_none() {
+            self.room_group = Some(self.make_group(device, true));
         }
+        self.room_group.clone().expect("made above")
+    }
+
+    /// Group 2: the uniform, the camera image and the sampler, and unless `room` (the group of
+    /// the reflected room, which draws into the reflection texture) the reflection texture and
+    /// the caustic map.
+    fn make_group(&self, device: &wgpu::Device, room: bool) -> wgpu::BindGroup {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("reflected room"),
-            layout: &self.room_layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.uniform.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.main)),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 5,
-                    resource: wgpu::BindingResource::TextureView(&view(&self.camera_image.chroma)),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 6,
-                    resource: self.camera_format.as_entire_binding(),
-                },
-            ],
-        });
-        self.room_group = Some(group.clone());
-        group
+        let (main, chroma, caustic) = (
+            view(&self.camera_image.main),
+            view(&self.camera_image.chroma),
+            view(&self.caustic_tex),
+        );
+        let reflection = self.reflection.as_ref().map(|(c, _)| view(c));
+        let texture = |binding, v| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(v),
+        };
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: self.uniform.as_entire_binding(),
+            },
+            texture(1, &main),
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: wgpu::BindingResource::Sampler(&self.sampler),
+            },
+            texture(5, &chroma),
+            wgpu::BindGroupEntry {
+                binding: 6,
+                resource: self.camera_format.as_entire_binding(),
+            },
+        ];
+        if !room && let Some(reflection) = &reflection {
+            entries.push(texture(2, reflection));
+            entries.push(texture(3, &caustic));
+        }
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(if room { "reflected room" } else { "effects" }),
+            layout: if room {
+                &self.room_layout
+            } else {
+                &self.layout
+            },
+            entries: &entries,
+        })
     }
 
     /// The uniform for a frame, with the effects that run this frame in `mask`.

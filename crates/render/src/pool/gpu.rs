@@ -350,20 +350,11 @@ impl PoolRenderer {
         use crate::gpu::layout;
         let device = &gpu.device;
         let bindings = FrameBindings::new(device);
-        let pool_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("pool"),
-            entries: &[layout::uniform(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
-        });
-        let pool_buffer =
-            crate::gpu::uniform_buffer(device, "pool uniform", size_of::<PoolUniform>() as u64);
-        let pool_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("pool"),
-            layout: &pool_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: pool_buffer.as_entire_binding(),
-            }],
-        });
+        let crate::gpu::UniformGroup {
+            layout: pool_layout,
+            buffer: pool_buffer,
+            group: pool_group,
+        } = crate::gpu::UniformGroup::new(device, "pool", size_of::<PoolUniform>() as u64);
         let caustic_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("pool caustics map"),
             entries: &[
