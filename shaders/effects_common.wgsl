@@ -27,9 +27,7 @@ struct Effects {
     flow_b: vec4<f32>,
     // Far current x, z (m/s), mark radius (m), detail tile size (m).
     current: vec4<f32>,
-    // y = marks. x = effect bits, z = cheap caustics tier, w = reflection texture drawn are
-    // for the record only: the AR water's pipeline constants decide (FX_MASK), and the
-    // background pass writes this uniform after it with no effect bits.
+    // y = marks; x, z, w unused (which effects run is each pipeline's constant, FX_MASK).
     flags: vec4<u32>,
     marks: array<vec4<f32>, 8>,
 }

@@ -400,7 +400,8 @@ pub fn depth_attachment(
     }
 }
 
-/// A plain 2-D texture of `size` pixels: one mip level, one sample, no extra view formats.
+/// A plain 2-D texture of `size` pixels (never empty: a zero-sized frame still gets one texel):
+/// one mip level, one sample, no extra view formats.
 pub fn texture_2d(
     device: &wgpu::Device,
     label: &str,
@@ -424,8 +425,8 @@ pub fn texture_2d_with_views(
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {
-            width: size[0],
-            height: size[1],
+            width: size[0].max(1),
+            height: size[1].max(1),
             depth_or_array_layers: 1,
         },
         mip_level_count: 1,

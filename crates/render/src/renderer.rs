@@ -94,27 +94,17 @@ impl Upscale {
             label: Some("upscale"),
             source: wgpu::ShaderSource::Wgsl(crate::shader::UPSCALE.into()),
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("upscale"),
-            layout: None,
-            vertex: wgpu::VertexState {
+        let pipeline = crate::passes::bufferless_pipeline(
+            device,
+            crate::passes::BufferlessPipeline {
+                label: "upscale",
                 module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
+                layouts: None,
+                format,
+                blend: None,
+                depth: None,
             },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("upscale"),
             mag_filter: wgpu::FilterMode::Linear,

@@ -64,45 +64,17 @@ impl CausticMapPass {
             group,
         } = crate::gpu::UniformGroup::new(device, "caustic grid", size_of::<CausticGrid>() as u64);
         let module = shader::module(device, "caustic map", &[super::passes::CAUSTIC_MAP]);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("caustic map"),
-            bind_group_layouts: &[Some(frame_layout), Some(&layout)],
-            immediate_size: 0,
-        });
-        let add = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("caustic map"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
+        let pipeline = crate::passes::bufferless_pipeline(
+            device,
+            crate::passes::BufferlessPipeline {
+                label: "caustic map",
                 module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
+                layouts: Some(&[Some(frame_layout), Some(&layout)]),
+                format: CAUSTIC_MAP_FORMAT,
+                blend: Some(crate::passes::ADDITIVE),
+                depth: None,
             },
-            // Folded triangles (light crossing over) face the other way: draw both sides.
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: CAUSTIC_MAP_FORMAT,
-                    blend: Some(wgpu::BlendState {
-                        color: add,
-                        alpha: add,
-                    }),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         CausticMapPass {
             pipeline,
             uniform,

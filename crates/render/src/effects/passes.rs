@@ -182,6 +182,8 @@ struct Shared {
     /// Camera frames set so far: the background pass's revision, so that the renderer draws
     /// a still scene again over a new image.
     revision: u64,
+    /// The uniform last written.
+    written: Option<EffectsUniform>,
 }
 
 /// The camera image on the GPU. RGBA: one `Rgba8UnormSrgb` texture (the sampler decodes it to
@@ -210,8 +212,8 @@ impl CameraTextures {
         CameraTextures {
             yuv,
             size,
-            main: texture(device, "camera image", size, main_format, usage),
-            chroma: texture(
+            main: crate::gpu::texture_2d(device, "camera image", size, main_format, usage),
+            chroma: crate::gpu::texture_2d(
                 device,
                 "camera chroma",
                 chroma_size,
@@ -238,23 +240,6 @@ struct CameraFormatUniform {
 /// The WGSL constant that compiles the camera image's kind into a pipeline.
 fn camera_constant(yuv: bool) -> String {
     format!("const CAMERA_YUV: bool = {yuv};")
-}
-
-/// A plain 2-D texture, never empty (a zero-sized frame still gets one texel).
-fn texture(
-    device: &wgpu::Device,
-    label: &str,
-    size: [u32; 2],
-    format: wgpu::TextureFormat,
-    usage: wgpu::TextureUsages,
-) -> wgpu::Texture {
-    crate::gpu::texture_2d(
-        device,
-        label,
-        [size[0].max(1), size[1].max(1)],
-        format,
-        usage,
-    )
 }
 
 /// Write `size` texels of `texel_bytes` bytes each, rows tightly packed, into `tex`; nothing
@@ -328,7 +313,7 @@ impl Shared {
             size_of::<CameraFormatUniform>() as u64,
         );
         let n = cfg.caustic_resolution.1 as u32;
-        let caustic_tex = texture(
+        let caustic_tex = crate::gpu::texture_2d(
             device,
             "caustic map",
             [n, n],
@@ -358,6 +343,7 @@ impl Shared {
             group: None,
             colour_format: targets.colour,
             revision: 0,
+            written: None,
         };
         shared.set_image(gpu, image);
         shared
@@ -402,14 +388,14 @@ impl Shared {
         if fits {
             return;
         }
-        let colour = texture(
+        let colour = crate::gpu::texture_2d(
             device,
             "planar reflection",
             size,
             self.colour_format,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
         );
-        let depth = texture(
+        let depth = crate::gpu::texture_2d(
             device,
             "planar reflection depth",
             size,
@@ -485,8 +471,19 @@ impl Shared {
         })
     }
 
-    /// The uniform for a frame, with the effects that run this frame in `mask`.
-    fn uniform(&self, frame: &FrameContext, mask: u32, reflection_drawn: bool) -> EffectsUniform {
+    /// Write this frame's uniform, unless it holds it already (both effect passes prepare
+    /// with it; a still frame leaves it as it is).
+    fn write_uniform(&mut self, gpu: &Gpu, frame: &FrameContext) {
+        let u = self.uniform(frame);
+        if self.written != Some(u) {
+            gpu.queue
+                .write_buffer(&self.uniform, 0, bytemuck::bytes_of(&u));
+            self.written = Some(u);
+        }
+    }
+
+    /// The uniform for a frame (the effects that run are the pipelines' constants).
+    fn uniform(&self, frame: &FrameContext) -> EffectsUniform {
         let s = frame.scene;
         let o = frame.origin;
         let cam = &self.camera.camera;
@@ -530,12 +527,7 @@ impl Shared {
                 f(self.cfg.mark_radius),
                 f(self.cfg.detail_tile),
             ],
-            flags: [
-                mask,
-                near.len().min(8) as u32,
-                u32::from(self.cfg.cheap_caustics),
-                u32::from(reflection_drawn),
-            ],
+            flags: [0, near.len().min(8) as u32, 0, 0],
             marks,
         }
     }
@@ -624,9 +616,7 @@ impl Pass for BackgroundPass {
     }
     fn prepare(&mut self, gpu: &Gpu, frame: &FrameContext) {
         let mut shared = self.shared.borrow_mut();
-        let u = shared.uniform(frame, 0, false);
-        gpu.queue
-            .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
+        shared.write_uniform(gpu, frame);
         self.group = Some(shared.bind_group(&gpu.device));
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
@@ -667,10 +657,8 @@ pub struct ArWaterPass {
     reflection_boats: BoatsPass,
     /// Effect decisions of the last planned frame.
     pub last_decisions: Vec<EffectDecision>,
-    /// What the reflection texture and caustic map on the GPU were made from, and whether the
-    /// reflection was drawn.
+    /// What the reflection texture and caustic map on the GPU were made from.
     last_offscreen: Option<OffscreenInputs>,
-    reflection_drawn: bool,
     /// This frame's target size and the scissor rectangle of the play area in it.
     size: [u32; 2],
     scissor: Option<Scissor>,
@@ -862,12 +850,12 @@ impl ArWaterPass {
         WATER_EFFECTS.iter().map(|&e| decide(e, &f)).collect()
     }
 
-    /// Record boats and marks as the water mirrors them into the reflection texture (submitted with the frame): view ×
+    /// Record the room, boats and marks as the water mirrors them into the reflection texture
+    /// (submitted with the frame): view ×
     /// reflection matrix (000 eq. 1), near plane moved onto the water (000 eq. 2, wgpu depth).
     /// The texture is cleared to transparent first, so where nothing is mirrored (or nothing
-    /// can be: camera at or below the water, when this returns false) the shader's sample of
-    /// it changes nothing.
-    fn draw_reflection(&mut self, gpu: &Gpu, frame: &FrameContext) -> bool {
+    /// can be: camera at or below the water) the shader's sample of it changes nothing.
+    fn draw_reflection(&mut self, gpu: &Gpu, frame: &FrameContext) {
         let s = frame.scene;
         let cam = &s.camera;
         // The screen's view, roll included, so the texture lines up with the pixels.
@@ -925,7 +913,6 @@ impl ArWaterPass {
             }
         }
         self.offscreen.push(enc.finish());
-        oblique.is_some()
     }
 }
 
@@ -964,19 +951,11 @@ impl Pass for ArWaterPass {
         // Paused timeline, still camera, same scene and effects: the reflection texture and
         // the caustic map on the GPU are this frame's already.
         let reuse = self.reuses(frame, mask);
-        {
-            // Before the reflection pass, which draws the room with it (a queued write lands
-            // before the next submission).
-            let shared = self.shared.borrow();
-            let u = shared.uniform(frame, mask, runs(Effect::Reflection));
-            gpu.queue
-                .write_buffer(&shared.uniform, 0, bytemuck::bytes_of(&u));
+        // The reflected room reads the uniform too.
+        self.shared.borrow_mut().write_uniform(gpu, frame);
+        if !reuse && runs(Effect::Reflection) {
+            self.draw_reflection(gpu, frame);
         }
-        let reflection_drawn = if reuse {
-            self.reflection_drawn
-        } else {
-            runs(Effect::Reflection) && self.draw_reflection(gpu, frame)
-        };
         let mut shared = self.shared.borrow_mut();
         if !reuse && runs(Effect::Caustics) && !shared.cfg.cheap_caustics {
             // The area-ratio map of this frame's sea and time, drawn on the GPU.
@@ -995,7 +974,6 @@ impl Pass for ArWaterPass {
             );
             self.offscreen.extend(map);
         }
-        self.reflection_drawn = reflection_drawn;
         self.last_offscreen = Some(OffscreenInputs::of(frame, mask));
         self.group = Some(shared.bind_group(&gpu.device));
         self.yuv = shared.camera_image.yuv;
@@ -1158,7 +1136,6 @@ pub fn add_effect_passes(
         reflection_boats,
         last_decisions: Vec::new(),
         last_offscreen: None,
-        reflection_drawn: false,
         size: [0, 0],
         scissor: None,
     };

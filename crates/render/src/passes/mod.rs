@@ -109,3 +109,69 @@ pub(crate) fn render_pipeline(
         cache: None,
     })
 }
+
+/// Light added up where triangles overlap (caustic maps): one + one.
+pub(crate) const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+};
+
+/// A pipeline whose vertex shader makes its positions from the vertex index (no vertex
+/// buffers), `vs_main` and `fs_main` into one colour target: full-screen and grid passes (the
+/// upscale, the caustic maps, the pool).
+pub(crate) struct BufferlessPipeline<'a> {
+    pub label: &'a str,
+    pub module: &'a wgpu::ShaderModule,
+    /// Bind groups 0.. (a `None` is an unused slot); `None`: derived from the shader.
+    pub layouts: Option<&'a [Option<&'a wgpu::BindGroupLayout>]>,
+    pub format: wgpu::TextureFormat,
+    pub blend: Option<wgpu::BlendState>,
+    pub depth: Option<wgpu::DepthStencilState>,
+}
+
+pub(crate) fn bufferless_pipeline(
+    device: &wgpu::Device,
+    p: BufferlessPipeline,
+) -> wgpu::RenderPipeline {
+    let layout = p.layouts.map(|layouts| {
+        device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(p.label),
+            bind_group_layouts: layouts,
+            immediate_size: 0,
+        })
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(p.label),
+        layout: layout.as_ref(),
+        vertex: wgpu::VertexState {
+            module: p.module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        // No culling: a caustic map's folded triangles face the other way.
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: p.depth,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: p.module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format: p.format,
+                blend: p.blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}

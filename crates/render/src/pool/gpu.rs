@@ -302,36 +302,17 @@ struct PipelineParts<'a> {
 
 fn build_pipeline(device: &wgpu::Device, p: PipelineParts) -> wgpu::RenderPipeline {
     let module = shader::module(device, p.label, &[POOL_COMMON, p.pass_wgsl]);
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(p.label),
-        bind_group_layouts: p.layouts,
-        immediate_size: 0,
-    });
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(p.label),
-        layout: Some(&layout),
-        vertex: wgpu::VertexState {
+    crate::passes::bufferless_pipeline(
+        device,
+        crate::passes::BufferlessPipeline {
+            label: p.label,
             module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[],
+            layouts: Some(p.layouts),
+            format: p.format,
+            blend: p.blend,
+            depth: p.depth,
         },
-        primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: p.depth,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format: p.format,
-                blend: p.blend,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+    )
 }
 
 fn depth_state(compare: wgpu::CompareFunction) -> Option<wgpu::DepthStencilState> {
@@ -393,11 +374,6 @@ impl PoolRenderer {
                 },
             ],
         });
-        let additive = wgpu::BlendComponent {
-            src_factor: wgpu::BlendFactor::One,
-            dst_factor: wgpu::BlendFactor::One,
-            operation: wgpu::BlendOperation::Add,
-        };
         let caustics = build_pipeline(
             device,
             PipelineParts {
@@ -405,10 +381,7 @@ impl PoolRenderer {
                 pass_wgsl: POOL_CAUSTICS,
                 layouts: &[Some(&bindings.layout), Some(&pool_layout)],
                 format: CAUSTIC_FORMAT,
-                blend: Some(wgpu::BlendState {
-                    color: additive,
-                    alpha: additive,
-                }),
+                blend: Some(crate::passes::ADDITIVE),
                 depth: None,
             },
         );
