@@ -453,6 +453,22 @@ impl ClipMapConfig {
 /// Ladders of base cell sizes that [`ClipMapConfig::for_view`] tries: s₀ = 2^(e + i/steps).
 pub const BASE_LADDER_STEPS: u32 = 8;
 
+/// The interpolation bound Σ A k² (extent along D)² of a lattice turned by `angle` radians
+/// that keeps all of `sea`'s waves, 1/m (per cell² of a unit cell).
+pub fn lattice_bound(sea: &WaveSet, angle: f64) -> f64 {
+    let cfg = ClipMapConfig {
+        angle,
+        ..ClipMapConfig::uniform(1, 8, 1.0)
+    };
+    sea.waves
+        .iter()
+        .map(|w| {
+            let d = cfg.to_lattice(DVec2::from(w.direction));
+            w.amplitude() * w.k() * w.k() * extent_along([d.x, d.y]).powi(2)
+        })
+        .sum()
+}
+
 /// Lattice orientations [`lattice_angle`] tries: every degree of a half turn.
 pub const LATTICE_ANGLES: u32 = 180;
 
@@ -462,22 +478,9 @@ pub const LATTICE_ANGLES: u32 = 180;
 /// are √2 against 1/√2 cells long along it), so the lattice turns its diagonal across the
 /// short, curved waves. The first best of whole degrees in [0°, 180°).
 pub fn lattice_angle(sea: &WaveSet) -> f64 {
-    let bound = |angle: f64| -> f64 {
-        let cfg = ClipMapConfig {
-            angle,
-            ..ClipMapConfig::uniform(1, 8, 1.0)
-        };
-        sea.waves
-            .iter()
-            .map(|w| {
-                let d = cfg.to_lattice(DVec2::from(w.direction));
-                w.amplitude() * w.k() * w.k() * extent_along([d.x, d.y]).powi(2)
-            })
-            .sum()
-    };
     (0..LATTICE_ANGLES)
         .map(|deg| f64::from(deg).to_radians())
-        .map(|a| (bound(a), a))
+        .map(|a| (lattice_bound(sea, a), a))
         .fold(
             (f64::INFINITY, 0.0),
             |best, x| if x.0 < best.0 { x } else { best },
@@ -1321,16 +1324,6 @@ mod tests {
 
     #[test]
     fn lattice_turns_its_diagonal_across_the_curved_waves() {
-        let bound = |sea: &WaveSet, angle: f64| -> f64 {
-            let c = ClipMapConfig { angle, ..config() };
-            sea.waves
-                .iter()
-                .map(|w| {
-                    let d = c.to_lattice(DVec2::from(w.direction));
-                    w.amplitude() * w.k() * w.k() * extent_along([d.x, d.y]).powi(2)
-                })
-                .sum()
-        };
         // One wave: whatever its direction, the chosen lattice crosses it with triangles
         // 1/√2 cells long (the least any direction gets), up to the 1° step.
         for direction in [[1.0, 0.0], [0.6, 0.8], [0.8, -0.6]] {
@@ -1353,8 +1346,8 @@ mod tests {
         // is 0.42328 m⁻¹ on the axis-aligned lattice and at least 0.24032 (at 53.2°).
         let sea = WaveSet::default_sea();
         let a = lattice_angle(&sea);
-        assert!((bound(&sea, 0.0) - 0.42328).abs() < 1e-5);
-        let best = bound(&sea, a);
+        assert!((lattice_bound(&sea, 0.0) - 0.42328).abs() < 1e-5);
+        let best = lattice_bound(&sea, a);
         assert!(
             (0.24031..0.2410).contains(&best),
             "{best} at {}°",
