@@ -14,17 +14,53 @@
 // Every function of the effect files has one exit: Mesa 22.3's lavapipe crashed drawing some
 // of these pipelines when an inlined function returned early (see ArPipelines).
 
-// Light lost per metre of water path, relative to the table's depth (so a scaled table looks
-// the same): red goes first.
-const ABSORPTION: vec3<f32> = vec3<f32>(0.9, 0.35, 0.25);
+// Light left after a path of x table depths through the water, exp(−(0.9, 0.35, 0.25)·x)
+// (relative to the depth, so a scaled table looks the same; red goes first). One exponential
+// for the three: the coefficients are 18, 7 and 5 times 0.05, so with e = exp(−0.05 x) they
+// are e¹⁸, e⁷ and e⁵ (products of e, e², e⁴; relative error under 2e-6). lavapipe pays for
+// every exponential of every pixel.
+fn transmittance(x: f32) -> vec3<f32> {
+    let e = exp(-0.05 * x);
+    let e2 = e * e;
+    let e4 = e2 * e2;
+    let e5 = e4 * e;
+    let e7 = e5 * e2;
+    return vec3<f32>(e7 * e7 * e4, e7, e5);
+}
 
 // Does this pipeline shade with effect `bit`?
 fn fx_on(bit: u32) -> bool {
     return (FX_MASK & bit) != 0u;
 }
 
+// The water pass's vertex output and what the effects need of each vertex.
+struct ArVertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) rest: vec2<f32>,
+    @location(1) world: vec3<f32>,
+    @location(2) wake: vec3<f32>,
+    // The current around the marks (m/s, flow map): a smooth field, so evaluated per vertex
+    // and interpolated (error bound: effects::flowmap::current_interpolation_error).
+    @location(3) current: vec2<f32>,
+}
+
+@vertex
+fn vs_ar(v: VertexIn) -> ArVertexOut {
+    let w = water_vertex(v);
+    var out: ArVertexOut;
+    out.clip = w.clip;
+    out.rest = w.rest;
+    out.world = w.world;
+    out.wake = w.wake;
+    out.current = vec2<f32>(0.0);
+    if fx_on(FX_FLOWMAP) {
+        out.current = current_at(w.world.xz);
+    }
+    return out;
+}
+
 @fragment
-fn fs_ar(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     let pa = frame.play_area;
     if in.rest.x < pa.x || in.rest.y < pa.y || in.rest.x > pa.z || in.rest.y > pa.w {
         discard;
@@ -37,14 +73,17 @@ fn fs_ar(in: VertexOut) -> @location(0) vec4<f32> {
     // Sea and wake slopes add, as in water.wgsl: the wake's (∂w/∂x, ∂w/∂z) is in.wake.xy.
     var n = normalize(vec3<f32>(sf.normal.x / sf.normal.y - in.wake.x, 1.0, sf.normal.z / sf.normal.y - in.wake.y));
     if fx_on(FX_FLOWMAP) {
-        n = flow_normal(p.xz, n);
+        n = flow_normal(p.xz, in.current, n);
     }
     let cos_i = max(dot(n, -view), 0.0);
     let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);
 
-    var reflected = sky_colour_rough(reflect_dir(view, n), sf.slope_variance);
+    // What the water mirrors: the reflection texture (room, sky, boats), else the sky.
+    var reflected: vec3<f32>;
     if fx_on(FX_REFLECTION) {
-        reflected = reflection_colour(reflected, screen_uv, n);
+        reflected = reflection_colour(screen_uv, n);
+    } else {
+        reflected = sky_colour_rough(reflect_dir(view, n), sf.slope_variance);
     }
 
     // The table under the water (q), straight through or refracted, and its colour and
@@ -62,7 +101,7 @@ fn fs_ar(in: VertexOut) -> @location(0) vec4<f32> {
         light = caustic_light(q, n);
     }
     let depth = max(fx.table.x, 1e-3);
-    let transmitted = table.rgb * light * exp(-ABSORPTION * table.w / depth);
+    let transmitted = table.rgb * light * transmittance(table.w / depth);
     var colour = r * reflected + (1.0 - r) * transmitted;
     // Foam of breaking crests (Jacobian) and of the boats' wakes, as the water pass draws it.
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);

@@ -8,12 +8,17 @@
 // cylinder): the ring point that ray meets is projected through the camera's pose and
 // intrinsics, so the ring turns with the camera by construction. Only ring points above the
 // water are used, and only where the camera sees them: looking steeply down, the ring leaves
-// the image and the sky is reflected instead of the table (000's "parts below the water"
-// limitation). The ring's coverage is the alpha: the water shows its own per-pixel sky (sun
-// glints shaped by the waves) where the ring is not. Boats, sails and marks are drawn over it.
+// the image and the sky (with the sun) is reflected instead of the table (000's "parts below
+// the water" limitation), blended over the image's edge. Boats, sails and marks are drawn
+// over it.
 //
 // Appended to effects_common.wgsl and reflection.wgsl (ring_hit); binds only the effects'
 // uniform and camera image (group 2 without the reflection texture it draws into).
+
+// The sun's disc and glow widened as by a slope variance this large: the disc (about 1.4° at
+// the smoothstep's edge) then spans a few texels of a quarter-resolution texture instead of
+// flickering between them as the camera moves.
+const TEXEL_ROUGHNESS: f32 = 2e-4;
 
 @vertex
 fn vs_main(@builtin(vertex_index) i: u32) -> ScreenOut {
@@ -29,5 +34,5 @@ fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
     let ring = ring_hit(eye + r * s, r);
     let uv = camera_uv(ring.xyz);
     let w = select(0.0, edge_weight(uv.xy) * uv.z, ring.w > 0.0);
-    return vec4<f32>(sample_camera(uv.xy), w);
+    return vec4<f32>(mix(sky_colour_rough(r, TEXEL_ROUGHNESS), sample_camera(uv.xy), w), 1.0);
 }

@@ -12,6 +12,11 @@ struct VertexIn {
 
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {
+    return water_vertex(v);
+}
+
+// vs_main's work, for vertex shaders that add to it (entry points cannot be called).
+fn water_vertex(v: VertexIn) -> VertexOut {
     var out: VertexOut;
     out.clip = frame.view_proj * vec4<f32>(v.pos_rest_x.xyz, 1.0);
     out.rest = vec2<f32>(v.pos_rest_x.w, v.rest_z_wake.x);

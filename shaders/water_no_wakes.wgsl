@@ -12,6 +12,11 @@ struct VertexIn {
 
 @vertex
 fn vs_main(v: VertexIn) -> VertexOut {
+    return water_vertex(v);
+}
+
+// vs_main's work, for vertex shaders that add to it (entry points cannot be called).
+fn water_vertex(v: VertexIn) -> VertexOut {
     let pos = sea_displaced(v.rest, v.fade, v.level);
     var out: VertexOut;
     out.clip = frame.view_proj * vec4<f32>(pos, 1.0);

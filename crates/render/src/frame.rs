@@ -242,10 +242,16 @@ pub trait Pass {
     fn is_backdrop(&self) -> bool {
         false
     }
-    /// Command buffers `prepare` recorded for offscreen targets (a reflection texture, a
-    /// caustic map): the renderer submits them with the frame, in one submission.
-    fn take_offscreen(&mut self) -> Vec<wgpu::CommandBuffer> {
-        Vec::new()
+    /// Record this frame's offscreen work (a reflection texture, a caustic map: what
+    /// `prepare` found needed) into the frame's encoder, before any pass draws. `timestamps`,
+    /// where the renderer measures, go on the first and last of those render passes. Returns
+    /// whether anything was recorded (the timestamps were written).
+    fn record_offscreen(
+        &mut self,
+        _enc: &mut wgpu::CommandEncoder,
+        _timestamps: Option<OffscreenTimestamps<'_>>,
+    ) -> bool {
+        false
     }
     /// Record compute work that must run before the pass draws (e.g. displacing vertices);
     /// bind group 0 is already set. Timed with the pass. Most passes have none.
@@ -259,6 +265,55 @@ pub trait Pass {
     }
 }
 
+/// Where a pass's offscreen render passes write their GPU timestamps: `begin` at the start of
+/// the first, `end` at the end of the last (the same pass where there is one).
+#[derive(Clone, Copy)]
+pub struct OffscreenTimestamps<'a> {
+    pub queries: &'a wgpu::QuerySet,
+    pub begin: u32,
+    pub end: u32,
+}
+
+impl<'a> OffscreenTimestamps<'a> {
+    /// The query set and the begin and end slots of pass `index` of `count` offscreen
+    /// passes, where it writes any.
+    fn slots(
+        t: Option<Self>,
+        index: usize,
+        count: usize,
+    ) -> Option<(Self, Option<u32>, Option<u32>)> {
+        let t = t?;
+        let (first, last) = (index == 0, index + 1 == count);
+        (first || last).then_some((t, first.then_some(t.begin), last.then_some(t.end)))
+    }
+
+    /// The timestamp writes of offscreen pass `index` of `count`, a render pass.
+    pub fn render(
+        t: Option<Self>,
+        index: usize,
+        count: usize,
+    ) -> Option<wgpu::RenderPassTimestampWrites<'a>> {
+        Self::slots(t, index, count).map(|(t, begin, end)| wgpu::RenderPassTimestampWrites {
+            query_set: t.queries,
+            beginning_of_pass_write_index: begin,
+            end_of_pass_write_index: end,
+        })
+    }
+
+    /// The timestamp writes of offscreen pass `index` of `count`, a compute pass.
+    pub fn compute(
+        t: Option<Self>,
+        index: usize,
+        count: usize,
+    ) -> Option<wgpu::ComputePassTimestampWrites<'a>> {
+        Self::slots(t, index, count).map(|(t, begin, end)| wgpu::ComputePassTimestampWrites {
+            query_set: t.queries,
+            beginning_of_pass_write_index: begin,
+            end_of_pass_write_index: end,
+        })
+    }
+}
+
 /// One pass's entry in the frame record.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PassRecord {
@@ -268,8 +323,12 @@ pub struct PassRecord {
     /// Why it ran, or why it was skipped.
     pub reason: String,
     pub triangles: u64,
-    /// GPU time from timestamp queries; absent where the adapter has none.
+    /// GPU time from timestamp queries (its compute stage and render pass); absent where the
+    /// adapter has none.
     pub gpu_ms: Option<f64>,
+    /// GPU time of its offscreen render passes (reflection texture, caustic map), where it
+    /// had any and the adapter measures.
+    pub offscreen_gpu_ms: Option<f64>,
 }
 
 /// One clip-map level's line in the frame record.
@@ -293,7 +352,7 @@ pub struct FrameReport {
     pub triangles: u64,
     /// "pipeline_statistics" where the adapter counts primitives, else "counted".
     pub triangles_source: String,
-    /// Sum of the passes' GPU times, where measured.
+    /// Sum of the passes' GPU times, offscreen work included, where measured.
     pub gpu_ms: Option<f64>,
     pub clipmap: ClipMapRecord,
     /// The wakes of this frame, where the renderer has a wake.
@@ -311,6 +370,7 @@ impl FrameReport {
             p.reason = crate::renderer::FRAME_REUSED.into();
             p.triangles = 0;
             p.gpu_ms = None;
+            p.offscreen_gpu_ms = None;
         }
         r.triangles = 0;
         r.gpu_ms = None;

@@ -58,11 +58,18 @@ struct Stats {
     capacity: u32,
 }
 
+/// Passes a frame can time.
+const TIMED_PASSES: u32 = 16;
+/// Timestamp slots of pass k: 4k.. begin and end of its render pass and its compute stage.
+/// The passes with offscreen work follow from OFFSCREEN_SLOTS, two each, in order: only
+/// written slots are resolved (a query never written has no defined value), and a resolve
+/// lands at a multiple of 256 bytes (wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT).
+const OFFSCREEN_SLOTS: u32 = 4 * TIMED_PASSES;
+
 struct Timer {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     read: wgpu::Buffer,
-    capacity: u32,
 }
 
 /// The plan's reason for every pass when the last frame is re-presented.
@@ -99,6 +106,8 @@ impl Upscale {
             crate::passes::BufferlessPipeline {
                 label: "upscale",
                 module: &module,
+                vertex: "vs_main",
+                fragment: "fs_main",
                 layouts: None,
                 format,
                 blend: None,
@@ -207,8 +216,9 @@ impl Renderer {
             .features
             .contains(wgpu::Features::TIMESTAMP_QUERY)
             .then(|| {
-                // Per pass: its compute stage's and its render pass's begin and end.
-                let capacity = 4 * 16;
+                // Per pass: begin and end of its render pass, its compute stage and its
+                // offscreen passes (OFFSCREEN_SLOTS).
+                let capacity = 6 * TIMED_PASSES;
                 let size = u64::from(capacity) * 8;
                 Timer {
                     queries: device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -228,7 +238,6 @@ impl Renderer {
                         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
                         mapped_at_creation: false,
                     }),
-                    capacity,
                 }
             });
         let stats = gpu
@@ -462,18 +471,35 @@ impl Renderer {
                 reason: decision.unwrap_or_else(|e| e),
                 triangles: 0,
                 gpu_ms: None,
+                offscreen_gpu_ms: None,
             });
         }
         let timer = self
             .timer
             .as_ref()
-            .filter(|t| self.options.measure_gpu_time && run.len() * 4 <= t.capacity as usize);
+            .filter(|_| self.options.measure_gpu_time && run.len() <= TIMED_PASSES as usize);
         // Pipeline statistics block on a read-back too: only when measuring.
         let stats = self
             .stats
             .as_ref()
             .filter(|s| self.options.measure_gpu_time && run.len() <= s.capacity as usize);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
+        // The passes' offscreen work first (reflection texture, caustic map), in the frame's
+        // encoder: one command buffer, one submission.
+        let slot = |k: usize, i: u32| 4 * k as u32 + i;
+        // For each pass that recorded offscreen work, its index among those.
+        let mut offscreen: Vec<Option<u32>> = Vec::with_capacity(run.len());
+        let mut timed_offscreen = 0;
+        for &i in &run {
+            let timestamps = timer.map(|t| crate::frame::OffscreenTimestamps {
+                queries: &t.queries,
+                begin: OFFSCREEN_SLOTS + 2 * timed_offscreen,
+                end: OFFSCREEN_SLOTS + 2 * timed_offscreen + 1,
+            });
+            let recorded = self.passes[i].record_offscreen(&mut enc, timestamps);
+            offscreen.push(recorded.then_some(timed_offscreen));
+            timed_offscreen += u32::from(recorded);
+        }
         if run.is_empty() {
             // Nothing is needed: still clear, so the frame shows no stale image.
             enc.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -497,8 +523,8 @@ impl Renderer {
                     label: Some(self.passes[i].name()),
                     timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
                         query_set: &t.queries,
-                        beginning_of_pass_write_index: Some(4 * k as u32 + 2),
-                        end_of_pass_write_index: Some(4 * k as u32 + 3),
+                        beginning_of_pass_write_index: Some(slot(k, 2)),
+                        end_of_pass_write_index: Some(slot(k, 3)),
                     }),
                 });
                 compute.set_bind_group(0, &self.bindings.group, &[]);
@@ -513,8 +539,8 @@ impl Renderer {
                 depth_stencil_attachment: Some(crate::gpu::depth_attachment(&depth, first)),
                 timestamp_writes: timer.map(|t| wgpu::RenderPassTimestampWrites {
                     query_set: &t.queries,
-                    beginning_of_pass_write_index: Some(4 * k as u32),
-                    end_of_pass_write_index: Some(4 * k as u32 + 1),
+                    beginning_of_pass_write_index: Some(slot(k, 0)),
+                    end_of_pass_write_index: Some(slot(k, 1)),
                 }),
                 occlusion_query_set: None,
                 multiview_mask: None,
@@ -540,15 +566,19 @@ impl Renderer {
         {
             let n = 4 * run.len() as u32;
             enc.resolve_query_set(&t.queries, 0..n, &t.resolve, 0);
-            enc.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, u64::from(n) * 8);
+            let m = 2 * timed_offscreen;
+            let at = u64::from(OFFSCREEN_SLOTS) * 8;
+            if m > 0 {
+                enc.resolve_query_set(
+                    &t.queries,
+                    OFFSCREEN_SLOTS..OFFSCREEN_SLOTS + m,
+                    &t.resolve,
+                    at,
+                );
+            }
+            enc.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, at + u64::from(m) * 8);
         }
-        // The passes' offscreen work first, then the frame: one submission.
-        let mut buffers: Vec<wgpu::CommandBuffer> = run
-            .iter()
-            .flat_map(|&i| self.passes[i].take_offscreen())
-            .collect();
-        buffers.push(enc.finish());
-        gpu.queue.submit(buffers);
+        gpu.queue.submit([enc.finish()]);
         if let Some(t) = timer
             && !run.is_empty()
         {
@@ -556,10 +586,15 @@ impl Renderer {
                 Ok(bytes) => {
                     let ticks: &[u64] = bytemuck::cast_slice(&bytes);
                     let period_ns = f64::from(gpu.queue.get_timestamp_period());
+                    let ms = |ticks: u64| ticks as f64 * period_ns * 1e-6;
                     for (k, &i) in run.iter().enumerate() {
-                        let q = &ticks[4 * k..4 * k + 4];
-                        let ticks = q[1].saturating_sub(q[0]) + q[3].saturating_sub(q[2]);
-                        records[i].gpu_ms = Some(ticks as f64 * period_ns * 1e-6);
+                        let q = &ticks[slot(k, 0) as usize..slot(k + 1, 0) as usize];
+                        let own = q[1].saturating_sub(q[0]) + q[3].saturating_sub(q[2]);
+                        records[i].gpu_ms = Some(ms(own));
+                        records[i].offscreen_gpu_ms = offscreen[k].map(|m| {
+                            let o = (OFFSCREEN_SLOTS + 2 * m) as usize;
+                            ms(ticks[o + 1].saturating_sub(ticks[o]))
+                        });
                     }
                 }
                 Err(e) => log::warn!("no GPU timings this frame: {e}"),
@@ -580,7 +615,11 @@ impl Renderer {
                 Err(e) => log::warn!("no pipeline statistics this frame: {e}"),
             }
         }
-        let gpu_ms = records.iter().filter_map(|r| r.gpu_ms).reduce(|a, b| a + b);
+        let gpu_ms = records
+            .iter()
+            .flat_map(|r| [r.gpu_ms, r.offscreen_gpu_ms])
+            .flatten()
+            .reduce(|a, b| a + b);
         FrameReport {
             t: scene.t,
             size,

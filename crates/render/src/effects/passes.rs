@@ -27,7 +27,7 @@ use super::caustics::CausticRegion;
 use super::flowmap::{DEFAULT_JUMP, flow_phases};
 use super::planner::{EffectDecision, EffectFrame, decide};
 use super::{Effect, EffectSet};
-use crate::frame::{FrameBindings, FrameContext, FrameUniform, Pass, Targets};
+use crate::frame::{FrameBindings, FrameContext, FrameUniform, OffscreenTimestamps, Pass, Targets};
 use crate::gpu::Gpu;
 use crate::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
 use crate::passes::boats::BoatsPass;
@@ -43,6 +43,7 @@ pub const CAUSTICS: &str = include_str!("../../../../shaders/caustics.wgsl");
 pub const FLOWMAP: &str = include_str!("../../../../shaders/flowmap.wgsl");
 pub const AR_WATER: &str = include_str!("../../../../shaders/ar_water.wgsl");
 pub const CAUSTIC_MAP: &str = include_str!("../../../../shaders/caustic_map.wgsl");
+pub const CAUSTIC_SCATTER: &str = include_str!("../../../../shaders/caustic_scatter.wgsl");
 pub const REFLECTION_ROOM: &str = include_str!("../../../../shaders/reflection_room.wgsl");
 
 /// How the effects are set up.
@@ -557,6 +558,7 @@ pub fn caustic_region(scene: &crate::Scene, size: [u32; 2], cfg: &ArConfig) -> C
 /// How an effect pipeline draws: a full-screen triangle (the background) or the water mesh.
 struct FxDraw<'a> {
     buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    vertex: &'a str,
     fragment: &'a str,
     depth_write: bool,
     depth_compare: wgpu::CompareFunction,
@@ -581,6 +583,7 @@ fn fx_pipeline(
         targets,
         crate::passes::Raster {
             buffers: draw.buffers,
+            vertex: draw.vertex,
             fragment: draw.fragment,
             depth_write: draw.depth_write,
             depth_compare: draw.depth_compare,
@@ -649,8 +652,8 @@ pub struct ArWaterPass {
     reflection_bindings: FrameBindings,
     /// The room and sky drawn first into the reflection texture (RGBA and YUV camera images).
     room_pipelines: [wgpu::RenderPipeline; 2],
-    /// This frame's reflection texture and caustic map, recorded, for the renderer to submit.
-    offscreen: Vec<wgpu::CommandBuffer>,
+    /// This frame's offscreen work, prepared, for the renderer to record before the frame.
+    offscreen: Offscreen,
     /// The caustic map's pass and its own frame bindings (this frame's waves).
     caustic_map: CausticMapPass,
     caustic_bindings: FrameBindings,
@@ -662,6 +665,25 @@ pub struct ArWaterPass {
     /// This frame's target size and the scissor rectangle of the play area in it.
     size: [u32; 2],
     scissor: Option<Scissor>,
+}
+
+/// The sky's colour at the horizon (`sky_colour_rough` in `shaders/common.wgsl`): the reflection
+/// texture's clear colour, shown where nothing is mirrored.
+const HORIZON_HAZE: wgpu::Color = wgpu::Color {
+    r: 0.62,
+    g: 0.74,
+    b: 0.86,
+    a: 1.0,
+};
+
+/// What a frame draws offscreen before the water samples it.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Offscreen {
+    /// The reflection texture: cleared, and `Some(true)` when the room, boats and marks are
+    /// drawn into it (the camera is above the water).
+    reflection: Option<bool>,
+    /// The area-ratio caustic map.
+    caustic_map: bool,
 }
 
 /// A scissor rectangle, pixels: x, y, width, height.
@@ -774,6 +796,7 @@ impl ArPipelines {
             &shader::module(&gpu.device, &label, &parts),
             FxDraw {
                 buffers: &[Some(buffer)],
+                vertex: "vs_ar",
                 fragment: "fs_ar",
                 depth_write: true,
                 depth_compare: wgpu::CompareFunction::Less,
@@ -850,12 +873,11 @@ impl ArWaterPass {
         WATER_EFFECTS.iter().map(|&e| decide(e, &f)).collect()
     }
 
-    /// Record the room, boats and marks as the water mirrors them into the reflection texture
-    /// (submitted with the frame): view ×
-    /// reflection matrix (000 eq. 1), near plane moved onto the water (000 eq. 2, wgpu depth).
-    /// The texture is cleared to transparent first, so where nothing is mirrored (or nothing
-    /// can be: camera at or below the water) the shader's sample of it changes nothing.
-    fn draw_reflection(&mut self, gpu: &Gpu, frame: &FrameContext) {
+    /// Upload what the reflection texture shows: the room, boats and marks as the water
+    /// mirrors them, seen through view × reflection matrix (000 eq. 1) with the near plane
+    /// moved onto the water (000 eq. 2, wgpu depth). Returns whether anything is mirrored
+    /// (not with the camera at or below the water).
+    fn prepare_reflection(&mut self, gpu: &Gpu, frame: &FrameContext) -> bool {
         let s = frame.scene;
         let cam = &s.camera;
         // The screen's view, roll included, so the texture lines up with the pixels.
@@ -878,41 +900,49 @@ impl ArWaterPass {
             self.reflection_boats.prepare(gpu, frame);
         }
         let mut shared = self.shared.borrow_mut();
-        let room = shared.room_group(&gpu.device);
-        let room_pipeline = &self.room_pipelines[usize::from(shared.camera_image.yuv)];
         let frac = shared.cfg.reflection_fraction;
         let size = frame
             .size
             .map(|v| ((f64::from(v) * frac).round() as u32).max(1));
+        // The targets first: new ones drop the room's group.
         shared.reflection_targets(&gpu.device, size);
-        let (colour, depth) = shared.reflection.as_ref().expect("made above");
+        shared.room_group(&gpu.device);
+        oblique.is_some()
+    }
+
+    /// Record the reflection texture as prepared: cleared to the horizon's haze (what shows
+    /// where nothing is mirrored); then, where `mirrored`, the room over the sky behind
+    /// everything, then boats, sails and marks.
+    fn record_reflection(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        mirrored: bool,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let shared = self.shared.borrow();
+        // prepare_reflection made both this frame.
+        let (Some((colour, depth)), Some(room)) = (&shared.reflection, &shared.room_group) else {
+            unreachable!("the reflection is recorded only after prepare_reflection");
+        };
         let (cv, dv) = (
             colour.create_view(&Default::default()),
             depth.create_view(&Default::default()),
         );
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("planar reflection"),
-                color_attachments: &[Some(crate::gpu::colour_attachment(
-                    &cv,
-                    Some(wgpu::Color::TRANSPARENT),
-                ))],
-                depth_stencil_attachment: Some(crate::gpu::depth_attachment(&dv, true)),
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            if oblique.is_some() {
-                pass.set_bind_group(0, &self.reflection_bindings.group, &[]);
-                // The room and the sky behind everything, then boats, sails and marks.
-                pass.set_pipeline(room_pipeline);
-                pass.set_bind_group(2, &room, &[]);
-                pass.draw(0..3, 0..1);
-                self.reflection_boats.draw(&mut pass);
-            }
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("planar reflection"),
+            color_attachments: &[Some(crate::gpu::colour_attachment(&cv, Some(HORIZON_HAZE)))],
+            depth_stencil_attachment: Some(crate::gpu::depth_attachment(&dv, true)),
+            timestamp_writes,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        if mirrored {
+            pass.set_bind_group(0, &self.reflection_bindings.group, &[]);
+            pass.set_pipeline(&self.room_pipelines[usize::from(shared.camera_image.yuv)]);
+            pass.set_bind_group(2, room, &[]);
+            pass.draw(0..3, 0..1);
+            self.reflection_boats.draw(&mut pass);
         }
-        self.offscreen.push(enc.finish());
     }
 }
 
@@ -953,8 +983,9 @@ impl Pass for ArWaterPass {
         let reuse = self.reuses(frame, mask);
         // The reflected room reads the uniform too.
         self.shared.borrow_mut().write_uniform(gpu, frame);
+        self.offscreen = Offscreen::default();
         if !reuse && runs(Effect::Reflection) {
-            self.draw_reflection(gpu, frame);
+            self.offscreen.reflection = Some(self.prepare_reflection(gpu, frame));
         }
         let mut shared = self.shared.borrow_mut();
         if !reuse && runs(Effect::Caustics) && !shared.cfg.cheap_caustics {
@@ -963,16 +994,10 @@ impl Pass for ArWaterPass {
                 .upload(&gpu.queue, &frame.uniform, &frame.waves);
             let region = shared.caustic_region(frame);
             let (depth, src) = (shared.cfg.table_depth, shared.cfg.caustic_resolution.0);
-            let map = self.caustic_map.draw(
-                gpu,
-                frame,
-                &self.caustic_bindings.group,
-                &region,
-                depth,
-                src,
-                &shared.caustic_tex,
-            );
-            self.offscreen.extend(map);
+            let side = shared.caustic_tex.width();
+            self.caustic_map
+                .prepare(gpu, frame, &region, depth, src, side);
+            self.offscreen.caustic_map = true;
         }
         self.last_offscreen = Some(OffscreenInputs::of(frame, mask));
         self.group = Some(shared.bind_group(&gpu.device));
@@ -985,8 +1010,42 @@ impl Pass for ArWaterPass {
         self.scissor = play_area_scissor(frame);
         self.last_decisions = ds;
     }
-    fn take_offscreen(&mut self) -> Vec<wgpu::CommandBuffer> {
-        std::mem::take(&mut self.offscreen)
+    fn record_offscreen(
+        &mut self,
+        enc: &mut wgpu::CommandEncoder,
+        timestamps: Option<OffscreenTimestamps<'_>>,
+    ) -> bool {
+        let Offscreen {
+            reflection,
+            caustic_map,
+        } = std::mem::take(&mut self.offscreen);
+        let first_map = usize::from(reflection.is_some());
+        let count = first_map
+            + if caustic_map {
+                self.caustic_map.passes()
+            } else {
+                0
+            };
+        if let Some(mirrored) = reflection {
+            let writes = OffscreenTimestamps::render(timestamps, 0, count);
+            self.record_reflection(enc, mirrored, writes);
+        }
+        if caustic_map {
+            let target = self
+                .shared
+                .borrow()
+                .caustic_tex
+                .create_view(&Default::default());
+            self.caustic_map.record(
+                enc,
+                &self.caustic_bindings.group,
+                &target,
+                timestamps,
+                first_map,
+                count,
+            );
+        }
+        count > 0
     }
     fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>) {
         self.water.dispatch(pass);
@@ -1075,6 +1134,7 @@ pub fn add_effect_passes(
             ),
             FxDraw {
                 buffers: &[],
+                vertex: "vs_main",
                 fragment: "fs_main",
                 depth_write: false,
                 depth_compare: wgpu::CompareFunction::LessEqual,
@@ -1114,6 +1174,7 @@ pub fn add_effect_passes(
             ),
             FxDraw {
                 buffers: &[],
+                vertex: "vs_main",
                 fragment: "fs_main",
                 depth_write: false,
                 depth_compare: wgpu::CompareFunction::Always,
@@ -1131,7 +1192,7 @@ pub fn add_effect_passes(
         reflection_bindings: FrameBindings::new(&gpu.device),
         caustic_map,
         room_pipelines,
-        offscreen: Vec::new(),
+        offscreen: Offscreen::default(),
         caustic_bindings: FrameBindings::new(&gpu.device),
         reflection_boats,
         last_decisions: Vec::new(),

@@ -89,12 +89,18 @@ fn rule(effect: Effect, f: &EffectFrame) -> (bool, &'static str) {
                 )
             } else if f.reflection_texture_px[0] == 0 || f.reflection_texture_px[1] == 0 {
                 (false, "reflection texture smaller than a pixel")
-            } else if f.reflectors_in_view == 0 {
-                // The camera image on the ring around the water is reflected analytically in
-                // the water shader; the pass only draws boats, sails and marks.
-                (false, "no boat, sail or mark reflected in view")
-            } else {
+            } else if f.reflectors_in_view > 0 {
                 (true, "boats, sails or marks reflected in visible water")
+            } else if f.camera_frame {
+                // The room (the camera image on the ring around the water) and the sky are
+                // drawn into the same texture: without it the water would mirror the sky
+                // alone, and the room would pop in with the first boat.
+                (true, "the room and the sky reflected in visible water")
+            } else {
+                (
+                    false,
+                    "nothing reflected in view: no boat, sail or mark, no camera image",
+                )
             }
         }
         Effect::Refraction => match f.water_over_table > 0.0 {
@@ -172,8 +178,18 @@ mod tests {
                 ..f
             },
             Effect::Reflection,
+            true,
+            "the room",
+        );
+        check(
+            &EffectFrame {
+                reflectors_in_view: 0,
+                camera_frame: false,
+                ..f
+            },
+            Effect::Reflection,
             false,
-            "no boat",
+            "nothing reflected",
         );
         check(
             &EffectFrame {

@@ -38,6 +38,7 @@ pub fn pipeline(
         targets,
         Raster {
             buffers: spec.buffers,
+            vertex: "vs_main",
             fragment: "fs_main",
             depth_write: spec.depth_write,
             depth_compare: if spec.depth_test {
@@ -50,9 +51,10 @@ pub fn pipeline(
     )
 }
 
-/// A pipeline's vertex input, fragment entry point and depth/cull state.
+/// A pipeline's vertex input, entry points and depth/cull state.
 pub(crate) struct Raster<'a> {
     pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub vertex: &'a str,
     pub fragment: &'a str,
     pub depth_write: bool,
     pub depth_compare: wgpu::CompareFunction,
@@ -60,7 +62,7 @@ pub(crate) struct Raster<'a> {
 }
 
 /// A render pipeline with bind groups `layouts` (a `None` is an unused slot) into the shared
-/// colour/depth `targets`, vertex entry point `vs_main`: the one place the descriptor is spelt.
+/// colour/depth `targets`: the one place the descriptor is spelt.
 pub(crate) fn render_pipeline(
     device: &wgpu::Device,
     label: &str,
@@ -79,7 +81,7 @@ pub(crate) fn render_pipeline(
         layout: Some(&layout),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(raster.vertex),
             compilation_options: Default::default(),
             buffers: raster.buffers,
         },
@@ -125,11 +127,14 @@ pub(crate) const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
 };
 
 /// A pipeline whose vertex shader makes its positions from the vertex index (no vertex
-/// buffers), `vs_main` and `fs_main` into one colour target: full-screen and grid passes (the
+/// buffers), into one colour target: full-screen and grid passes (the
 /// upscale, the caustic maps, the pool).
 pub(crate) struct BufferlessPipeline<'a> {
     pub label: &'a str,
     pub module: &'a wgpu::ShaderModule,
+    /// Entry points.
+    pub vertex: &'a str,
+    pub fragment: &'a str,
     /// Bind groups 0.. (a `None` is an unused slot); `None`: derived from the shader.
     pub layouts: Option<&'a [Option<&'a wgpu::BindGroupLayout>]>,
     pub format: wgpu::TextureFormat,
@@ -153,7 +158,7 @@ pub(crate) fn bufferless_pipeline(
         layout: layout.as_ref(),
         vertex: wgpu::VertexState {
             module: p.module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(p.vertex),
             compilation_options: Default::default(),
             buffers: &[],
         },
@@ -163,7 +168,7 @@ pub(crate) fn bufferless_pipeline(
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: p.module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(p.fragment),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: p.format,

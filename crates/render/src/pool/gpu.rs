@@ -307,6 +307,8 @@ fn build_pipeline(device: &wgpu::Device, p: PipelineParts) -> wgpu::RenderPipeli
         crate::passes::BufferlessPipeline {
             label: p.label,
             module: &module,
+            vertex: "vs_main",
+            fragment: "fs_main",
             layouts: Some(p.layouts),
             format: p.format,
             blend: p.blend,
@@ -517,6 +519,7 @@ impl PoolRenderer {
                 reason,
                 triangles,
                 gpu_ms: None,
+                offscreen_gpu_ms: None,
             };
         let passes = vec![
             record(
