@@ -175,7 +175,7 @@ fn pass_times(gpu: &render::Gpu, size: [u32; 2], frames: usize) -> CliResult<(Pa
         .enumerate()
         .filter(|(_, p)| p.ran)
         .map(|(i, p)| {
-            let ms: Vec<f64> = runs.iter().filter_map(|r| r[i].gpu_ms).collect();
+            let ms: Vec<f64> = runs.iter().filter_map(|r| r[i].total_gpu_ms()).collect();
             (p.name.clone(), median(ms))
         })
         .collect();

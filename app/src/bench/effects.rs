@@ -241,7 +241,85 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         }
         p.row(row);
     }
-    Ok(vec![t, p, caustic_resolution_table(ctx, size)])
+    let methods = caustic_method_table(ctx, &gpu, size, frames);
+    Ok(vec![t, p, methods, caustic_resolution_table(ctx, size)])
+}
+
+/// The caustic map drawn both ways (compute scatter, and the rasterised triangles kept for
+/// adapters without compute shaders), interleaved frame by frame in one run: each map's
+/// median time from submission to completion, race time moving 1/30 s per frame.
+fn caustic_method_table(
+    ctx: &BenchContext,
+    gpu: &render::Gpu,
+    size: [u32; 2],
+    frames: usize,
+) -> Table {
+    use render::effects::caustic_map::{CAUSTIC_MAP_FORMAT, CausticMapPass, CausticMethod};
+    use render::effects::passes::caustic_region;
+    use render::frame::{FrameBindings, FrameContext};
+    ctx.progress("effects: caustic map methods");
+    let cfg = ArConfig::default();
+    let (src, out) = cfg.caustic_resolution;
+    let bindings = FrameBindings::new(&gpu.device);
+    let target = render::gpu::texture_2d(
+        &gpu.device,
+        "caustic map",
+        [out as u32; 2],
+        CAUSTIC_MAP_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+    );
+    let view = target.create_view(&Default::default());
+    let methods = [CausticMethod::Scatter, CausticMethod::Raster];
+    let mut passes: Vec<CausticMapPass> = methods
+        .iter()
+        .map(|&m| CausticMapPass::with_method(gpu, &bindings.layout, m))
+        .collect();
+    let mut times: Vec<Vec<f64>> = vec![Vec::new(); methods.len()];
+    for i in 0..frames + 2 {
+        let scene = demo_table_scene(40.0 + i as f64 / 30.0);
+        let frame = FrameContext::new(&scene, size, 1.0);
+        let region = caustic_region(&scene, size, &cfg);
+        bindings.upload(&gpu.queue, &frame.uniform, &frame.waves);
+        gpu.wait();
+        for (pass, t) in passes.iter_mut().zip(&mut times) {
+            pass.prepare(gpu, &frame, &region, cfg.table_depth, src, out as u32);
+            let mut enc = gpu.device.create_command_encoder(&Default::default());
+            pass.record(&mut enc, &bindings.group, &view, None, 0, pass.passes());
+            let t0 = Instant::now();
+            gpu.queue.submit([enc.finish()]);
+            gpu.wait();
+            if i >= 2 {
+                t.push(t0.elapsed().as_secs_f64() * 1e3);
+            }
+        }
+    }
+    let mut table = Table::new(
+        "caustic_methods",
+        "Area-ratio caustic map on the GPU: compute scatter against rasterised triangles",
+        &["method", "median ms per map", "ratio to scatter"],
+    );
+    let medians: Vec<f64> = times
+        .iter_mut()
+        .map(|v| {
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        })
+        .collect();
+    for (m, ms) in methods.iter().zip(&medians) {
+        table.row(vec![
+            json!(format!("{m:?}")),
+            json!(ms),
+            json!(ms / medians[0]),
+        ]);
+    }
+    table.note(format!(
+        "{frames} maps each of the demo scene ({src}² surface cells, {out}² texels) on {}, \
+         interleaved in one run; submission to completion, wall clock. The renderer uses the \
+         scatter wherever the adapter runs compute shaders (CausticMethod::for_adapter). Both \
+         match the f64 reference (test gpu_caustic_map_matches_the_f64_area_ratio).",
+        gpu.describe()
+    ));
+    table
 }
 
 /// The area-ratio caustic map's cost on the CPU against its error, per resolution (surface

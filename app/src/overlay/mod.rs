@@ -35,7 +35,7 @@ pub fn perf_stats(report: &FrameReport, fps: &FpsMeter) -> PerfStats {
                 ran: p.ran,
                 reason: p.reason.clone(),
                 triangles: p.triangles,
-                gpu_ms: p.gpu_ms,
+                gpu_ms: p.total_gpu_ms(),
             })
             .collect(),
     }

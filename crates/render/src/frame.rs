@@ -331,6 +331,14 @@ pub struct PassRecord {
     pub offscreen_gpu_ms: Option<f64>,
 }
 
+impl PassRecord {
+    /// The pass's whole GPU time: its own and its offscreen work's, where measured.
+    pub fn total_gpu_ms(&self) -> Option<f64> {
+        self.gpu_ms
+            .map(|ms| ms + self.offscreen_gpu_ms.unwrap_or(0.0))
+    }
+}
+
 /// One clip-map level's line in the frame record.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LevelRecord {

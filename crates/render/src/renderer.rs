@@ -617,8 +617,7 @@ impl Renderer {
         }
         let gpu_ms = records
             .iter()
-            .flat_map(|r| [r.gpu_ms, r.offscreen_gpu_ms])
-            .flatten()
+            .filter_map(PassRecord::total_gpu_ms)
             .reduce(|a, b| a + b);
         FrameReport {
             t: scene.t,
