@@ -43,9 +43,12 @@ fn splat(ia: u32, ib: u32, ic: u32, value: u32) {
     let c = points[ic].zw;
     let lo = min(min(a, b), c);
     let hi = max(max(a, b), c);
-    // Texel centres i + 0.5 inside the bounding box, cut to the map.
-    let first = vec2<i32>(max(ceil(lo - 0.5), vec2<f32>(0.0)));
-    let last = vec2<i32>(min(floor(hi - 0.5), vec2<f32>(f32(n) - 1.0)));
+    // Texel centres i + 0.5 inside the bounding box, cut to the map before the conversion to
+    // integers, so no point far off (or not finite: it fails the test) can make a long loop.
+    let finite = all(abs(lo) < vec2<f32>(1e6)) && all(abs(hi) < vec2<f32>(1e6));
+    let size = f32(select(0u, n, finite));
+    let first = vec2<i32>(clamp(ceil(lo - 0.5), vec2<f32>(0.0), vec2<f32>(size)));
+    let last = vec2<i32>(clamp(floor(hi - 0.5), vec2<f32>(-1.0), vec2<f32>(size - 1.0)));
     for (var j = first.y; j <= last.y; j = j + 1) {
         for (var i = first.x; i <= last.x; i = i + 1) {
             let p = vec2<f32>(f32(i) + 0.5, f32(j) + 0.5);
@@ -106,10 +109,8 @@ struct ResolveOut {
 
 @vertex
 fn vs_resolve(@builtin(vertex_index) i: u32) -> ResolveOut {
-    // A triangle covering the map.
-    let xy = vec2<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, f32(i & 2u) * 2.0 - 1.0);
     var out: ResolveOut;
-    out.clip = vec4<f32>(xy, 0.5, 1.0);
+    out.clip = vec4<f32>(full_screen_xy(i), 0.5, 1.0);
     return out;
 }
 

@@ -141,6 +141,12 @@ fn sky_colour_rough(dir: vec3<f32>, variance: f32) -> vec3<f32> {
     return c + vec3<f32>(1.0, 0.92, 0.78) * (glow + disc) * frame.sun.w;
 }
 
+// NDC corner i (0, 1, 2) of a triangle that covers the screen: (-1,-1), (3,-1), (-1,3).
+// (upscale.wgsl, which has no shared files, spells it out.)
+fn full_screen_xy(i: u32) -> vec2<f32> {
+    return vec2<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, f32(i & 2u) * 2.0 - 1.0);
+}
+
 // World direction of the ray through a pixel (NDC xy), from the inverse view-projection.
 fn ray_dir(ndc: vec2<f32>) -> vec3<f32> {
     let far = frame.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0);

@@ -54,7 +54,7 @@ struct ScreenOut {
 
 // A triangle that covers the screen at depth z.
 fn full_screen(i: u32, z: f32) -> ScreenOut {
-    let xy = vec2<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, f32(i & 2u) * 2.0 - 1.0);
+    let xy = full_screen_xy(i);
     var out: ScreenOut;
     out.clip = vec4<f32>(xy, z, 1.0);
     out.ndc = xy;

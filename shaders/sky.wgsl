@@ -8,8 +8,7 @@ struct SkyOut {
 
 @vertex
 fn vs_main(@builtin(vertex_index) i: u32) -> SkyOut {
-    // A triangle that covers the screen: (-1,-1), (3,-1), (-1,3).
-    let xy = vec2<f32>(f32((i << 1u) & 2u) * 2.0 - 1.0, f32(i & 2u) * 2.0 - 1.0);
+    let xy = full_screen_xy(i);
     var out: SkyOut;
     out.clip = vec4<f32>(xy, 0.0, 1.0);
     out.ndc = xy;

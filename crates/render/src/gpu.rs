@@ -380,6 +380,25 @@ pub fn colour_attachment(
     }
 }
 
+/// A render pass into one colour target and no depth, cleared to `clear` first (the
+/// full-screen and map passes: upscale, caustic maps, the frame's clear).
+pub fn colour_pass<'e>(
+    enc: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    clear: wgpu::Color,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) -> wgpu::RenderPass<'e> {
+    enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(colour_attachment(target, Some(clear)))],
+        depth_stencil_attachment: None,
+        timestamp_writes,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
 /// A depth attachment without stencil that is stored: cleared to the far plane (1.0) first when
 /// `clear`, else tested against what earlier passes wrote.
 pub fn depth_attachment(

@@ -394,17 +394,8 @@ impl Renderer {
         let report = self.draw(gpu, &view, inner, scene);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("upscale"),
-                color_attachments: &[Some(crate::gpu::colour_attachment(
-                    target,
-                    Some(wgpu::Color::BLACK),
-                ))],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass =
+                crate::gpu::colour_pass(&mut enc, "upscale", target, wgpu::Color::BLACK, None);
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(0, &group, &[]);
             pass.draw(0..3, 0..1);
@@ -502,17 +493,7 @@ impl Renderer {
         }
         if run.is_empty() {
             // Nothing is needed: still clear, so the frame shows no stale image.
-            enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("clear"),
-                color_attachments: &[Some(crate::gpu::colour_attachment(
-                    target,
-                    Some(wgpu::Color::BLACK),
-                ))],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            crate::gpu::colour_pass(&mut enc, "clear", target, wgpu::Color::BLACK, None);
         }
         for (k, &i) in run.iter().enumerate() {
             let first = k == 0;

@@ -236,7 +236,13 @@ impl CausticMapPass {
         let writes = |index| OffscreenTimestamps::render(timestamps, index, count);
         match &self.method {
             Method::Raster { pipeline, indices } => {
-                let mut pass = map_pass(enc, target, writes(first));
+                let mut pass = crate::gpu::colour_pass(
+                    enc,
+                    "caustic map",
+                    target,
+                    wgpu::Color::TRANSPARENT,
+                    writes(first),
+                );
                 if let Some((_, indices, n)) = indices {
                     pass.set_pipeline(pipeline);
                     pass.set_bind_group(0, frame_group, &[]);
@@ -247,7 +253,13 @@ impl CausticMapPass {
             }
             Method::Scatter(scatter) => {
                 let Some(b) = &scatter.buffers else {
-                    map_pass(enc, target, writes(first));
+                    crate::gpu::colour_pass(
+                        enc,
+                        "caustic map",
+                        target,
+                        wgpu::Color::TRANSPARENT,
+                        writes(first),
+                    );
                     return;
                 };
                 enc.clear_buffer(&b.light, 0, None);
@@ -264,7 +276,13 @@ impl CausticMapPass {
                     pass.set_pipeline(&scatter.triangles);
                     pass.dispatch_workgroups((cells * cells).div_ceil(64), 1, 1);
                 }
-                let mut pass = map_pass(enc, target, writes(first + 1));
+                let mut pass = crate::gpu::colour_pass(
+                    enc,
+                    "caustic map",
+                    target,
+                    wgpu::Color::TRANSPARENT,
+                    writes(first + 1),
+                );
                 pass.set_pipeline(&scatter.resolve);
                 pass.set_bind_group(2, &b.resolve_group, &[]);
                 pass.draw(0..3, 0..1);
@@ -276,25 +294,6 @@ impl CausticMapPass {
     pub fn passes(&self) -> usize {
         self.method().passes()
     }
-}
-
-/// A render pass into the map, cleared first.
-fn map_pass<'e>(
-    enc: &'e mut wgpu::CommandEncoder,
-    target: &wgpu::TextureView,
-    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
-) -> wgpu::RenderPass<'e> {
-    enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("caustic map"),
-        color_attachments: &[Some(crate::gpu::colour_attachment(
-            target,
-            Some(wgpu::Color::TRANSPARENT),
-        ))],
-        depth_stencil_attachment: None,
-        timestamp_writes,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    })
 }
 
 /// The grid's index buffer for `side` points per side: each cell as area_ratio splits it,

@@ -468,17 +468,13 @@ impl PoolRenderer {
         let water_cells = u64::from(self.settings.water_grid).pow(2);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("pool caustics"),
-                color_attachments: &[Some(crate::gpu::colour_attachment(
-                    &self.caustic_view,
-                    Some(wgpu::Color::TRANSPARENT),
-                ))],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = crate::gpu::colour_pass(
+                &mut enc,
+                "pool caustics",
+                &self.caustic_view,
+                wgpu::Color::TRANSPARENT,
+                None,
+            );
             if sun_up {
                 pass.set_pipeline(&self.caustics);
                 pass.set_bind_group(0, &self.bindings.group, &[]);
