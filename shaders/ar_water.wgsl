@@ -33,15 +33,18 @@ fn fx_on(bit: u32) -> bool {
     return (FX_MASK & bit) != 0u;
 }
 
-// The water pass's vertex output and what the effects need of each vertex.
+// The water pass's vertex output and what the effects need of each vertex, in as many
+// varyings as the water's own: with a fifth, in about a third of the bench's runs on lavapipe
+// one case's pass ran up to 1.5× slower for the whole run (a per-process effect whose cause
+// was not found; none in 18 runs with four).
 struct ArVertexOut {
     @builtin(position) clip: vec4<f32>,
-    @location(0) rest: vec2<f32>,
+    // xy: the rest point (local m); zw: the current around the marks (m/s, flow map), a
+    // smooth field evaluated per vertex and interpolated (error bound:
+    // effects::flowmap::current_interpolation_error).
+    @location(0) rest_current: vec4<f32>,
     @location(1) world: vec3<f32>,
     @location(2) wake: vec3<f32>,
-    // The current around the marks (m/s, flow map): a smooth field, so evaluated per vertex
-    // and interpolated (error bound: effects::flowmap::current_interpolation_error).
-    @location(3) current: vec2<f32>,
 }
 
 @vertex
@@ -49,31 +52,32 @@ fn vs_ar(v: VertexIn) -> ArVertexOut {
     let w = water_vertex(v);
     var out: ArVertexOut;
     out.clip = w.clip;
-    out.rest = w.rest;
     out.world = w.world;
     out.wake = w.wake;
-    out.current = vec2<f32>(0.0);
+    var current = vec2<f32>(0.0);
     if fx_on(FX_FLOWMAP) {
-        out.current = current_at(w.world.xz);
+        current = current_at(w.world.xz);
     }
+    out.rest_current = vec4<f32>(w.rest, current);
     return out;
 }
 
 @fragment
 fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
+    let rest = in.rest_current.xy;
     let pa = frame.play_area;
-    if in.rest.x < pa.x || in.rest.y < pa.y || in.rest.x > pa.z || in.rest.y > pa.w {
+    if rest.x < pa.x || rest.y < pa.y || rest.x > pa.z || rest.y > pa.w {
         discard;
     }
     let p = in.world;
     let view = normalize(p - frame.eye.xyz);
     let screen_uv = in.clip.xy * frame.viewport.zw;
-    let footprint = max(length(dpdx(in.rest)), length(dpdy(in.rest)));
-    let sf = surface_frame(in.rest, frame.counts.x, footprint);
+    let footprint = max(length(dpdx(rest)), length(dpdy(rest)));
+    let sf = surface_frame(rest, frame.counts.x, footprint);
     // Sea and wake slopes add, as in water.wgsl: the wake's (∂w/∂x, ∂w/∂z) is in.wake.xy.
     var n = normalize(vec3<f32>(sf.normal.x / sf.normal.y - in.wake.x, 1.0, sf.normal.z / sf.normal.y - in.wake.y));
     if fx_on(FX_FLOWMAP) {
-        n = flow_normal(p.xz, in.current, n);
+        n = flow_normal(p.xz, in.rest_current.zw, n);
     }
     let cos_i = max(dot(n, -view), 0.0);
     let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);
