@@ -84,9 +84,14 @@ fn edge_weight(uv: vec2<f32>) -> f32 {
     return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);
 }
 
-// The sRGB transfer function's inverse (IEC 61966-2-1), as the Rgba8UnormSrgb sampler applies it.
+// The sRGB transfer function's inverse (IEC 61966-2-1), as the Rgba8UnormSrgb sampler applies
+// it: the linear toe, and above it the quartic of render::effects::passes::srgb_decode in place
+// of the power (SRGB_DECODE_0 and SRGB_DECODE: constants each pipeline appends; within 0.065
+// of an 8-bit code).
 fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
-    return select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
+    let k = SRGB_DECODE;
+    let curve = (((k.w * c + k.z) * c + k.y) * c + k.x) * c + SRGB_DECODE_0;
+    return select(curve, c / 12.92, c <= vec3<f32>(0.04045));
 }
 
 // Linear RGB of the camera image at uv (clamped to the image). RGBA: filtered by the sampler.

@@ -12,8 +12,9 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::Instant;
 
+use render::effects::camera_frame::{CameraFrame, CameraImage, Yuv420, YuvRange};
 use render::effects::passes::{ArConfig, add_effect_passes};
-use render::effects::{Effect, EffectSet, camera_frame::CameraFrame, demo_table_scene};
+use render::effects::{Effect, EffectSet, demo_table_scene};
 use render::optics::{N_AIR, N_WATER, brewster_angle, critical_angle, fresnel, schlick};
 use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
@@ -31,8 +32,16 @@ struct Case {
     view: wgpu::TextureView,
 }
 
+/// The camera image a case draws over.
+#[derive(Clone, Copy, PartialEq)]
+enum Camera {
+    Rgba,
+    /// YUV 4:2:0 planes, as ARCore hands them over (converted in the shader).
+    Yuv,
+}
+
 impl Case {
-    fn new(gpu: &render::Gpu, size: [u32; 2], effects: Option<EffectSet>) -> Case {
+    fn new(gpu: &render::Gpu, size: [u32; 2], effects: Option<EffectSet>, camera: Camera) -> Case {
         let mut renderer = Renderer::new(
             gpu,
             OFFSCREEN_FORMAT,
@@ -56,6 +65,14 @@ impl Case {
                 cfg.ring_radius_for(scene.play_area),
                 4.0,
             );
+            let frame = match (camera, &frame.image) {
+                (Camera::Yuv, CameraImage::Rgba(rgba)) => {
+                    let yuv = Yuv420::from_rgba(rgba, YuvRange::Full)
+                        .expect("a synthetic frame has a size");
+                    frame.with_image(CameraImage::Yuv420(yuv))
+                }
+                _ => frame,
+            };
             add_effect_passes(&mut renderer, gpu, cfg, frame);
         }
         let view = crate::bench::offscreen(gpu, size);
@@ -107,11 +124,18 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         ([640, 480], 30)
     };
     let base = EffectSet::NONE;
-    let mut cases: Vec<(String, Option<EffectSet>)> = vec![("water only".into(), None)];
+    let mut cases: Vec<(String, Option<EffectSet>, Camera)> =
+        vec![("water only".into(), None, Camera::Rgba)];
     for e in Effect::ALL {
-        cases.push((format!("{e} alone"), Some(base.with(e))));
+        cases.push((format!("{e} alone"), Some(base.with(e)), Camera::Rgba));
     }
-    cases.push(("all effects".into(), Some(EffectSet::ALL)));
+    cases.push(("all effects".into(), Some(EffectSet::ALL), Camera::Rgba));
+    // The phone's case: the camera image as YUV planes (the bench's others are RGBA).
+    cases.push((
+        "all effects, YUV camera".into(),
+        Some(EffectSet::ALL),
+        Camera::Yuv,
+    ));
     let mut t = Table::new(
         "effects_cost",
         "AR effects: frame cost of each effect against water only (after source 000, Table 1)",
@@ -133,7 +157,7 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     // frame as in a playing race. Two warm-up frames are dropped.
     let mut runs: Vec<Case> = cases
         .iter()
-        .map(|(_, fx)| Case::new(&gpu, size, *fx))
+        .map(|(_, fx, camera)| Case::new(&gpu, size, *fx, *camera))
         .collect();
     let mut pooled: Vec<Vec<f64>> = vec![Vec::new(); cases.len()];
     let mut gpu_ms: Vec<Vec<f64>> = vec![Vec::new(); cases.len()];
@@ -159,7 +183,7 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     };
     let mut water_gpu = None;
     let mut worst_gpu = 0.0f64;
-    for (((name, _), times), g) in cases.iter().zip(&mut pooled).zip(&mut gpu_ms) {
+    for (((name, _, _), times), g) in cases.iter().zip(&mut pooled).zip(&mut gpu_ms) {
         let g = median(g);
         if water_gpu.is_none() {
             water_gpu = g;
@@ -234,7 +258,7 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
          offscreen draws the reflection texture and the caustic map before the frame",
         &cols,
     );
-    for ((name, _), m) in cases.iter().zip(&mut pass_ms) {
+    for ((name, _, _), m) in cases.iter().zip(&mut pass_ms) {
         let mut row = vec![json!(name)];
         for n in &names {
             row.push(json!(m.get_mut(n).and_then(&median)));

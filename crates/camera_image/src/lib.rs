@@ -227,6 +227,37 @@ impl Yuv420 {
         out
     }
 
+    /// Encode sRGB RGBA pixels as YUV 4:2:0 samples of `range`: each pixel through the inverse
+    /// of [`YuvToRgb::bt601`], the chroma averaged over its 2×2 block (synthetic feeds and
+    /// benches: what a camera that delivers YUV would hand over). Alpha is dropped.
+    pub fn from_rgba(img: &image::RgbaImage, range: YuvRange) -> Result<Yuv420, LayoutError> {
+        let (w, h) = (img.width(), img.height());
+        let to_rgb = YuvToRgb::bt601(range);
+        let inverse = invert3(to_rgb.matrix);
+        let yuv_of = |p: &image::Rgba<u8>| -> [f64; 3] {
+            let d: [f64; 3] = std::array::from_fn(|k| f64::from(p[k]) / 255.0 - to_rgb.offset[k]);
+            std::array::from_fn(|r| (0..3).map(|c| inverse[r][c] * d[c]).sum())
+        };
+        let byte = |s: f64| (s * 255.0).round().clamp(0.0, 255.0) as u8;
+        let y = img.pixels().map(|p| byte(yuv_of(p)[0])).collect();
+        let [cw, ch] = Self::chroma_size(w, h);
+        let mut uv = Vec::with_capacity(2 * (cw * ch) as usize);
+        for j in 0..ch {
+            for i in 0..cw {
+                let block: Vec<[f64; 3]> = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                    .iter()
+                    .map(|&(di, dj)| (2 * i + di, 2 * j + dj))
+                    .filter(|&(x, y)| x < w && y < h)
+                    .map(|(x, y)| yuv_of(img.get_pixel(x, y)))
+                    .collect();
+                let n = block.len() as f64;
+                uv.push(byte(block.iter().map(|s| s[1]).sum::<f64>() / n));
+                uv.push(byte(block.iter().map(|s| s[2]).sum::<f64>() / n));
+            }
+        }
+        Yuv420::new(w, h, y, uv, range)
+    }
+
     /// [`Yuv420::to_rgba8`] as an image.
     pub fn to_rgba_image(&self) -> image::RgbaImage {
         image::RgbaImage::from_raw(self.width, self.height, self.to_rgba8())
@@ -234,9 +265,57 @@ impl Yuv420 {
     }
 }
 
+/// The inverse of a 3×3 matrix (rows), by cofactors; the BT.601 matrices are well conditioned.
+fn invert3(m: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let c = |r: usize, k: usize| {
+        let (r0, r1) = ((r + 1) % 3, (r + 2) % 3);
+        let (k0, k1) = ((k + 1) % 3, (k + 2) % 3);
+        m[r0][k0] * m[r1][k1] - m[r0][k1] * m[r1][k0]
+    };
+    let det: f64 = (0..3).map(|k| m[0][k] * c(0, k)).sum();
+    std::array::from_fn(|r| std::array::from_fn(|k| c(k, r) / det))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rgba_encoded_as_yuv_decodes_back() {
+        // Flat colours come back within one code (the 8-bit rounding of the samples), in both
+        // ranges; a gentle gradient (2–3 codes per pixel) within four (its chroma shared by
+        // each 2×2 block, half a pixel off, times the chroma's gain into R'G'B' of up to 1.8).
+        for range in [YuvRange::Full, YuvRange::Limited] {
+            for rgb in [[0u8, 0, 0], [255, 255, 255], [200, 40, 90], [12, 180, 250]] {
+                let img =
+                    image::RgbaImage::from_pixel(6, 5, image::Rgba([rgb[0], rgb[1], rgb[2], 255]));
+                let back = Yuv420::from_rgba(&img, range)
+                    .expect("sizes fit")
+                    .to_rgba_image();
+                for p in back.pixels() {
+                    for k in 0..3 {
+                        assert!(p[k].abs_diff(rgb[k]) <= 1, "{range:?} {rgb:?}: {p:?}");
+                    }
+                }
+            }
+            let img = image::RgbaImage::from_fn(33, 17, |x, y| {
+                image::Rgba([
+                    (x * 3) as u8,
+                    (y * 2 + 40) as u8,
+                    (x * 2 + y * 3) as u8,
+                    255,
+                ])
+            });
+            let back = Yuv420::from_rgba(&img, range)
+                .expect("sizes fit")
+                .to_rgba_image();
+            for (p, q) in img.pixels().zip(back.pixels()) {
+                for k in 0..3 {
+                    assert!(p[k].abs_diff(q[k]) <= 4, "{range:?}: {p:?} → {q:?}");
+                }
+            }
+        }
+    }
 
     /// A hand-made 3×3 NV21 frame (odd size: chroma 2×2) with padded rows: luma rows 5 bytes
     /// apart, chroma rows 6 bytes apart with V U pairs, the last rows cut short as AImage
