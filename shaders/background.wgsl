@@ -1,6 +1,6 @@
 // Camera background pass: the camera frame behind everything, through the display's UV
 // transform (screen uv -> camera-image uv, as ARCore's transformCoordinates2d gives it). The
-// image is RGBA or YUV 4:2:0 planes; sample_camera (effects_common.wgsl) converts YUV here.
+// image is RGBA, or YUV 4:2:0 planes converted to RGBA once per camera frame (camera_yuv.wgsl).
 // Drawn at the far plane with depth test LessEqual, so it fills exactly the pixels that no
 // water, boat or mark covered; it replaces the sky, which AR does not have.
 

@@ -32,20 +32,11 @@ struct Effects {
     marks: array<vec4<f32>, 8>,
 }
 
-// How the camera image is stored (render::effects::passes::CameraFormatUniform).
-struct CameraFormat {
-    // YUV -> gamma-encoded R'G'B': rgb = (to_rgb * vec4(y, u, v, 1)).rgb, the BT.601 matrix of
-    // camera_image::YuvToRgb::to_gpu_columns (offset in the last column).
-    to_rgb: mat4x4<f32>,
-}
-
 @group(2) @binding(0) var<uniform> fx: Effects;
 @group(2) @binding(1) var camera_image: texture_2d<f32>;
 @group(2) @binding(2) var reflection_image: texture_2d<f32>;
 @group(2) @binding(3) var caustic_map: texture_2d<f32>;
 @group(2) @binding(4) var linear_clamp: sampler;
-@group(2) @binding(5) var camera_chroma: texture_2d<f32>;
-@group(2) @binding(6) var<uniform> camera_format: CameraFormat;
 
 struct ScreenOut {
     @builtin(position) clip: vec4<f32>,
@@ -84,32 +75,10 @@ fn edge_weight(uv: vec2<f32>) -> f32 {
     return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);
 }
 
-// The sRGB transfer function's inverse (IEC 61966-2-1), as the Rgba8UnormSrgb sampler applies
-// it: the linear toe, and above it the quartic of render::effects::passes::srgb_decode in place
-// of the power (SRGB_DECODE_0 and SRGB_DECODE: constants each pipeline appends; within 0.065
-// of an 8-bit code).
-fn srgb_to_linear(c: vec3<f32>) -> vec3<f32> {
-    let k = SRGB_DECODE;
-    let curve = (((k.w * c + k.z) * c + k.y) * c + k.x) * c + SRGB_DECODE_0;
-    return select(curve, c / 12.92, c <= vec3<f32>(0.04045));
-}
-
-// Linear RGB of the camera image at uv (clamped to the image). RGBA: filtered by the sampler.
-// YUV 4:2:0: the luma filtered the same way, the chroma of the pixel's 2x2 block (replicated,
-// as the CPU reference camera_image::Yuv420::to_rgba8), converted with BT.601 to R'G'B' and
-// decoded to linear like the sRGB texture.
+// Linear RGB of the camera image at uv (clamped to the image), filtered by the sampler, which
+// decodes the sRGB texture: the RGBA image as it came, or the YUV planes converted once per
+// camera frame (camera_yuv.wgsl).
 fn sample_camera(uv: vec2<f32>) -> vec3<f32> {
     let c = clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0));
-    let s = textureSampleLevel(camera_image, linear_clamp, c, 0.0);
-    // CAMERA_YUV (a constant each pipeline appends): camera_image holds the luma and
-    // camera_chroma the (U, V) planes of YUV 4:2:0; else camera_image is sRGB RGBA, decoded to
-    // linear by the sampler. A constant, not a uniform: lavapipe runs both sides of a branch.
-    if !CAMERA_YUV {
-        return s.rgb;
-    }
-    let size = textureDimensions(camera_image);
-    let pixel = min(vec2<u32>(c * vec2<f32>(size)), size - 1u);
-    let chroma = textureLoad(camera_chroma, pixel / 2u, 0).rg;
-    let rgb = (camera_format.to_rgb * vec4<f32>(s.r, chroma, 1.0)).rgb;
-    return srgb_to_linear(clamp(rgb, vec3<f32>(0.0), vec3<f32>(1.0)));
+    return textureSampleLevel(camera_image, linear_clamp, c, 0.0).rgb;
 }

@@ -409,10 +409,8 @@ fn wgsl_current_matches_the_f64_potential_flow() {
     let points: Vec<[f32; 2]> = (0..41 * 41)
         .map(|k| [(k % 41) as f32 - 20.0, (k / 41) as f32 - 15.0 + 0.37])
         .collect();
-    let camera = super::passes::camera_constant(false);
     let src = crate::shader::source(&[
         super::passes::EFFECTS_COMMON,
-        &camera,
         super::passes::FLOWMAP,
         r#"
 @group(0) @binding(10) var<storage, read> points: array<vec2<f32>>;

@@ -14,6 +14,7 @@
 pub mod camera_frame;
 #[cfg(test)]
 mod camera_gpu_tests;
+pub mod camera_upload;
 pub mod caustic_map;
 pub mod caustics;
 pub mod flowmap;
