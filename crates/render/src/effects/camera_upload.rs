@@ -165,20 +165,14 @@ impl CameraTextures {
             ),
             Some(_) => (srgb, converted, &[]),
         };
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("camera image"),
-            size: wgpu::Extent3d {
-                width: size[0].max(1),
-                height: size[1].max(1),
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
+        let texture = crate::gpu::texture_2d_with_views(
+            device,
+            "camera image",
+            size,
             format,
             usage,
             view_formats,
-        });
+        );
         CameraTextures {
             size,
             texture,
