@@ -1,7 +1,7 @@
 // The YUV camera image converted to RGBA once per camera frame (BT.601; CPU reference:
 // camera_image::Yuv420::to_rgba8, each pixel with its 2×2 block's chroma). Drawn at the camera
-// image's size into an Rgba8UnormSrgb texture that the effect passes then sample like an RGBA
-// camera image, the sampler decoding sRGB: a camera frame is converted once, not once per
+// image's size into a texture that the effect passes then sample like an RGBA camera image,
+// through an sRGB view, the sampler decoding: a camera frame is converted once, not once per
 // screen pixel that samples it (the background, the water, the reflected room; on lavapipe
 // that per-sample conversion cost 0.75–1.2 ms of a 12 ms frame). Appended to common.wgsl
 // (full_screen_xy); its own bindings are group 1.

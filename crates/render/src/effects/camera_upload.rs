@@ -1,5 +1,5 @@
-//! The camera image on the GPU, as the effect passes sample it: one `Rgba8UnormSrgb` texture
-//! (the sampler decodes sRGB to linear). An RGBA image is written into it; YUV 4:2:0 planes
+//! The camera image on the GPU, as the effect passes sample it: one RGBA texture seen through
+//! an `Rgba8UnormSrgb` view (the sampler decodes sRGB to linear). An RGBA image is written into it; YUV 4:2:0 planes
 //! (ARCore's CPU image) go up as an `R8Unorm` luma and an `Rg8Unorm` (U, V) chroma texture at
 //! half resolution and are converted into it once per camera frame by a small pass
 //! (`shaders/camera_yuv.wgsl`, BT.601 as `camera_image::YuvToRgb`), so no screen pixel pays
