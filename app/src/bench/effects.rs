@@ -35,9 +35,9 @@ struct Case {
     new_frames: Option<(EffectsHandle, CameraFrame)>,
 }
 
-/// The camera image a case draws over.
+/// The kind of camera image a case draws over.
 #[derive(Clone, Copy, PartialEq)]
-enum Camera {
+enum CameraKind {
     Rgba,
     /// YUV 4:2:0 planes, as ARCore hands them over: a new camera frame every frame, uploaded
     /// and converted.
@@ -45,7 +45,12 @@ enum Camera {
 }
 
 impl Case {
-    fn new(gpu: &render::Gpu, size: [u32; 2], effects: Option<EffectSet>, camera: Camera) -> Case {
+    fn new(
+        gpu: &render::Gpu,
+        size: [u32; 2],
+        effects: Option<EffectSet>,
+        camera: CameraKind,
+    ) -> Case {
         let mut new_frames = None;
         let mut renderer = Renderer::new(
             gpu,
@@ -71,14 +76,14 @@ impl Case {
                 4.0,
             );
             let frame = match (camera, &frame.image) {
-                (Camera::Yuv, CameraImage::Rgba(rgba)) => {
+                (CameraKind::Yuv, CameraImage::Rgba(rgba)) => {
                     let yuv = Yuv420::from_rgba(rgba, YuvRange::Full)
                         .expect("a synthetic frame has a size");
                     frame.with_image(CameraImage::Yuv420(yuv))
                 }
                 _ => frame,
             };
-            let again = (camera == Camera::Yuv).then(|| frame.clone());
+            let again = (camera == CameraKind::Yuv).then(|| frame.clone());
             let handle = add_effect_passes(&mut renderer, gpu, cfg, frame);
             new_frames = again.map(|frame| (handle, frame));
         }
@@ -138,17 +143,17 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         ([640, 480], 30)
     };
     let base = EffectSet::NONE;
-    let mut cases: Vec<(String, Option<EffectSet>, Camera)> =
-        vec![("water only".into(), None, Camera::Rgba)];
+    let mut cases: Vec<(String, Option<EffectSet>, CameraKind)> =
+        vec![("water only".into(), None, CameraKind::Rgba)];
     for e in Effect::ALL {
-        cases.push((format!("{e} alone"), Some(base.with(e)), Camera::Rgba));
+        cases.push((format!("{e} alone"), Some(base.with(e)), CameraKind::Rgba));
     }
-    cases.push(("all effects".into(), Some(EffectSet::ALL), Camera::Rgba));
+    cases.push(("all effects".into(), Some(EffectSet::ALL), CameraKind::Rgba));
     // The phone's case: the camera image as YUV planes (the bench's others are RGBA).
     cases.push((
         "all effects, YUV camera, a new frame each frame".into(),
         Some(EffectSet::ALL),
-        Camera::Yuv,
+        CameraKind::Yuv,
     ));
     let mut t = Table::new(
         "effects_cost",

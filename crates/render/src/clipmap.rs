@@ -1168,35 +1168,29 @@ mod tests {
         // cover the area are all there (its area is drawn).
         for angle in [0.0, 0.7] {
             let c = ClipMapConfig { angle, ..config() };
-            let small = c.build(
-                DVec2::new(0.4, -0.3),
-                &Culling {
-                    frustum: None,
-                    play_area: Some([-3.0, -3.0, 3.0, 3.0]),
-                    max_displacement: 0.0,
-                },
-            );
+            let culling = Culling {
+                frustum: None,
+                play_area: Some([-3.0, -3.0, 3.0, 3.0]),
+                max_displacement: 0.0,
+            };
+            let small = c.build(DVec2::new(0.4, -0.3), &culling);
             assert_eq!(
-                c.triangles_drawn(
-                    DVec2::new(0.4, -0.3),
-                    &Culling {
-                        frustum: None,
-                        play_area: Some([-3.0, -3.0, 3.0, 3.0]),
-                        max_displacement: 0.0,
-                    }
-                ),
+                c.triangles_drawn(DVec2::new(0.4, -0.3), &culling),
                 small.triangles()
             );
-            let mut area = 0.0;
-            for t in small.indices.chunks(3) {
-                let level = small.vertices[t[0] as usize].level;
-                let p: Vec<DVec2> = t
-                    .iter()
+            // A triangle's corners, world metres.
+            let corners = |t: &[u32]| -> Vec<DVec2> {
+                t.iter()
                     .map(|&k| {
                         let r = small.vertices[k as usize].rest;
                         small.origin + DVec2::new(f64::from(r[0]), f64::from(r[1]))
                     })
-                    .collect();
+                    .collect()
+            };
+            let mut area = 0.0;
+            for t in small.indices.chunks(3) {
+                let level = small.vertices[t[0] as usize].level;
+                let p = corners(t);
                 let slack = 3.0 + c.cell(level) * 2f64.sqrt() + 1e-4;
                 assert!(
                     p.iter().any(|q| q.x.abs() <= slack && q.y.abs() <= slack),
@@ -1215,13 +1209,7 @@ mod tests {
                     2.99 - 0.0149 * f64::from((k * 7) % 400),
                 );
                 let hit = small.indices.chunks(3).any(|t| {
-                    let p: Vec<DVec2> = t
-                        .iter()
-                        .map(|&k| {
-                            let r = small.vertices[k as usize].rest;
-                            small.origin + DVec2::new(f64::from(r[0]), f64::from(r[1]))
-                        })
-                        .collect();
+                    let p = corners(t);
                     let d = (p[1] - p[0]).perp_dot(p[2] - p[0]);
                     let u = (q - p[0]).perp_dot(p[2] - p[0]) / d;
                     let v = (p[1] - p[0]).perp_dot(q - p[0]) / d;

@@ -295,8 +295,9 @@ impl Shared {
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
         self.reflection = Some((colour, depth));
+        // The water's group binds the reflection texture; the room's does not (it draws
+        // into it), so only the first is made again.
         self.group = None;
-        self.room_group = None;
     }
 
     fn bind_group(&mut self, device: &wgpu::Device) -> wgpu::BindGroup {
@@ -735,12 +736,10 @@ fn result(d: EffectDecision) -> Result<String, String> {
 }
 
 impl ArWaterPass {
-    /// Are this frame's scene and effects (`mask`) the ones the offscreen textures were last
-    /// made from?
-    fn reuses(&self, frame: &FrameContext, mask: u32) -> bool {
-        self.last_offscreen
-            .as_ref()
-            .is_some_and(|l| *l == OffscreenInputs::of(frame, mask))
+    /// Are `inputs` (this frame's scene and effects) the ones the offscreen textures were
+    /// last made from?
+    fn reuses(&self, inputs: &OffscreenInputs) -> bool {
+        self.last_offscreen.as_ref() == Some(inputs)
     }
 
     fn decisions(&self, frame: &FrameContext) -> Vec<EffectDecision> {
@@ -779,7 +778,6 @@ impl ArWaterPass {
         let size = frame
             .size
             .map(|v| ((f64::from(v) * frac).round() as u32).max(1));
-        // The targets first: new ones drop the room's group.
         shared.reflection_targets(&gpu.device, size);
         shared.room_group(&gpu.device);
         oblique.is_some()
@@ -840,7 +838,10 @@ impl Pass for ArWaterPass {
             .collect::<Vec<_>>()
             .join("; ");
         match water {
-            Ok(w) if ds.iter().any(|d| d.run) && self.reuses(frame, mask_of(&ds)) => {
+            Ok(w)
+                if ds.iter().any(|d| d.run)
+                    && self.reuses(&OffscreenInputs::of(frame, mask_of(&ds))) =>
+            {
                 Ok(format!("{w}; {text}; {OFFSCREEN_REUSED}"))
             }
             Ok(w) if ds.iter().any(|d| d.run) => Ok(format!("{w}; {text}")),
@@ -855,7 +856,8 @@ impl Pass for ArWaterPass {
         let mask = mask_of(&ds);
         // Paused timeline, still camera, same scene and effects: the reflection texture and
         // the caustic map on the GPU are this frame's already.
-        let reuse = self.reuses(frame, mask);
+        let inputs = OffscreenInputs::of(frame, mask);
+        let reuse = self.reuses(&inputs);
         // The reflected room reads the uniform too.
         self.shared.borrow_mut().write_uniform(gpu, frame);
         self.offscreen = Offscreen::default();
@@ -874,7 +876,7 @@ impl Pass for ArWaterPass {
                 .prepare(gpu, frame, &region, depth, src, side);
             self.offscreen.caustic_map = true;
         }
-        self.last_offscreen = Some(OffscreenInputs::of(frame, mask));
+        self.last_offscreen = Some(inputs);
         self.group = Some(shared.bind_group(&gpu.device));
         if mask != 0 {
             self.pipelines.make(gpu, mask);
