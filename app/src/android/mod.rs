@@ -102,7 +102,7 @@ struct Graphics {
 }
 
 /// The scene is drawn at this fraction of the screen per side and stretched onto it (the
-/// panels are painted at full resolution over it). From the budget bench (README, "On a
+/// panels are painted at full resolution over it). From the budget bench (docs/phone.md, "On a
 /// phone"): at ½ the Pixel 2 XL reaches 60 fps on paper, at full size about 17; not yet
 /// measured on a phone.
 const PHONE_RENDER_SCALE: f64 = 0.5;

@@ -35,7 +35,7 @@ pub enum CausticMethod {
     Raster,
     /// Each triangle finds its texel centres in a compute pass and adds to them with integer
     /// atomics; a small pass resolves the sums into the map. A rasteriser pays per triangle
-    /// and the grid's triangles are about a texel each: on lavapipe 0.81 ms → see README.
+    /// and the grid's triangles are about a texel each: on lavapipe 0.81 ms → see docs/effects.md.
     Scatter,
 }
 
