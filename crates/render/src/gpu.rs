@@ -512,10 +512,39 @@ pub fn test_gpu_on(backends: Backends) -> Option<Arc<Gpu>> {
             panic!("REGATTA_REQUIRE_GPU=true but no GPU adapter was found: {e}")
         }
         Err(e) => {
-            eprintln!("skipped: no GPU adapter ({e})");
+            record_skip(&format!("no GPU adapter ({e})"));
             None
         }
     }
+}
+
+/// The environment variable naming a file that gets one line per skipped test;
+/// scripts/test.sh sets it, prints the count at the end and fails under CI when it is not 0.
+pub const SKIP_LOG_ENV: &str = "REGATTA_SKIP_LOG";
+
+/// Report a test that skips (no adapter, no display server): "skipped: REASON" on stderr, which
+/// the harness hides for a passing test, and a line "TEST: REASON" appended to the file named
+/// by [`SKIP_LOG_ENV`], which does not hide it.
+pub fn record_skip(reason: &str) {
+    eprintln!("skipped: {reason}");
+    if let Some(log) = std::env::var_os(SKIP_LOG_ENV) {
+        let test = std::thread::current().name().unwrap_or("?").to_owned();
+        if let Err(e) = append_skip(std::path::Path::new(&log), &test, reason) {
+            panic!("{SKIP_LOG_ENV}: cannot append to {}: {e}", log.display());
+        }
+    }
+}
+
+/// Append "TEST: REASON" as one line (newlines in the reason become spaces). One short
+/// `O_APPEND` write, so test binaries running at once do not interleave their lines.
+fn append_skip(log: &std::path::Path, test: &str, reason: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    let line = format!("{test}: {}\n", reason.replace(['\n', '\r'], " "));
+    std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(log)?
+        .write_all(line.as_bytes())
 }
 
 /// The device for a GPU test on any backend (lavapipe in CI); see [`test_gpu_on`].
@@ -615,5 +644,22 @@ impl UniformGroup {
             buffer,
             group,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn each_skip_is_one_line_of_the_skip_log() {
+        let log = std::env::temp_dir().join(format!("regatta-skip-log-{}", std::process::id()));
+        let _ = std::fs::remove_file(&log);
+        super::append_skip(&log, "a::test", "no GPU adapter (line one\nline two)").unwrap();
+        super::append_skip(&log, "b::test", "xvfb-run is not installed").unwrap();
+        let text = std::fs::read_to_string(&log).unwrap();
+        std::fs::remove_file(&log).unwrap();
+        assert_eq!(
+            text,
+            "a::test: no GPU adapter (line one line two)\nb::test: xvfb-run is not installed\n"
+        );
     }
 }

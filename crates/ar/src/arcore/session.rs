@@ -325,17 +325,19 @@ mod tests {
     use Event as E;
     use SessionState as S;
 
-    /// The table: state, event → state, commands.
-    #[test]
-    fn transitions_against_arcore_statuses() {
-        let loaded = E::AppResumed {
-            library_loaded: true,
-        };
+    const LOADED: E = E::AppResumed {
+        library_loaded: true,
+    };
+
+    /// The table: state, event → state, commands. Every branch of [`SessionState::on`] that
+    /// does something has a row here (checked by `every_state_and_event_is_a_row_or_ignored`).
+    fn table() -> Vec<(S, E, S, Vec<C>)> {
+        let loaded = LOADED;
         let hdr = LightMode::EnvironmentalHdr;
         let amb = LightMode::AmbientIntensity;
         let u = |x| S::Unavailable(x);
         let fb = |x| vec![C::FallBack(x)];
-        let table: Vec<(S, E, S, Vec<C>)> = vec![
+        let mut rows = vec![
             (
                 S::Start,
                 E::AppResumed {
@@ -486,9 +488,257 @@ mod tests {
             ),
             // A late answer out of order is ignored.
             (S::Running, E::Created { status: 0 }, S::Running, vec![]),
+            // Back from the permission dialog: only check, never ask twice.
+            (
+                S::AwaitingPermission,
+                loaded,
+                S::AwaitingPermission,
+                vec![C::CheckCameraPermission],
+            ),
+            // ARCore paused the session itself (e.g. the app lost the camera): no second
+            // pause, resume on the next app resume.
+            (
+                S::Running,
+                E::Updated {
+                    status: st::ERROR_SESSION_PAUSED,
+                },
+                S::Paused,
+                vec![],
+            ),
+            (
+                S::Resuming,
+                E::Resumed {
+                    status: st::ERROR_FATAL,
+                },
+                u(Unavailable::Failed(st::ERROR_FATAL)),
+                fb(Unavailable::Failed(st::ERROR_FATAL)),
+            ),
+            (S::Resuming, E::AppPaused, S::Paused, vec![C::Pause]),
+            // requestInstall answering "not installed" (after the user backed out of the Play
+            // Store page) is a declined installation.
+            (
+                S::CheckingInstall,
+                E::Install {
+                    status: st::UNAVAILABLE_ARCORE_NOT_INSTALLED,
+                    install_status: 0,
+                },
+                u(Unavailable::InstallDeclined),
+                fb(Unavailable::InstallDeclined),
+            ),
+            (
+                S::Configuring(hdr),
+                E::Configured { status: 0 },
+                S::Resuming,
+                vec![C::Resume],
+            ),
         ];
-        for (from, event, to, cmds) in table {
+        // A status that some branch names, met where no branch names it, is a failure too.
+        let failed = |from, event, code| {
+            let why = Unavailable::Failed(code);
+            (from, event, u(why), fb(why))
+        };
+        let (paused, unsupported, busy) = (
+            st::ERROR_SESSION_PAUSED,
+            st::ERROR_UNSUPPORTED_CONFIGURATION,
+            st::ERROR_CAMERA_NOT_AVAILABLE,
+        );
+        for code in [paused, unsupported, busy] {
+            rows.push(failed(S::Creating, E::Created { status: code }, code));
+        }
+        for mode in [hdr, amb] {
+            for code in [paused, busy, st::ERROR_FATAL] {
+                let event = E::Configured { status: code };
+                rows.push(failed(S::Configuring(mode), event, code));
+            }
+        }
+        for code in [paused, unsupported] {
+            rows.push(failed(S::Resuming, E::Resumed { status: code }, code));
+        }
+        let event = E::Updated {
+            status: unsupported,
+        };
+        rows.push(failed(S::Running, event, unsupported));
+        rows
+    }
+
+    #[test]
+    fn transitions_against_arcore_statuses() {
+        for (from, event, to, cmds) in table() {
             assert_eq!(from.on(event), (to, cmds), "{from:?} + {event:?}");
+        }
+    }
+
+    /// Every state, one value per variant (a new variant is a compile error here until added).
+    fn every_state() -> Vec<S> {
+        let all = vec![
+            S::Start,
+            S::CheckingInstall,
+            S::InstallRequested,
+            S::AwaitingPermission,
+            S::Creating,
+            S::Configuring(LightMode::EnvironmentalHdr),
+            S::Configuring(LightMode::AmbientIntensity),
+            S::Resuming,
+            S::Running,
+            S::Paused,
+            S::Unavailable(Unavailable::PermissionRefused),
+        ];
+        for s in &all {
+            match s {
+                S::Start
+                | S::CheckingInstall
+                | S::InstallRequested
+                | S::AwaitingPermission
+                | S::Creating
+                | S::Configuring(_)
+                | S::Resuming
+                | S::Running
+                | S::Paused
+                | S::Unavailable(_) => {}
+            }
+        }
+        all
+    }
+
+    /// Every event the machine tells apart: each kind with SUCCESS, every status some branch
+    /// names, and one status no branch names (a new variant is a compile error until added).
+    fn every_event() -> Vec<E> {
+        let statuses = [
+            st::SUCCESS,
+            st::ERROR_SESSION_PAUSED,
+            st::ERROR_UNSUPPORTED_CONFIGURATION,
+            st::ERROR_CAMERA_NOT_AVAILABLE,
+            st::ERROR_FATAL,
+        ];
+        let mut all = vec![
+            E::AppResumed {
+                library_loaded: false,
+            },
+            LOADED,
+            E::AppPaused,
+            E::Permission { granted: true },
+            E::Permission { granted: false },
+        ];
+        for install_status in [
+            st::INSTALL_STATUS_INSTALLED,
+            st::INSTALL_STATUS_INSTALL_REQUESTED,
+        ] {
+            all.push(E::Install {
+                status: st::SUCCESS,
+                install_status,
+            });
+        }
+        for status in statuses {
+            all.extend([
+                E::Created { status },
+                E::Configured { status },
+                E::Resumed { status },
+                E::Updated { status },
+            ]);
+        }
+        for e in &all {
+            match e {
+                E::AppResumed { .. }
+                | E::AppPaused
+                | E::Install { .. }
+                | E::Permission { .. }
+                | E::Created { .. }
+                | E::Configured { .. }
+                | E::Resumed { .. }
+                | E::Updated { .. } => {}
+            }
+        }
+        all
+    }
+
+    /// What the machine can tell apart in an event: its kind, the flag or install status it
+    /// carries, and its status where any branch names that status (any other failure is one
+    /// class: the branches pass it on to [`unavailable`], tested on its own).
+    fn event_class(state: S, e: E) -> (u8, i32) {
+        let named = |status: i32| match status {
+            st::SUCCESS
+            | st::ERROR_SESSION_PAUSED
+            | st::ERROR_UNSUPPORTED_CONFIGURATION
+            | st::ERROR_CAMERA_NOT_AVAILABLE => status,
+            _ => i32::MIN,
+        };
+        match e {
+            // Only the first resume asks whether the library was found.
+            E::AppResumed { library_loaded } => (0, i32::from(library_loaded || state != S::Start)),
+            E::AppPaused => (1, 0),
+            E::Install {
+                status,
+                install_status,
+            } => (
+                2,
+                if status == st::SUCCESS {
+                    install_status
+                } else {
+                    i32::MIN
+                },
+            ),
+            E::Permission { granted } => (3, i32::from(granted)),
+            E::Created { status } => (4, named(status)),
+            E::Configured { status } => (5, named(status)),
+            E::Resumed { status } => (6, named(status)),
+            E::Updated { status } => (7, named(status)),
+        }
+    }
+
+    /// A (state, event) pair that does anything (changes the state or issues a command) must be
+    /// a row of [`table`]; every other pair must be ignored. A branch added to
+    /// [`SessionState::on`] without a row, or a row deleted, fails here.
+    #[test]
+    fn every_state_and_event_is_a_row_or_ignored() {
+        let rows = table();
+        let mut missing = vec![];
+        for state in every_state() {
+            for event in every_event() {
+                let has_row = rows
+                    .iter()
+                    .any(|r| r.0 == state && event_class(state, r.1) == event_class(state, event));
+                let got = state.on(event);
+                if !has_row && got != (state, vec![]) {
+                    missing.push(format!("{state:?} + {event:?} -> {got:?}"));
+                }
+            }
+        }
+        assert!(
+            missing.is_empty(),
+            "no test row for:\n{}",
+            missing.join("\n")
+        );
+    }
+
+    /// Every `ArStatus` failure the machine can meet maps to the reason the user is told.
+    #[test]
+    fn failure_statuses_map_to_their_reason() {
+        for (code, want) in [
+            (
+                st::UNAVAILABLE_ARCORE_NOT_INSTALLED,
+                Unavailable::InstallDeclined,
+            ),
+            (
+                st::UNAVAILABLE_USER_DECLINED_INSTALLATION,
+                Unavailable::InstallDeclined,
+            ),
+            (
+                st::UNAVAILABLE_DEVICE_NOT_COMPATIBLE,
+                Unavailable::DeviceNotSupported,
+            ),
+            (st::UNAVAILABLE_APK_TOO_OLD, Unavailable::ArCoreTooOld),
+            (st::UNAVAILABLE_SDK_TOO_OLD, Unavailable::AppTooOld),
+            (
+                st::ERROR_CAMERA_PERMISSION_NOT_GRANTED,
+                Unavailable::PermissionRefused,
+            ),
+            (st::ERROR_FATAL, Unavailable::Failed(st::ERROR_FATAL)),
+            (
+                st::ERROR_ILLEGAL_STATE,
+                Unavailable::Failed(st::ERROR_ILLEGAL_STATE),
+            ),
+        ] {
+            assert_eq!(unavailable(code), want, "status {code}");
         }
     }
 

@@ -5,6 +5,9 @@ use std::f64::consts::PI;
 
 use proptest::prelude::*;
 
+#[path = "../../tests/support/fuzz_config.rs"]
+mod fuzz_config;
+
 use super::gpu::{frame_height_f64, source_height_f32};
 use super::measure::{cusp_half_angle_deg_in, transverse_wavelength};
 use super::*;
@@ -90,7 +93,12 @@ fn kelvin_wake_matches_the_reference_on_a_straight_track() {
     }
     let rel = (e2 / r2).sqrt();
     eprintln!("Kelvin vs reference: relative RMS {rel:.4}");
-    assert!(rel < 0.15, "relative RMS error {rel}");
+    // README: 5.1 %. Asserted at 1.5× that figure, so a model that drifts from the
+    // reference fails long before it is visibly wrong.
+    assert!(
+        rel < 1.5 * 0.051,
+        "relative RMS error {rel} (README: 5.1 %)"
+    );
 }
 
 #[test]
@@ -122,7 +130,11 @@ fn transverse_wavelength_is_2_pi_u2_over_g() {
         let f = |xi: f64, y: f64| wake.height([xi, y], 500.0);
         let m = transverse_wavelength(&f, 3.0 * lam, 10.0 * lam, lam / 40.0).unwrap();
         eprintln!("U={u} m/s: transverse wavelength / 2πU²/g = {:.4}", m / lam);
-        assert!((m / lam - 1.0).abs() < 0.05, "U={u}: {m} vs {lam}");
+        // README: within 0.1 % at all four speeds; asserted at 1.5× that figure.
+        assert!(
+            (m / lam - 1.0).abs() < 1.5e-3,
+            "U={u}: {m} vs {lam} (README: 0.1 %)"
+        );
     }
 }
 
@@ -155,44 +167,63 @@ fn a_stationary_boat_makes_no_wake() {
     }
 }
 
+/// Playing against scrubbing. The app plays by asking one `Wake` for every frame's GPU
+/// sources around a camera that follows the boat (the renderer's per-frame call) and the f64
+/// field (the probe's); a scrub asks at one time only, in a new session a fresh `Wake`. The
+/// last played frame, the played wake scrubbed away and back, and a fresh wake scrubbed straight
+/// to that time must agree bit for bit: no state may carry from frame to frame (a cache keyed
+/// on the last time, a cursor into the sources, a lazily built index).
 #[test]
-fn scrubbing_backwards_equals_playing_forward_bitwise() {
+fn playing_frame_by_frame_equals_a_fresh_scrub_bitwise() {
     // A boat turning on a circle of 40 m at 4 m/s, sampled every 0.5 s.
+    let boat_at = |t: f64| {
+        let a = 4.0 * t / 40.0;
+        [40.0 * a.cos(), 40.0 * a.sin()]
+    };
     let track: Vec<TrackSample> = (0..400)
         .map(|i| {
             let t = 0.5 * i as f64;
-            let a = 4.0 * t / 40.0;
-            TrackSample {
-                t,
-                x: 40.0 * a.cos(),
-                z: 40.0 * a.sin(),
-            }
+            let [x, z] = boat_at(t);
+            TrackSample { t, x, z }
         })
         .collect();
-    let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
     let pts: Vec<[f64; 2]> = (0..60)
         .map(|i| [-50.0 + 1.7 * i as f64, 30.0 - 1.1 * i as f64])
         .collect();
-    let eval = |t: f64| -> Vec<(u64, u64)> {
-        pts.iter()
+    // One frame: the sources sent to the GPU and the field at the points, as bits.
+    let frame = |wake: &Wake, t: f64| -> (Vec<u8>, Vec<(u64, u64)>) {
+        let view = WakeView::around(boat_at(t), 60.0);
+        let sources = wake.gpu_sources(t, [3.0, -2.0], &view, 1e-6);
+        let field = pts
+            .iter()
             .map(|&p| (wake.height(p, t).to_bits(), wake.foam(p, t).to_bits()))
-            .collect()
+            .collect();
+        (sources.bytes().to_vec(), field)
     };
     // Play forward in frames of 1/30 s from t = 100 s; the last frame is t1.
+    let played_wake = Wake::new(&[&track], WakeParams::default()).unwrap();
     let frame_t = |i: usize| 100.0 + i as f64 / 30.0;
     let last = 607;
-    let mut played = Vec::new();
+    let mut played = (vec![], vec![]);
     for i in 0..=last {
-        played = eval(frame_t(i));
+        played = frame(&played_wake, frame_t(i));
     }
     let t1 = frame_t(last);
-    // Scrub: jump later, then earlier, then back to t1.
-    let _later = eval(180.0);
-    let _earlier = eval(30.0);
-    let at_t1 = eval(t1);
-    assert_eq!(at_t1, played);
-    assert_eq!(eval(t1), at_t1);
-    assert!(at_t1.iter().any(|(h, _)| f64::from_bits(*h) != 0.0));
+    assert!(played.0.len() > 100, "no sources in view");
+    assert!(played.1.iter().any(|(h, _)| f64::from_bits(*h) != 0.0));
+    // A new session scrubbed straight to t1.
+    let fresh = Wake::new(&[&track], WakeParams::default()).unwrap();
+    assert!(
+        frame(&fresh, t1) == played,
+        "a fresh scrub to t1 differs from playing"
+    );
+    // The played wake scrubbed later, earlier, then back to t1.
+    let _later = frame(&played_wake, 180.0);
+    let _earlier = frame(&played_wake, 30.0);
+    assert!(
+        frame(&played_wake, t1) == played,
+        "scrubbing back to t1 differs"
+    );
 }
 
 #[test]
@@ -440,7 +471,8 @@ fn arb_track() -> impl Strategy<Value = Vec<TrackSample>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    // 48 cases from a fixed seed; scripts/fuzz.sh overrides both.
+    #![proptest_config(fuzz_config::fuzz_config(0x0A4E_5EED, 48))]
     #[test]
     fn no_nan_for_stops_reversals_and_jumps(track in arb_track(), px in -60.0f64..60.0, pz in -60.0f64..60.0, dt in 0.0f64..100.0) {
         let prm = WakeParams { max_age: 30.0, ..WakeParams::default() };

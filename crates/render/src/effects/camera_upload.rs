@@ -302,9 +302,12 @@ mod tests {
                     .max()
                     .expect("pixels");
                 eprintln!("{range:?}, encoded target {encoded}: worst {worst} codes");
+                // README: exact (0 codes) writing R'G'B' as they are (adapters with
+                // VIEW_FORMATS); 1 code through an sRGB target (the encode rounds again).
+                let allowed = if encoded { 0 } else { 1 };
                 assert!(
-                    worst <= 1,
-                    "{range:?}, encoded target {encoded}: {worst} codes off"
+                    worst <= allowed,
+                    "{range:?}, encoded target {encoded}: {worst} codes off (README: {allowed})"
                 );
             }
         }

@@ -611,15 +611,18 @@ fn caustic_map_against_the_reference(gpu: &Gpu, method: super::caustic_map::Caus
         let median = diffs[diffs.len() / 2];
         let p95 = diffs[diffs.len() * 95 / 100];
         eprintln!(
-            "{method:?}, t = {t}: caustic map GPU vs f64: median |Δ| {median:.2e}, p95 {p95:.3}, mean light {mean_gpu:.4} vs {mean_ref:.4}"
+            "{method:?}, t = {t}: caustic map GPU vs f64: median |Δ| {median:.2e}, p95 {p95:.2e}, mean light {mean_gpu:.4} vs {mean_ref:.4}"
         );
-        // Half-float rounding of a value near 1 is 5e-4; an edge case moves a cell by a
-        // triangle's irradiance.
-        assert!(median < 2e-3, "median {median}");
-        assert!(p95 < 0.02, "p95 {p95}");
+        // README: median 3e-4 (measured 3.0–3.2e-4 on lavapipe, both methods, t = 40 s and
+        // 10 h); asserted at 1.5x that figure. Half-float rounding of a value near 1 is 5e-4
+        // at most, so the median sits below it; an edge case moves a cell by a triangle's
+        // irradiance (the p95 below).
+        assert!(median < 1.5 * 3e-4, "median {median} (README: 3e-4)");
+        // README: 95th percentile 1e-3, mean within 0.05 %; both asserted at 1.5x.
+        assert!(p95 < 1.5 * 1e-3, "p95 {p95} (README: 1e-3)");
         assert!(
-            (mean_gpu - mean_ref).abs() < 0.01 * mean_ref,
-            "{mean_gpu} vs {mean_ref}"
+            (mean_gpu - mean_ref).abs() < 1.5 * 5e-4 * mean_ref,
+            "{mean_gpu} vs {mean_ref} (README: within 0.05 %)"
         );
         // Not a flat map: the waves focus light.
         let max = got.iter().copied().fold(0.0, f64::max);
