@@ -202,9 +202,9 @@ fn a_still_frame_is_re_presented_not_drawn_again() {
     let copy = wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
     let (mut renderer, target, view) = keeping_renderer(&gpu, size, copy);
     let paused = scene(120.0);
-    let first = renderer.render(&gpu, &view, size, &paused);
+    let first = renderer.render(&gpu, &view, size, &paused).unwrap();
     let drawn = gpu.read_texture(&target).unwrap();
-    let second = renderer.render(&gpu, &view, size, &paused);
+    let second = renderer.render(&gpu, &view, size, &paused).unwrap();
     assert!(!first.reused_last_frame && !second.reused_last_frame);
     assert!(second.passes.iter().any(|p| p.ran));
     // Spoil the target: a re-presented frame must put the kept pixels back.
@@ -218,7 +218,7 @@ fn a_still_frame_is_re_presented_not_drawn_again() {
         },
         target.size(),
     );
-    let third = renderer.render(&gpu, &view, size, &paused);
+    let third = renderer.render(&gpu, &view, size, &paused).unwrap();
     assert!(third.reused_last_frame);
     assert!(
         third
@@ -229,13 +229,13 @@ fn a_still_frame_is_re_presented_not_drawn_again() {
     assert_eq!(third.triangles, 0);
     assert_eq!(gpu.read_texture(&target).unwrap(), drawn);
     // The timeline moves on: drawn again, and it looks different.
-    let moved = renderer.render(&gpu, &view, size, &scene(121.0));
+    let moved = renderer.render(&gpu, &view, size, &scene(121.0)).unwrap();
     assert!(!moved.reused_last_frame && moved.passes.iter().any(|p| p.ran));
     assert_ne!(gpu.read_texture(&target).unwrap(), drawn);
     // A changed input outside the scene (here: invalidate) is drawn too.
-    renderer.render(&gpu, &view, size, &scene(121.0));
+    renderer.render(&gpu, &view, size, &scene(121.0)).unwrap();
     renderer.invalidate();
-    let after = renderer.render(&gpu, &view, size, &scene(121.0));
+    let after = renderer.render(&gpu, &view, size, &scene(121.0)).unwrap();
     assert!(!after.reused_last_frame);
 }
 
@@ -246,7 +246,7 @@ fn frames_are_always_drawn_when_they_cannot_be_kept() {
     let size = [32, 32];
     let (mut renderer, _target, view) = keeping_renderer(&gpu, size, wgpu::TextureUsages::empty());
     for _ in 0..3 {
-        let r = renderer.render(&gpu, &view, size, &scene(5.0));
+        let r = renderer.render(&gpu, &view, size, &scene(5.0)).unwrap();
         assert!(!r.reused_last_frame && r.passes.iter().any(|p| p.ran));
     }
 }
@@ -312,3 +312,4 @@ fn a_frame_drawn_at_half_scale_is_stretched_onto_the_target() {
     let mean = diff / (64.0 * 48.0 * 3.0);
     assert!(mean < 6.0, "mean difference {mean} levels");
 }
+
