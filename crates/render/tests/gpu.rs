@@ -1,5 +1,5 @@
-//! GPU tests on lavapipe (CI) or any adapter: device setup on two backends, the compute-shader
-//! parity of the WGSL sea against ocean's f64 reference, and a frame that shows a sea with boats.
+//! GPU tests on lavapipe (CI) or any adapter: device setup on two backends and a frame that
+//! shows a sea with boats (the WGSL's parity with ocean's f64 reference: `tests/parity.rs`).
 //! Without an adapter they print "skipped: no GPU adapter", unless REGATTA_REQUIRE_GPU=true,
 //! where they fail.
 
@@ -76,46 +76,6 @@ fn gl_backend_sets_up_and_renders_too() {
     let (img, report) = render::render_image(&gpu, &mut r, &scene(5.0), [64, 48]).unwrap();
     assert!(report.passes.iter().any(|p| p.name == "water" && p.ran));
     assert_ne!(img.get_pixel(32, 0), img.get_pixel(32, 47));
-}
-
-#[test]
-fn compute_heights_match_the_f64_reference_within_a_millimetre() {
-    let Some(gpu) = test_gpu() else { return };
-    let sea = WaveSet::default_sea();
-    // A 400 m square of local points around an origin far from the course centre.
-    let origin = DVec2::new(-7321.5, 4410.25);
-    let points: Vec<[f32; 2]> = (0..40)
-        .flat_map(|i| (0..40).map(move |j| [i as f32 * 10.0 - 200.0, j as f32 * 10.0 - 200.0]))
-        .collect();
-    for t in [0.0, 1e3, 1e6] {
-        let gpu_d = render::compute::gpu_displacements(&gpu, &sea, t, origin, &points).unwrap();
-        let mut worst = 0.0f64;
-        for (p, g) in points.iter().zip(&gpu_d) {
-            let x0 = [origin.x + f64::from(p[0]), origin.y + f64::from(p[1])];
-            let r = sea.displace(x0, t);
-            let err = [
-                f64::from(g[0]) - (r[0] - x0[0]),
-                f64::from(g[1]) - r[1],
-                f64::from(g[2]) - (r[2] - x0[1]),
-            ];
-            worst = err.iter().fold(worst, |w, e| w.max(e.abs()));
-        }
-        assert!(worst < 1e-3, "t = {t}: max error {worst} m");
-    }
-}
-
-#[test]
-fn a_broken_phase_reduction_would_fail_the_parity_test() {
-    // Feeding the unreduced phase (absolute time in f32) misses by far more than 1 mm at
-    // t = 1e6 s: the parity test above measures something that can go wrong.
-    let sea = WaveSet::default_sea();
-    let (t, x0) = (1e6, [12.0, -7.0]);
-    let w = &sea.waves[0];
-    let theta = sea.phase_at(w, x0, t);
-    let naive = (w.k() as f32 * (x0[0] as f32) - w.omega(sea.gravity, None) as f32 * t as f32
-        + w.phase as f32)
-        .sin();
-    assert!((f64::from(naive) - theta.sin()).abs() * w.amplitude() > 1e-3);
 }
 
 #[test]
