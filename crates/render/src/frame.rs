@@ -371,6 +371,10 @@ pub struct FrameReport {
     pub clipmap: ClipMapRecord,
     /// The wakes of this frame, where the renderer has a wake.
     pub wakes: Option<WakeRecord>,
+    /// Metres the camera was raised because its eye was under the sea surface
+    /// ([`crate::Scene::camera_above_water`]); absent when it was above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub camera_raised_m: Option<f64>,
     /// True when nothing was drawn: the last frame was re-presented (paused and still).
     pub reused_last_frame: bool,
 }

@@ -454,6 +454,15 @@ impl Renderer {
         size: [u32; 2],
         scene: &Scene,
     ) -> FrameReport {
+        let raised = scene.camera_above_water();
+        if let Some((_, m)) = &raised {
+            log::warn!(
+                "the camera eye is under the sea surface (or within {} m of it): raised by \
+                 {m:.2} m; the water is not drawn from below",
+                crate::scene::CAMERA_CLEARANCE_M
+            );
+        }
+        let scene = raised.as_ref().map_or(scene, |(s, _)| s);
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
         if let Some(w) = &self.wake {
             // Sources that can reach any water the clip-map draws.
@@ -673,6 +682,7 @@ impl Renderer {
                 buffer_cap_bytes: frame.wake_drop.cap_bytes,
             }),
             reused_last_frame: false,
+            camera_raised_m: raised.as_ref().map(|(_, m)| *m),
         }
     }
 }

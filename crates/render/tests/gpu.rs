@@ -273,3 +273,40 @@ fn a_frame_drawn_at_half_scale_is_stretched_onto_the_target() {
     assert!(mean < 6.0, "mean difference {mean} levels");
 }
 
+/// A camera under the sea surface, looking slightly down: the frame is drawn from just above
+/// the surface instead (sky above, water below), and the record says by how much it rose.
+/// Before, the surface's underside filled the top of the picture and sky the bottom.
+#[test]
+fn a_camera_under_the_water_is_raised_above_the_surface() {
+    let Some(gpu) = test_gpu() else { return };
+    let mut s = scene(100.0);
+    s.camera = Camera::look_at(
+        DVec3::new(0.0, -5.0, 40.0),
+        DVec3::new(0.0, -9.0, -60.0),
+        5000.0,
+    );
+    let surface = s.sea.height_at([0.0, 40.0], s.t).unwrap();
+    let mut r = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, RenderOptions::default());
+    let (img, report) = render::render_image(&gpu, &mut r, &s, [96, 64]).unwrap();
+    let raised = report
+        .camera_raised_m
+        .expect("the record says the camera was raised");
+    let want = surface + render::scene::CAMERA_CLEARANCE_M + 5.0;
+    assert!((raised - want).abs() < 1e-9, "{raised} vs {want}");
+    let lum = |y: u32| {
+        (0..img.width())
+            .map(|x| {
+                img.get_pixel(x, y).0[..3]
+                    .iter()
+                    .map(|&c| f64::from(c))
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+            / f64::from(img.width())
+    };
+    let (top, bottom) = (lum(0), lum(img.height() - 1));
+    assert!(top > bottom + 60.0, "sky {top} vs water {bottom}");
+    // A camera above the water is left where it is.
+    let (_, report) = render::render_image(&gpu, &mut r, &scene(100.0), [96, 64]).unwrap();
+    assert_eq!(report.camera_raised_m, None);
+}
