@@ -77,6 +77,19 @@ fn a_thousand_boats_bunched_at_a_start_draw_within_the_wake_buffer_cap() {
     // The frame is a picture: sky above, water below.
     let (top, bottom) = (img.get_pixel(32, 0), img.get_pixel(32, 47));
     assert_ne!(top, bottom);
+    // Without the budget, only the device's limits: this fleet needs more than they allow
+    // (the frame that panicked before), so sources are still dropped.
+    r.set_wake_buffer_budget(u64::MAX);
+    let (_, report) = render::render_image(&gpu, &mut r, &scene, [64, 48]).expect("drawn");
+    let w = report.wakes.expect("the frame records its wakes");
+    eprintln!("{w:?}");
+    assert_eq!(
+        w.buffer_cap_bytes,
+        limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size)
+    );
+    assert!(w.dropped > 0, "{w:?}");
 }
 
 /// A pass that asks the device for a buffer larger than it allows, once.
