@@ -269,9 +269,6 @@ mod tests {
         let mask = differing(&grey(10), &b);
         assert_eq!(mask.iter().filter(|&&m| m).count(), 1);
         assert_eq!(compare_in(&grey(10), &b, Some(&mask)), (30.0, 1.0));
-        assert_eq!(
-            compare_in(&grey(10), &b, Some(&[false; 20])),
-            (255.0, 1.0)
-        );
+        assert_eq!(compare_in(&grey(10), &b, Some(&[false; 20])), (255.0, 1.0));
     }
 }
