@@ -109,7 +109,7 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     var colour = r * reflected + (1.0 - r) * transmitted;
     // Foam of breaking crests (Jacobian) and of the boats' wakes, as the water pass draws it.
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);
-    let foam = max(clamp((0.72 - sf.jacobian) / 0.35, 0.0, 1.0), in.wake.z);
+    let foam = foam_coverage(foam_from_jacobian(sf.jacobian), in.wake.z);
     colour = mix(colour, FOAM * (0.6 + 0.4 * sun_in), foam);
     return vec4<f32>(colour, 1.0);
 }

@@ -77,6 +77,17 @@ struct SurfaceFrame {
     slope_variance: f32,
 }
 
+// Foam coverage in [0, 1] from the Jacobian determinant J: ocean::foam_from_jacobian, with
+// FOAM_ONSET_JACOBIAN generated from ocean's value (render::shader::prelude).
+fn foam_from_jacobian(j: f32) -> f32 {
+    return clamp((FOAM_ONSET_JACOBIAN - j) / FOAM_ONSET_JACOBIAN, 0.0, 1.0);
+}
+
+// Two foam coverages on the same water (the sea's and the wake's): ocean::foam_coverage.
+fn foam_coverage(a: f32, b: f32) -> f32 {
+    return 1.0 - (1.0 - clamp(a, 0.0, 1.0)) * (1.0 - clamp(b, 0.0, 1.0));
+}
+
 fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
     var dxdx = 1.0;
     var dxdz = 0.0;

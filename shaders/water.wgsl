@@ -40,8 +40,8 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);
     let body = DEEP_WATER + SHALLOW_SCATTER * (0.25 + 0.75 * sun_in) * (1.0 - cos_i * 0.5);
     var colour = r * reflected + (1.0 - r) * body;
-    // Foam where the horizontal map compresses (Jacobian below FOAM_ONSET, ocean crate).
-    let foam = max(clamp((0.72 - sf.jacobian) / 0.35, 0.0, 1.0), wfoam);
+    // Foam where the horizontal map compresses, with the wake's: ocean's rule (common.wgsl).
+    let foam = foam_coverage(foam_from_jacobian(sf.jacobian), wfoam);
     colour = mix(colour, FOAM * (0.6 + 0.4 * sun_in), foam);
     return vec4<f32>(colour, 1.0);
 }

@@ -652,7 +652,8 @@ impl App {
         scene.marks.clear();
         scene.camera = Camera::from_view_projection(view.view, view.projection_gl);
         if let Some((r, _)) = g.backdrop.as_mut() {
-            r.render(&g.gpu, target, size, &scene);
+            // A failed frame is logged by the renderer; the next one tries again.
+            let _ = r.render(&g.gpu, target, size, &scene);
         }
         true
     }
@@ -674,7 +675,7 @@ impl App {
         let Some(p) = self.ar_view.placement else {
             // Not placed: the camera image where ARCore runs (to see the table), else 3D.
             if !self.draw_backdrop(g, target, size, format) {
-                g.race.render(&g.gpu, target, size, &scene);
+                let _ = g.race.render(&g.gpu, target, size, &scene);
             }
             return;
         };
@@ -707,7 +708,7 @@ impl App {
                 g.race_upload = Some(upload);
             }
         }
-        g.race.render(&g.gpu, target, size, &scene);
+        let _ = g.race.render(&g.gpu, target, size, &scene);
     }
 
     fn draw_pool(

@@ -156,12 +156,13 @@ fn pass_times(gpu: &render::Gpu, size: [u32; 2], frames: usize) -> CliResult<(Pa
     renderer.set_wake(Some(race_wake(&race)?));
     render::effects::passes::add_scene_effects(&mut renderer, gpu, &scene, size, EffectSet::ALL);
     let view = crate::bench::offscreen(gpu, size);
-    renderer.render(gpu, &view, size, &scene); // warm-up: pipelines, buffers
+    let failed = |e: render::GpuError| CliError(e.to_string());
+    renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up: pipelines, buffers
     let mut runs = Vec::new();
     let mut wall = Vec::new();
     for _ in 0..frames {
         let t0 = Instant::now();
-        let report = renderer.render(gpu, &view, size, &scene);
+        let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?;
         gpu.wait();
         wall.push(t0.elapsed().as_secs_f64() * 1e3);
         runs.push(report.passes);

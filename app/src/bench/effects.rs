@@ -98,15 +98,18 @@ impl Case {
     /// Plan, draw and wait for one frame at race time `t`: wall seconds, and the passes'
     /// GPU milliseconds (all, and each pass's) from timestamp queries where the adapter has
     /// them.
-    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> Timing {
+    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> CliResult<Timing> {
         let scene = demo_table_scene(t);
         let t0 = Instant::now();
         if let Some((handle, frame)) = &self.new_frames {
             handle.set_camera_frame(gpu, frame.clone());
         }
-        let report = self.renderer.render(gpu, &self.view, size, &scene);
+        let report = self
+            .renderer
+            .render(gpu, &self.view, size, &scene)
+            .map_err(|e| CliError(e.to_string()))?;
         gpu.wait();
-        Timing {
+        Ok(Timing {
             wall_s: t0.elapsed().as_secs_f64(),
             gpu_ms: report.gpu_ms,
             // A pass's offscreen work (reflection texture, caustic map) as its own column.
@@ -122,7 +125,7 @@ impl Case {
                 })
                 .flatten()
                 .collect(),
-        }
+        })
     }
 }
 
@@ -186,7 +189,7 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
             ctx.progress(format!("effects: frame {i} of {}", frames + 2));
         }
         for (k, case) in runs.iter_mut().enumerate() {
-            let f = case.frame(&gpu, size, 40.0 + i as f64 / 30.0);
+            let f = case.frame(&gpu, size, 40.0 + i as f64 / 30.0)?;
             if i >= 2 {
                 pooled[k].push(f.wall_s);
                 gpu_ms[k].extend(f.gpu_ms);

@@ -87,7 +87,7 @@ pub fn probe_point(
     let gx = s.gradient[0] + wake.gradient[0];
     let gz = s.gradient[1] + wake.gradient[1];
     let len = (gx * gx + 1.0 + gz * gz).sqrt();
-    let foam = 1.0 - (1.0 - s.foam) * (1.0 - wake.foam.clamp(0.0, 1.0));
+    let foam = ocean::foam_coverage(s.foam, wake.foam);
     Ok(json!({
         "at": at,
         "sea_height": s.height,

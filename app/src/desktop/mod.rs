@@ -212,10 +212,15 @@ impl App {
         if let Some(o) = st.overlay.as_mut() {
             o.apply_effects(&mut st.renderer);
         }
-        let report = st.renderer.render(&st.gpu, &view, size, &scene);
-        log::debug!("frame: {} triangles", report.triangles);
+        // A failed frame is logged by the renderer; the window shows the next one.
+        let report = st.renderer.render(&st.gpu, &view, size, &scene).ok();
+        if let Some(r) = &report {
+            log::debug!("frame: {} triangles", r.triangles);
+        }
         if let Some(o) = st.overlay.as_mut() {
-            o.record(&report);
+            if let Some(r) = &report {
+                o.record(r);
+            }
             o.paint(
                 &st.window,
                 &st.gpu.device,

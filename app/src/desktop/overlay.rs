@@ -203,7 +203,9 @@ impl Overlay {
             &[self.painter.view_format()],
         );
         let view = texture.create_view(&Default::default());
-        renderer.render(gpu, &view, size, scene);
+        renderer
+            .render(gpu, &view, size, scene)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         self.paint(window, &gpu.device, &gpu.queue, &texture, size, race);
         let mut img = gpu
             .read_texture(&texture)

@@ -82,6 +82,14 @@ pub fn foam_from_jacobian(jacobian: f64) -> f64 {
     ((FOAM_ONSET_JACOBIAN - jacobian) / FOAM_ONSET_JACOBIAN).clamp(0.0, 1.0)
 }
 
+/// Two foam coverages in [0, 1] on the same water (the sea's and a wake's) combined as
+/// independent coverages: 1 − (1 − a)(1 − b). The one rule `regatta probe` reports and the
+/// water shaders draw (`foam_coverage` in `shaders/common.wgsl`, its constants generated
+/// from these by `render::shader::prelude`).
+pub fn foam_coverage(a: f64, b: f64) -> f64 {
+    1.0 - (1.0 - a.clamp(0.0, 1.0)) * (1.0 - b.clamp(0.0, 1.0))
+}
+
 /// One wave frozen at a race time: what the inner loops need, with the time part of the phase
 /// φ − ω t formed once and brought near [0, 2π) by subtracting a multiple of 2π. That constant
 /// carries the f64 rounding of ω t (≤ 1e-8 rad at t = 1e7 s) for every point alike, so the
@@ -331,5 +339,9 @@ mod tests {
         assert_eq!(foam_from_jacobian(FOAM_ONSET_JACOBIAN), 0.0);
         assert!((foam_from_jacobian(0.3) - 0.5).abs() < 1e-12);
         assert_eq!(foam_from_jacobian(-1.0), 1.0);
+        // Coverages: none adds nothing, full covers all, halves leave a quarter bare.
+        assert!((foam_coverage(0.3, 0.0) - 0.3).abs() < 1e-15);
+        assert_eq!(foam_coverage(1.0, 0.4), 1.0);
+        assert!((foam_coverage(0.5, 0.5) - 0.75).abs() < 1e-15);
     }
 }

@@ -18,7 +18,9 @@ pub mod spectrum;
 pub mod wake;
 
 pub use cull::Culled;
-pub use gerstner::{FOAM_ONSET_JACOBIAN, SurfacePoint, Wave, WaveSet, foam_from_jacobian};
+pub use gerstner::{
+    FOAM_ONSET_JACOBIAN, SurfacePoint, Wave, WaveSet, foam_coverage, foam_from_jacobian,
+};
 pub use gpu::{GpuWave, displace_f32, f32_error_bound, reduce_phase};
 pub use inverse::{DEFAULT_TOLERANCE, InverseError, RestPoint, WorldSample};
 pub use sea_file::SeaError;

@@ -1,37 +1,32 @@
-//! The sea evaluated by a compute shader (`shaders/wave_heights.wgsl`) with the same WGSL
-//! `gerstner()` the water pass's vertices use: the GPU side of the parity test against ocean's
-//! f64 reference, and of the benches.
+//! The water pass's WGSL evaluated by compute shaders (`shaders/wave_heights.wgsl`) at given
+//! inputs: the GPU side of the parity tests against ocean's f64 reference (the sea's
+//! `gerstner()`, the drawn vertex path `sea_displaced()` with its level masks and fade, and
+//! the foam rule), and of the benches.
 
 use glam::DVec2;
-use ocean::WaveSet;
+use ocean::{GpuWave, WaveSet};
 use wgpu::util::DeviceExt;
 
-use crate::clipmap::MAX_WAVES;
-use crate::frame::{FrameBindings, FrameUniform};
+use crate::clipmap::{ClipVertex, MAX_WAVES};
+use crate::frame::{FrameBindings, FrameContext, FrameUniform};
 use crate::gpu::{Gpu, GpuError};
 use crate::shader;
 
-/// Displacements (dx, y, dz), metres, of the local rest points `points` (metres from
-/// `origin`) at race time `t`, evaluated on the GPU with every wave of `sea` (at most 64).
-pub fn gpu_displacements(
+/// Run `entry` of `wave_heights.wgsl` once per item of `inputs`, with `uniform` and `waves`
+/// bound as the water pass binds them (group 0); one vec4 out per item.
+fn evaluate(
     gpu: &Gpu,
-    sea: &WaveSet,
-    t: f64,
-    origin: DVec2,
-    points: &[[f32; 2]],
-) -> Result<Vec<[f32; 3]>, GpuError> {
-    if points.is_empty() {
+    uniform: &FrameUniform,
+    waves: &[GpuWave],
+    entry: &str,
+    inputs: &[[f32; 4]],
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    if inputs.is_empty() {
         return Ok(Vec::new());
     }
     let device = &gpu.device;
     let bindings = FrameBindings::new(device);
-    let mut waves = sea.gpu_waves(t, [origin.x, origin.y]);
-    waves.truncate(MAX_WAVES);
-    let uniform = FrameUniform {
-        counts: [waves.len() as u32, 0, 0, 0],
-        ..bytemuck::Zeroable::zeroed()
-    };
-    bindings.upload(&gpu.queue, &uniform, &waves);
+    bindings.upload(&gpu.queue, uniform, &waves[..waves.len().min(MAX_WAVES)]);
     let io_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("wave heights io"),
         entries: &[
@@ -49,24 +44,89 @@ pub fn gpu_displacements(
         label: Some("wave heights"),
         layout: Some(&layout),
         module: &module,
-        entry_point: Some("cs_main"),
+        entry_point: Some(entry),
         compilation_options: Default::default(),
         cache: None,
     });
     let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("points"),
-        contents: bytemuck::cast_slice(points),
+        contents: bytemuck::cast_slice(inputs),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let out_size = (points.len() * 16) as u64;
     let output = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("displaced"),
-        size: out_size,
+        size: (inputs.len() * 16) as u64,
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
     let io = crate::gpu::buffer_group(device, "wave heights io", &io_layout, &[&input, &output]);
-    let bytes = gpu.dispatch_and_read(&pipeline, &[&bindings.group, &io], points.len(), &output)?;
-    let v: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
-    Ok(v.iter().map(|d| [d[0], d[1], d[2]]).collect())
+    let bytes = gpu.dispatch_and_read(&pipeline, &[&bindings.group, &io], inputs.len(), &output)?;
+    Ok(bytemuck::cast_slice(&bytes).to_vec())
+}
+
+/// A uniform that only says how many waves there are (what `gerstner` sums need).
+fn waves_uniform(waves: &[GpuWave]) -> FrameUniform {
+    FrameUniform {
+        counts: [waves.len().min(MAX_WAVES) as u32, 0, 0, 0],
+        ..bytemuck::Zeroable::zeroed()
+    }
+}
+
+/// Displacements (dx, y, dz), metres, of the local rest points `points` (metres from
+/// `origin`) at race time `t`, evaluated on the GPU with every wave of `sea` (at most 64).
+pub fn gpu_displacements(
+    gpu: &Gpu,
+    sea: &WaveSet,
+    t: f64,
+    origin: DVec2,
+    points: &[[f32; 2]],
+) -> Result<Vec<[f32; 3]>, GpuError> {
+    wave_displacements(gpu, &sea.gpu_waves(t, [origin.x, origin.y]), points)
+}
+
+/// Displacements (dx, y, dz) of the local rest points `points` by `waves` as the GPU gets
+/// them (phases already reduced by the caller: the parity test also feeds broken ones).
+pub fn wave_displacements(
+    gpu: &Gpu,
+    waves: &[GpuWave],
+    points: &[[f32; 2]],
+) -> Result<Vec<[f32; 3]>, GpuError> {
+    let inputs: Vec<[f32; 4]> = points.iter().map(|p| [p[0], p[1], 0.0, 0.0]).collect();
+    let out = evaluate(gpu, &waves_uniform(waves), waves, "cs_main", &inputs)?;
+    Ok(out.iter().map(|d| [d[0], d[1], d[2]]).collect())
+}
+
+/// Every clip-map vertex of `frame` displaced by the sea as the water pass draws it
+/// (`sea_displaced`: its level's wave mask, the next level's dropped waves faded): local
+/// (x, y, z), metres.
+pub fn vertex_positions(gpu: &Gpu, frame: &FrameContext) -> Result<Vec<[f32; 3]>, GpuError> {
+    let inputs: Vec<[f32; 4]> = frame
+        .mesh
+        .vertices
+        .iter()
+        .map(|v: &ClipVertex| [v.rest[0], v.rest[1], v.fade, f32::from_bits(v.level)])
+        .collect();
+    let out = evaluate(
+        gpu,
+        &frame.uniform,
+        &frame.waves,
+        "cs_sea_displaced",
+        &inputs,
+    )?;
+    Ok(out.iter().map(|d| [d[0], d[1], d[2]]).collect())
+}
+
+/// The foam the water pass draws (footprint 0: no wave band-limited) at local rest points
+/// (metres from `origin`) with the given wake foam, at race time `t`: (foam, Jacobian).
+pub fn gpu_foam(
+    gpu: &Gpu,
+    sea: &WaveSet,
+    t: f64,
+    origin: DVec2,
+    points: &[([f32; 2], f32)],
+) -> Result<Vec<[f32; 2]>, GpuError> {
+    let waves = sea.gpu_waves(t, [origin.x, origin.y]);
+    let inputs: Vec<[f32; 4]> = points.iter().map(|(p, w)| [p[0], p[1], *w, 0.0]).collect();
+    let out = evaluate(gpu, &waves_uniform(&waves), &waves, "cs_foam", &inputs)?;
+    Ok(out.iter().map(|d| [d[0], d[1]]).collect())
 }

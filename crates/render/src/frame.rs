@@ -49,6 +49,10 @@ pub struct FrameContext<'a> {
     /// The wake sources that can reach the view (empty without wakes); the renderer fills
     /// them and `uniform.counts[2]` from its wake.
     pub wakes: ocean::wake::GpuWakeFrame,
+    /// `wakes.sources` binned for the water's compute stage, and what the wake buffer cap
+    /// left out ([`crate::wake_bins::fit`]; the renderer fills both with `wakes`).
+    pub wake_bins: crate::wake_bins::WakeBins,
+    pub wake_drop: crate::wake_bins::WakeDrop,
 }
 
 impl<'a> FrameContext<'a> {
@@ -134,6 +138,8 @@ impl<'a> FrameContext<'a> {
             waves,
             uniform,
             wakes: Default::default(),
+            wake_bins: Default::default(),
+            wake_drop: Default::default(),
         }
     }
 
@@ -365,6 +371,10 @@ pub struct FrameReport {
     pub clipmap: ClipMapRecord,
     /// The wakes of this frame, where the renderer has a wake.
     pub wakes: Option<WakeRecord>,
+    /// Metres the camera was raised because its eye was under the sea surface
+    /// ([`crate::Scene::camera_above_water`]); absent when it was above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub camera_raised_m: Option<f64>,
     /// True when nothing was drawn: the last frame was re-presented (paused and still).
     pub reused_last_frame: bool,
 }
@@ -396,6 +406,12 @@ pub struct WakeRecord {
     pub culled: usize,
     /// Bound of the wake height error from culling anywhere in view, metres.
     pub cull_bound_m: f64,
+    /// Sources in reach left out to fit the wake buffer cap (the least visible), the bound
+    /// of the height (m) and foam error that causes anywhere, and the cap (bytes).
+    pub dropped: usize,
+    pub drop_bound_m: f64,
+    pub drop_foam_bound: f64,
+    pub buffer_cap_bytes: u64,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

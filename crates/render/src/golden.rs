@@ -1,10 +1,14 @@
 //! Golden-image checks shared by the render crate's GPU tests (the race scene, the effects,
-//! the pool): an image rendered small on lavapipe against a PNG. The limits let driver
-//! rounding through and catch a broken shader: mean absolute difference ≤ 2 levels (of 255)
-//! per channel, and ≤ 1 % of pixels off by more than 24 levels in some channel.
+//! the pool): an image rendered small on lavapipe against a PNG. The whole frame's limits let
+//! driver rounding through and catch a broken picture: mean absolute difference ≤ 2 levels (of
+//! 255) per channel, and ≤ 1 % of pixels off by more than 24 levels in some channel. An effect
+//! that moves few pixels a little (the flow map: 0.08 levels over the frame) hides under those,
+//! so a golden may add [`Region`]s, the pixels where one effect acts, each with its own mean
+//! limit ([`check_regions`]).
 //!
-//! With `REGATTA_UPDATE_GOLDEN` set, [`check`] writes the image instead (after an intended
-//! change of the picture; then look at the PNGs).
+//! With `REGATTA_UPDATE_GOLDEN=1` (or `true`) [`check`] writes the image instead and says on
+//! stderr how far it moved from the old one (after an intended change of the picture; then
+//! look at the PNGs). Any other value but `0`/`false`/empty is refused.
 
 use std::path::Path;
 
@@ -41,39 +45,114 @@ pub const MAX_OFF_FRACTION: f64 = 0.01;
 /// than [`PIXEL_TOLERANCE`] in some channel. Images of different sizes are entirely off:
 /// (255, 1).
 pub fn compare(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
-    if a.dimensions() != b.dimensions() || a.width() * a.height() == 0 {
+    compare_in(a, b, None)
+}
+
+/// [`compare`] over the pixels where `mask` (row-major, one per pixel) is true; an empty
+/// region or a mask of the wrong size is entirely off.
+pub fn compare_in(a: &image::RgbaImage, b: &image::RgbaImage, mask: Option<&[bool]>) -> (f64, f64) {
+    let n_pixels = (a.width() * a.height()) as usize;
+    if a.dimensions() != b.dimensions()
+        || n_pixels == 0
+        || mask.is_some_and(|m| m.len() != n_pixels || !m.contains(&true))
+    {
         return (255.0, 1.0);
     }
-    let (mut sum, mut off) = (0.0, 0usize);
-    for (p, q) in a.pixels().zip(b.pixels()) {
+    let (mut sum, mut off, mut n) = (0.0, 0usize, 0usize);
+    for (k, (p, q)) in a.pixels().zip(b.pixels()).enumerate() {
+        if mask.is_some_and(|m| !m[k]) {
+            continue;
+        }
         let d = [0, 1, 2].map(|c| p[c].abs_diff(q[c]));
         sum += d.iter().map(|&x| f64::from(x)).sum::<f64>();
         off += usize::from(d.iter().any(|&x| x > PIXEL_TOLERANCE));
+        n += 1;
     }
-    let n = f64::from(a.width() * a.height());
-    (sum / (3.0 * n), off as f64 / n)
+    (sum / (3.0 * n as f64), off as f64 / n as f64)
 }
 
-/// Compare `img` with the golden PNG at `path` (or write it when `REGATTA_UPDATE_GOLDEN` is
-/// set). On a mismatch the image is saved next to the temporary files and the error says where.
+/// The pixels where `a` and `b` differ at all: where an effect acts, from its image with and
+/// without it.
+pub fn differing(a: &image::RgbaImage, b: &image::RgbaImage) -> Vec<bool> {
+    a.pixels()
+        .zip(b.pixels())
+        .map(|(p, q)| (0..3).any(|c| p[c] != q[c]))
+        .collect()
+}
+
+/// Pixels of a golden where one effect acts, and the largest mean difference (levels per
+/// channel) allowed there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    pub name: String,
+    pub mask: Vec<bool>,
+    pub mean_tolerance: f64,
+}
+
+/// Should goldens be rewritten? `REGATTA_UPDATE_GOLDEN` = `1`/`true` yes; unset, empty,
+/// `0`/`false` no; anything else is an error (a typo must not rewrite every golden).
+pub fn update_requested(value: Option<&str>) -> Result<bool, String> {
+    match value.map(|v| v.trim().to_ascii_lowercase()).as_deref() {
+        None | Some("" | "0" | "false") => Ok(false),
+        Some("1" | "true") => Ok(true),
+        Some(other) => Err(format!(
+            "REGATTA_UPDATE_GOLDEN={other:?}: use 1 or true to regenerate the goldens, 0 or \
+             false (or unset) to check them"
+        )),
+    }
+}
+
+fn update_from_env() -> Result<bool, String> {
+    let value = std::env::var_os("REGATTA_UPDATE_GOLDEN");
+    update_requested(value.as_ref().map(|v| v.to_string_lossy()).as_deref())
+}
+
+/// Compare `img` with the golden PNG at `path` (or write it when `REGATTA_UPDATE_GOLDEN=1`).
+/// On a mismatch the image is saved next to the temporary files and the error says where.
 pub fn check(path: &Path, img: &image::RgbaImage) -> Result<(), String> {
-    check_or_update(
-        path,
-        img,
-        std::env::var_os("REGATTA_UPDATE_GOLDEN").is_some(),
-    )
+    check_regions(path, img, &[])
 }
 
-fn check_or_update(path: &Path, img: &image::RgbaImage, update: bool) -> Result<(), String> {
-    if update {
-        if let Some(dir) = path.parent() {
-            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        }
-        img.save(path)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        log::info!("wrote {}", path.display());
-        return Ok(());
+/// [`check`] with the whole frame's limits and, in each of `regions`, its own mean limit.
+pub fn check_regions(
+    path: &Path,
+    img: &image::RgbaImage,
+    regions: &[Region],
+) -> Result<(), String> {
+    if update_from_env()? {
+        return update(path, img);
     }
+    verify(path, img, regions)
+}
+
+/// Write `img` as the golden at `path`, and say on stderr how far it moved from the old one.
+fn update(path: &Path, img: &image::RgbaImage) -> Result<(), String> {
+    let old = image::open(path).ok().map(|i| i.to_rgba8());
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    img.save(path)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let change = match old {
+        Some(old) if old == *img => "unchanged".to_string(),
+        Some(old) => {
+            let (mean, off) = compare(img, &old);
+            let moved = differing(img, &old).iter().filter(|&&d| d).count();
+            format!(
+                "changed: mean {mean:.3} levels, {moved} pixels differ, {:.2} % by more than \
+                 {PIXEL_TOLERANCE} levels",
+                off * 100.0
+            )
+        }
+        None => "new".to_string(),
+    };
+    eprintln!("golden {}: {change}", path.display());
+    Ok(())
+}
+
+/// Check `img` against the golden at `path` and its `regions`, never writing it (whatever
+/// `REGATTA_UPDATE_GOLDEN` says: for tests that feed a broken image on purpose).
+pub fn verify(path: &Path, img: &image::RgbaImage, regions: &[Region]) -> Result<(), String> {
     let want = image::open(path)
         .map_err(|e| {
             format!(
@@ -82,21 +161,36 @@ fn check_or_update(path: &Path, img: &image::RgbaImage, update: bool) -> Result<
             )
         })?
         .to_rgba8();
-    let (mean, off) = compare(img, &want);
-    if mean > MEAN_TOLERANCE || off > MAX_OFF_FRACTION {
+    let save_got = || {
         let stem = path
             .file_stem()
             .map_or("image".into(), |s| s.to_string_lossy());
         let got = std::env::temp_dir().join(format!("regatta-{stem}-got.png"));
         let _ = img.save(&got);
+        got
+    };
+    let (mean, off) = compare(img, &want);
+    if mean > MEAN_TOLERANCE || off > MAX_OFF_FRACTION {
         return Err(format!(
             "{}: mean difference {mean:.2} levels, {:.2} % pixels off (limits {MEAN_TOLERANCE}, \
              {:.0} %); got {}",
             path.display(),
             off * 100.0,
             MAX_OFF_FRACTION * 100.0,
-            got.display()
+            save_got().display()
         ));
+    }
+    for r in regions {
+        let (mean, _) = compare_in(img, &want, Some(&r.mask));
+        if mean > r.mean_tolerance {
+            return Err(format!(
+                "{}: mean difference {mean:.3} levels where {} acts (limit {}); got {}",
+                path.display(),
+                r.name,
+                r.mean_tolerance,
+                save_got().display()
+            ));
+        }
     }
     Ok(())
 }
@@ -129,15 +223,52 @@ mod tests {
     fn check_passes_within_the_limits_and_names_the_file_otherwise() {
         let dir = std::env::temp_dir().join(format!("regatta-golden-{}", std::process::id()));
         let path = dir.join("g.png");
-        let missing = check_or_update(&path, &grey(10), false).unwrap_err();
+        let missing = verify(&path, &grey(10), &[]).unwrap_err();
         assert!(missing.contains("g.png") && missing.contains("REGATTA_UPDATE_GOLDEN"));
-        check_or_update(&path, &grey(10), true).expect("written");
-        check_or_update(&path, &grey(11), false).expect("1 level is within the limits");
-        let err = check_or_update(&path, &grey(40), false).unwrap_err();
+        update(&path, &grey(10)).expect("written");
+        verify(&path, &grey(11), &[]).expect("1 level is within the limits");
+        // Within the frame's limits but not within a region's own.
+        let mut one = grey(10);
+        one.put_pixel(0, 0, image::Rgba([14, 10, 10, 255]));
+        verify(&path, &one, &[]).expect("a small change passes the frame's limits");
+        let mut mask = vec![false; 20];
+        mask[0] = true;
+        let region = Region {
+            name: "the test effect".into(),
+            mask,
+            mean_tolerance: 1.0,
+        };
+        let err = verify(&path, &one, std::slice::from_ref(&region)).unwrap_err();
+        assert!(err.contains("where the test effect acts"), "{err}");
+        let err = verify(&path, &grey(40), &[]).unwrap_err();
         assert!(
             err.contains("g.png") && err.contains("mean difference 30.00"),
             "{err}"
         );
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn only_one_or_true_regenerates_the_goldens() {
+        for v in [None, Some(""), Some("0"), Some("false"), Some("FALSE")] {
+            assert_eq!(update_requested(v), Ok(false), "{v:?}");
+        }
+        for v in ["1", "true", "True"] {
+            assert_eq!(update_requested(Some(v)), Ok(true), "{v}");
+        }
+        for v in ["yes", "2", "flase"] {
+            let e = update_requested(Some(v)).unwrap_err();
+            assert!(e.contains("REGATTA_UPDATE_GOLDEN") && e.contains(v), "{e}");
+        }
+    }
+
+    #[test]
+    fn a_region_compares_only_its_pixels() {
+        let mut b = grey(10);
+        b.put_pixel(1, 1, image::Rgba([40, 40, 40, 255]));
+        let mask = differing(&grey(10), &b);
+        assert_eq!(mask.iter().filter(|&&m| m).count(), 1);
+        assert_eq!(compare_in(&grey(10), &b, Some(&mask)), (30.0, 1.0));
+        assert_eq!(compare_in(&grey(10), &b, Some(&[false; 20])), (255.0, 1.0));
     }
 }

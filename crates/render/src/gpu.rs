@@ -29,6 +29,11 @@ impl fmt::Display for GpuError {
 
 impl std::error::Error for GpuError {}
 
+/// A wgpu error message (several indented lines) as one line.
+pub fn one_line(message: &str) -> String {
+    message.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
 /// An adapter, its device and queue, and what the device can do.
 pub struct Gpu {
     pub instance: wgpu::Instance,
@@ -205,6 +210,12 @@ impl Gpu {
                 info.name
             ))
         })?;
+        // wgpu's default handler panics: an error outside the renderer's error scopes (a
+        // pipeline built at start-up, a resize) is logged instead, and the frame that meets
+        // its consequences fails (Renderer::render's scopes).
+        device.on_uncaptured_error(Arc::new(|e: wgpu::Error| {
+            log::error!("GPU error: {}", one_line(&e.to_string()));
+        }));
         Ok(Gpu {
             instance,
             adapter,

@@ -14,6 +14,7 @@
 //! - [`frame`]: the pass framework, the frame uniform and the planner's [`frame::FrameReport`].
 //! - [`passes`]: sky, water (with the boats' wakes), boats. [`renderer`]: runs the passes;
 //!   offscreen images; [`renderer::Renderer::set_wake`] gives it a race's wakes.
+//! - [`wake_bins`]: the wake sources binned for the GPU within the buffer limits and budget.
 //! - [`compute`]: the same WGSL sea on a compute shader (the f64 parity test);
 //!   [`mesh_error`]: a clip-map's measured screen-space height error (the mesh bench).
 //!
@@ -53,6 +54,7 @@ pub mod pool;
 pub mod renderer;
 pub mod scene;
 pub mod shader;
+pub mod wake_bins;
 
 pub use camera::{Camera, OrbitCamera};
 pub use frame::{FrameReport, Pass};

@@ -8,7 +8,7 @@ use glam::DVec2;
 use crate::frame::{
     ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, Targets, WakeRecord,
 };
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, GpuError};
 use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
 use crate::scene::Scene;
 
@@ -191,6 +191,8 @@ pub struct Renderer {
     last: Option<FrameKey>,
     still: Option<StillFrame>,
     upscale: Option<Upscale>,
+    /// Memory budget of a frame's wake buffers, bytes (within the device's limits).
+    wake_budget: u64,
 }
 
 impl Renderer {
@@ -286,6 +288,7 @@ impl Renderer {
             last: None,
             still: None,
             upscale: None,
+            wake_budget: crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
         }
     }
 
@@ -298,6 +301,13 @@ impl Renderer {
     /// The boats' wakes to draw (built once per race by the caller), or none.
     pub fn set_wake(&mut self, wake: Option<Arc<ocean::wake::Wake>>) {
         self.wake = wake;
+        self.invalidate();
+    }
+
+    /// The memory budget of a frame's wake buffers, bytes (default
+    /// [`crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES`]; the device's limits cap it too).
+    pub fn set_wake_buffer_budget(&mut self, bytes: u64) {
+        self.wake_budget = bytes;
         self.invalidate();
     }
 
@@ -331,7 +341,39 @@ impl Renderer {
     /// scene, size and inputs: the timeline paused and the camera still) is not drawn again:
     /// the second identical frame is kept, and from the third on the kept copy is
     /// re-presented, every pass recorded as skipped with [`FRAME_REUSED`].
+    ///
+    /// A device error while the frame is recorded (validation, out of memory, internal) is
+    /// caught in error scopes, logged, and fails this frame with one line; the renderer and
+    /// the device stay usable for the next frame.
     pub fn render(
+        &mut self,
+        gpu: &Gpu,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        scene: &Scene,
+    ) -> Result<FrameReport, GpuError> {
+        let scopes = [
+            wgpu::ErrorFilter::Validation,
+            wgpu::ErrorFilter::OutOfMemory,
+            wgpu::ErrorFilter::Internal,
+        ]
+        .map(|f| gpu.device.push_error_scope(f));
+        let report = self.render_unchecked(gpu, target, size, scene);
+        // Popped in reverse order of pushing, as a stack.
+        let [a, b, c] = scopes;
+        let errors = [c, b, a].map(|s| pollster::block_on(s.pop()));
+        let Some(error) = errors.into_iter().flatten().next() else {
+            return Ok(report);
+        };
+        // Nothing of a failed frame is kept for re-presenting.
+        self.last = None;
+        self.still = None;
+        let line = crate::gpu::one_line(&error.to_string());
+        log::error!("frame at t = {} s failed: {line}", scene.t);
+        Err(GpuError(format!("the GPU refused this frame: {line}")))
+    }
+
+    fn render_unchecked(
         &mut self,
         gpu: &Gpu,
         target: &wgpu::TextureView,
@@ -412,6 +454,15 @@ impl Renderer {
         size: [u32; 2],
         scene: &Scene,
     ) -> FrameReport {
+        let raised = scene.camera_above_water();
+        if let Some((_, m)) = &raised {
+            log::warn!(
+                "the camera eye is under the sea surface (or within {} m of it): raised by \
+                 {m:.2} m; the water is not drawn from below",
+                crate::scene::CAMERA_CLEARANCE_M
+            );
+        }
+        let scene = raised.as_ref().map_or(scene, |(s, _)| s);
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
         if let Some(w) = &self.wake {
             // Sources that can reach any water the clip-map draws.
@@ -424,6 +475,18 @@ impl Renderer {
                 &view,
                 WAKE_EPSILON_M,
             );
+            let half = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
+            let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), self.wake_budget);
+            (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap);
+            if frame.wake_drop.dropped > 0 {
+                log::warn!(
+                    "{} wake sources dropped to fit the {} byte wake buffer cap: height error \
+                     ≤ {:.2e} m",
+                    frame.wake_drop.dropped,
+                    cap,
+                    frame.wake_drop.height_bound_m
+                );
+            }
             frame.uniform.counts[2] = frame.wakes.sources.len() as u32;
         }
         self.bindings
@@ -613,8 +676,13 @@ impl Renderer {
                 sources: frame.wakes.sources.len(),
                 culled: frame.wakes.culled,
                 cull_bound_m: frame.wakes.cull_bound,
+                dropped: frame.wake_drop.dropped,
+                drop_bound_m: frame.wake_drop.height_bound_m,
+                drop_foam_bound: frame.wake_drop.foam_bound,
+                buffer_cap_bytes: frame.wake_drop.cap_bytes,
             }),
             reused_last_frame: false,
+            camera_raised_m: raised.as_ref().map(|(_, m)| *m),
         }
     }
 }
@@ -633,9 +701,10 @@ pub fn render_image(
     scene: &Scene,
     size: [u32; 2],
 ) -> Result<(image::RgbaImage, FrameReport), crate::gpu::GpuError> {
-    gpu.render_offscreen(size, renderer.targets.colour, |view| {
+    let (image, report) = gpu.render_offscreen(size, renderer.targets.colour, |view| {
         renderer.render(gpu, view, size, scene)
-    })
+    })?;
+    Ok((image, report?))
 }
 
 /// The offscreen colour format: 8-bit sRGB, what PNGs hold.

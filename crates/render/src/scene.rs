@@ -41,7 +41,36 @@ pub struct Scene {
     pub camera: Camera,
 }
 
+/// How far above the sea surface under it a camera is kept, metres.
+pub const CAMERA_CLEARANCE_M: f64 = 0.2;
+
 impl Scene {
+    /// This scene with its camera raised to [`CAMERA_CLEARANCE_M`] above the sea surface under
+    /// the eye, where it is lower, and by how many metres; `None` when the eye is above it.
+    /// Eye and target move together, so the view's direction stays.
+    ///
+    /// Why raise rather than draw: the water is shaded from above only (reflection of the sky,
+    /// light from the water body) and the sky fills everything behind it, so from under the
+    /// surface the picture would be sky below the horizon and the surface's underside shaded
+    /// as if lit from above: nonsense. A race viewer has no under-water view to offer, and an
+    /// orbit or AR camera that dips through the surface is better stopped at it than refused.
+    pub fn camera_above_water(&self) -> Option<(Scene, f64)> {
+        let eye = self.camera.eye;
+        // Without a converged inverse (a sea the validator should have refused), the highest
+        // crest any wave could make.
+        let surface = self
+            .sea
+            .height_at([eye.x, eye.z], self.t)
+            .unwrap_or_else(|_| self.sea.total_amplitude());
+        let lift = surface + CAMERA_CLEARANCE_M - eye.y;
+        (lift > 0.0).then(|| {
+            let mut s = self.clone();
+            s.camera.eye.y += lift;
+            s.camera.target.y += lift;
+            (s, lift)
+        })
+    }
+
     /// A play area around `points` (boat tracks, marks) with `margin` metres on every side.
     pub fn play_area_around(points: impl IntoIterator<Item = DVec2>, margin: f64) -> [f64; 4] {
         let (mut lo, mut hi) = (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN));

@@ -1,5 +1,5 @@
-//! GPU tests on lavapipe (CI) or any adapter: device setup on two backends, the compute-shader
-//! parity of the WGSL sea against ocean's f64 reference, and a frame that shows a sea with boats.
+//! GPU tests on lavapipe (CI) or any adapter: device setup on two backends and a frame that
+//! shows a sea with boats (the WGSL's parity with ocean's f64 reference: `tests/parity.rs`).
 //! Without an adapter they print "skipped: no GPU adapter", unless REGATTA_REQUIRE_GPU=true,
 //! where they fail.
 
@@ -76,46 +76,6 @@ fn gl_backend_sets_up_and_renders_too() {
     let (img, report) = render::render_image(&gpu, &mut r, &scene(5.0), [64, 48]).unwrap();
     assert!(report.passes.iter().any(|p| p.name == "water" && p.ran));
     assert_ne!(img.get_pixel(32, 0), img.get_pixel(32, 47));
-}
-
-#[test]
-fn compute_heights_match_the_f64_reference_within_a_millimetre() {
-    let Some(gpu) = test_gpu() else { return };
-    let sea = WaveSet::default_sea();
-    // A 400 m square of local points around an origin far from the course centre.
-    let origin = DVec2::new(-7321.5, 4410.25);
-    let points: Vec<[f32; 2]> = (0..40)
-        .flat_map(|i| (0..40).map(move |j| [i as f32 * 10.0 - 200.0, j as f32 * 10.0 - 200.0]))
-        .collect();
-    for t in [0.0, 1e3, 1e6] {
-        let gpu_d = render::compute::gpu_displacements(&gpu, &sea, t, origin, &points).unwrap();
-        let mut worst = 0.0f64;
-        for (p, g) in points.iter().zip(&gpu_d) {
-            let x0 = [origin.x + f64::from(p[0]), origin.y + f64::from(p[1])];
-            let r = sea.displace(x0, t);
-            let err = [
-                f64::from(g[0]) - (r[0] - x0[0]),
-                f64::from(g[1]) - r[1],
-                f64::from(g[2]) - (r[2] - x0[1]),
-            ];
-            worst = err.iter().fold(worst, |w, e| w.max(e.abs()));
-        }
-        assert!(worst < 1e-3, "t = {t}: max error {worst} m");
-    }
-}
-
-#[test]
-fn a_broken_phase_reduction_would_fail_the_parity_test() {
-    // Feeding the unreduced phase (absolute time in f32) misses by far more than 1 mm at
-    // t = 1e6 s: the parity test above measures something that can go wrong.
-    let sea = WaveSet::default_sea();
-    let (t, x0) = (1e6, [12.0, -7.0]);
-    let w = &sea.waves[0];
-    let theta = sea.phase_at(w, x0, t);
-    let naive = (w.k() as f32 * (x0[0] as f32) - w.omega(sea.gravity, None) as f32 * t as f32
-        + w.phase as f32)
-        .sin();
-    assert!((f64::from(naive) - theta.sin()).abs() * w.amplitude() > 1e-3);
 }
 
 #[test]
@@ -202,9 +162,9 @@ fn a_still_frame_is_re_presented_not_drawn_again() {
     let copy = wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
     let (mut renderer, target, view) = keeping_renderer(&gpu, size, copy);
     let paused = scene(120.0);
-    let first = renderer.render(&gpu, &view, size, &paused);
+    let first = renderer.render(&gpu, &view, size, &paused).unwrap();
     let drawn = gpu.read_texture(&target).unwrap();
-    let second = renderer.render(&gpu, &view, size, &paused);
+    let second = renderer.render(&gpu, &view, size, &paused).unwrap();
     assert!(!first.reused_last_frame && !second.reused_last_frame);
     assert!(second.passes.iter().any(|p| p.ran));
     // Spoil the target: a re-presented frame must put the kept pixels back.
@@ -218,7 +178,7 @@ fn a_still_frame_is_re_presented_not_drawn_again() {
         },
         target.size(),
     );
-    let third = renderer.render(&gpu, &view, size, &paused);
+    let third = renderer.render(&gpu, &view, size, &paused).unwrap();
     assert!(third.reused_last_frame);
     assert!(
         third
@@ -229,13 +189,13 @@ fn a_still_frame_is_re_presented_not_drawn_again() {
     assert_eq!(third.triangles, 0);
     assert_eq!(gpu.read_texture(&target).unwrap(), drawn);
     // The timeline moves on: drawn again, and it looks different.
-    let moved = renderer.render(&gpu, &view, size, &scene(121.0));
+    let moved = renderer.render(&gpu, &view, size, &scene(121.0)).unwrap();
     assert!(!moved.reused_last_frame && moved.passes.iter().any(|p| p.ran));
     assert_ne!(gpu.read_texture(&target).unwrap(), drawn);
     // A changed input outside the scene (here: invalidate) is drawn too.
-    renderer.render(&gpu, &view, size, &scene(121.0));
+    renderer.render(&gpu, &view, size, &scene(121.0)).unwrap();
     renderer.invalidate();
-    let after = renderer.render(&gpu, &view, size, &scene(121.0));
+    let after = renderer.render(&gpu, &view, size, &scene(121.0)).unwrap();
     assert!(!after.reused_last_frame);
 }
 
@@ -246,7 +206,7 @@ fn frames_are_always_drawn_when_they_cannot_be_kept() {
     let size = [32, 32];
     let (mut renderer, _target, view) = keeping_renderer(&gpu, size, wgpu::TextureUsages::empty());
     for _ in 0..3 {
-        let r = renderer.render(&gpu, &view, size, &scene(5.0));
+        let r = renderer.render(&gpu, &view, size, &scene(5.0)).unwrap();
         assert!(!r.reused_last_frame && r.passes.iter().any(|p| p.ran));
     }
 }
@@ -311,4 +271,42 @@ fn a_frame_drawn_at_half_scale_is_stretched_onto_the_target() {
     }
     let mean = diff / (64.0 * 48.0 * 3.0);
     assert!(mean < 6.0, "mean difference {mean} levels");
+}
+
+/// A camera under the sea surface, looking slightly down: the frame is drawn from just above
+/// the surface instead (sky above, water below), and the record says by how much it rose.
+/// Before, the surface's underside filled the top of the picture and sky the bottom.
+#[test]
+fn a_camera_under_the_water_is_raised_above_the_surface() {
+    let Some(gpu) = test_gpu() else { return };
+    let mut s = scene(100.0);
+    s.camera = Camera::look_at(
+        DVec3::new(0.0, -5.0, 40.0),
+        DVec3::new(0.0, -9.0, -60.0),
+        5000.0,
+    );
+    let surface = s.sea.height_at([0.0, 40.0], s.t).unwrap();
+    let mut r = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, RenderOptions::default());
+    let (img, report) = render::render_image(&gpu, &mut r, &s, [96, 64]).unwrap();
+    let raised = report
+        .camera_raised_m
+        .expect("the record says the camera was raised");
+    let want = surface + render::scene::CAMERA_CLEARANCE_M + 5.0;
+    assert!((raised - want).abs() < 1e-9, "{raised} vs {want}");
+    let lum = |y: u32| {
+        (0..img.width())
+            .map(|x| {
+                img.get_pixel(x, y).0[..3]
+                    .iter()
+                    .map(|&c| f64::from(c))
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+            / f64::from(img.width())
+    };
+    let (top, bottom) = (lum(0), lum(img.height() - 1));
+    assert!(top > bottom + 60.0, "sky {top} vs water {bottom}");
+    // A camera above the water is left where it is.
+    let (_, report) = render::render_image(&gpu, &mut r, &scene(100.0), [96, 64]).unwrap();
+    assert_eq!(report.camera_raised_m, None);
 }

@@ -115,7 +115,8 @@ fn draw(gpu: &Gpu, r: &mut Renderer, scene: &Scene) -> image::RgbaImage {
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::COPY_DST,
     );
-    r.render(gpu, &tex.create_view(&Default::default()), SIZE, scene);
+    r.render(gpu, &tex.create_view(&Default::default()), SIZE, scene)
+        .expect("render");
     gpu.read_texture(&tex).expect("read back")
 }
 

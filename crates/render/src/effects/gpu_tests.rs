@@ -12,7 +12,7 @@ use wgpu::util::DeviceExt;
 use super::camera_frame::CameraFrame;
 use super::passes::{ArConfig, OFFSCREEN_REUSED, add_effect_passes};
 use super::{Effect, EffectSet};
-use crate::golden::compare;
+use crate::golden::{Region, compare, differing, verify};
 use crate::gpu::{Gpu, test_gpu};
 use crate::optics::{N_AIR, N_WATER, fresnel, refract, schlick};
 use crate::{OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene, render_image};
@@ -45,22 +45,118 @@ fn frame_for(scene: &Scene, cfg: &ArConfig) -> CameraFrame {
 }
 
 fn render_with(gpu: &Gpu, scene: &Scene, effects: Option<EffectSet>) -> image::RgbaImage {
+    render_knocked_out(gpu, scene, effects, None)
+}
+
+/// [`render_with`], with the AR water shader compiled without `dead`'s term (its FX bit off).
+fn render_knocked_out(
+    gpu: &Gpu,
+    scene: &Scene,
+    effects: Option<EffectSet>,
+    dead: Option<Effect>,
+) -> image::RgbaImage {
     let mut r = Renderer::new(gpu, OFFSCREEN_FORMAT, RenderOptions::default());
     if let Some(effects) = effects {
-        let cfg = config(effects);
+        let cfg = ArConfig {
+            shader_knockout: dead.map_or(0, |e| 1 << e as u8),
+            ..config(effects)
+        };
         let frame = frame_for(scene, &cfg);
         add_effect_passes(&mut r, gpu, cfg, frame);
     }
     render_image(gpu, &mut r, scene, SIZE).expect("render").0
 }
 
+/// Each water effect's golden and the largest mean difference (levels per channel) allowed
+/// where it acts (the water the AR shader draws: where its golden differs from
+/// fx_background's): at most a third of the mean change that killing its term makes there
+/// (measured on lavapipe: reflection 3.2, refraction 20.7, caustics 5.1, flow map 0.49 levels;
+/// a rerun changes 0; docs/render-reliability.md), so a dead term fails and rounding passes.
+const EFFECT_LIMITS: [(Effect, &str, f64); 4] = [
+    (Effect::Reflection, "fx_reflection", 1.0),
+    (Effect::Refraction, "fx_refraction", 5.0),
+    (Effect::Caustics, "fx_caustics", 1.5),
+    (Effect::FlowMap, "fx_flowmap", 0.15),
+];
+
+fn golden_path(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("src/effects/golden")
+        .join(format!("{name}.png"))
+}
+
+fn read_golden(name: &str) -> Option<image::RgbaImage> {
+    image::open(golden_path(name)).ok().map(|i| i.to_rgba8())
+}
+
+/// The regions of a golden showing `effects`: for each water effect among them, the pixels
+/// where its golden differs from `fx_background`'s, with its limit.
+fn regions(effects: EffectSet) -> Vec<Region> {
+    let Some(base) = read_golden("fx_background") else {
+        return Vec::new();
+    };
+    EFFECT_LIMITS
+        .iter()
+        .filter(|(e, _, _)| effects.contains(*e))
+        .filter_map(|&(e, name, limit)| {
+            Some(Region {
+                name: e.name().to_string(),
+                mask: differing(&read_golden(name)?, &base),
+                mean_tolerance: limit,
+            })
+        })
+        .collect()
+}
+
 fn golden(name: &str, effects: EffectSet) {
     let Some(gpu) = test_gpu() else { return };
     let img = render_with(&gpu, &table_scene(40.0), Some(effects));
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("src/effects/golden")
-        .join(format!("{name}.png"));
-    crate::golden::check(&path, &img).unwrap_or_else(|e| panic!("{e}"));
+    crate::golden::check_regions(&golden_path(name), &img, &regions(effects))
+        .unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn no_effect_golden_passes_for_another() {
+    // Before per-effect regions, fx_reflection passed as fx_flowmap (mean 0.79 levels).
+    let names = [
+        "fx_background",
+        "fx_reflection",
+        "fx_refraction",
+        "fx_caustics",
+    ];
+    let names = names.iter().chain(&["fx_flowmap", "fx_all"]);
+    let set = |name: &str| match EFFECT_LIMITS.iter().find(|l| l.1 == name) {
+        Some(&(e, _, _)) => EffectSet::only(Effect::Background).with(e),
+        None if name == "fx_all" => EffectSet::ALL,
+        None => EffectSet::only(Effect::Background),
+    };
+    for a in names.clone() {
+        for b in names.clone().filter(|&b| b != a) {
+            let (Some(img), true) = (read_golden(b), golden_path(a).exists()) else {
+                panic!("golden {a} or {b} missing");
+            };
+            let ok = verify(&golden_path(a), &img, &regions(set(a)));
+            assert!(ok.is_err(), "{b} passes as {a}");
+        }
+    }
+}
+
+#[test]
+fn a_dead_effect_term_fails_its_golden_and_fx_all() {
+    let Some(gpu) = test_gpu() else { return };
+    let scene = table_scene(40.0);
+    for (e, name, _) in EFFECT_LIMITS {
+        let fx = EffectSet::only(Effect::Background).with(e);
+        let img = render_knocked_out(&gpu, &scene, Some(fx), Some(e));
+        let err = verify(&golden_path(name), &img, &regions(fx)).unwrap_err();
+        assert!(err.contains(e.name()), "{name} without {e:?}: {err}");
+        let all = render_knocked_out(&gpu, &scene, Some(EffectSet::ALL), Some(e));
+        let err = verify(&golden_path("fx_all"), &all, &regions(EffectSet::ALL)).unwrap_err();
+        assert!(err.contains("fx_all"), "fx_all without {e:?}: {err}");
+    }
+    // The background (its own pass, not a water term): the water-only frame fails it.
+    let water_only = render_with(&gpu, &scene, None);
+    assert!(verify(&golden_path("fx_background"), &water_only, &[]).is_err());
 }
 
 #[test]

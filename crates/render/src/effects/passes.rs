@@ -71,6 +71,11 @@ pub struct ArConfig {
     pub cheap_caustics: bool,
     /// Surface grid and output cells per side of the area-ratio caustic map.
     pub caustic_resolution: (usize, usize),
+    /// Test hook, 0 in use: these effects' bits (`1 << Effect as u8`) are left out of the AR
+    /// water shader's `FX_MASK` while every pass still runs, so the effect's term is dead (the
+    /// golden tests prove they catch that).
+    #[doc(hidden)]
+    pub shader_knockout: u8,
 }
 
 impl Default for ArConfig {
@@ -86,6 +91,7 @@ impl Default for ArConfig {
             detail_tile: 12.0,
             cheap_caustics: false,
             caustic_resolution: (48, 64),
+            shader_knockout: 0,
         }
     }
 }
@@ -626,6 +632,8 @@ struct ArPipelines {
     wakes: bool,
     /// The overhead-sun caustics instead of the area-ratio map (fixed for the pass's life).
     cheap_caustics: bool,
+    /// [`ArConfig::shader_knockout`].
+    knockout: u32,
     /// Indexed by [`ArPipelines::slot`].
     made: [Option<wgpu::RenderPipeline>; 16],
 }
@@ -649,7 +657,7 @@ impl ArPipelines {
         let (stage, buffer) = vertex_stage(self.wakes);
         let constants = format!(
             "const FX_MASK: u32 = {}u;\nconst FX_CHEAP_CAUSTICS: bool = {};",
-            mask & 0b1_1110,
+            mask & 0b1_1110 & !self.knockout,
             self.cheap_caustics,
         );
         let effects = [
@@ -1021,6 +1029,7 @@ pub fn add_effect_passes(
         targets,
         wakes,
         cheap_caustics: shared.borrow().cfg.cheap_caustics,
+        knockout: u32::from(shared.borrow().cfg.shader_knockout),
         made: Default::default(),
     };
     let reflection_boats = BoatsPass::new(&gpu.device, &pipelines.frame_layout, targets);

@@ -1,0 +1,417 @@
+//! The boats' wake sources binned for the water's compute stage (`shaders/water_vertices.wgsl`),
+//! within the device's buffer limits and a memory budget.
+//!
+//! A point sums only the sources listed in its bin. Bunched fleets (hundreds of boats at a
+//! start) list tens of millions of (bin, source) pairs, past any device's storage-buffer limit
+//! (128 MiB on most GPUs and in `wgpu::Limits::downlevel_defaults`, a phone's) and past what a
+//! frame should upload. So the three per-frame buffers (sources, bins, indices) together stay
+//! within [`wake_buffer_cap`]: the smaller of the adapter's `max_storage_buffer_binding_size`,
+//! its `max_buffer_size` and [`WAKE_BUFFER_BUDGET_BYTES`]. When the sources in view need more,
+//! [`fit`] drops the least visible ones (the smallest peak height,
+//! `ocean::wake::source_peak_bound`) until the rest fit, and states the error: the height
+//! anywhere errs by at most the sum of the dropped sources' peak bounds, and the wake foam by
+//! at most the sum of their peak densities (1 − e^{−Σ} is 1-Lipschitz).
+
+use ocean::wake::{GpuWakeFrame, GpuWakeSource, source_peak_bound};
+use serde::Serialize;
+
+/// Memory budget of one frame's wake buffers (sources, bins and indices together): 16 MiB,
+/// an eighth of a phone's storage-binding limit (`downlevel_defaults`: 128 MiB) and about
+/// 4 million (bin, source) pairs, which lavapipe and phones sum in a frame.
+pub const WAKE_BUFFER_BUDGET_BYTES: u64 = 16 << 20;
+
+/// Bins per side of the wake grid, and how far (m) around a bin its list reaches: the
+/// gradient is closed-form, so the margin only covers rounding of the bin lookup.
+pub const WAKE_BINS: u32 = 128;
+pub const WAKE_MARGIN_M: f32 = 0.5;
+
+/// Bytes of one source in the buffer, one bin entry and one index.
+const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
+const BIN_BYTES: u64 = 8;
+const INDEX_BYTES: u64 = 4;
+
+/// The cap on one frame's wake buffers, bytes: `budget` within the device's limits for one
+/// storage binding and one buffer.
+pub fn wake_buffer_cap(limits: &wgpu::Limits, budget: u64) -> u64 {
+    budget
+        .min(limits.max_storage_buffer_binding_size)
+        .min(limits.max_buffer_size)
+}
+
+/// What the budget left out of a frame's wakes.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct WakeDrop {
+    /// Sources in reach of the view left out to fit the cap.
+    pub dropped: usize,
+    /// Bound of the wake height error this causes anywhere, m (Σ of their peak bounds).
+    pub height_bound_m: f64,
+    /// Bound of the wake foam error (Σ of their peak foam densities).
+    pub foam_bound: f64,
+    /// The cap the frame's wake buffers fit in, bytes.
+    pub cap_bytes: u64,
+}
+
+/// `WakeGrid` of `shaders/water_vertices.wgsl` (32 bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WakeGrid {
+    pub origin: [f32; 2],
+    pub inv_cell: f32,
+    pub margin: f32,
+    pub nx: u32,
+    pub nz: u32,
+    pub _pad: [u32; 2],
+}
+
+/// The wake sources binned on a grid: a point looks up its bin and sums only the sources
+/// listed there. Every source whose cull circle, grown by `margin`, touches a bin is listed
+/// in it, so a point within `margin` of a bin's points misses no source that reaches it.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct WakeBins {
+    pub grid: WakeGrid,
+    /// Per bin, row-major (x fastest): first index into `indices` and count.
+    pub bins: Vec<[u32; 2]>,
+    pub indices: Vec<u32>,
+}
+
+/// The grid's geometry: corner, bin size and bins per side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Layout {
+    lo: [f32; 2],
+    cell: f32,
+    nx: u32,
+    nz: u32,
+    margin: f32,
+}
+
+impl Layout {
+    /// Bins of at least 2 m, at most `max_bins` per side, over [lo, hi].
+    fn new(lo: [f32; 2], hi: [f32; 2], max_bins: u32, margin: f32) -> Layout {
+        let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1.0);
+        let cell = (size / max_bins as f32).max(2.0);
+        let nx = (((hi[0] - lo[0]) / cell).ceil() as u32).clamp(1, max_bins);
+        let nz = (((hi[1] - lo[1]) / cell).ceil() as u32).clamp(1, max_bins);
+        Layout {
+            lo,
+            cell,
+            nx,
+            nz,
+            margin,
+        }
+    }
+
+    /// The bins [i0, i1] × [j0, j1] whose lists hold `s` (its cull circle grown by the
+    /// margin touches them), or none.
+    fn span(&self, s: &GpuWakeSource) -> Option<[u32; 4]> {
+        let r = s.cull_r2.max(0.0).sqrt() + self.margin;
+        let (x0, x1) = (s.pos[0] - r, s.pos[0] + r);
+        let (z0, z1) = (s.pos[1] - r, s.pos[1] + r);
+        let (lo, cell) = (self.lo, self.cell);
+        if x1 < lo[0]
+            || z1 < lo[1]
+            || x0 > lo[0] + self.nx as f32 * cell
+            || z0 > lo[1] + self.nz as f32 * cell
+        {
+            return None;
+        }
+        let bin_of =
+            |v: f32, o: f32, n: u32| ((v - o) / cell).floor().clamp(0.0, n as f32 - 1.0) as u32;
+        Some([
+            bin_of(x0, lo[0], self.nx),
+            bin_of(x1, lo[0], self.nx),
+            bin_of(z0, lo[1], self.nz),
+            bin_of(z1, lo[1], self.nz),
+        ])
+    }
+
+    /// How many bins list `s`.
+    fn listed(&self, s: &GpuWakeSource) -> u64 {
+        self.span(s).map_or(0, |[i0, i1, j0, j1]| {
+            u64::from(i1 - i0 + 1) * u64::from(j1 - j0 + 1)
+        })
+    }
+}
+
+/// The rectangle the sources' cull circles (grown by `margin`) cover, clipped to the square
+/// [−half, half]²; none when nothing reaches the square.
+fn reach(sources: &[GpuWakeSource], half: f32, margin: f32) -> Option<([f32; 2], [f32; 2])> {
+    let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
+    for s in sources {
+        let r = s.cull_r2.max(0.0).sqrt() + margin;
+        for a in 0..2 {
+            lo[a] = lo[a].min(s.pos[a] - r);
+            hi[a] = hi[a].max(s.pos[a] + r);
+        }
+    }
+    let (lo, hi) = (lo.map(|v| v.max(-half)), hi.map(|v| v.min(half)));
+    (lo[0] < hi[0] && lo[1] < hi[1]).then_some((lo, hi))
+}
+
+impl WakeBins {
+    /// Bin `sources` over the rectangle their cull circles (grown by `margin`) cover, clipped
+    /// to the square [−half, half]² (local metres).
+    pub fn over_reach(
+        sources: &[GpuWakeSource],
+        half: f32,
+        max_bins: u32,
+        margin: f32,
+    ) -> WakeBins {
+        match reach(sources, half, margin) {
+            Some((lo, hi)) => WakeBins::new(sources, lo, hi, max_bins, margin),
+            // Nothing reaches the square: one empty bin.
+            None => WakeBins::new(&[], [-half, -half], [half, half], 1, margin),
+        }
+    }
+
+    /// Bin `sources` over the local rectangle [lo, hi] with at most `max_bins` per side.
+    pub fn new(
+        sources: &[GpuWakeSource],
+        lo: [f32; 2],
+        hi: [f32; 2],
+        max_bins: u32,
+        margin: f32,
+    ) -> WakeBins {
+        WakeBins::on(sources, Layout::new(lo, hi, max_bins, margin))
+    }
+
+    fn on(sources: &[GpuWakeSource], layout: Layout) -> WakeBins {
+        let Layout { nx, nz, .. } = layout;
+        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
+        for (k, s) in sources.iter().enumerate() {
+            let Some([i0, i1, j0, j1]) = layout.span(s) else {
+                continue;
+            };
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    lists[(j * nx + i) as usize].push(k as u32);
+                }
+            }
+        }
+        let mut bins = Vec::with_capacity(lists.len());
+        let mut indices = Vec::new();
+        for l in &lists {
+            bins.push([indices.len() as u32, l.len() as u32]);
+            indices.extend_from_slice(l);
+        }
+        WakeBins {
+            grid: WakeGrid {
+                origin: layout.lo,
+                inv_cell: 1.0 / layout.cell,
+                margin: layout.margin,
+                nx,
+                nz,
+                _pad: [0; 2],
+            },
+            bins,
+            indices,
+        }
+    }
+
+    /// Bytes of the three buffers with `sources` sources (each at least one entry: the
+    /// buffers are never empty).
+    pub fn bytes(&self, sources: usize) -> u64 {
+        SOURCE_BYTES * sources.max(1) as u64
+            + BIN_BYTES * self.bins.len() as u64
+            + INDEX_BYTES * self.indices.len().max(1) as u64
+    }
+}
+
+/// Bin `wakes.sources` over where they reach inside [−half, half]², the three buffers within
+/// `cap` bytes: when they would need more, the sources with the smallest peak height are
+/// removed from `wakes.sources` until the rest fit (module docs), and the record says how many
+/// and the error bound.
+pub fn fit(wakes: &mut GpuWakeFrame, half: f32, cap: u64) -> (WakeBins, WakeDrop) {
+    let mut drop = WakeDrop {
+        cap_bytes: cap,
+        ..Default::default()
+    };
+    let Some((lo, hi)) = reach(&wakes.sources, half, WAKE_MARGIN_M) else {
+        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, WAKE_MARGIN_M);
+        return (bins, drop);
+    };
+    // The grid stays the one of all sources in reach, so every count below is exact.
+    let layout = Layout::new(lo, hi, WAKE_BINS, WAKE_MARGIN_M);
+    let listed: Vec<u64> = wakes.sources.iter().map(|s| layout.listed(s)).collect();
+    let mut bytes = SOURCE_BYTES * wakes.sources.len().max(1) as u64
+        + BIN_BYTES * u64::from(layout.nx * layout.nz)
+        + INDEX_BYTES * listed.iter().sum::<u64>().max(1);
+    if bytes > cap {
+        let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
+        let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
+        order.sort_by(|&a, &b| peak[a].total_cmp(&peak[b]).then(a.cmp(&b)));
+        let mut keep = vec![true; wakes.sources.len()];
+        for k in order {
+            if bytes <= cap {
+                break;
+            }
+            keep[k] = false;
+            bytes -= SOURCE_BYTES + INDEX_BYTES * listed[k];
+            drop.dropped += 1;
+            drop.height_bound_m += peak[k];
+            drop.foam_bound += f64::from(wakes.sources[k].foam);
+        }
+        let mut kept = keep.into_iter();
+        wakes.sources.retain(|_| kept.next().unwrap_or(true));
+    }
+    (WakeBins::on(&wakes.sources, layout), drop)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_source_reaching_a_point_is_in_its_bin() {
+        // Sources scattered over a square, each reaching a different radius.
+        let sources: Vec<GpuWakeSource> = (0..300)
+            .map(|k| {
+                let f = k as f32;
+                GpuWakeSource {
+                    pos: [(f * 37.3) % 400.0 - 200.0, (f * 91.7) % 400.0 - 200.0],
+                    cull_r2: (1.0 + (f * 13.1) % 30.0).powi(2),
+                    ..Default::default()
+                }
+            })
+            .collect();
+        let bins = WakeBins::new(&sources, [-250.0, -250.0], [250.0, 250.0], 32, 2.0);
+        let g = bins.grid;
+        let mut listed = 0usize;
+        for a in 0..97 {
+            for b in 0..89 {
+                let p = [-249.0 + a as f32 * 5.13, -249.0 + b as f32 * 5.59];
+                let i = ((p[0] - g.origin[0]) * g.inv_cell) as u32;
+                let j = ((p[1] - g.origin[1]) * g.inv_cell) as u32;
+                let [first, count] = bins.bins[(j * g.nx + i) as usize];
+                let list = &bins.indices[first as usize..(first + count) as usize];
+                listed += list.len();
+                // Any stencil point within the margin: every source whose cull circle holds
+                // it is listed.
+                for q in [p, [p[0] + 1.9, p[1]], [p[0], p[1] - 1.9]] {
+                    for (k, s) in sources.iter().enumerate() {
+                        let d2 = (q[0] - s.pos[0]).powi(2) + (q[1] - s.pos[1]).powi(2);
+                        if d2 <= s.cull_r2 {
+                            assert!(list.contains(&(k as u32)), "source {k} missing at {q:?}");
+                        }
+                    }
+                }
+            }
+        }
+        // And binning saves work: far fewer than all sources per point on average.
+        assert!(listed < 97 * 89 * sources.len() / 5, "{listed}");
+    }
+
+    /// The sources a point sums: its bin's list, or none outside the grid (as `wake_bin`).
+    fn listed_at(bins: &WakeBins, p: [f32; 2]) -> &[u32] {
+        let g = bins.grid;
+        let (x, z) = (
+            (p[0] - g.origin[0]) * g.inv_cell,
+            (p[1] - g.origin[1]) * g.inv_cell,
+        );
+        if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
+            return &[];
+        }
+        let [first, count] = bins.bins[(z as u32 * g.nx + x as u32) as usize];
+        &bins.indices[first as usize..(first + count) as usize]
+    }
+
+    #[test]
+    fn bins_cover_only_where_the_sources_reach() {
+        // A fleet's wake 120 m across, 900 m from the origin of a 4 km clip-map.
+        let sources: Vec<GpuWakeSource> = (0..200)
+            .map(|k| {
+                let f = k as f32;
+                GpuWakeSource {
+                    pos: [900.0 + (f * 37.3) % 120.0, -300.0 + (f * 91.7) % 80.0],
+                    cull_r2: (2.0 + (f * 13.1) % 20.0).powi(2),
+                    ..Default::default()
+                }
+            })
+            .collect();
+        let bins = WakeBins::over_reach(&sources, 2000.0, 128, 0.5);
+        let whole = WakeBins::new(&sources, [-2000.0; 2], [2000.0; 2], 128, 0.5);
+        // The grid spans the reach (≤ 164 m) in the smallest bins (2 m), not the whole
+        // square's 31 m bins.
+        let g = bins.grid;
+        let cell = 1.0 / g.inv_cell;
+        assert!(cell <= 2.0 + 1e-3, "{g:?}");
+        assert!(
+            g.nx as f32 * cell <= 166.0 && g.nz as f32 * cell <= 166.0,
+            "{g:?}"
+        );
+        let (mut fine, mut coarse) = (0usize, 0usize);
+        for a in 0..200 {
+            for b in 0..150 {
+                let p = [860.0 + a as f32 * 1.01, -340.0 + b as f32 * 1.07];
+                let list = listed_at(&bins, p);
+                for (k, s) in sources.iter().enumerate() {
+                    let d2 = (p[0] - s.pos[0]).powi(2) + (p[1] - s.pos[1]).powi(2);
+                    if d2 <= s.cull_r2 {
+                        assert!(list.contains(&(k as u32)), "source {k} missing at {p:?}");
+                    }
+                }
+                fine += list.len();
+                coarse += listed_at(&whole, p).len();
+            }
+        }
+        // Far fewer sources to loop over per point than with bins over the whole square.
+        assert!(fine * 3 < coarse, "{fine} vs {coarse}");
+        assert!(listed_at(&bins, [0.0, 0.0]).is_empty());
+        // No source in reach: an empty grid.
+        let none = WakeBins::over_reach(&sources, 100.0, 128, 0.5);
+        assert!(none.indices.is_empty() && listed_at(&none, [0.0, 0.0]).is_empty());
+    }
+
+    #[test]
+    fn a_fleet_over_the_cap_drops_its_least_visible_sources_and_states_the_bound() {
+        // 600 sources bunched in 100 m, of growing strength: far more (bin, source) pairs
+        // than a 256 KiB cap holds.
+        let sources: Vec<GpuWakeSource> = (0..600)
+            .map(|k| {
+                let f = k as f32;
+                GpuWakeSource {
+                    pos: [(f * 37.3) % 100.0 - 50.0, (f * 91.7) % 100.0 - 50.0],
+                    dx: [1.0, 0.0],
+                    q: 50.0,
+                    strength: 1e-3 * (1.0 + f),
+                    gauss: 0.25,
+                    cull_r2: 30.0 * 30.0,
+                    foam: 0.01,
+                    foam_w2: 1.0,
+                    _pad: [0.0; 2],
+                }
+            })
+            .collect();
+        let mut all = GpuWakeFrame {
+            sources: sources.clone(),
+            ..Default::default()
+        };
+        let (bins, drop) = fit(&mut all, 2000.0, u64::MAX);
+        assert_eq!((drop.dropped, all.sources.len()), (0, 600));
+        let need = bins.bytes(600);
+        let cap = 256 << 10;
+        assert!(need > 4 * cap, "{need}");
+        let mut frame = GpuWakeFrame {
+            sources,
+            ..Default::default()
+        };
+        let (bins, drop) = fit(&mut frame, 2000.0, cap);
+        // Fits, and drops no more than it must (one more source would not fit).
+        assert!(bins.bytes(frame.sources.len()) <= cap);
+        assert!(drop.dropped > 0 && drop.dropped + frame.sources.len() == 600);
+        // The dropped ones are the weakest: every kept source is at least as strong.
+        let weakest_kept = frame
+            .sources
+            .iter()
+            .map(|s| s.strength)
+            .fold(f32::MAX, f32::min);
+        assert_eq!(weakest_kept, 1e-3 * (1.0 + drop.dropped as f32));
+        // The bound is the sum of the dropped sources' peak bounds and foam densities.
+        let bound: f64 = all.sources[..drop.dropped]
+            .iter()
+            .map(source_peak_bound)
+            .sum();
+        assert!((drop.height_bound_m - bound).abs() <= 1e-12 * bound);
+        assert!((drop.foam_bound - 0.01 * drop.dropped as f64).abs() < 1e-6);
+        assert_eq!(drop.cap_bytes, cap);
+    }
+}
