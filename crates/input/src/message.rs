@@ -49,9 +49,10 @@ pub fn quote(s: &str) -> String {
     format!("\"{}\"", cut(s, QUOTE_MAX_CHARS))
 }
 
-/// A whole message made safe to print as one line: escaped and cut to [`MESSAGE_MAX_CHARS`].
+/// A whole message made safe to print as one line: trailing white space (some libraries end
+/// their messages with a newline) dropped, escaped, cut to [`MESSAGE_MAX_CHARS`].
 pub fn one_line(s: &str) -> String {
-    cut(s, MESSAGE_MAX_CHARS)
+    cut(s.trim_end(), MESSAGE_MAX_CHARS)
 }
 
 /// A number from input for a message: as written for everyday sizes, in exponent form when
