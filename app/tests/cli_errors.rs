@@ -57,14 +57,30 @@ fn control_characters_in_a_sea_file_key_are_escaped() {
         "cli_errors_key.json",
         r#"{"\nname\u001b[2J\u0007": 1, "waves": []}"#,
     );
-    let args = ["probe", "--t", "1", "--at", "0,0", "--sea", sea.to_str().unwrap()];
+    let args = [
+        "probe",
+        "--t",
+        "1",
+        "--at",
+        "0,0",
+        "--sea",
+        sea.to_str().unwrap(),
+    ];
     fails_with(&args, "unknown field `\\nname\\u{1b}[2J\\u{7}`");
     assert_one_safe_line(&regatta(&args).2);
 }
 
 #[test]
 fn control_characters_in_file_names_and_values_are_escaped() {
-    let (code, _, err) = regatta(&["probe", "--t", "1", "--at", "0,0", "--sea", "no\nsuch\u{1b}.json"]);
+    let (code, _, err) = regatta(&[
+        "probe",
+        "--t",
+        "1",
+        "--at",
+        "0,0",
+        "--sea",
+        "no\nsuch\u{1b}.json",
+    ]);
     assert_ne!(code, 0);
     assert_one_safe_line(&err);
     assert!(err.contains("no\\nsuch\\u{1b}.json"), "{err}");
@@ -82,22 +98,37 @@ fn control_characters_in_file_names_and_values_are_escaped() {
 #[test]
 fn usage_errors_are_one_line_and_help_is_unchanged() {
     for (args, needle) in [
-        (vec!["race", "--t", "1", "--t", "2"], "cannot be used multiple times"),
-        (vec!["race", "--bogus"], "unexpected argument '--bogus' found"),
+        (
+            vec!["race", "--t", "1", "--t", "2"],
+            "cannot be used multiple times",
+        ),
+        (
+            vec!["race", "--bogus"],
+            "unexpected argument '--bogus' found",
+        ),
         (vec!["render", "--frame", "1", "--out", "a.png"], "--replay"),
-        (vec!["sea", "--waves", "x"], "invalid value 'x' for '--waves"),
+        (
+            vec!["sea", "--waves", "x"],
+            "invalid value 'x' for '--waves",
+        ),
         (vec!["nosuch"], "unrecognized subcommand 'nosuch'"),
     ] {
         let (code, out, err) = regatta(&args);
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(out.is_empty());
         assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
-        assert!(err.starts_with("regatta: ") && err.contains(needle), "{args:?}: {err}");
+        assert!(
+            err.starts_with("regatta: ") && err.contains(needle),
+            "{args:?}: {err}"
+        );
         assert!(err.trim_end().ends_with("(see --help)"), "{err}");
     }
     let (code, out, _) = regatta(&["render", "--help"]);
     assert_eq!(code, 0);
-    assert!(out.lines().count() > 10 && out.contains("Usage: regatta render"), "{out}");
+    assert!(
+        out.lines().count() > 10 && out.contains("Usage: regatta render"),
+        "{out}"
+    );
 }
 
 /// `render --t -5` was a clap usage error ("unexpected argument '-5'") while race and probe
@@ -105,8 +136,14 @@ fn usage_errors_are_one_line_and_help_is_unchanged() {
 /// --out, before any GPU work).
 #[test]
 fn negative_times_are_accepted_everywhere() {
-    fails_with(&["render", "--t", "-5", "--out", "x.bmp"], "--out \"x.bmp\" must name a .png or .jpg file");
-    fails_with(&["render", "--error-px", "-1", "--out", "x.png"], "--error-px -1 is outside 0.1 to 100 pixels");
+    fails_with(
+        &["render", "--t", "-5", "--out", "x.bmp"],
+        "--out \"x.bmp\" must name a .png or .jpg file",
+    );
+    fails_with(
+        &["render", "--error-px", "-1", "--out", "x.png"],
+        "--error-px -1 is outside 0.1 to 100 pixels",
+    );
     let race = common::far_race("cli_errors_far.json");
     let v = common::ok_json(&["race", "--t", "-5", "--race", race.to_str().unwrap()]);
     assert_eq!(v["t"], -5.0);
@@ -114,17 +151,42 @@ fn negative_times_are_accepted_everywhere() {
 
 #[test]
 fn values_outside_their_ranges_are_one_sentence() {
-    fails_with(&["probe", "--t", "0", "--at", "1e155,0"], "--at \"1e155,0\" lies outside the world: x and z must lie within ±1e6 m");
-    fails_with(&["sea", "--hs", "1e300", "--tp", "8"], "--hs is 1e300 m, outside (0, 30] m");
-    fails_with(&["sea", "--hs", "2", "--tp", "1e-300"], "--tp is 1e-300 s, outside [0.5, 30] s");
-    fails_with(&["sea", "--hs", "2", "--tp", "8", "--gamma", "1e9"], "--gamma is 1e9, outside [1, 10]");
-    for (name, l) in [("cli_errors_long.json", "1e300"), ("cli_errors_short.json", "1e-300")] {
+    fails_with(
+        &["probe", "--t", "0", "--at", "1e155,0"],
+        "--at \"1e155,0\" lies outside the world: x and z must lie within ±1e6 m",
+    );
+    fails_with(
+        &["sea", "--hs", "1e300", "--tp", "8"],
+        "--hs is 1e300 m, outside (0, 30] m",
+    );
+    fails_with(
+        &["sea", "--hs", "2", "--tp", "1e-300"],
+        "--tp is 1e-300 s, outside [0.5, 30] s",
+    );
+    fails_with(
+        &["sea", "--hs", "2", "--tp", "8", "--gamma", "1e9"],
+        "--gamma is 1e9, outside [1, 10]",
+    );
+    for (name, l) in [
+        ("cli_errors_long.json", "1e300"),
+        ("cli_errors_short.json", "1e-300"),
+    ] {
         let sea = temp_file(
             name,
-            &format!(r#"{{"waves": [{{"direction": [1, 0], "steepness": 0.1, "wavelength": {l}}}]}}"#),
+            &format!(
+                r#"{{"waves": [{{"direction": [1, 0], "steepness": 0.1, "wavelength": {l}}}]}}"#
+            ),
         );
         fails_with(
-            &["probe", "--t", "0", "--at", "0,0", "--sea", sea.to_str().unwrap()],
+            &[
+                "probe",
+                "--t",
+                "0",
+                "--at",
+                "0,0",
+                "--sea",
+                sea.to_str().unwrap(),
+            ],
             &format!("wave 0 has \"wavelength\" {l} m, outside 0.01..=5000 m"),
         );
     }
@@ -137,11 +199,23 @@ fn ndbc_files_in_each_others_places_and_bad_times_are_refused() {
         "41010.swdir holds mean direction (alpha1) values, not spectral density values",
     );
     fails_with(
-        &["sea", "--ndbc", &buoy("41010.data_spec"), "--ndbc-r1", &buoy("41010.swdir")],
+        &[
+            "sea",
+            "--ndbc",
+            &buoy("41010.data_spec"),
+            "--ndbc-r1",
+            &buoy("41010.swdir"),
+        ],
         "41010.swdir holds mean direction (alpha1) values, not r1 values",
     );
     fails_with(
-        &["sea", "--ndbc", &buoy("41010.data_spec"), "--time", "2020-13-01 00:50"],
+        &[
+            "sea",
+            "--ndbc",
+            &buoy("41010.data_spec"),
+            "--time",
+            "2020-13-01 00:50",
+        ],
         "--time \"2020-13-01 00:50\" is not a real time: month 13 is not 1–12",
     );
 }
@@ -164,7 +238,10 @@ fn endless_inputs_are_refused_at_once() {
     ] {
         let (code, out, err) = regatta_within_a_minute(&args);
         assert_ne!(code, 0);
-        assert!(out.is_empty() && err.lines().count() == 1 && err.contains(needle), "{err}");
+        assert!(
+            out.is_empty() && err.lines().count() == 1 && err.contains(needle),
+            "{err}"
+        );
     }
 }
 
@@ -211,13 +288,21 @@ fn replay_check_decodes_every_frame() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_errors_cut_feed");
     let _ = std::fs::remove_dir_all(&dir);
     let d = dir.to_str().unwrap();
-    let (code, _, err) = regatta(&["replay", "synth", "--out", d, "--frames", "2", "--size", "160x120"]);
+    let (code, _, err) = regatta(&[
+        "replay", "synth", "--out", d, "--frames", "2", "--size", "160x120",
+    ]);
     assert_eq!(code, 0, "{err}");
     let frame = dir.join("frames/000001.jpg");
     let bytes = std::fs::read(&frame).unwrap();
     std::fs::write(&frame, &bytes[..bytes.len() * 9 / 10]).unwrap();
-    fails_with(&["replay", "check", d], "frames/000001.jpg: the JPEG is cut short");
+    fails_with(
+        &["replay", "check", d],
+        "frames/000001.jpg: the JPEG is cut short",
+    );
     std::fs::remove_file(&frame).unwrap();
     std::fs::create_dir(&frame).unwrap();
-    fails_with(&["replay", "check", d], "000001.jpg is a directory, not an image file");
+    fails_with(
+        &["replay", "check", d],
+        "000001.jpg is a directory, not an image file",
+    );
 }

@@ -236,7 +236,11 @@ fn the_pool_scene_exits_by_itself_and_writes_its_screenshot() {
     let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| [p[0], p[1], p[2]]).collect();
     colours.sort_unstable();
     colours.dedup();
-    assert!(colours.len() > 200, "a blank-looking pool: {} colours", colours.len());
+    assert!(
+        colours.len() > 200,
+        "a blank-looking pool: {} colours",
+        colours.len()
+    );
 }
 
 #[test]

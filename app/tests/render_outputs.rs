@@ -29,14 +29,35 @@ fn a_jpeg_output_is_a_whole_jpeg_and_failures_leave_no_file() {
     }
     let dir = tmp_dir("render_outputs_jpeg");
     let out = dir.join("frame.jpg");
-    let (code, _, err) = regatta(&["render", "--out", out.to_str().unwrap(), "--size", "64x48", "--t", "700"]);
+    let (code, _, err) = regatta(&[
+        "render",
+        "--out",
+        out.to_str().unwrap(),
+        "--size",
+        "64x48",
+        "--t",
+        "700",
+    ]);
     assert_eq!(code, 0, "{err}");
     let img = image::open(&out).expect("a decodable JPEG");
     assert_eq!((img.width(), img.height()), (64, 48));
-    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a temporary file was left");
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        1,
+        "a temporary file was left"
+    );
     // A folder that does not exist: nothing is written, nothing is left.
     let missing = dir.join("no/such/frame.png");
-    fails_with(&["render", "--out", missing.to_str().unwrap(), "--size", "64x48"], "could not write");
+    fails_with(
+        &[
+            "render",
+            "--out",
+            missing.to_str().unwrap(),
+            "--size",
+            "64x48",
+        ],
+        "could not write",
+    );
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
 }
 
@@ -67,11 +88,20 @@ fn a_sea_of_ten_thousand_waves_draws_its_largest() {
         .sum();
     let out = dir.join("frame.png");
     let (code, stdout, err) = regatta(&[
-        "render", "--out", out.to_str().unwrap(), "--size", "64x48", "--t", "700", "--sea",
+        "render",
+        "--out",
+        out.to_str().unwrap(),
+        "--size",
+        "64x48",
+        "--t",
+        "700",
+        "--sea",
         sea.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
-    let want = format!("the sea has 10000 waves; drawing the 64 largest, the 9936 dropped move the surface by at most {dropped:.3e} m");
+    let want = format!(
+        "the sea has 10000 waves; drawing the 64 largest, the 9936 dropped move the surface by at most {dropped:.3e} m"
+    );
     assert!(err.contains(&want), "{err}\nwanted: {want}");
     let json: Value = serde_json::from_str(&stdout).unwrap();
     for l in json["clipmap"]["per_level"].as_array().unwrap() {
@@ -90,14 +120,31 @@ fn render_replay_draws_the_table_scene_over_a_feed_frame() {
     let dir = tmp_dir("render_outputs_replay");
     let feed = dir.join("feed");
     let (code, _, err) = regatta(&[
-        "replay", "synth", "--out", feed.to_str().unwrap(), "--frames", "3", "--size", "160x120",
-        "--quality", "100",
+        "replay",
+        "synth",
+        "--out",
+        feed.to_str().unwrap(),
+        "--frames",
+        "3",
+        "--size",
+        "160x120",
+        "--quality",
+        "100",
     ]);
     assert_eq!(code, 0, "{err}");
     let out = dir.join("over.png");
     let (code, stdout, err) = regatta(&[
-        "render", "--replay", feed.to_str().unwrap(), "--frame", "2", "--out",
-        out.to_str().unwrap(), "--size", "160x120", "--effects", "background",
+        "render",
+        "--replay",
+        feed.to_str().unwrap(),
+        "--frame",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+        "--size",
+        "160x120",
+        "--effects",
+        "background",
     ]);
     assert_eq!(code, 0, "{err}");
     let json: Value = serde_json::from_str(&stdout).unwrap();
@@ -109,7 +156,9 @@ fn render_replay_draws_the_table_scene_over_a_feed_frame() {
         .collect();
     assert!(names.iter().any(|n| n.contains("background")), "{names:?}");
     let drawn = image::open(&out).unwrap().to_rgb8();
-    let camera = image::open(feed.join("frames/000002.jpg")).unwrap().to_rgb8();
+    let camera = image::open(feed.join("frames/000002.jpg"))
+        .unwrap()
+        .to_rgb8();
     assert_eq!(drawn.dimensions(), camera.dimensions());
     // The top-left corner: the room behind the table in the feed.
     let mut diff = 0.0;
@@ -117,17 +166,31 @@ fn render_replay_draws_the_table_scene_over_a_feed_frame() {
     for y in 0..12 {
         for x in 0..16 {
             for c in 0..3 {
-                diff += (f64::from(drawn.get_pixel(x, y)[c]) - f64::from(camera.get_pixel(x, y)[c])).abs();
+                diff += (f64::from(drawn.get_pixel(x, y)[c])
+                    - f64::from(camera.get_pixel(x, y)[c]))
+                .abs();
                 n += 1.0;
             }
         }
     }
-    assert!(diff / n < 6.0, "the corner differs from the camera image by {:.1} levels", diff / n);
+    assert!(
+        diff / n < 6.0,
+        "the corner differs from the camera image by {:.1} levels",
+        diff / n
+    );
     // And the water is drawn over the table: the centre is not the camera image.
     let centre = |img: &image::RgbImage| img.get_pixel(80, 70).0;
     assert_ne!(centre(&drawn), centre(&camera));
     fails_with(
-        &["render", "--replay", feed.to_str().unwrap(), "--frame", "3", "--out", out.to_str().unwrap()],
+        &[
+            "render",
+            "--replay",
+            feed.to_str().unwrap(),
+            "--frame",
+            "3",
+            "--out",
+            out.to_str().unwrap(),
+        ],
         "--frame 3 is past the feed's last frame",
     );
 }

@@ -24,24 +24,20 @@ fn temp_beside(path: &Path) -> PathBuf {
 
 /// Writes `path` through `write` (which gets the temporary path), then renames it into place;
 /// on error nothing is left behind.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&Path) -> Result<(), String>,
-) -> CliResult {
+pub fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<(), String>) -> CliResult {
     let tmp = temp_beside(path);
     let done = write(&tmp).and_then(|()| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
     done.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        CliError::new(format!(
-            "could not write {}: {e}",
-            input::show_path(path)
-        ))
+        CliError::new(format!("could not write {}: {e}", input::show_path(path)))
     })
 }
 
 /// Writes text to `path` atomically.
 pub fn write_text(path: &Path, text: &str) -> CliResult {
-    write_atomically(path, |tmp| std::fs::write(tmp, text).map_err(|e| e.to_string()))
+    write_atomically(path, |tmp| {
+        std::fs::write(tmp, text).map_err(|e| e.to_string())
+    })
 }
 
 /// An image file to write, its format chosen by its extension (PNG or JPEG).

@@ -62,7 +62,7 @@ pub fn parse_time(t: Option<&str>) -> CliResult<f64> {
     match t.trim().parse::<f64>() {
         Ok(v) if v.abs() <= MAX_TIME_S => Ok(v),
         _ => Err(CliError::new(format!(
-            "--t {} is not a number of seconds within ±{MAX_TIME_S:e}",
+            "--t {} is not a finite number of seconds within ±{MAX_TIME_S:e}",
             input::quote(t)
         ))),
     }
@@ -185,7 +185,12 @@ mod tests {
         );
         assert!(parse_point("0,-1000001").is_err());
         assert_eq!(parse_point("-1e6,1e6").unwrap(), [-1e6, 1e6]);
-        assert!(parse_time(Some("1e155")).unwrap_err().0.contains("within ±1e9"));
+        assert!(
+            parse_time(Some("1e155"))
+                .unwrap_err()
+                .0
+                .contains("within ±1e9")
+        );
         assert_eq!(parse_time(Some("-5")).unwrap(), -5.0);
     }
 }

@@ -74,7 +74,13 @@ pub const GAMMA_RANGE: (f64, f64) = (1.0, 10.0);
 pub const SPREADING_RANGE: (f64, f64) = (0.0, 200.0);
 
 /// `v` for `--{name}` when it lies in (lo, hi] (`open_low`) or [lo, hi].
-fn in_range(name: &str, v: f64, (lo, hi): (f64, f64), unit: &str, open_low: bool) -> CliResult<f64> {
+fn in_range(
+    name: &str,
+    v: f64,
+    (lo, hi): (f64, f64),
+    unit: &str,
+    open_low: bool,
+) -> CliResult<f64> {
     let low_ok = if open_low { v > lo } else { v >= lo };
     if low_ok && v <= hi {
         Ok(v)
@@ -184,7 +190,9 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
             in_range("gamma", a.gamma, GAMMA_RANGE, "", false)?;
             in_range("spreading", a.spreading, SPREADING_RANGE, "", false)?;
             if !a.from_deg.is_finite() {
-                return Err(CliError::new("--from-deg must be a finite number of degrees"));
+                return Err(CliError::new(
+                    "--from-deg must be a finite number of degrees",
+                ));
             }
             if a.waves == 0 || a.waves > 4096 {
                 return Err(CliError::new(format!(

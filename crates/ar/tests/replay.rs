@@ -275,7 +275,7 @@ fn jpeg_folder(name: &str) -> PathBuf {
     for i in 0..3u32 {
         let data = (0..width * height)
             .flat_map(|p| {
-                let v = ((p % width) * 7 ^ (p / width) * 13 ^ i * 50) as u8;
+                let v = (((p % width) * 7) ^ ((p / width) * 13) ^ (i * 50)) as u8;
                 [v, v / 2, 255 - v, 255]
             })
             .collect();
@@ -359,4 +359,24 @@ fn control_characters_from_the_feed_are_escaped() {
     let e = err(&dir);
     assert!(!e.chars().any(char::is_control), "{e:?}");
     assert!(e.contains("unknown field `\\nname`"), "{e}");
+}
+
+/// A frame list that never ends (`"frames": "/dev/zero"`) is refused by its first bytes, not
+/// read until memory runs out.
+#[test]
+fn an_endless_frame_list_is_refused_at_once() {
+    if !Path::new("/dev/zero").exists() {
+        return;
+    }
+    let dir = replay_folder("replay_endless_list");
+    let session = fs::read_to_string(dir.join("session.json")).unwrap();
+    fs::write(
+        dir.join("session.json"),
+        session.replace("\"frames.txt\"", "\"/dev/zero\""),
+    )
+    .unwrap();
+    assert_eq!(
+        err(&dir),
+        "/dev/zero is not a feed's text file: byte 0 is NUL, so it is binary, not text"
+    );
 }
