@@ -15,8 +15,9 @@ impl fmt::Display for CliError {
 impl std::error::Error for CliError {}
 
 impl CliError {
-    pub fn new(msg: impl Into<String>) -> Self {
-        CliError(msg.into())
+    /// A message that may quote input: made one line of safe text ([`input::one_line`]).
+    pub fn new(msg: impl AsRef<str>) -> Self {
+        CliError(input::one_line(msg.as_ref()))
     }
 }
 
@@ -24,7 +25,7 @@ impl CliError {
 macro_rules! from_display {
     ($($t:ty),* $(,)?) => {$(
         impl From<$t> for CliError {
-            fn from(e: $t) -> Self { CliError(e.to_string()) }
+            fn from(e: $t) -> Self { CliError::new(e.to_string()) }
         }
     )*};
 }

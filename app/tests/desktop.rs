@@ -226,6 +226,23 @@ fn the_replay_feed_shows_the_table_behind_the_race() {
     );
 }
 
+/// `REGATTA_EXIT_AFTER_FRAMES` and `REGATTA_SCREENSHOT` were ignored by the pool scene: the
+/// window never closed by itself (here: the 180 s limit) and wrote no screenshot.
+#[test]
+fn the_pool_scene_exits_by_itself_and_writes_its_screenshot() {
+    let Some(img) = run_window("desktop_smoke_pool", &["--scene", "pool"], [320, 200]) else {
+        return;
+    };
+    let mut colours: Vec<[u8; 3]> = img.pixels().map(|p| [p[0], p[1], p[2]]).collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(
+        colours.len() > 200,
+        "a blank-looking pool: {} colours",
+        colours.len()
+    );
+}
+
 #[test]
 fn the_feed_camera_registers_the_scene_with_the_image() {
     // A table point seen through the render camera (window aspect, wgpu clip space) lands on the

@@ -82,7 +82,7 @@ fn bad_sea_arguments_fail_with_one_sentence() {
         (vec!["sea", "--hs", "2"], "either --hs and --tp"),
         (
             vec!["sea", "--hs", "-2", "--tp", "8"],
-            "--hs must be a positive number",
+            "--hs is -2 m, outside (0, 30] m",
         ),
         (
             vec!["sea", "--hs", "2", "--tp", "8", "--gamma", "0.5"],

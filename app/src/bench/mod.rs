@@ -237,9 +237,9 @@ pub fn run_all(ctx: &BenchContext, only: &[String]) -> CliResult<Vec<Table>> {
 fn write_report(ctx: &BenchContext, tables: &[Table]) -> CliResult {
     let json =
         serde_json::to_string_pretty(&serde_json::json!({ "quick": ctx.quick, "tables": tables }))?;
-    std::fs::write(ctx.out_dir.join("report.json"), json)?;
-    std::fs::write(ctx.out_dir.join("report.md"), markdown(tables))?;
-    Ok(())
+    // Written whole or not at all, a failure naming the file.
+    crate::cli::output::write_text(&ctx.out_dir.join("report.json"), &json)?;
+    crate::cli::output::write_text(&ctx.out_dir.join("report.md"), &markdown(tables))
 }
 
 /// The tables as Markdown, for the README and for people.

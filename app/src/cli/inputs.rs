@@ -2,7 +2,7 @@
 //! race crate lands.
 
 use std::ops::RangeInclusive;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use ocean::WaveSet;
 
@@ -21,21 +21,41 @@ pub fn parse_size_in(s: &str, sides: RangeInclusive<u32>, expected: &str) -> Cli
     Ok([w, h])
 }
 
-/// Read a file into a string, with the path named in the error.
-pub fn read_text(path: &Path) -> CliResult<String> {
-    std::fs::read_to_string(path)
-        .map_err(|e| CliError::new(format!("could not read {}: {e}", path.display())))
-}
-
-/// The sea of `--sea FILE`, or the embedded default sea.
+/// The sea of `--sea FILE` (read capped and validated by [`WaveSet::read_file`]), or the
+/// embedded default sea.
 pub fn load_sea(sea: Option<&PathBuf>) -> CliResult<WaveSet> {
     match sea {
-        Some(p) => Ok(
-            WaveSet::from_json_str(&read_text(p)?, &p.display().to_string())
-                .map_err(|e| CliError::new(e.to_string()))?,
-        ),
+        Some(p) => WaveSet::read_file(p).map_err(|e| CliError::new(e.to_string())),
         None => Ok(WaveSet::default_sea()),
     }
+}
+
+/// Most waves the renderers evaluate per vertex and frame: the GPU's wave buffer holds this
+/// many, and the planner's per-frame culling costs grow with the count (a 10,000-wave sea drew
+/// 2 frames a minute).
+pub const MAX_DRAWN_WAVES: usize = render::clipmap::MAX_WAVES;
+
+/// The sea to draw: its [`MAX_DRAWN_WAVES`] largest waves ([`WaveSet::keep_largest`]), with
+/// the bound of what the rest would move the surface said on stderr when any are dropped.
+pub fn drawable_sea(sea: WaveSet) -> WaveSet {
+    if sea.waves.len() <= MAX_DRAWN_WAVES {
+        return sea;
+    }
+    let c = sea.keep_largest(MAX_DRAWN_WAVES);
+    eprintln!("regatta: {}", drawn_waves_note(sea.waves.len(), &c));
+    c.sea
+}
+
+/// The stderr line of [`drawable_sea`].
+pub fn drawn_waves_note(total: usize, c: &ocean::Culled) -> String {
+    format!(
+        "the sea has {total} waves; drawing the {} largest, the {} dropped move the surface by at most {:.3e} m (height at a world point {:.3e} m, slope {:.3e})",
+        c.sea.waves.len(),
+        total - c.sea.waves.len(),
+        c.displacement_bound,
+        c.height_bound,
+        c.slope_bound
+    )
 }
 
 /// The race of `--race PATH ...` (files combined into one race), or the embedded sample race.

@@ -44,7 +44,15 @@ pub struct WakeSample {
     pub foam: f64,
 }
 
-/// The race time of `--t`: a finite number of seconds.
+/// Largest |x| or |z| of a world point, metres: 1000 km, far beyond any race area (a race's
+/// boats lie within tens of km of its origin), and small enough that f64 keeps a position to
+/// 1.2e-10 m, far below the inverse's tolerance. At 1e155 m the inverse had no digits left and
+/// probe printed nulls.
+pub const MAX_WORLD_M: f64 = 1.0e6;
+/// Largest |race time|, seconds: 31 years; a phase ω t keeps 1e-7 rad there.
+pub const MAX_TIME_S: f64 = 1.0e9;
+
+/// The race time of `--t`: a number of seconds within ±[`MAX_TIME_S`].
 pub fn parse_time(t: Option<&str>) -> CliResult<f64> {
     let Some(t) = t else {
         return Err(CliError::new(
@@ -52,14 +60,15 @@ pub fn parse_time(t: Option<&str>) -> CliResult<f64> {
         ));
     };
     match t.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) if v.abs() <= MAX_TIME_S => Ok(v),
         _ => Err(CliError::new(format!(
-            "--t \"{t}\" is not a finite number of seconds"
+            "--t {} is not a finite number of seconds within ±{MAX_TIME_S:e}",
+            input::quote(t)
         ))),
     }
 }
 
-/// A world point of `--at X,Z`: two finite numbers of metres.
+/// A world point of `--at X,Z`: two numbers of metres within ±[`MAX_WORLD_M`].
 pub fn parse_point(s: &str) -> CliResult<[f64; 2]> {
     let parts: Vec<&str> = s.split(',').collect();
     let nums: Vec<Option<f64>> = parts
@@ -67,9 +76,14 @@ pub fn parse_point(s: &str) -> CliResult<[f64; 2]> {
         .map(|p| p.trim().parse::<f64>().ok().filter(|v| v.is_finite()))
         .collect();
     match nums[..] {
-        [Some(x), Some(z)] => Ok([x, z]),
+        [Some(x), Some(z)] if x.abs().max(z.abs()) <= MAX_WORLD_M => Ok([x, z]),
+        [Some(_), Some(_)] => Err(CliError::new(format!(
+            "--at {} lies outside the world: x and z must lie within ±{MAX_WORLD_M:e} m",
+            input::quote(s)
+        ))),
         _ => Err(CliError::new(format!(
-            "--at \"{s}\" is not a point X,Z of two finite numbers of metres"
+            "--at {} is not a point X,Z of two finite numbers of metres",
+            input::quote(s)
         ))),
     }
 }
@@ -159,5 +173,24 @@ mod tests {
         }
         let foam = 1.0 - (1.0 - s.foam) * 0.5;
         assert!((v["foam"].as_f64().unwrap() - foam).abs() < 1e-12);
+    }
+
+    /// `--at 1e155,0` printed nulls with exit 0; points and times are now bounded.
+    #[test]
+    fn points_and_times_outside_the_world_are_refused() {
+        let e = parse_point("1e155,0").unwrap_err().0;
+        assert_eq!(
+            e,
+            "--at \"1e155,0\" lies outside the world: x and z must lie within ±1e6 m"
+        );
+        assert!(parse_point("0,-1000001").is_err());
+        assert_eq!(parse_point("-1e6,1e6").unwrap(), [-1e6, 1e6]);
+        assert!(
+            parse_time(Some("1e155"))
+                .unwrap_err()
+                .0
+                .contains("within ±1e9")
+        );
+        assert_eq!(parse_time(Some("-5")).unwrap(), -5.0);
     }
 }

@@ -1,5 +1,6 @@
-//! `regatta render`: one frame, headless, to a PNG; the frame planner's record as JSON on
-//! stdout (and in `--report FILE.json`).
+//! `regatta render`: one frame, headless, to a PNG (or JPEG); the frame planner's record as
+//! JSON on stdout (and in `--report FILE.json`). With `--replay DIR [--frame N]`, the race on
+//! the table of a recorded feed, drawn over that frame ([`super::render_replay`]).
 
 use std::path::PathBuf;
 
@@ -7,12 +8,13 @@ use clap::Args;
 use glam::{DVec2, DVec3};
 use render::{Boat, Camera, Mark, RenderOptions, Renderer, Scene};
 
-use crate::cli::inputs::{load_race, load_sea, parse_size_in};
+use crate::cli::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
+use crate::cli::output::{ImageOut, write_text};
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// PNG file to write.
+    /// Image file to write: .png or .jpg (written whole or not at all).
     #[arg(long)]
     pub out: PathBuf,
     /// Race files (native JSON, GPX, CSV); the embedded sample race without it.
@@ -22,7 +24,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub sea: Option<PathBuf>,
     /// Race time in seconds since the start; the middle of the race without it.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub t: Option<f64>,
     /// Image size, WIDTHxHEIGHT pixels.
     #[arg(long, default_value = "1280x720")]
@@ -31,8 +33,8 @@ pub struct RenderArgs {
     /// it the camera frames the fleet.
     #[arg(long, allow_hyphen_values = true)]
     pub camera: Option<String>,
-    /// Clip-map screen-space error target, pixels.
-    #[arg(long, default_value_t = render::renderer::DEFAULT_ERROR_PX)]
+    /// Clip-map screen-space error target, pixels (0.1 to 100).
+    #[arg(long, default_value_t = render::renderer::DEFAULT_ERROR_PX, allow_negative_numbers = true)]
     pub error_px: f64,
     /// Also write the frame record (JSON) to this file.
     #[arg(long)]
@@ -48,6 +50,49 @@ pub struct RenderArgs {
     /// Draw no boat wakes.
     #[arg(long)]
     pub no_wakes: bool,
+    /// A recorded camera feed (replay folder, TUM RGB-D folder, or `synth`): the race fitted on
+    /// its table and drawn over one of its frames, as `regatta run --replay` shows it.
+    #[arg(long, value_name = "DIR")]
+    pub replay: Option<PathBuf>,
+    /// Which frame of `--replay`, from 0.
+    #[arg(long, value_name = "N", requires = "replay")]
+    pub frame: Option<usize>,
+}
+
+/// Finest clip-map error target `--error-px` accepts, pixels. Finer targets are invisible
+/// (a tenth of a pixel moves no pixel centre's sample by more than a tenth of its footprint)
+/// and the clip-map's finest cells cannot meet them: 1e-9 px took 38 s and met 0.059 px.
+pub const MIN_ERROR_PX: f64 = 0.1;
+/// Coarsest `--error-px`, pixels: a mesh 100 pixels off is no longer the sea.
+pub const MAX_ERROR_PX: f64 = 100.0;
+
+/// `--error-px` within [`MIN_ERROR_PX`, `MAX_ERROR_PX`].
+pub fn check_error_px(px: f64) -> CliResult {
+    if (MIN_ERROR_PX..=MAX_ERROR_PX).contains(&px) {
+        Ok(())
+    } else {
+        Err(CliError::new(format!(
+            "--error-px {} is outside {MIN_ERROR_PX} to {MAX_ERROR_PX} pixels: finer targets are invisible and beyond what the clip-map can meet",
+            input::show_number(px)
+        )))
+    }
+}
+
+/// The clip-map's worst level error against the target: a note on stderr when the map could
+/// not meet it (too few levels or cells for the view), so the record is not taken as met.
+pub fn note_unmet_error(report: &render::FrameReport) {
+    let asked = report.clipmap.error_target_px;
+    let met = report
+        .clipmap
+        .per_level
+        .iter()
+        .map(|l| l.error_bound_px)
+        .fold(0.0, f64::max);
+    if met > asked * (1.0 + 1e-9) {
+        eprintln!(
+            "regatta render: the clip-map meets {met:.3} px, not the {asked} px asked (its levels and cells do not reach further for this view)"
+        );
+    }
 }
 
 /// The scenes `regatta render` and `regatta run` draw.
@@ -192,37 +237,41 @@ pub fn middle_time(race: &race::Race) -> f64 {
 
 pub fn run(a: RenderArgs) -> CliResult {
     let size = parse_size(&a.size)?;
+    let out = ImageOut::new(&a.out, "--out")?;
     let effects = a
         .effects
         .as_deref()
         .map(render::effects::EffectSet::parse)
         .transpose()
         .map_err(CliError::new)?;
-    if a.scene == SceneKind::Pool {
-        if effects.is_some() {
-            return Err(CliError::new(
-                "--effects has no meaning with --scene pool (the pool traces its own)",
-            ));
-        }
-        return run_pool(&a, size);
-    }
-    if !(a.error_px.is_finite() && a.error_px > 0.0) {
-        return Err(CliError::new(format!(
-            "--error-px {} must be a positive number of pixels",
-            a.error_px
-        )));
-    }
     if let Some(t) = a.t
         && !t.is_finite()
     {
         return Err(CliError::new("--t must be a finite number of seconds"));
+    }
+    if a.scene == SceneKind::Pool {
+        if effects.is_some() || a.replay.is_some() {
+            return Err(CliError::new(
+                "--effects and --replay have no meaning with --scene pool (the pool traces its own)",
+            ));
+        }
+        return run_pool(&a, &out, size);
+    }
+    check_error_px(a.error_px)?;
+    if let Some(dir) = &a.replay {
+        if a.camera.is_some() {
+            return Err(CliError::new(
+                "--camera has no meaning with --replay: the feed's camera draws",
+            ));
+        }
+        return super::render_replay::run(&a, dir, &out, size, effects);
     }
     let camera = a
         .camera
         .as_deref()
         .map(|c| parse_camera(c, FAR_M))
         .transpose()?;
-    let sea = load_sea(a.sea.as_ref())?;
+    let sea = drawable_sea(load_sea(a.sea.as_ref())?);
     let race = load_race(&a.race)?;
     let t = a.t.unwrap_or_else(|| middle_time(&race));
     let scene = scene_at(&race, &sea, t, camera);
@@ -245,34 +294,30 @@ pub fn run(a: RenderArgs) -> CliResult {
     }
     let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
-    img.save(&a.out)
-        .map_err(|e| CliError::new(format!("could not write {}: {e}", a.out.display())))?;
+    out.save(&img)?;
+    note_unmet_error(&report);
     print_report(&a, &report)
 }
 
 /// Print the frame record and write it to `--report`.
-fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> CliResult {
+pub fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> CliResult {
     let json = serde_json::to_string_pretty(report)?;
     if let Some(p) = &a.report {
-        std::fs::write(p, &json)
-            .map_err(|e| CliError::new(format!("could not write {}: {e}", p.display())))?;
+        write_text(p, &json)?;
     }
     super::print_stdout("the frame record", &json)
 }
 
 /// `--scene pool`: the pool at `--t` (default [`render::pool::DEFAULT_T`]).
-fn run_pool(a: &RenderArgs, size: [u32; 2]) -> CliResult {
+fn run_pool(a: &RenderArgs, out: &ImageOut, size: [u32; 2]) -> CliResult {
     use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView};
     if !a.race.is_empty() {
         return Err(CliError::new("--race has no meaning with --scene pool"));
     }
     let t = a.t.unwrap_or(render::pool::DEFAULT_T);
-    if !t.is_finite() {
-        return Err(CliError::new("--t must be a finite number of seconds"));
-    }
     let mut scene = PoolScene::default();
     if let Some(p) = &a.sea {
-        scene.water.waves = load_sea(Some(p))?;
+        scene.water.waves = drawable_sea(load_sea(Some(p))?);
     }
     let mut view = PoolView::default_desktop(size);
     if let Some(c) = &a.camera {
@@ -285,8 +330,7 @@ fn run_pool(a: &RenderArgs, size: [u32; 2]) -> CliResult {
     let frame = PoolFrame::new(&scene, t, &view, &settings);
     let (img, report) = render::pool::render_pool_image(&gpu, &mut renderer, &frame)
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
-    img.save(&a.out)
-        .map_err(|e| CliError::new(format!("could not write {}: {e}", a.out.display())))?;
+    out.save(&img)?;
     print_report(a, &report)
 }
 

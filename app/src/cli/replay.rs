@@ -101,8 +101,12 @@ pub fn parse_size(s: &str) -> CliResult<(u32, u32)> {
     Ok((w, h))
 }
 
+/// Opens the feed, decodes every frame (a truncated image is named with its line), and prints
+/// the summary.
 fn print_summary(dir: &Path) -> CliResult {
     let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
+    feed.check_decodes()
+        .map_err(|e| CliError::new(e.to_string()))?;
     let k = feed.intrinsics;
     let planes: Vec<_> = feed
         .planes

@@ -60,19 +60,58 @@ pub struct SeaArgs {
     pub depth: Option<f64>,
 }
 
+/// Significant wave height, metres: above 0, at most 30 (the highest Hs a buoy has measured
+/// is about 19 m). At 1e300 m the steepness came out as null.
+pub const HS_RANGE_M: (f64, f64) = (0.0, 30.0);
+/// Peak period, seconds: with the bands from 0.6 fp to 4 fp this keeps every generated
+/// wavelength within the sea file's 0.01 m to 5000 m (deep water: λ = g T² / 2π). At 1e-300 s
+/// the sea came out empty.
+pub const TP_RANGE_S: (f64, f64) = (0.5, 30.0);
+/// JONSWAP peak enhancement γ: 1 (Pierson–Moskowitz) to 10, above the 1–7 measured in the
+/// JONSWAP experiment. At γ = 1e9 the spectrum's normalisation underflowed to an empty sea.
+pub const GAMMA_RANGE: (f64, f64) = (1.0, 10.0);
+/// cos-2s spreading exponent s: 0 (all directions) to 200, beyond the narrowest swell (~75).
+pub const SPREADING_RANGE: (f64, f64) = (0.0, 200.0);
+
+/// `v` for `--{name}` when it lies in (lo, hi] (`open_low`) or [lo, hi].
+fn in_range(
+    name: &str,
+    v: f64,
+    (lo, hi): (f64, f64),
+    unit: &str,
+    open_low: bool,
+) -> CliResult<f64> {
+    let low_ok = if open_low { v > lo } else { v >= lo };
+    if low_ok && v <= hi {
+        Ok(v)
+    } else {
+        let open = if open_low { "(" } else { "[" };
+        Err(CliError::new(format!(
+            "--{name} is {}{unit}, outside {open}{lo}, {hi}]{unit}",
+            input::show_number(v)
+        )))
+    }
+}
+
 fn positive(name: &str, v: f64) -> CliResult<f64> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
         Err(CliError::new(format!(
-            "--{name} must be a positive number, got {v}"
+            "--{name} must be a positive number, got {}",
+            input::show_number(v)
         )))
     }
 }
 
 /// "YYYY-MM-DD hh:mm" as an NDBC record time.
 pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
-    let bad = || CliError::new(format!("--time \"{s}\" is not a time \"YYYY-MM-DD hh:mm\""));
+    let bad = || {
+        CliError::new(format!(
+            "--time {} is not a time \"YYYY-MM-DD hh:mm\"",
+            input::quote(s)
+        ))
+    };
     let (date, clock) = s.trim().split_once(' ').ok_or_else(bad)?;
     let d: Vec<u32> = date
         .split('-')
@@ -82,15 +121,22 @@ pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
         .split(':')
         .map(|p| p.parse().map_err(|_| bad()))
         .collect::<CliResult<_>>()?;
-    match (&d[..], &c[..]) {
-        ([year, month, day], [hour, minute]) => Ok(NdbcTime {
+    let time = match (&d[..], &c[..]) {
+        ([year, month, day], [hour, minute]) => NdbcTime {
             year: *year,
             month: *month,
             day: *day,
             hour: *hour,
             minute: *minute,
-        }),
-        _ => Err(bad()),
+        },
+        _ => return Err(bad()),
+    };
+    match time.invalid_because() {
+        Some(why) => Err(CliError::new(format!(
+            "--time {} is not a real time: {why}",
+            input::quote(s)
+        ))),
+        None => Ok(time),
     }
 }
 
@@ -141,15 +187,11 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
             ))
         }
         (None, Some(hs), Some(tp)) => {
-            if !(a.gamma.is_finite() && a.gamma >= 1.0) {
-                return Err(CliError::new(format!(
-                    "--gamma must be at least 1, got {}",
-                    a.gamma
-                )));
-            }
-            if !(a.spreading.is_finite() && a.spreading >= 0.0 && a.from_deg.is_finite()) {
+            in_range("gamma", a.gamma, GAMMA_RANGE, "", false)?;
+            in_range("spreading", a.spreading, SPREADING_RANGE, "", false)?;
+            if !a.from_deg.is_finite() {
                 return Err(CliError::new(
-                    "--spreading must be ≥ 0 and --from-deg a finite number",
+                    "--from-deg must be a finite number of degrees",
                 ));
             }
             if a.waves == 0 || a.waves > 4096 {
@@ -159,8 +201,8 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
                 )));
             }
             let state = SeaState {
-                hs: positive("hs", hs)?,
-                tp: positive("tp", tp)?,
+                hs: in_range("hs", hs, HS_RANGE_M, " m", true)?,
+                tp: in_range("tp", tp, TP_RANGE_S, " s", false)?,
                 gamma: a.gamma,
                 direction: travel_direction_from_compass(a.from_deg),
                 spreading: a.spreading,

@@ -46,6 +46,9 @@ pub struct FeedView {
     /// The current frame's render camera.
     camera: Option<Camera>,
     map: Option<TableMap>,
+    /// The effects drawn over the feed (all of them in the window; `--effects` for
+    /// `regatta render --replay`).
+    config: ArConfig,
 }
 
 /// Length of a boat model on the table, AR metres: a real boat at table scale is a fraction of
@@ -105,7 +108,27 @@ impl FeedView {
             effects: None,
             camera: None,
             map: None,
+            config: ArConfig::default(),
         })
+    }
+
+    /// The same feed with these effects over its image.
+    pub fn with_effects(mut self, effects: render::effects::EffectSet) -> Self {
+        self.config.effects = effects;
+        self
+    }
+
+    /// How many frames the feed has.
+    pub fn len(&self) -> usize {
+        match &self.source {
+            Source::Replay(f) => f.len(),
+            Source::Synth(c, _) => c.frames,
+        }
+    }
+
+    /// Whether the feed has no frames (a feed that opened always has some).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
     }
 
     /// Puts `scene` on the table: the feed's camera, boats drawn as table-sized models
@@ -137,6 +160,30 @@ impl FeedView {
             Source::Replay(f) => f.index_at(t),
             Source::Synth(c, _) => c.index_at(t),
         };
+        let options = RenderOptions {
+            measure_gpu_time: false,
+            // A new camera image is drawn even while the scene stands still: the background
+            // pass's revision changes with it.
+            keep_still_frames: true,
+            ..Default::default()
+        };
+        self.prepare_frame(gpu, renderer, format, options, wake, scene, size, i)
+    }
+
+    /// [`FeedView::prepare`] for feed frame `i` (below [`FeedView::len`]), a renderer built
+    /// with `options` the first time: what `regatta render --replay --frame i` draws.
+    #[allow(clippy::too_many_arguments)]
+    pub fn prepare_frame(
+        &mut self,
+        gpu: &render::Gpu,
+        renderer: &mut Renderer,
+        format: wgpu::TextureFormat,
+        options: RenderOptions,
+        wake: Option<Arc<ocean::wake::Wake>>,
+        scene: &Scene,
+        size: [u32; 2],
+        i: usize,
+    ) -> CliResult {
         if self.shown == Some((i, size)) {
             return Ok(());
         }
@@ -145,7 +192,7 @@ impl FeedView {
             Source::Synth(c, cache) => cache[i].get_or_insert_with(|| c.frame(i)).clone(),
         };
         let started = Instant::now();
-        let cfg = ArConfig::default();
+        let cfg = self.config.clone();
         let (extent, centre) = match frame.planes.first() {
             Some(p) => (
                 p.extent.as_dvec2(),
@@ -164,17 +211,7 @@ impl FeedView {
         match &self.effects {
             Some(effects) => effects.set_camera_frame(gpu, render_frame),
             None => {
-                let mut fresh = Renderer::new(
-                    gpu,
-                    format,
-                    RenderOptions {
-                        measure_gpu_time: false,
-                        // A new camera image is drawn even while the scene stands still: the
-                        // background pass's revision changes with it.
-                        keep_still_frames: true,
-                        ..Default::default()
-                    },
-                );
+                let mut fresh = Renderer::new(gpu, format, options);
                 fresh.set_wake(wake);
                 self.effects = Some(add_effect_passes(&mut fresh, gpu, cfg, render_frame));
                 *renderer = fresh;

@@ -24,6 +24,7 @@ use crate::error::{CliError, CliResult};
 pub mod feed;
 pub mod overlay;
 mod pool;
+pub mod smoke;
 
 #[derive(Debug, Args, Default)]
 pub struct RunArgs {
@@ -55,7 +56,7 @@ impl RunArgs {
 
 /// Open the window and run until it is closed.
 pub fn run(a: RunArgs) -> CliResult {
-    let sea = load_sea(a.sea.as_ref())?;
+    let sea = crate::cli::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
     let race = load_race(&a.race)?;
     // A bad feed is refused before a window opens (file and line named).
     let feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
@@ -171,7 +172,11 @@ impl App {
         self.tick();
         if let Some(p) = self.pool.as_mut() {
             if let Some(st) = self.state.as_ref() {
-                p.draw(st, self.clock.t, &self.orbit);
+                match p.draw(st, self.clock.t, &self.orbit) {
+                    Ok(false) => {}
+                    Ok(true) => el.exit(),
+                    Err(e) => self.fail(el, e),
+                }
             }
             return;
         }

@@ -29,10 +29,8 @@ pub struct Overlay {
     /// The race's wakes, kept so the "Wakes" toggle can take them out of the renderer and back.
     wake: Option<Arc<Wake>>,
     wakes_shown: bool,
-    /// Frames drawn, and the count after which the app exits by itself
-    /// (`REGATTA_EXIT_AFTER_FRAMES`, for the smoke test).
-    frames: u64,
-    exit_after: Option<u64>,
+    /// When the app exits by itself (`REGATTA_EXIT_AFTER_FRAMES`, for the smoke test).
+    exit_after: super::smoke::ExitAfter,
     /// The surface's colour format (the screenshot texture uses it too).
     format: wgpu::TextureFormat,
 }
@@ -89,11 +87,8 @@ impl Overlay {
             title,
             wake: crate::cli::render::race_wake(race).ok(),
             wakes_shown: true,
-            frames: 0,
             format,
-            exit_after: std::env::var("REGATTA_EXIT_AFTER_FRAMES")
-                .ok()
-                .and_then(|v| v.parse().ok()),
+            exit_after: super::smoke::ExitAfter::from_env(),
         }
     }
 
@@ -151,8 +146,7 @@ impl Overlay {
 
     /// Counts a drawn frame; true when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`).
     pub fn frame_done(&mut self) -> bool {
-        self.frames += 1;
-        self.exit_after.is_some_and(|n| self.frames >= n)
+        self.exit_after.frame_done()
     }
 
     /// Lays out the panels and paints them over `texture` (`size` pixels; its format, or its
@@ -189,10 +183,9 @@ impl Overlay {
         size: [u32; 2],
         race: &race::Race,
     ) -> Result<(), String> {
-        let Some(path) = std::env::var_os("REGATTA_SCREENSHOT") else {
+        let Some(path) = super::smoke::screenshot_path() else {
             return Ok(());
         };
-        let path = std::path::PathBuf::from(path);
         let format = self.format;
         let texture = render::gpu::texture_2d_with_views(
             &gpu.device,
@@ -207,23 +200,10 @@ impl Overlay {
             .render(gpu, &view, size, scene)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         self.paint(window, &gpu.device, &gpu.queue, &texture, size, race);
-        let mut img = gpu
+        let img = gpu
             .read_texture(&texture)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        if matches!(
-            format,
-            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
-        ) {
-            for p in img.pixels_mut() {
-                p.0.swap(0, 2);
-            }
-        }
-        img.save(&path).map_err(|e| {
-            format!(
-                "{}: the screenshot could not be written ({e})",
-                path.display()
-            )
-        })
+            .map_err(|e| format!("{}: {e}", input::show_path(&path)))?;
+        super::smoke::write_screenshot(img, format, &path)
     }
 }
 

@@ -12,6 +12,8 @@ pub struct PoolMode {
     /// The scene and the grab and drag the phone's finger uses too.
     play: PoolPlay,
     renderer: Option<PoolRenderer>,
+    /// When the app exits by itself (`REGATTA_EXIT_AFTER_FRAMES`, for the smoke test).
+    exit_after: super::smoke::ExitAfter,
 }
 
 impl PoolMode {
@@ -20,6 +22,7 @@ impl PoolMode {
         PoolMode {
             play: PoolPlay::new(sea),
             renderer: None,
+            exit_after: super::smoke::ExitAfter::from_env(),
         }
     }
 
@@ -28,11 +31,13 @@ impl PoolMode {
         PoolPlay::orbit()
     }
 
-    pub fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) {
+    /// Draws a frame; `Ok(true)` when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`, after
+    /// writing `REGATTA_SCREENSHOT`), `Err` when the screenshot could not be written.
+    pub fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) -> Result<bool, String> {
         let frame_tex = match st.surface.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
             | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
-            _ => return,
+            _ => return Ok(false),
         };
         let size = [st.surface.config.width, st.surface.config.height];
         let settings = PoolSettings::default();
@@ -46,11 +51,21 @@ impl PoolMode {
         let frame = PoolFrame::new(&self.play.scene, t, &view, &settings);
         let target = frame_tex.texture.create_view(&Default::default());
         renderer.render(&st.gpu, &target, &frame);
-        self.play.view = Some(view);
         st.window.pre_present_notify();
         st.gpu.queue.present(frame_tex);
         st.window
             .set_title(&format!("Regatta: the pool at t = {t:.1} s"));
+        let exit = self.exit_after.frame_done();
+        if exit && let Some(path) = super::smoke::screenshot_path() {
+            let format = st.surface.config.format;
+            let (img, _) = st
+                .gpu
+                .render_offscreen(size, format, |v| renderer.render(&st.gpu, v, &frame))
+                .map_err(|e| format!("{}: {e}", input::show_path(&path)))?;
+            super::smoke::write_screenshot(img, format, &path)?;
+        }
+        self.play.view = Some(view);
+        Ok(exit)
     }
 
     /// A left press or release at `cursor`; true when the press grabbed a ball.

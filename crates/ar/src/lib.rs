@@ -6,6 +6,7 @@
 pub mod arcore;
 mod error;
 mod frame;
+mod frame_file;
 mod pose;
 pub mod replay;
 pub mod synth;

@@ -201,9 +201,10 @@ impl ReplayFeed {
                 ),
             ));
         }
-        session
-            .intrinsics
-            .validate(&format!("{} field `intrinsics`", session_path.display()))?;
+        session.intrinsics.validate(&format!(
+            "{} field `intrinsics`",
+            input::show_path(&session_path)
+        ))?;
         if !(session.frame_rate.is_finite() && session.frame_rate > 0.0) {
             return Err(ArError::in_file(
                 &session_path,
@@ -387,7 +388,7 @@ impl ReplayFeed {
                 f.listed_at.1,
                 format!(
                     "image {} is {w}×{h} pixels, but the feed's intrinsics are for {iw}×{ih}",
-                    f.image_path.display()
+                    input::show_path(&f.image_path)
                 ),
             ));
         }
@@ -415,14 +416,20 @@ impl ReplayFeed {
         self.frames.partition_point(|f| f.t <= tl).saturating_sub(1)
     }
 
+    /// Decodes every frame (what `regatta replay check` does): a truncated or damaged image is
+    /// an error naming its line, not a frame that plays half grey.
+    pub fn check_decodes(&self) -> Result<(), ArError> {
+        (0..self.len()).try_for_each(|i| self.frame(i).map(drop))
+    }
+
     /// Decodes frame `i` into a [`CameraFrame`].
     pub fn frame(&self, i: usize) -> Result<CameraFrame, ArError> {
         let f = &self.frames[i];
-        let img = image::open(&f.image_path).map_err(|e| {
+        let img = crate::frame_file::decode(&f.image_path).map_err(|why| {
             ArError::at_line(
                 &f.listed_at.0,
                 f.listed_at.1,
-                format!("cannot read image {}: {e}", f.image_path.display()),
+                format!("frame image {}: {why}", input::show_path(&f.image_path)),
             )
         })?;
         let rgba = img.to_rgba8();
@@ -445,21 +452,47 @@ impl ReplayFeed {
 
 fn image_size(f: &FrameEntry) -> Result<(u32, u32), ArError> {
     let at = |what: String| ArError::at_line(&f.listed_at.0, f.listed_at.1, what);
-    if !f.image_path.is_file() {
+    if let Some(why) = crate::frame_file::not_a_file(&f.image_path) {
         return Err(at(format!(
-            "frame image {} does not exist",
-            f.image_path.display()
+            "frame image {} {why}",
+            input::show_path(&f.image_path)
         )));
     }
     image::ImageReader::open(&f.image_path)
         .and_then(|r| r.with_guessed_format())
-        .map_err(|e| at(format!("cannot open image {}: {e}", f.image_path.display())))?
+        .map_err(|e| {
+            at(format!(
+                "cannot open image {}: {e}",
+                input::show_path(&f.image_path)
+            ))
+        })?
         .into_dimensions()
-        .map_err(|e| at(format!("cannot read image {}: {e}", f.image_path.display())))
+        .map_err(|e| {
+            at(format!(
+                "cannot read image {}: {e}",
+                input::show_path(&f.image_path)
+            ))
+        })
 }
 
+/// Largest text file of a feed (`session.json`, `frames.txt`, TUM's lists), bytes: 100,000
+/// frames listed at about 120 bytes a line take 12 MB.
+pub const MAX_FEED_TEXT_BYTES: u64 = 64 << 20;
+
 fn read_text(path: &Path) -> Result<String, ArError> {
-    fs::read_to_string(path).map_err(|e| ArError::in_file(path, format!("cannot be read: {e}")))
+    let bytes = input::read_capped(
+        path,
+        MAX_FEED_TEXT_BYTES,
+        "a feed's text file",
+        input::text_sniff,
+    )
+    .map_err(|e| ArError::new(e.0))?;
+    String::from_utf8(bytes).map_err(|e| {
+        ArError::in_file(
+            path,
+            format!("byte {} is not UTF-8 text", e.utf8_error().valid_up_to()),
+        )
+    })
 }
 
 /// Non-empty, non-comment lines with their 1-based line numbers, split on whitespace.
@@ -489,7 +522,7 @@ fn tum_intrinsics(dir: &Path) -> Result<Intrinsics, ArError> {
         let text = read_text(&override_path)?;
         let k: Intrinsics = serde_json::from_str(&text)
             .map_err(|e| ArError::at_line(&override_path, e.line(), format!("{e}")))?;
-        k.validate(&override_path.display().to_string())?;
+        k.validate(&input::show_path(&override_path))?;
         return Ok(k);
     }
     let name = dir

@@ -264,3 +264,119 @@ fn tum_intrinsics_follow_the_sensor_in_the_folder_name() {
     let k = ReplayFeed::open(&dir).unwrap().intrinsics;
     assert_eq!((k.fx, k.fy, k.cx, k.cy), (517.3, 516.5, 318.6, 255.3));
 }
+
+/// Three textured 160×120 frames as JPEGs (what `regatta replay synth` writes): enough image
+/// data that a cut lands in it, not in the headers.
+fn jpeg_folder(name: &str) -> PathBuf {
+    let dir = tmp(name);
+    let (width, height) = (160, 120);
+    let k = Intrinsics::from_hfov(width, height, 1.0);
+    let mut w = ReplayWriter::create(&dir, k, 10.0, None, FrameFileFormat::Jpeg(90)).unwrap();
+    for i in 0..3u32 {
+        let data = (0..width * height)
+            .flat_map(|p| {
+                let v = (((p % width) * 7) ^ ((p / width) * 13) ^ (i * 50)) as u8;
+                [v, v / 2, 255 - v, 255]
+            })
+            .collect();
+        let image = FrameImage::Rgba8 {
+            width,
+            height,
+            data,
+        };
+        w.write_frame(f64::from(i) * 0.1, &image, &Pose::IDENTITY)
+            .unwrap();
+    }
+    w.finish().unwrap();
+    dir
+}
+
+/// Cuts the last tenth of `file` (its headers stay whole: the cut is in the image data).
+fn truncate_tail(file: &Path) {
+    let bytes = fs::read(file).unwrap();
+    fs::write(file, &bytes[..bytes.len() * 9 / 10]).unwrap();
+}
+
+/// A truncated PNG or JPEG passed `replay check` (headers only), and the JPEG played, grey
+/// below the cut. Every frame is decoded now, and a cut-short file is named with its line.
+#[test]
+fn truncated_frames_fail_the_decode_check() {
+    for (dir, file) in [
+        (replay_folder("replay_cut_png"), "frames/000001.png"),
+        (jpeg_folder("replay_cut_jpg"), "frames/000001.jpg"),
+    ] {
+        let feed = ReplayFeed::open(&dir).unwrap();
+        feed.check_decodes().unwrap();
+        truncate_tail(&dir.join(file));
+        let feed = ReplayFeed::open(&dir).unwrap();
+        let e = feed.check_decodes().unwrap_err().to_string();
+        assert!(
+            e.contains("frames.txt line 3") && e.contains(file) && e.contains("is cut short"),
+            "{e}"
+        );
+        // The player refuses the frame too.
+        assert!(feed.frame(1).is_err());
+        assert!(feed.frame(2).is_ok());
+    }
+}
+
+#[test]
+fn a_frame_that_is_a_directory_says_so() {
+    let dir = replay_folder("replay_frame_dir");
+    fs::remove_file(dir.join("frames/000001.png")).unwrap();
+    fs::create_dir(dir.join("frames/000001.png")).unwrap();
+    let e = err(&dir);
+    assert!(
+        e.contains("frames.txt line 3")
+            && e.contains("000001.png is a directory, not an image file"),
+        "{e}"
+    );
+}
+
+/// File names from frames.txt and keys of session.json are input: their control characters
+/// are escaped, so the message stays one line and cannot drive the terminal.
+#[test]
+fn control_characters_from_the_feed_are_escaped() {
+    let dir = replay_folder("replay_ctrl");
+    edit_line(
+        &dir.join("frames.txt"),
+        2,
+        "0 frames/\u{1b}[2J\u{7}x.png 0 0 1 0 0 0 1",
+    );
+    let e = err(&dir);
+    assert!(!e.chars().any(char::is_control), "{e:?}");
+    assert!(
+        e.contains("frames/\\u{1b}[2J\\u{7}x.png does not exist"),
+        "{e}"
+    );
+    let dir = replay_folder("replay_ctrl_key");
+    let session = fs::read_to_string(dir.join("session.json")).unwrap();
+    fs::write(
+        dir.join("session.json"),
+        session.replacen('{', "{\"\\nname\": 1,", 1),
+    )
+    .unwrap();
+    let e = err(&dir);
+    assert!(!e.chars().any(char::is_control), "{e:?}");
+    assert!(e.contains("unknown field `\\nname`"), "{e}");
+}
+
+/// A frame list that never ends (`"frames": "/dev/zero"`) is refused by its first bytes, not
+/// read until memory runs out.
+#[test]
+fn an_endless_frame_list_is_refused_at_once() {
+    if !Path::new("/dev/zero").exists() {
+        return;
+    }
+    let dir = replay_folder("replay_endless_list");
+    let session = fs::read_to_string(dir.join("session.json")).unwrap();
+    fs::write(
+        dir.join("session.json"),
+        session.replace("\"frames.txt\"", "\"/dev/zero\""),
+    )
+    .unwrap();
+    assert_eq!(
+        err(&dir),
+        "/dev/zero is not a feed's text file: byte 0 is NUL, so it is binary, not text"
+    );
+}

@@ -63,24 +63,45 @@ impl WaveSet {
             dropped[i] = true;
             delta += amp(i);
         }
+        self.culled(&dropped, below_grid)
+    }
+
+    /// Keep the `max_waves` largest waves (by amplitude; ties keep the earlier wave) and drop
+    /// the rest, with the same bounds as [`WaveSet::cull`]: what a renderer that evaluates at
+    /// most `max_waves` waves per vertex and frame draws, and how far that is from the sea.
+    pub fn keep_largest(&self, max_waves: usize) -> Culled {
+        let mut order: Vec<usize> = (0..self.waves.len()).collect();
+        // Largest first; a stable sort keeps file order among equal amplitudes.
+        order.sort_by(|&a, &b| {
+            self.waves[b]
+                .amplitude()
+                .total_cmp(&self.waves[a].amplitude())
+        });
+        let mut dropped = vec![false; self.waves.len()];
+        for &i in order.iter().skip(max_waves) {
+            dropped[i] = true;
+        }
+        self.culled(&dropped, 0)
+    }
+
+    /// The kept waves and the bounds of the `dropped` ones (module docs).
+    fn culled(&self, dropped: &[bool], below_grid: usize) -> Culled {
         let kept: Vec<usize> = (0..self.waves.len()).filter(|&i| !dropped[i]).collect();
         let sea = WaveSet {
             gravity: self.gravity,
             depth: self.depth,
             waves: kept.iter().map(|&i| self.waves[i]).collect(),
         };
+        let gone = || (0..self.waves.len()).filter(|&i| dropped[i]);
+        let delta: f64 = gone().map(|i| self.waves[i].amplitude()).sum();
         let s = sea.total_steepness();
         let lipschitz = s / (1.0 - s);
-        let slope_bound = (0..self.waves.len())
-            .filter(|&i| dropped[i])
-            .map(|i| self.waves[i].steepness)
-            .sum();
         Culled {
             height_bound: delta * (1.0 + lipschitz * lipschitz).sqrt(),
             sea,
             kept,
             displacement_bound: delta,
-            slope_bound,
+            slope_bound: gone().map(|i| self.waves[i].steepness).sum(),
             below_grid,
         }
     }
@@ -100,6 +121,31 @@ mod tests {
         assert!(all.sea.waves.is_empty());
         assert!((all.displacement_bound - s.total_amplitude()).abs() < 1e-12);
         assert!((all.slope_bound - s.total_steepness()).abs() < 1e-12);
+    }
+
+    /// Keeping the n largest: the kept are exactly the n largest amplitudes, and the bound is
+    /// the sum of the rest (computed here independently, in a different order).
+    #[test]
+    fn keep_largest_keeps_the_largest_and_bounds_the_rest() {
+        let s = WaveSet::default_sea();
+        let mut amps: Vec<f64> = s.waves.iter().map(|w| w.amplitude()).collect();
+        amps.sort_by(f64::total_cmp);
+        for n in 0..=s.waves.len() + 1 {
+            let c = s.keep_largest(n);
+            assert_eq!(c.sea.waves.len(), n.min(s.waves.len()));
+            let smallest_kept = c
+                .sea
+                .waves
+                .iter()
+                .map(|w| w.amplitude())
+                .fold(f64::INFINITY, f64::min);
+            let dropped = s.waves.len().saturating_sub(n);
+            assert!(amps[..dropped].iter().all(|&a| a <= smallest_kept));
+            let rest: f64 = amps[..dropped].iter().rev().sum();
+            assert!((c.displacement_bound - rest).abs() < 1e-12, "{n}");
+            assert!(c.height_bound >= c.displacement_bound);
+        }
+        assert_eq!(s.keep_largest(99).sea, s);
     }
 
     #[test]

@@ -9,6 +9,12 @@
 //!
 //! Missing values are `999`, `999.0`, `999.00` (or `MM`). Spectral density is m²/Hz;
 //! α1 is the direction waves come *from*, degrees clockwise from true north.
+//!
+//! What a file holds ([`NdbcKind`]) comes from its header (realtime: `spec_1`, `alpha1_1`,
+//! `r1_1`, …) or its name (historical: the letter after the station id, `41010w2019`), so a
+//! file given in another's place is refused. Values are checked against their kind's range,
+//! dates are real dates, and a realtime record with fewer frequencies than the others (a
+//! truncated last line) is refused with its line. Files are read up to [`MAX_NDBC_FILE_BYTES`].
 
 use std::fmt;
 use std::io::Read;
@@ -32,6 +38,80 @@ impl fmt::Display for NdbcError {
 }
 
 impl std::error::Error for NdbcError {}
+
+impl NdbcError {
+    /// A message whose text may hold input: made one safe line ([`input::one_line`]).
+    fn new(message: impl AsRef<str>) -> NdbcError {
+        NdbcError {
+            message: input::one_line(message.as_ref()),
+        }
+    }
+}
+
+/// Largest NDBC file read (after decompression), bytes: a year of hourly historical records
+/// is about 4 MB, 45 days of realtime records about 100 kB.
+pub const MAX_NDBC_FILE_BYTES: u64 = 32 << 20;
+
+/// What an NDBC spectral file holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NdbcKind {
+    /// Spectral density, m²/Hz (realtime `.data_spec`, historical `w`).
+    Density,
+    /// α1, mean direction waves come from, degrees (`.swdir`, `d`).
+    Alpha1,
+    /// α2, principal direction, degrees (`.swdir2`, `i`).
+    Alpha2,
+    /// r1, first circular moment (`.swr1`, `j`).
+    R1,
+    /// r2, second circular moment (`.swr2`, `k`).
+    R2,
+}
+
+impl NdbcKind {
+    /// The kind a realtime header names (`spec_1`, `alpha1_1`, `alpha2_1`, `r1_1`, `r2_1`).
+    fn from_realtime_header(header: &str) -> Option<NdbcKind> {
+        let first = header
+            .split_whitespace()
+            .find(|t| t.ends_with("_1") && !t.starts_with('('))?;
+        Some(match first {
+            "spec_1" => NdbcKind::Density,
+            "alpha1_1" => NdbcKind::Alpha1,
+            "alpha2_1" => NdbcKind::Alpha2,
+            "r1_1" => NdbcKind::R1,
+            "r2_1" => NdbcKind::R2,
+            _ => return None,
+        })
+    }
+
+    /// The kind a historical file's name says: the letter after the five-character station id
+    /// (`41010w2019part.txt.gz`: w, d, i, j, k).
+    fn from_historical_name(name: &str) -> Option<NdbcKind> {
+        let bytes = name.as_bytes();
+        let kind = match *bytes.get(5)? {
+            b'w' => NdbcKind::Density,
+            b'd' => NdbcKind::Alpha1,
+            b'i' => NdbcKind::Alpha2,
+            b'j' => NdbcKind::R1,
+            b'k' => NdbcKind::R2,
+            _ => return None,
+        };
+        let year_follows = bytes
+            .get(6..10)
+            .is_some_and(|y| y.iter().all(u8::is_ascii_digit));
+        (bytes[..5].iter().all(u8::is_ascii_alphanumeric) && year_follows).then_some(kind)
+    }
+
+    /// Words for messages.
+    pub fn describe(self) -> &'static str {
+        match self {
+            NdbcKind::Density => "spectral density",
+            NdbcKind::Alpha1 => "mean direction (alpha1)",
+            NdbcKind::Alpha2 => "principal direction (alpha2)",
+            NdbcKind::R1 => "r1",
+            NdbcKind::R2 => "r2",
+        }
+    }
+}
 
 /// Which layout a file had.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -73,7 +153,48 @@ pub struct NdbcRow {
 #[derive(Debug, Clone, PartialEq)]
 pub struct NdbcTable {
     pub format: NdbcFormat,
+    /// What the header or the file name says it holds; `None` when neither says (a renamed
+    /// historical file).
+    pub kind: Option<NdbcKind>,
+    /// The file, for messages.
+    pub source: String,
     pub rows: Vec<NdbcRow>,
+}
+
+/// Days in `month` of `year` (Gregorian), 0 for a month outside 1–12.
+fn days_in_month(year: u32, month: u32) -> u32 {
+    match month {
+        1 | 3 | 5 | 7 | 8 | 10 | 12 => 31,
+        4 | 6 | 9 | 11 => 30,
+        2 if (year.is_multiple_of(4) && !year.is_multiple_of(100)) || year.is_multiple_of(400) => {
+            29
+        }
+        2 => 28,
+        _ => 0,
+    }
+}
+
+impl NdbcTime {
+    /// Why this is not a real UTC time (month 13, 31 June, hour 24, minute 60), if it is not.
+    pub fn invalid_because(&self) -> Option<String> {
+        if !(1..=12).contains(&self.month) {
+            return Some(format!("month {} is not 1–12", self.month));
+        }
+        let days = days_in_month(self.year, self.month);
+        if !(1..=days).contains(&self.day) {
+            return Some(format!(
+                "day {} is not 1–{days} ({:04}-{:02} has {days} days)",
+                self.day, self.year, self.month
+            ));
+        }
+        if self.hour > 23 || self.minute > 59 {
+            return Some(format!(
+                "{:02}:{:02} is not a time of day",
+                self.hour, self.minute
+            ));
+        }
+        None
+    }
 }
 
 fn missing(v: f64) -> bool {
@@ -92,20 +213,21 @@ fn parse_value(tok: &str) -> Option<Option<f64>> {
 }
 
 impl NdbcTable {
-    /// Parse the text of a realtime or historical spectral file. `source` names it in errors.
+    /// Parse the text of a realtime or historical spectral file. `source` names it in errors
+    /// (and, for a historical file, says its kind by its name).
     pub fn parse(text: &str, source: &str) -> Result<NdbcTable, NdbcError> {
-        let err = |line: usize, m: String| NdbcError {
-            message: format!("{source}: line {line}: {m}"),
-        };
+        let err = |line: usize, m: String| NdbcError::new(format!("{source}: line {line}: {m}"));
         let mut lines = text
             .lines()
             .enumerate()
             .filter(|(_, l)| !l.trim().is_empty());
         let Some((_, header)) = lines.next() else {
-            return Err(NdbcError {
-                message: format!("{source}: the file is empty, not an NDBC spectral file"),
-            });
+            return Err(NdbcError::new(format!(
+                "{source}: the file is empty, not an NDBC spectral file"
+            )));
         };
+        // A byte-order mark is text, not part of the first column's name.
+        let header = header.strip_prefix('\u{feff}').unwrap_or(header);
         let header_tokens: Vec<&str> = header.split_whitespace().collect();
         let realtime = header.contains('(') || header.contains('<');
         let with_sep_freq = header.contains("Sep_Freq");
@@ -146,7 +268,10 @@ impl NdbcTable {
             let mut d = [0u32; 5];
             for (j, t) in tok[..date_cols].iter().enumerate() {
                 d[j] = t.parse().map_err(|_| {
-                    err(n, format!("date field {} is \"{t}\", not a number", j + 1))
+                    err(
+                        n,
+                        format!("date field {} is {}, not a number", j + 1, input::quote(t)),
+                    )
                 })?;
             }
             if d[0] < 100 {
@@ -159,6 +284,9 @@ impl NdbcTable {
                 hour: d[3],
                 minute: if date_cols == 5 { d[4] } else { 0 },
             };
+            if let Some(why) = time.invalid_because() {
+                return Err(err(n, format!("the date {time} is not a real date: {why}")));
+            }
             let rest = &tok[date_cols..];
             let (frequencies, values) = if realtime {
                 let rest = if with_sep_freq && !rest.is_empty() {
@@ -176,14 +304,17 @@ impl NdbcTable {
                 let mut v = Vec::with_capacity(rest.len() / 2);
                 for p in rest.chunks(2) {
                     let val = parse_value(p[0])
-                        .ok_or_else(|| err(n, format!("\"{}\" is not a number", p[0])))?;
+                        .ok_or_else(|| err(n, format!("{} is not a number", input::quote(p[0]))))?;
                     let fr = p[1]
                         .strip_prefix('(')
                         .and_then(|s| s.strip_suffix(')'))
                         .and_then(|s| s.parse::<f64>().ok())
                         .filter(|f| f.is_finite() && *f > 0.0)
                         .ok_or_else(|| {
-                            err(n, format!("\"{}\" is not a frequency in parentheses", p[1]))
+                            err(
+                                n,
+                                format!("{} is not a frequency in parentheses", input::quote(p[1])),
+                            )
                         })?;
                     f.push(fr);
                     v.push(val);
@@ -203,13 +334,27 @@ impl NdbcTable {
                 let v: Result<Vec<_>, _> = rest
                     .iter()
                     .map(|t| {
-                        parse_value(t).ok_or_else(|| err(n, format!("\"{t}\" is not a number")))
+                        parse_value(t)
+                            .ok_or_else(|| err(n, format!("{} is not a number", input::quote(t))))
                     })
                     .collect();
                 (header_freqs.clone(), v?)
             };
             if frequencies.windows(2).any(|w| w[1] <= w[0]) {
                 return Err(err(n, "the frequencies are not increasing".into()));
+            }
+            // Realtime rows carry their own frequencies; a station keeps one set, so a row with
+            // fewer is a record cut short (a truncated download's last line), not a new set.
+            if let Some(first) = rows.first().map(|r: &NdbcRow| r.frequencies.len())
+                && frequencies.len() != first
+            {
+                return Err(err(
+                    n,
+                    format!(
+                        "the record has {} frequencies but the first has {first}: a truncated or damaged record",
+                        frequencies.len()
+                    ),
+                ));
             }
             rows.push(NdbcRow {
                 time,
@@ -218,44 +363,82 @@ impl NdbcTable {
             });
         }
         if rows.is_empty() {
-            return Err(NdbcError {
-                message: format!("{source}: no records after the header"),
-            });
+            return Err(NdbcError::new(format!(
+                "{source}: no records after the header"
+            )));
         }
+        let file_name = source.rsplit('/').next().unwrap_or(source);
         Ok(NdbcTable {
             format: if realtime {
                 NdbcFormat::Realtime
             } else {
                 NdbcFormat::Historical
             },
+            kind: if realtime {
+                NdbcKind::from_realtime_header(header)
+            } else {
+                NdbcKind::from_historical_name(file_name)
+            },
+            source: source.to_string(),
             rows,
         })
     }
 
-    /// Read a file (gzip-compressed when its name ends in `.gz`).
+    /// Read a file (gzip-compressed when its name ends in `.gz`), at most
+    /// [`MAX_NDBC_FILE_BYTES`] compressed and decompressed.
     pub fn read(path: &Path) -> Result<NdbcTable, NdbcError> {
-        let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| NdbcError {
-            message: format!("could not read {name}: {e}"),
-        })?;
-        let text = if name.ends_with(".gz") {
-            let mut s = String::new();
-            flate2::read::GzDecoder::new(&bytes[..])
-                .read_to_string(&mut s)
-                .map_err(|e| NdbcError {
-                    message: format!("{name}: not a readable gzip text file: {e}"),
-                })?;
-            s
-        } else {
-            String::from_utf8(bytes).map_err(|_| NdbcError {
-                message: format!("{name}: not a UTF-8 text file"),
-            })?
+        let name = input::show_path(path);
+        let gz = name.ends_with(".gz");
+        let sniff = |prefix: &[u8]| {
+            if gz {
+                (!prefix.starts_with(&[0x1f, 0x8b]))
+                    .then(|| "its name ends in .gz but it is not gzip data".to_string())
+            } else {
+                input::text_sniff(prefix)
+            }
         };
+        let bytes = input::read_capped(path, MAX_NDBC_FILE_BYTES, "an NDBC spectral file", sniff)
+            .map_err(|e| NdbcError::new(e.0))?;
+        let bytes = if gz {
+            let mut out = Vec::new();
+            flate2::read::GzDecoder::new(&bytes[..])
+                .take(MAX_NDBC_FILE_BYTES + 1)
+                .read_to_end(&mut out)
+                .map_err(|e| NdbcError::new(format!("{name}: not a readable gzip file: {e}")))?;
+            if out.len() as u64 > MAX_NDBC_FILE_BYTES {
+                return Err(NdbcError::new(format!(
+                    "{name}: decompresses to more than {} MiB, the most an NDBC file holds",
+                    MAX_NDBC_FILE_BYTES >> 20
+                )));
+            }
+            out
+        } else {
+            bytes
+        };
+        let text = String::from_utf8(bytes).map_err(|e| {
+            NdbcError::new(format!(
+                "{name}: byte {} is not UTF-8 text",
+                e.utf8_error().valid_up_to()
+            ))
+        })?;
         NdbcTable::parse(&text, &name)
     }
 
     fn row_at(&self, time: NdbcTime) -> Option<&NdbcRow> {
         self.rows.iter().find(|r| r.time == time)
+    }
+
+    /// Refuses a table whose header or name says it holds something other than `want`.
+    pub fn expect_kind(&self, want: NdbcKind) -> Result<(), NdbcError> {
+        match self.kind {
+            Some(k) if k != want => Err(NdbcError::new(format!(
+                "{} holds {} values, not {} values: the files are given in each other's places",
+                self.source,
+                k.describe(),
+                want.describe()
+            ))),
+            _ => Ok(()),
+        }
     }
 }
 
@@ -275,58 +458,81 @@ pub struct NdbcSpectrum {
 
 impl NdbcSpectrum {
     /// The record at `time` (or the first record of the density file) with the direction
-    /// (α1) and r1 tables when given; their rows are matched by time and frequency.
+    /// (α1) and r1 tables when given; their rows are matched by time and frequency. A table
+    /// whose header or name says it holds something else is refused, and so is a value outside
+    /// its kind's range (density below 0, α1 outside 0–360°, r1 outside 0–1).
     pub fn from_tables(
         density: &NdbcTable,
         alpha1: Option<&NdbcTable>,
         r1: Option<&NdbcTable>,
         time: Option<NdbcTime>,
     ) -> Result<NdbcSpectrum, NdbcError> {
+        density.expect_kind(NdbcKind::Density)?;
         let row = match time {
-            Some(t) => density.row_at(t).ok_or_else(|| NdbcError {
-                message: format!("the spectral density file has no record at {t}"),
-            })?,
+            Some(t) => density
+                .row_at(t)
+                .ok_or_else(|| NdbcError::new(format!("{}: no record at {t}", density.source)))?,
             None => &density.rows[0],
         };
-        let n = row.frequencies.len();
-        let pick = |table: Option<&NdbcTable>, what: &str| -> Result<Vec<Option<f64>>, NdbcError> {
-            let Some(table) = table else {
-                return Ok(vec![None; n]);
-            };
-            let other = table.row_at(row.time).ok_or_else(|| NdbcError {
-                message: format!("the {what} file has no record at {}", row.time),
+        let values = |table: &NdbcTable, kind: NdbcKind| -> Result<Vec<Option<f64>>, NdbcError> {
+            table.expect_kind(kind)?;
+            let other = table.row_at(row.time).ok_or_else(|| {
+                NdbcError::new(format!("{}: no record at {}", table.source, row.time))
             })?;
-            if other.frequencies.len() != n
+            if other.frequencies.len() != row.frequencies.len()
                 || other
                     .frequencies
                     .iter()
                     .zip(&row.frequencies)
                     .any(|(a, b)| (a - b).abs() > 1e-6)
             {
-                return Err(NdbcError {
-                    message: format!(
-                        "the {what} file's frequencies at {} differ from the spectral density file's",
-                        row.time
-                    ),
-                });
+                return Err(NdbcError::new(format!(
+                    "{}: the frequencies at {} differ from those of {}",
+                    table.source, row.time, density.source
+                )));
             }
-            let scale = if table.format == NdbcFormat::Historical && what == "r1" {
-                0.01
-            } else {
-                1.0
+            let (scale, range, unit) = match kind {
+                NdbcKind::Density => (1.0, 0.0..=f64::MAX, " m²/Hz"),
+                NdbcKind::Alpha1 | NdbcKind::Alpha2 => (1.0, 0.0..=360.0, "°"),
+                // Historical r1 and r2 are integers scaled ×100.
+                NdbcKind::R1 | NdbcKind::R2 if table.format == NdbcFormat::Historical => {
+                    (0.01, 0.0..=1.0, "")
+                }
+                NdbcKind::R1 | NdbcKind::R2 => (1.0, 0.0..=1.0, ""),
             };
-            Ok(other.values.iter().map(|v| v.map(|x| x * scale)).collect())
+            let scaled: Vec<Option<f64>> =
+                other.values.iter().map(|v| v.map(|x| x * scale)).collect();
+            for (v, f) in scaled.iter().zip(&other.frequencies) {
+                if let Some(v) = v
+                    && !range.contains(v)
+                {
+                    return Err(NdbcError::new(format!(
+                        "{}: the record at {} has {} {v}{unit} at {f} Hz, outside {}{unit} to {}{unit}",
+                        table.source,
+                        row.time,
+                        kind.describe(),
+                        range.start(),
+                        if *range.end() == f64::MAX {
+                            "∞".to_string()
+                        } else {
+                            range.end().to_string()
+                        },
+                    )));
+                }
+            }
+            Ok(scaled)
+        };
+        let density_values = values(density, NdbcKind::Density)?;
+        let optional = |t: Option<&NdbcTable>, kind| match t {
+            Some(t) => values(t, kind),
+            None => Ok(vec![None; row.frequencies.len()]),
         };
         Ok(NdbcSpectrum {
             time: row.time,
             frequencies: row.frequencies.clone(),
-            density: row
-                .values
-                .iter()
-                .map(|v| v.unwrap_or(0.0).max(0.0))
-                .collect(),
-            alpha1_deg: pick(alpha1, "direction (alpha1)")?,
-            r1: pick(r1, "r1")?,
+            density: density_values.iter().map(|v| v.unwrap_or(0.0)).collect(),
+            alpha1_deg: optional(alpha1, NdbcKind::Alpha1)?,
+            r1: optional(r1, NdbcKind::R1)?,
         })
     }
 

@@ -1,7 +1,13 @@
 //! The sea file of DESIGN.md (JSON), validated: bad input is refused with one sentence naming
 //! the file and the wave, never clamped.
+//!
+//! Ranges (docs/command-line-errors.md says why): wavelength [`MIN_WAVELENGTH_M`] to
+//! [`MAX_WAVELENGTH_M`], gravity [`GRAVITY_RANGE`], depth [`DEPTH_RANGE`], at most
+//! [`MAX_SEA_FILE_WAVES`] waves in a file of at most [`MAX_SEA_FILE_BYTES`].
 
 use std::fmt;
+use std::ops::RangeInclusive;
+use std::path::Path;
 
 use serde::Deserialize;
 
@@ -20,6 +26,31 @@ impl fmt::Display for SeaError {
 }
 
 impl std::error::Error for SeaError {}
+
+impl SeaError {
+    /// A message whose text may hold input: made one safe line ([`input::one_line`]).
+    fn new(message: impl AsRef<str>) -> SeaError {
+        SeaError {
+            message: input::one_line(message.as_ref()),
+        }
+    }
+}
+
+/// Shortest wavelength a sea file may hold, metres: below about 1.7 cm surface tension, not
+/// gravity, sets the speed of a water wave, so a gravity wave of 1 cm is already a stretch.
+pub const MIN_WAVELENGTH_M: f64 = 0.01;
+/// Longest wavelength a sea file may hold, metres: a deep-water wave of 57 s, beyond the longest
+/// swell a buoy measures (NDBC's lowest band, 0.02 Hz, is a 3.9 km wave).
+pub const MAX_WAVELENGTH_M: f64 = 5000.0;
+/// Gravity a sea file may state, m/s²: from below the Moon's 1.62 to ten times the Earth's.
+pub const GRAVITY_RANGE: RangeInclusive<f64> = 1.0..=100.0;
+/// Water depth a sea file may state, metres (1 cm to the deepest trench).
+pub const DEPTH_RANGE: RangeInclusive<f64> = 0.01..=11_000.0;
+/// Most waves in a sea file: 16 times what `regatta sea` writes at most (4096); the renderer
+/// draws the largest [`crate::cull`] keeps, the rest go into the stated error bound.
+pub const MAX_SEA_FILE_WAVES: usize = 65_536;
+/// Largest sea file, bytes: room for [`MAX_SEA_FILE_WAVES`] waves written one per line.
+pub const MAX_SEA_FILE_BYTES: u64 = 16 << 20;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -45,27 +76,35 @@ impl WaveSet {
     /// Parse and validate a sea file. `source` names it in error messages (a path, or
     /// "the embedded default sea").
     pub fn from_json_str(text: &str, source: &str) -> Result<WaveSet, SeaError> {
-        let raw: SeaJson = serde_json::from_str(text).map_err(|e| SeaError {
-            message: format!(
+        // A byte-order mark is text, not a syntax error.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let raw: SeaJson = serde_json::from_str(text).map_err(|e| {
+            SeaError::new(format!(
                 "{source}: not a valid sea file at line {}, column {}: {e}",
                 e.line(),
                 e.column()
-            ),
+            ))
         })?;
-        let err = |m: String| SeaError {
-            message: format!("{source}: {m}"),
-        };
+        let err = |m: String| SeaError::new(format!("{source}: {m}"));
         let gravity = raw.gravity.unwrap_or(STANDARD_GRAVITY);
-        if !gravity.is_finite() || gravity <= 0.0 {
+        if !GRAVITY_RANGE.contains(&gravity) {
             return Err(err(format!(
-                "\"gravity\" must be a positive number, got {gravity}"
+                "\"gravity\" is {} m/s², outside {GRAVITY_RANGE:?} m/s²",
+                input::show_number(gravity)
             )));
         }
         if let Some(h) = raw.depth
-            && (!h.is_finite() || h <= 0.0)
+            && !DEPTH_RANGE.contains(&h)
         {
             return Err(err(format!(
-                "\"depth\" must be a positive number or null, got {h}"
+                "\"depth\" is {} m, outside {DEPTH_RANGE:?} m (null for deep water)",
+                input::show_number(h)
+            )));
+        }
+        if raw.waves.len() > MAX_SEA_FILE_WAVES {
+            return Err(err(format!(
+                "{} waves, more than the {MAX_SEA_FILE_WAVES} a sea file may hold",
+                raw.waves.len()
             )));
         }
         let mut waves = Vec::with_capacity(raw.waves.len());
@@ -77,14 +116,19 @@ impl WaveSet {
                     "wave {i} has a number that is NaN or infinite"
                 )));
             }
-            let len = (dx * dx + dz * dz).sqrt();
+            let len = dx.hypot(dz);
             if len == 0.0 {
                 return Err(err(format!("wave {i} has a zero \"direction\"")));
             }
-            if w.wavelength <= 0.0 {
+            if !len.is_finite() {
                 return Err(err(format!(
-                    "wave {i} has \"wavelength\" {} but it must be positive",
-                    w.wavelength
+                    "wave {i} has a \"direction\" too long to normalise"
+                )));
+            }
+            if !(MIN_WAVELENGTH_M..=MAX_WAVELENGTH_M).contains(&w.wavelength) {
+                return Err(err(format!(
+                    "wave {i} has \"wavelength\" {} m, outside {MIN_WAVELENGTH_M}..={MAX_WAVELENGTH_M} m",
+                    input::show_number(w.wavelength)
                 )));
             }
             if !(0.0..=1.0).contains(&w.steepness) {
@@ -112,6 +156,26 @@ impl WaveSet {
             )));
         }
         Ok(set)
+    }
+
+    /// Read and validate the sea file at `path`: at most [`MAX_SEA_FILE_BYTES`], and a JSON
+    /// object from its first byte (so `/dev/zero` or a binary file is refused at once).
+    pub fn read_file(path: &Path) -> Result<WaveSet, SeaError> {
+        let bytes = input::read_capped(
+            path,
+            MAX_SEA_FILE_BYTES,
+            "a sea file",
+            input::json_object_sniff,
+        )
+        .map_err(|e| SeaError::new(e.0))?;
+        let name = input::show_path(path);
+        let text = String::from_utf8(bytes).map_err(|e| {
+            SeaError::new(format!(
+                "{name}: byte {} is not UTF-8 text",
+                e.utf8_error().valid_up_to()
+            ))
+        })?;
+        WaveSet::from_json_str(&text, &name)
     }
 
     /// The embedded default sea.
@@ -183,7 +247,7 @@ mod tests {
             e(&w(
                 r#"{"direction": [1, 0], "steepness": 0.1, "wavelength": 0}"#
             ))
-            .contains("wave 1 has \"wavelength\" 0")
+            .contains("wave 1 has \"wavelength\" 0 m, outside 0.01..=5000 m")
         );
         assert!(
             e(&w(
@@ -202,5 +266,47 @@ mod tests {
             e(r#"{"waves": [{"direction": [1, 0], "steepness": 0.1, "wavelength": 1e999}]}"#)
                 .starts_with("sea.json: not a valid sea file at line 1")
         );
+    }
+
+    /// λ = 1e300 or 1e-300 passed before and then drew nothing (or 256 "did not converge"
+    /// warnings); gravity and depth had no upper or lower end either.
+    #[test]
+    fn wavelengths_gravity_and_depth_outside_their_ranges_are_refused() {
+        let e = |t: &str| WaveSet::from_json_str(t, "sea.json").unwrap_err().message;
+        let wave = |l: &str| {
+            format!(
+                r#"{{"waves": [{{"direction": [1, 0], "steepness": 0.1, "wavelength": {l}}}]}}"#
+            )
+        };
+        assert_eq!(
+            e(&wave("1e300")),
+            "sea.json: wave 0 has \"wavelength\" 1e300 m, outside 0.01..=5000 m"
+        );
+        assert_eq!(
+            e(&wave("1e-300")),
+            "sea.json: wave 0 has \"wavelength\" 1e-300 m, outside 0.01..=5000 m"
+        );
+        assert!(WaveSet::from_json_str(&wave("0.01"), "x").is_ok());
+        assert!(WaveSet::from_json_str(&wave("5000"), "x").is_ok());
+        assert!(e(r#"{"gravity": 1e300, "waves": []}"#).contains("\"gravity\" is 1e300 m/s²"));
+        assert!(e(r#"{"depth": 1e-300, "waves": []}"#).contains("\"depth\" is 1e-300 m"));
+        assert!(
+            e(r#"{"waves": [{"direction": [1.5e308, 1.5e308], "steepness": 0.1, "wavelength": 5}]}"#)
+                .contains("too long to normalise")
+        );
+    }
+
+    /// serde quotes an unknown key as it is: a key `"\name"` (newline + "ame") made a two-line
+    /// message, an ESC drove the terminal. Now every control character is escaped.
+    #[test]
+    fn control_characters_in_keys_and_names_are_escaped() {
+        let m = WaveSet::from_json_str(r#"{"\name\u001b[2J\u0007": 1, "waves": []}"#, "a\rb.json")
+            .unwrap_err()
+            .message;
+        assert!(!m.chars().any(|c| c.is_control()), "{m:?}");
+        assert!(m.starts_with("a\\rb.json: not a valid sea file"), "{m}");
+        assert!(m.contains("unknown field `\\name\\u{1b}[2J\\u{7}`"), "{m}");
+        // A byte-order mark is accepted.
+        assert!(WaveSet::from_json_str("\u{feff}{\"waves\": []}", "bom.json").is_ok());
     }
 }

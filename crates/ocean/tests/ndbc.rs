@@ -157,9 +157,10 @@ fn mismatched_or_missing_files_are_named() {
     let density = table("41010.data_spec");
     let hist_dir = table("41010d2019part.txt.gz");
     let e = NdbcSpectrum::from_tables(&density, Some(&hist_dir), None, None).unwrap_err();
-    assert_eq!(
-        e.message,
-        "the direction (alpha1) file has no record at 2020-06-08 03:50"
+    assert!(
+        e.message
+            .ends_with("41010d2019part.txt.gz: no record at 2020-06-08 03:50"),
+        "{e}"
     );
     let t = NdbcTime {
         year: 1999,

@@ -124,13 +124,22 @@ impl EffectSet {
         Effect::ALL.into_iter().filter(move |e| self.contains(*e))
     }
 
-    /// Parse a comma-separated list: effect names, `all` or `none` (water only). Whitespace
-    /// around names is ignored; an unknown or empty name is refused with a sentence that names
-    /// it and lists the valid names.
+    /// Parse a comma-separated list: effect names, or `all` or `none` (water only) alone.
+    /// Whitespace around names is ignored; an unknown or empty name is refused with a sentence
+    /// that names it and lists the valid names, and `all` or `none` beside other names (`all,none`
+    /// was taken as `all`) is refused as a contradiction.
     pub fn parse(list: &str) -> Result<EffectSet, String> {
+        let names: Vec<&str> = list.split(',').map(str::trim).collect();
+        if names.len() > 1
+            && let Some(whole) = names.iter().find(|n| matches!(**n, "all" | "none"))
+        {
+            return Err(format!(
+                "--effects \"{}\" is contradictory: \"{whole}\" stands alone, not in a list",
+                names.join(",")
+            ));
+        }
         let mut set = EffectSet::NONE;
-        for raw in list.split(',') {
-            let name = raw.trim();
+        for name in names {
             match name {
                 "all" => set = EffectSet::ALL,
                 "none" => {}
@@ -224,5 +233,18 @@ mod tests {
         assert!(err.contains("\"fog\"") && err.contains("caustics"), "{err}");
         let err = EffectSet::parse("reflection,,caustics").unwrap_err();
         assert!(err.contains("\"\""), "{err}");
+    }
+
+    /// `all,none` was taken as `all`.
+    #[test]
+    fn all_or_none_in_a_list_is_a_contradiction() {
+        for list in ["all,none", "none, reflection", "caustics,all"] {
+            let err = EffectSet::parse(list).unwrap_err();
+            assert!(err.contains("is contradictory"), "{list}: {err}");
+        }
+        assert_eq!(
+            EffectSet::parse("all, none").unwrap_err(),
+            "--effects \"all,none\" is contradictory: \"all\" stands alone, not in a list"
+        );
     }
 }
