@@ -8,12 +8,78 @@ use serde::Serialize;
 
 use crate::track::{Boat, BoatState};
 
+/// What a course element is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum MarkKind {
+    /// One buoy.
+    #[default]
+    Mark,
+    /// Two buoys; a boat rounds either (or sails through between them).
+    Gate,
+    /// The start line between two marks.
+    StartLine,
+    /// The finish line between two marks.
+    FinishLine,
+    /// Where the fleet was at the start signal: the course's start when a file lists marks
+    /// but no course and no start line.
+    FleetStart,
+}
+
 /// A course mark in race metres.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Mark {
     pub name: String,
-    /// `[x east, z south]`, metres.
+    /// `[x east, z south]`, metres; the middle of a gate or line.
     pub position: [f64; 2],
+    #[serde(default)]
+    pub kind: MarkKind,
+    /// A gate's or line's two buoys, metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ends: Option<[[f64; 2]; 2]>,
+    /// The rounding side as the file states it ("Port", "Starboard", "SP", "PS").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rounding: Option<String>,
+}
+
+impl Mark {
+    /// A single buoy.
+    pub fn buoy(name: impl Into<String>, position: [f64; 2]) -> Mark {
+        Mark {
+            name: name.into(),
+            position,
+            kind: MarkKind::Mark,
+            ends: None,
+            rounding: None,
+        }
+    }
+
+    /// Distance from `p` to the mark: to the buoy, or to the segment between a gate's or a
+    /// line's two buoys (a boat through a gate is at distance 0).
+    pub fn distance(&self, p: [f64; 2]) -> f64 {
+        match self.ends {
+            None => dist(p, self.position),
+            Some([a, b]) => {
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let len2 = d[0] * d[0] + d[1] * d[1];
+                let s = if len2 > 0.0 {
+                    (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                dist(p, [a[0] + s * d[0], a[1] + s * d[1]])
+            }
+        }
+    }
+
+    /// The buoys to draw: one, or a gate's or line's two; none for the fleet's start.
+    pub fn buoys(&self) -> Vec<[f64; 2]> {
+        match (self.kind, self.ends) {
+            (MarkKind::FleetStart, _) => Vec::new(),
+            (_, Some([a, b])) => vec![a, b],
+            (_, None) => vec![self.position],
+        }
+    }
 }
 
 /// A boat's place at one time.
@@ -72,16 +138,16 @@ pub(crate) fn detect_roundings(
     out[0] = Some(t0.max(0.0));
     let mut i = fixes.partition_point(|f| f.t < 0.0);
     for (k, &m) in course.iter().enumerate().skip(1) {
-        let p = marks[m].position;
         // First fix inside the radius.
-        let Some(enter) = (i..fixes.len()).find(|&j| dist(fixes[j].pos(), p) <= radius) else {
+        let mk = &marks[m];
+        let Some(enter) = (i..fixes.len()).find(|&j| mk.distance(fixes[j].pos()) <= radius) else {
             break;
         };
         // Closest approach before leaving the radius again.
         let mut best = enter;
         let mut j = enter;
-        while j < fixes.len() && dist(fixes[j].pos(), p) <= radius {
-            if dist(fixes[j].pos(), p) < dist(fixes[best].pos(), p) {
+        while j < fixes.len() && mk.distance(fixes[j].pos()) <= radius {
+            if mk.distance(fixes[j].pos()) < mk.distance(fixes[best].pos()) {
                 best = j;
             }
             j += 1;
@@ -127,9 +193,9 @@ pub(crate) fn standings_into(
             if finished {
                 0.0
             } else if done == 0 {
-                dist(s.position, marks[course[0]].position) + tail[0]
+                marks[course[0]].distance(s.position) + tail[0]
             } else {
-                dist(s.position, marks[course[done]].position) + tail[done]
+                marks[course[done]].distance(s.position) + tail[done]
             }
         });
         out.push(Standing {
