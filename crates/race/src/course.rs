@@ -103,20 +103,48 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-/// The rounding radius for a course: 5 % of its shortest leg, between 15 m and 60 m. GPS on a
-/// dinghy passes a buoy at 5–20 m; an F50 passes a gate mark at 3–14 m but its turning circle
-/// is wider, and its legs are longer.
-pub fn rounding_radius(marks: &[Mark], course: &[usize]) -> f64 {
+/// The rounding radius for a course: 5 % of its shortest leg, and at least five times the
+/// fleet's median step between fixes, between 15 m and 80 m. GPS on a dinghy passes a buoy at
+/// 5–20 m; an F50 moves ~15 m between its 1 Hz fixes and rounds a single mark wide: in SailGP
+/// Auckland race 5 the boats pass M1 at 27–64 m (ESP) and their own logs count the rounding.
+/// Gates and lines are measured to the segment between their buoys, so a boat through a gate
+/// is at 0 m whatever the radius.
+pub fn rounding_radius(marks: &[Mark], course: &[usize], typical_step_m: f64) -> f64 {
     let shortest = course
         .windows(2)
         .map(|w| dist(marks[w[0]].position, marks[w[1]].position))
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
+    let step = if typical_step_m.is_finite() {
+        5.0 * typical_step_m
+    } else {
+        0.0
+    };
     if shortest.is_finite() {
-        (0.05 * shortest).clamp(15.0, 60.0)
+        (0.05 * shortest).max(step).clamp(15.0, 80.0)
     } else {
         30.0
     }
+}
+
+/// The median distance between successive fixes of every boat (at most 10,000 steps looked
+/// at per boat), metres; NaN without steps.
+pub fn typical_step(boats: &[Boat]) -> f64 {
+    let mut d: Vec<f64> = boats
+        .iter()
+        .flat_map(|b| {
+            let f = b.fixes();
+            let every = (f.len() / 10_000).max(1);
+            f.windows(2)
+                .step_by(every)
+                .map(|w| dist(w[0].pos(), w[1].pos()))
+        })
+        .collect();
+    if d.is_empty() {
+        return f64::NAN;
+    }
+    let mid = d.len() / 2;
+    *d.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 /// Times a boat passed each course mark (see the module docs).

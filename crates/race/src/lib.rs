@@ -142,7 +142,8 @@ impl Race {
         wind: Option<Wind>,
         report: LoadReport,
     ) -> Race {
-        let rounding_radius_m = course::rounding_radius(&marks, &course);
+        let rounding_radius_m =
+            course::rounding_radius(&marks, &course, course::typical_step(&boats));
         for b in &mut boats {
             b.roundings = course::detect_roundings(b, &marks, &course, rounding_radius_m);
         }

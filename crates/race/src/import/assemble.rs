@@ -238,7 +238,8 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
     let time_of_day = sources.iter().any(|s| s.time_of_day);
     let start_time = start.filter(|_| !time_of_day).and_then(|s| {
         let whole = s.floor();
-        let nanos = ((s - whole) * 1e9).round() as i128;
+        // To the microsecond: an f64 of ~1e8 s holds 3e-8 s, so finer digits are noise.
+        let nanos = ((s - whole) * 1e6).round() as i128 * 1000;
         OffsetDateTime::from_unix_timestamp_nanos(
             (whole as i128 + EPOCH_UNIX as i128) * 1_000_000_000 + nanos,
         )
@@ -541,7 +542,7 @@ fn repeat_laps(boats: &[Boat], marks: &[Mark], course: Vec<usize>) -> Vec<usize>
         return course;
     }
     let lap: Vec<usize> = course[1..].to_vec();
-    let radius = crate::course::rounding_radius(marks, &course);
+    let radius = crate::course::rounding_radius(marks, &course, crate::course::typical_step(boats));
     let mut best = course;
     for _ in 0..20 {
         let mut next = best.clone();

@@ -76,6 +76,7 @@ fn detect(file: &str, header: &csv::StringRecord) -> RaceResult<Columns> {
     };
     let time = find(&starts(&[
         "datetime",
+        "date/time",
         "date_time",
         "timestamp",
         "time",

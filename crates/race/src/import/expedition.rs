@@ -99,7 +99,11 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             no_time += 1;
             continue;
         }
-        let t = (days - SERIAL_DAY_OF_UNIX_EPOCH) * 86_400.0 - super::EPOCH_UNIX as f64;
+        // To the millisecond: the file's 5 decimals of a day are 0.864 s steps, and the
+        // product's last bits are noise (…32.448000193 s).
+        let t = (((days - SERIAL_DAY_OF_UNIX_EPOCH) * 86_400.0 - super::EPOCH_UNIX as f64) * 1e3)
+            .round()
+            / 1e3;
         for (k, (c, _, _, f)) in chans.iter().enumerate() {
             let v = num(*c)?;
             if v.is_finite() {

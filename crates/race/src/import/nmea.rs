@@ -262,7 +262,8 @@ impl Log {
                         self.put("aws", "m/s", v);
                     }
                     "T" => {
-                        self.put("twa", "deg", a);
+                        // 0–360 clockwise from the bow → ±180 (VWT's convention).
+                        self.put("twa", "deg", if a > 180.0 { a - 360.0 } else { a });
                         self.put("tws", "m/s", v);
                     }
                     _ => {}
