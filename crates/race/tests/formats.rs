@@ -4,7 +4,7 @@
 
 mod common;
 use common::{data, hms};
-use race::{LoadOptions, MarkKind, Race};
+use race::{MarkKind, Race};
 
 fn read(rel: &str) -> String {
     std::fs::read_to_string(data(rel)).unwrap()

@@ -18,6 +18,9 @@ use crate::clean::MPS_PER_KNOT;
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
 
+/// A channel while reading: name, unit, (day, time of day, value).
+type Channel = (&'static str, &'static str, Vec<(i64, f64, f32)>);
+
 /// Per-log reading state.
 #[derive(Default)]
 struct Log {
@@ -32,7 +35,7 @@ struct Log {
     heading: f32,
     variation: f64,
     /// Channel → (day, tod, value).
-    channels: Vec<(&'static str, &'static str, Vec<(i64, f64, f32)>)>,
+    channels: Vec<Channel>,
     max_sog: f32,
 }
 

@@ -63,10 +63,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
                 RaceError::at_line(
                     file,
                     line(),
-                    format!(
-                        "<{}> has no {name}",
-                        AsRef::<str>::as_ref(&e.name()).to_string()
-                    ),
+                    format!("<{}> has no {name}", AsRef::<str>::as_ref(&e.name())),
                 )
             })?;
             v.trim().parse::<f64>().map_err(|_| {
