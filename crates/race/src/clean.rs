@@ -33,6 +33,8 @@ pub struct BoatReport {
     pub out_of_order: usize,
     pub duplicates_merged: usize,
     pub frozen_removed: usize,
+    /// Fixes at exactly 0° N 0° E (a receiver's "no fix"), removed before anything else.
+    pub null_island_removed: usize,
     /// The class speed limit used for spikes, knots.
     pub max_speed_kn: f64,
     /// Removed spikes: race time and the speed (knots) of the step that condemned the fix.
@@ -81,9 +83,10 @@ pub(crate) fn clean(
     file: &str,
     mut s: Vec<RawSample>,
     max_speed_mps: f64,
+    null_island_removed: usize,
     warnings: &mut Vec<String>,
 ) -> Cleaned {
-    let samples_read = s.len();
+    let samples_read = s.len() + null_island_removed;
     let out_of_order = s.windows(2).filter(|w| w[1].t < w[0].t).count();
     if out_of_order > 0 {
         s.sort_by(|a, b| a.t.total_cmp(&b.t));
@@ -188,6 +191,18 @@ pub(crate) fn clean(
         }
     }
     spikes.sort_by(|a, b| a.t.total_cmp(&b.t));
+    if frozen_removed > 0 {
+        warnings.push(format!(
+            "{file}: boat {id} had {frozen_removed} frozen fixes (a moving boat's position repeated); they were removed"
+        ));
+    }
+    if !spikes.is_empty() {
+        warnings.push(format!(
+            "{file}: boat {id} had {} fixes implying over {:.0} kn; they were removed as spikes",
+            spikes.len(),
+            max_speed_mps / MPS_PER_KNOT
+        ));
+    }
     let ts: Vec<f64> = acc.iter().map(|p| p.t).collect();
     let gap_limit_s = gap_limit(&ts);
     let mut gaps = Vec::new();
@@ -221,11 +236,69 @@ pub(crate) fn clean(
             out_of_order,
             duplicates_merged,
             frozen_removed,
+            null_island_removed,
             max_speed_kn: max_speed_mps / MPS_PER_KNOT,
             spikes,
             gap_limit_s,
             gaps,
             max_step_speed_kn: max_step / MPS_PER_KNOT,
         },
+    }
+}
+
+impl BoatReport {
+    /// Samples cleaning dropped (merged, frozen, spikes, at 0° N 0° E).
+    pub fn dropped(&self) -> usize {
+        self.samples_read - self.samples_kept
+    }
+
+    /// Whether cleaning kept fewer than half of the boat's samples: the file does not load
+    /// silently then (see `LoadOptions::keep_going`).
+    pub fn lost_most(&self) -> bool {
+        self.samples_read > 1 && 2 * self.samples_kept < self.samples_read
+    }
+
+    /// One clause naming the rule that dropped most and its likeliest cause, e.g.
+    /// "11,977 of 11,978 fixes imply over 1,000 kn: is the time column in days?".
+    pub fn loss_reason(&self) -> String {
+        use crate::text::count;
+        let read = count(self.samples_read);
+        let rules = [
+            (self.spikes.len(), 0),
+            (self.duplicates_merged, 1),
+            (self.frozen_removed, 2),
+            (self.null_island_removed, 3),
+        ];
+        let (n, rule) = rules.iter().copied().max_by_key(|r| r.0).unwrap_or((0, 0));
+        let n_s = count(n);
+        match rule {
+            0 => {
+                let mut v: Vec<f64> = self.spikes.iter().map(|s| s.implied_speed_kn).collect();
+                v.sort_by(f64::total_cmp);
+                let median = v.get(v.len() / 2).copied().unwrap_or(0.0);
+                if median > 1000.0 {
+                    format!(
+                        "{n_s} of {read} fixes imply over 1,000 kn: is the time column in days?"
+                    )
+                } else if 5 * n >= 2 * self.samples_read {
+                    format!(
+                        "{n_s} of {read} fixes imply over {:.0} kn: does the track alternate between two receivers or boats?",
+                        self.max_speed_kn
+                    )
+                } else {
+                    format!(
+                        "{n_s} of {read} fixes imply over {:.0} kn: is the class's speed limit too low?",
+                        self.max_speed_kn
+                    )
+                }
+            }
+            1 => format!(
+                "{n_s} of {read} samples repeat the timestamp before them: is the time column constant, or rounded to whole days?"
+            ),
+            2 => format!(
+                "{n_s} of {read} fixes repeat the position before them while the boat moves: is the receiver stuck?"
+            ),
+            _ => format!("{n_s} of {read} fixes are at 0° N 0° E, a receiver's \"no fix\" value"),
+        }
     }
 }

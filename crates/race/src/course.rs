@@ -8,12 +8,78 @@ use serde::Serialize;
 
 use crate::track::{Boat, BoatState};
 
+/// What a course element is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum MarkKind {
+    /// One buoy.
+    #[default]
+    Mark,
+    /// Two buoys; a boat rounds either (or sails through between them).
+    Gate,
+    /// The start line between two marks.
+    StartLine,
+    /// The finish line between two marks.
+    FinishLine,
+    /// Where the fleet was at the start signal: the course's start when a file lists marks
+    /// but no course and no start line.
+    FleetStart,
+}
+
 /// A course mark in race metres.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Mark {
     pub name: String,
-    /// `[x east, z south]`, metres.
+    /// `[x east, z south]`, metres; the middle of a gate or line.
     pub position: [f64; 2],
+    #[serde(default)]
+    pub kind: MarkKind,
+    /// A gate's or line's two buoys, metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ends: Option<[[f64; 2]; 2]>,
+    /// The rounding side as the file states it ("Port", "Starboard", "SP", "PS").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rounding: Option<String>,
+}
+
+impl Mark {
+    /// A single buoy.
+    pub fn buoy(name: impl Into<String>, position: [f64; 2]) -> Mark {
+        Mark {
+            name: name.into(),
+            position,
+            kind: MarkKind::Mark,
+            ends: None,
+            rounding: None,
+        }
+    }
+
+    /// Distance from `p` to the mark: to the buoy, or to the segment between a gate's or a
+    /// line's two buoys (a boat through a gate is at distance 0).
+    pub fn distance(&self, p: [f64; 2]) -> f64 {
+        match self.ends {
+            None => dist(p, self.position),
+            Some([a, b]) => {
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let len2 = d[0] * d[0] + d[1] * d[1];
+                let s = if len2 > 0.0 {
+                    (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                dist(p, [a[0] + s * d[0], a[1] + s * d[1]])
+            }
+        }
+    }
+
+    /// The buoys to draw: one, or a gate's or line's two; none for the fleet's start.
+    pub fn buoys(&self) -> Vec<[f64; 2]> {
+        match (self.kind, self.ends) {
+            (MarkKind::FleetStart, _) => Vec::new(),
+            (_, Some([a, b])) => vec![a, b],
+            (_, None) => vec![self.position],
+        }
+    }
 }
 
 /// A boat's place at one time.
@@ -37,20 +103,48 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-/// The rounding radius for a course: 5 % of its shortest leg, between 15 m and 60 m. GPS on a
-/// dinghy passes a buoy at 5–20 m; an F50 passes a gate mark at 3–14 m but its turning circle
-/// is wider, and its legs are longer.
-pub fn rounding_radius(marks: &[Mark], course: &[usize]) -> f64 {
+/// The rounding radius for a course: 5 % of its shortest leg, and at least five times the
+/// fleet's median step between fixes, between 15 m and 80 m. GPS on a dinghy passes a buoy at
+/// 5–20 m; an F50 moves ~15 m between its 1 Hz fixes and rounds a single mark wide: in SailGP
+/// Auckland race 5 the boats pass M1 at 27–64 m (ESP) and their own logs count the rounding.
+/// Gates and lines are measured to the segment between their buoys, so a boat through a gate
+/// is at 0 m whatever the radius.
+pub fn rounding_radius(marks: &[Mark], course: &[usize], typical_step_m: f64) -> f64 {
     let shortest = course
         .windows(2)
         .map(|w| dist(marks[w[0]].position, marks[w[1]].position))
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
+    let step = if typical_step_m.is_finite() {
+        5.0 * typical_step_m
+    } else {
+        0.0
+    };
     if shortest.is_finite() {
-        (0.05 * shortest).clamp(15.0, 60.0)
+        (0.05 * shortest).max(step).clamp(15.0, 80.0)
     } else {
         30.0
     }
+}
+
+/// The median distance between successive fixes of every boat (at most 10,000 steps looked
+/// at per boat), metres; NaN without steps.
+pub fn typical_step(boats: &[Boat]) -> f64 {
+    let mut d: Vec<f64> = boats
+        .iter()
+        .flat_map(|b| {
+            let f = b.fixes();
+            let every = (f.len() / 10_000).max(1);
+            f.windows(2)
+                .step_by(every)
+                .map(|w| dist(w[0].pos(), w[1].pos()))
+        })
+        .collect();
+    if d.is_empty() {
+        return f64::NAN;
+    }
+    let mid = d.len() / 2;
+    *d.select_nth_unstable_by(mid, f64::total_cmp).1
 }
 
 /// Times a boat passed each course mark (see the module docs).
@@ -72,16 +166,16 @@ pub(crate) fn detect_roundings(
     out[0] = Some(t0.max(0.0));
     let mut i = fixes.partition_point(|f| f.t < 0.0);
     for (k, &m) in course.iter().enumerate().skip(1) {
-        let p = marks[m].position;
         // First fix inside the radius.
-        let Some(enter) = (i..fixes.len()).find(|&j| dist(fixes[j].pos(), p) <= radius) else {
+        let mk = &marks[m];
+        let Some(enter) = (i..fixes.len()).find(|&j| mk.distance(fixes[j].pos()) <= radius) else {
             break;
         };
         // Closest approach before leaving the radius again.
         let mut best = enter;
         let mut j = enter;
-        while j < fixes.len() && dist(fixes[j].pos(), p) <= radius {
-            if dist(fixes[j].pos(), p) < dist(fixes[best].pos(), p) {
+        while j < fixes.len() && mk.distance(fixes[j].pos()) <= radius {
+            if mk.distance(fixes[j].pos()) < mk.distance(fixes[best].pos()) {
                 best = j;
             }
             j += 1;
@@ -127,9 +221,9 @@ pub(crate) fn standings_into(
             if finished {
                 0.0
             } else if done == 0 {
-                dist(s.position, marks[course[0]].position) + tail[0]
+                marks[course[0]].distance(s.position) + tail[0]
             } else {
-                dist(s.position, marks[course[done]].position) + tail[done]
+                marks[course[done]].distance(s.position) + tail[done]
             }
         });
         out.push(Standing {

@@ -10,13 +10,16 @@ pub struct RaceError {
 }
 
 impl RaceError {
-    /// An error with a complete sentence (it should already name the file).
+    /// An error with a complete sentence (it should already name the file). Control
+    /// characters that reach it from the input are escaped here as well, so a message is
+    /// always one line whatever a caller forgot to quote.
     pub fn new(msg: impl Into<String>) -> Self {
         let mut msg: String = msg.into();
         // One sentence: no trailing newline, ends with a full stop.
         while msg.ends_with(['\n', ' ']) {
             msg.pop();
         }
+        let mut msg = crate::text::escape(&msg);
         if !msg.ends_with('.') {
             msg.push('.');
         }

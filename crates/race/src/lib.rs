@@ -25,13 +25,14 @@ pub mod error;
 pub mod geo;
 mod import;
 pub mod synth;
+pub mod text;
 pub mod track;
 
 pub use clean::{BoatReport, Spike};
-pub use course::{Mark, Standing};
+pub use course::{Mark, MarkKind, Standing};
 pub use error::{RaceError, RaceResult};
 pub use geo::{GeoPoint, LocalFrame};
-pub use import::DEFAULT_MAX_SPEED_KN;
+pub use import::{DEFAULT_MAX_SPEED_KN, FileReport, Format, LoadOptions, MAX_FILE_BYTES, Series};
 pub use track::{Boat, BoatState, Fix};
 
 /// The wind a file states (for the sea and the UI; nothing in the race depends on it).
@@ -53,7 +54,19 @@ pub struct LoadReport {
     /// A phrase saying where the start came from.
     pub start_from: String,
     pub boats: Vec<BoatReport>,
+    /// Per file: format, records read, fixes, channels, date source, rules that dropped data.
+    pub file_reports: Vec<FileReport>,
     pub warnings: Vec<String>,
+}
+
+/// What a race's ranks mean.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RankBasis {
+    /// Marks passed, then course distance still to sail.
+    Course,
+    /// No marks: no course rank exists; boats are listed by metres sailed.
+    NoCourse,
 }
 
 /// One boat passing one course mark.
@@ -85,6 +98,10 @@ pub struct Race {
     /// Radius (m) inside which a boat's closest approach to a mark counts as its rounding.
     pub rounding_radius_m: f64,
     pub report: LoadReport,
+    /// Logged channels over time (wind, boat speed, heading, heel), race seconds.
+    pub series: Vec<Series>,
+    /// The course boundary polygon in race metres, where a file states one.
+    pub boundary: Vec<[f64; 2]>,
     frame: Option<LocalFrame>,
     tail: Vec<f64>,
 }
@@ -125,7 +142,8 @@ impl Race {
         wind: Option<Wind>,
         report: LoadReport,
     ) -> Race {
-        let rounding_radius_m = course::rounding_radius(&marks, &course);
+        let rounding_radius_m =
+            course::rounding_radius(&marks, &course, course::typical_step(&boats));
         for b in &mut boats {
             b.roundings = course::detect_roundings(b, &marks, &course, rounding_radius_m);
         }
@@ -140,6 +158,8 @@ impl Race {
             wind,
             rounding_radius_m,
             report,
+            series: Vec::new(),
+            boundary: Vec::new(),
             frame: origin.map(LocalFrame::new),
             tail,
         }
@@ -155,29 +175,48 @@ impl Race {
         Race::from_files(VALENCIA).expect("the embedded Valencia race is valid (tested)")
     }
 
-    /// Read and combine race files: `.json` (native race or maxSail meta-data), `.gpx`, `.csv`.
+    /// Read and combine race files (every format of [`Format`], detected by content).
     pub fn load(paths: &[PathBuf]) -> RaceResult<Race> {
+        Race::load_with(paths, &LoadOptions::default())
+    }
+
+    /// [`Race::load`] with options (`--keep-going`, `--session`, `--course`).
+    pub fn load_with(paths: &[PathBuf], opts: &LoadOptions) -> RaceResult<Race> {
         let mut files = Vec::with_capacity(paths.len());
         for p in paths {
-            let name = p.display().to_string();
-            let bytes = std::fs::read(p)
-                .map_err(|e| RaceError::in_file(&name, format!("could not be read ({e})")))?;
-            files.push((name, bytes));
+            files.push((p.display().to_string(), read_file(p)?));
         }
         let refs: Vec<(&str, &[u8])> = files
             .iter()
             .map(|(n, b)| (n.as_str(), b.as_slice()))
             .collect();
-        Race::from_files(&refs)
+        Race::from_files_with(&refs, opts)
     }
 
-    /// Combine files given as (name, contents); the name's extension says the kind.
+    /// Combine files given as (name, contents); the content says the kind.
     pub fn from_files(files: &[(&str, &[u8])]) -> RaceResult<Race> {
+        Race::from_files_with(files, &LoadOptions::default())
+    }
+
+    /// [`Race::from_files`] with options.
+    pub fn from_files_with(files: &[(&str, &[u8])], opts: &LoadOptions) -> RaceResult<Race> {
         let mut sources = Vec::with_capacity(files.len());
         for (name, bytes) in files {
-            sources.push(import::parse(name, bytes)?);
+            sources.push(import::parse(&text::escape(name), bytes, opts)?);
         }
-        import::assemble(sources)
+        if let Some((name, bytes)) = &opts.marks {
+            sources.push(import::marks::parse(&text::escape(name), bytes)?);
+        }
+        import::assemble(sources, opts)
+    }
+
+    /// What the ranks of [`Race::standings`] mean.
+    pub fn rank_basis(&self) -> RankBasis {
+        if self.course.len() >= 2 {
+            RankBasis::Course
+        } else {
+            RankBasis::NoCourse
+        }
     }
 
     /// First and last fix of any boat, race seconds.
@@ -216,6 +255,17 @@ impl Race {
         self.states_at(t, &mut states);
         let mut out = Vec::new();
         self.standings_into(t, &states, &mut out);
+        out
+    }
+
+    /// Every buoy to draw, once: single marks and the two ends of gates and lines.
+    pub fn buoys(&self) -> Vec<[f64; 2]> {
+        let mut out: Vec<[f64; 2]> = Vec::new();
+        for p in self.marks.iter().flat_map(Mark::buoys) {
+            if !out.iter().any(|q| (q[0] - p[0]).hypot(q[1] - p[1]) < 0.01) {
+                out.push(p);
+            }
+        }
         out
     }
 
@@ -284,4 +334,45 @@ impl Race {
     pub fn boat_index(&self, id: &str) -> Option<usize> {
         self.boats.iter().position(|b| b.id == id)
     }
+}
+
+/// A race file's bytes: a regular file of at most [`MAX_FILE_BYTES`], checked before reading
+/// to the end (a device such as `/dev/zero` never ends).
+pub fn read_file(p: &std::path::Path) -> RaceResult<Vec<u8>> {
+    use std::io::Read;
+    let name = text::escape(&p.display().to_string());
+    let open = |e: std::io::Error| RaceError::in_file(&name, format!("could not be read ({e})"));
+    let meta = std::fs::metadata(p).map_err(open)?;
+    if !meta.is_file() {
+        return Err(RaceError::in_file(
+            &name,
+            "is not a regular file (a folder or a device); a race file is a file",
+        ));
+    }
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(RaceError::in_file(
+            &name,
+            format!(
+                "is {} MB, over the {} MB a race file may have",
+                meta.len() / 1_000_000,
+                MAX_FILE_BYTES / 1_000_000
+            ),
+        ));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(p)
+        .map_err(open)?
+        .take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(open)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(RaceError::in_file(
+            &name,
+            format!(
+                "grew past the {} MB a race file may have while it was read",
+                MAX_FILE_BYTES / 1_000_000
+            ),
+        ));
+    }
+    Ok(bytes)
 }

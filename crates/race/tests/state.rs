@@ -1,18 +1,19 @@
 //! Interpolation, heading smoothing and the not-racing ends, on races built from native JSON.
 
+mod common;
 use proptest::prelude::*;
 use race::Race;
 
 fn race_json(track: &[[f64; 3]]) -> Race {
     let json = serde_json::json!({
         "name": "t", "origin": null, "start_time": null,
-        "boats": [{"id": "A", "track": track}], "marks": []
+        "boats": [{"id": "A", "track": track, "max_speed_kn": 1e6}], "marks": []
     });
     Race::from_files(&[("t.json", json.to_string().as_bytes())]).unwrap()
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(300))]
+    #![proptest_config(common::fuzz_config("no_overshoot_past_samples", 0x5EED_0017_0003, 300))]
     /// PCHIP never leaves the box of an interval's two samples (no overshoot), and passes
     /// through every sample exactly.
     #[test]

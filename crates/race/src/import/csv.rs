@@ -1,153 +1,235 @@
-//! Boat logs as CSV (SailGP style), one boat per file. The header is detected by name
-//! (case-insensitive): time `DATETIME`/`time`/`timestamp`/`utc`; `LAT…`; `LON…`/`LNG…`;
-//! speed over ground `…SOG…` (else `…SPEED…`) with the unit from the name (`km_h`, `m_s`,
-//! else knots); `HEADING…`; `HEEL…`; true wind `TWS…`/`TWD…`; the boat `BOAT`. Times are
-//! `YYYY-MM-DD HH:MM:SS[.f]` (UTC), RFC 3339, or plain seconds since the race start.
+//! Boat logs and instrument or tracker exports as CSV: SailGP boat logs, Vakaros Atlas,
+//! Velocitek, and any log with a time, a latitude and a longitude column. Columns are found by
+//! name (case-insensitive, synonyms below), units from the name (`_kts`, `km_h`, `m_s`, `mph`;
+//! knots otherwise). Times: `YYYY-MM-DD[T ]HH:MM:SS[.f]` with an optional zone (`Z`, `-0500`,
+//! `+05:30`; none = UTC), Unix seconds or milliseconds (values near 1e9 or 1e12), else plain
+//! seconds since the race start. Blank rows and rows without a position are skipped and
+//! counted; a `boat` column that names several boats splits the file into one boat per id.
 //! The spike limit is 1.2 × the log's own top speed over ground (the instrument knows what the
 //! class can do), at least 20 kn.
 
-use time::PrimitiveDateTime;
-use time::format_description::well_known::Rfc3339;
-use time::macros::format_description;
-
-use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Source, Times, epoch_seconds};
+use super::timefmt::parse_datetime;
+use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Series, Source, Times, q};
 use crate::Wind;
 use crate::error::{RaceError, RaceResult};
+use crate::text::plain;
 use crate::track::Logged;
+
+/// A column and the factor from its unit to SI (m/s for speeds, 1 for degrees).
+type Col = Option<(usize, f64)>;
 
 struct Columns {
     time: usize,
     lat: usize,
     lon: usize,
-    sog: Option<(usize, f64)>,
-    heading: Option<usize>,
-    heel: Option<usize>,
-    tws: Option<(usize, f64)>,
-    twd: Option<usize>,
+    sog: Col,
+    heading: Col,
+    heel: Col,
+    trim: Col,
+    bsp: Col,
+    tws: Col,
+    twd: Col,
     boat: Option<usize>,
 }
 
 /// Metres per second per unit named in a column name.
 fn unit_of(name: &str) -> f64 {
-    if name.contains("km_h") || name.contains("kmh") || name.contains("km/h") {
+    if name.contains("km_h")
+        || name.contains("kmh")
+        || name.contains("km/h")
+        || name.contains("kph")
+    {
         1.0 / 3.6
     } else if name.contains("m_s") || name.contains("mps") || name.contains("m/s") {
         1.0
+    } else if name.contains("mph") {
+        0.447_04
     } else {
         super::knots_to_mps(1.0)
     }
 }
 
+/// A header name reduced to letters and digits joined by `_`: "Speed (kts)" → "speed_kts".
+fn norm(h: &str) -> String {
+    let mut out = String::with_capacity(h.len());
+    for c in h.trim().chars() {
+        if c.is_ascii_alphanumeric() || c == '/' {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('_') && !out.is_empty() {
+            out.push('_');
+        }
+    }
+    out.trim_end_matches('_').to_string()
+}
+
 fn detect(file: &str, header: &csv::StringRecord) -> RaceResult<Columns> {
-    let names: Vec<String> = header
-        .iter()
-        .map(|h| h.trim().to_ascii_lowercase())
-        .collect();
+    let names: Vec<String> = header.iter().map(norm).collect();
     let find = |pred: &dyn Fn(&str) -> bool| names.iter().position(|n| pred(n));
+    let starts = |ps: &'static [&'static str]| {
+        move |n: &str| {
+            ps.iter()
+                .any(|p| n == *p || n.starts_with(&format!("{p}_")))
+        }
+    };
     let need = |i: Option<usize>, what: &str| {
         i.ok_or_else(|| RaceError::at_line(file, 1, format!("the header has no {what} column")))
     };
-    let time = [
+    let time = find(&starts(&[
         "datetime",
-        "time",
+        "date/time",
+        "date_time",
         "timestamp",
+        "time",
         "utc",
         "time_utc",
-        "date_time",
         "t",
-    ]
-    .iter()
-    .find_map(|w| names.iter().position(|n| n == w));
-    let sog = find(&|n| n.contains("sog"))
-        .or_else(|| find(&|n| n.contains("speed") && !n.starts_with("tw") && !n.starts_with("aw")));
-    let tws = find(&|n| n.starts_with("tws"));
+        "gps_time",
+        "iso_time",
+    ]));
+    let speed = |i: Option<usize>| i.map(|i| (i, unit_of(&names[i])));
+    let deg = |i: Option<usize>| i.map(|i| (i, 1.0));
+    let sog = find(&|n| n.contains("sog") && !n.contains("vmg"))
+        .or_else(|| find(&starts(&["speed", "speed_over_ground"])));
     Ok(Columns {
         time: need(time, "time (DATETIME, time, timestamp or utc)")?,
-        lat: need(find(&|n| n.starts_with("lat")), "latitude (LAT…)")?,
+        lat: need(
+            find(&starts(&["lat", "latitude", "latitude_gps"])),
+            "latitude (LAT…)",
+        )?,
         lon: need(
-            find(&|n| n.starts_with("lon") || n.starts_with("lng")),
+            find(&starts(&[
+                "lon",
+                "lng",
+                "long",
+                "longitude",
+                "longitude_gps",
+            ])),
             "longitude (LON…)",
         )?,
-        sog: sog.map(|i| (i, unit_of(&names[i]))),
-        heading: find(&|n| n.starts_with("heading") || n == "hdg"),
-        heel: find(&|n| n.starts_with("heel")),
-        tws: tws.map(|i| (i, unit_of(&names[i]))),
-        twd: find(&|n| n.starts_with("twd")),
-        boat: find(&|n| n == "boat" || n == "boat_id"),
+        sog: speed(sog),
+        heading: deg(find(&starts(&[
+            "heading",
+            "hdg",
+            "hdg_true",
+            "heading_true",
+            "hdt",
+        ]))),
+        heel: deg(find(&starts(&["heel", "roll"]))),
+        trim: deg(find(&starts(&["trim", "pitch"]))),
+        bsp: speed(find(&starts(&["bsp", "boat_speed", "boatspeed", "stw"]))),
+        tws: speed(find(&|n| n.starts_with("tws"))),
+        twd: deg(find(&|n| n.starts_with("twd"))),
+        boat: find(&|n| n == "boat" || n == "boat_id" || n == "boat_name" || n == "sail_number"),
     })
 }
 
-/// Absolute (unix seconds) or relative seconds.
+/// A time cell: (seconds, kind). Calendar times and Unix times are absolute.
 fn parse_time(cell: &str) -> Option<(f64, Times)> {
-    let c = cell.trim();
-    let fmt_frac = format_description!("[year]-[month]-[day] [hour]:[minute]:[second].[subsecond]");
-    let fmt = format_description!("[year]-[month]-[day] [hour]:[minute]:[second]");
-    if let Ok(t) =
-        PrimitiveDateTime::parse(c, fmt).or_else(|_| PrimitiveDateTime::parse(c, fmt_frac))
-    {
-        return Some((epoch_seconds(t.assume_utc()), Times::Absolute));
+    if let Some(t) = parse_datetime(cell) {
+        return Some((t, Times::Absolute));
     }
-    if let Ok(t) = time::OffsetDateTime::parse(c, &Rfc3339) {
-        return Some((epoch_seconds(t), Times::Absolute));
-    }
-    c.parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite())
-        .map(|v| (v, Times::Relative))
+    let v: f64 = cell.trim().parse().ok().filter(|v: &f64| v.is_finite())?;
+    let unix = |s: f64| s - super::EPOCH_UNIX as f64;
+    Some(if (1e9..4e9).contains(&v) {
+        (unix(v), Times::Absolute)
+    } else if (1e12..4e12).contains(&v) {
+        (unix(v / 1000.0), Times::Absolute)
+    } else {
+        (v, Times::Relative)
+    })
+}
+
+/// One boat's rows while reading.
+struct Track {
+    id: String,
+    points: Vec<RawPoint>,
+    max_sog: f64,
+    series: Vec<Series>,
 }
 
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)
-        .trim(csv::Trim::All)
+        .flexible(true)
         .from_reader(text.as_bytes());
     let header = rdr
         .headers()
         .map_err(|e| RaceError::at_line(file, 1, format!("unreadable header ({e})")))?
         .clone();
     let cols = detect(file, &header)?;
-    let names: Vec<&str> = header.iter().collect();
-    let mut points = Vec::new();
+    let names: Vec<&str> = header.iter().map(str::trim).collect();
+    let n_cols = names.len();
+    let mut tracks: Vec<Track> = Vec::new();
     let mut times: Option<Times> = None;
-    let mut boat: Option<String> = None;
     let (mut wind_e, mut wind_n, mut tws_sum, mut n_wind) = (0.0, 0.0, 0.0, 0usize);
-    let mut max_sog: f64 = 0.0;
-    for rec in rdr.records() {
-        let rec = rec.map_err(|e| {
-            let line = e.position().map_or(0, |p| p.line());
-            let what = match e.kind() {
-                csv::ErrorKind::UnequalLengths {
-                    expected_len, len, ..
-                } => {
-                    format!("{len} cells where the header has {expected_len}")
-                }
-                csv::ErrorKind::Utf8 { .. } => "text that is not UTF-8".into(),
-                _ => format!("unreadable row ({e})"),
-            };
-            RaceError::at_line(file, line, what)
-        })?;
+    let (mut rows, mut blank, mut no_fix) = (0usize, 0usize, 0usize);
+    let mut rec = csv::StringRecord::new();
+    let file_id = super::boat_id_from_file(file);
+    let channels: Vec<(&str, Col)> = vec![
+        ("bsp", cols.bsp),
+        ("tws", cols.tws),
+        ("twd", cols.twd),
+        ("trim", cols.trim),
+    ];
+    loop {
+        match rdr.read_record(&mut rec) {
+            Ok(true) => {}
+            Ok(false) => break,
+            Err(e) => {
+                let line = e.position().map_or(0, |p| p.line());
+                let what = match e.kind() {
+                    csv::ErrorKind::Utf8 { .. } => "text that is not UTF-8".to_string(),
+                    _ => format!("unreadable row ({})", crate::text::escape(&e.to_string())),
+                };
+                return Err(RaceError::at_line(file, line, what));
+            }
+        }
+        rows += 1;
         let line = rec.position().map_or(0, |p| p.line());
-        let cell = |i: usize| rec.get(i).unwrap_or("");
+        if rec.iter().all(|c| c.trim().is_empty()) {
+            blank += 1;
+            continue;
+        }
+        if rec.len() != n_cols {
+            return Err(RaceError::at_line(
+                file,
+                line,
+                format!("{} cells where the header has {n_cols}", rec.len()),
+            ));
+        }
+        let cell = |i: usize| rec.get(i).unwrap_or("").trim();
         let num = |i: usize| -> RaceResult<f64> {
             let c = cell(i);
+            if c.is_empty() {
+                return Ok(f64::NAN);
+            }
             c.parse::<f64>().map_err(|_| {
-                RaceError::at_line(file, line, format!("{} is \"{c}\", not a number", names[i]))
+                RaceError::at_line(
+                    file,
+                    line,
+                    format!("{} is {}, not a number", plain(names[i]), q(c)),
+                )
             })
         };
-        let opt = |i: Option<usize>| -> RaceResult<f64> {
-            match i {
-                Some(i) => num(i),
+        let opt = |c: Col| -> RaceResult<f64> {
+            match c {
+                Some((i, u)) => Ok(num(i)? * u),
                 None => Ok(f64::NAN),
             }
         };
+        let (lat, lon) = (num(cols.lat)?, num(cols.lon)?);
+        if lat.is_nan() && cell(cols.lat).is_empty() || lon.is_nan() && cell(cols.lon).is_empty() {
+            no_fix += 1;
+            continue;
+        }
         let Some((t, kind)) = parse_time(cell(cols.time)) else {
             return Err(RaceError::at_line(
                 file,
                 line,
                 format!(
-                    "{} is \"{}\", not a time (YYYY-MM-DD HH:MM:SS, RFC 3339 or seconds)",
-                    names[cols.time],
-                    cell(cols.time)
+                    "{} is {}, not a time (YYYY-MM-DD HH:MM:SS with an optional zone, RFC 3339 or seconds)",
+                    plain(names[cols.time]),
+                    q(cell(cols.time))
                 ),
             ));
         };
@@ -162,34 +244,67 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             }
             _ => {}
         }
-        let (lat, lon) = (num(cols.lat)?, num(cols.lon)?);
         if let Some(msg) = super::geo_problem(lat, lon) {
             return Err(RaceError::at_line(file, line, msg));
         }
-        let sog = match cols.sog {
-            Some((i, u)) => num(i)? * u,
-            None => f64::NAN,
-        };
-        if sog.is_finite() {
-            max_sog = max_sog.max(sog);
-        }
+        let sog = opt(cols.sog)?;
         let heading = opt(cols.heading)?;
         let heel = opt(cols.heel)?;
-        if let (Some((i, u)), Some(j)) = (cols.tws, cols.twd) {
-            let (s, d) = (num(i)? * u, num(j)?);
-            if s.is_finite() && d.is_finite() {
-                wind_e += d.to_radians().sin();
-                wind_n += d.to_radians().cos();
-                tws_sum += s;
-                n_wind += 1;
+        let (tws, twd) = (opt(cols.tws)?, opt(cols.twd)?);
+        if tws.is_finite() && twd.is_finite() {
+            wind_e += twd.to_radians().sin();
+            wind_n += twd.to_radians().cos();
+            tws_sum += tws;
+            n_wind += 1;
+        }
+        let id = cols
+            .boat
+            .map(cell)
+            .filter(|b| !b.is_empty())
+            .unwrap_or(&file_id);
+        let k = match tracks.iter().position(|tr| tr.id == id) {
+            Some(k) => k,
+            None => {
+                tracks.push(Track {
+                    id: id.to_string(),
+                    points: Vec::new(),
+                    max_sog: 0.0,
+                    series: channels
+                        .iter()
+                        .filter(|(_, c)| c.is_some())
+                        .map(|(name, _)| Series {
+                            boat: None,
+                            channel: name.to_string(),
+                            unit: if matches!(*name, "bsp" | "tws") {
+                                "m/s"
+                            } else {
+                                "deg"
+                            }
+                            .into(),
+                            t: Vec::new(),
+                            v: Vec::new(),
+                        })
+                        .collect(),
+                });
+                tracks.len() - 1
+            }
+        };
+        let tr = &mut tracks[k];
+        if sog.is_finite() {
+            tr.max_sog = tr.max_sog.max(sog);
+        }
+        for (ser, (_, c)) in tr
+            .series
+            .iter_mut()
+            .zip(channels.iter().filter(|(_, c)| c.is_some()))
+        {
+            let v = opt(*c)?;
+            if v.is_finite() {
+                ser.t.push(t);
+                ser.v.push(v as f32);
             }
         }
-        if boat.is_none()
-            && let Some(b) = cols.boat
-        {
-            boat = Some(cell(b).to_string()).filter(|b| !b.is_empty());
-        }
-        points.push(RawPoint {
+        tr.points.push(RawPoint {
             t,
             c: [lat, lon],
             logged: Logged {
@@ -199,26 +314,58 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             sog,
         });
     }
-    if points.is_empty() {
+    if tracks.is_empty() {
         return Err(RaceError::in_file(
             file,
-            "the log has a header but no rows: a boat needs points",
+            "the log has a header but no rows with a position: a boat needs points",
         ));
     }
     let mut s = Source::new(file, Coords::Geo, times.unwrap_or(Times::Absolute));
+    s.report.records_read = rows;
+    s.drop_rule("blank rows", blank);
+    s.drop_rule("rows without a position", no_fix);
+    s.report.date_source = match times {
+        Some(Times::Absolute) => "the time column (calendar or Unix times)".into(),
+        _ => "none: the time column is seconds since the race start".into(),
+    };
+    let found = [
+        ("sog", cols.sog.is_some()),
+        ("heading", cols.heading.is_some()),
+        ("heel", cols.heel.is_some()),
+        ("trim", cols.trim.is_some()),
+        ("bsp", cols.bsp.is_some()),
+        ("tws", cols.tws.is_some()),
+        ("twd", cols.twd.is_some()),
+    ];
+    s.report.channels = found
+        .iter()
+        .filter(|f| f.1)
+        .map(|f| f.0.to_string())
+        .collect();
     if n_wind > 0 {
         s.wind = Some(Wind {
             from_deg: wind_e.atan2(wind_n).to_degrees().rem_euclid(360.0),
             speed_mps: tws_sum / n_wind as f64,
         });
     }
-    let id = boat.unwrap_or_else(|| super::boat_id_from_file(file));
-    s.boats.push(RawBoat {
-        name: id.clone(),
-        id,
-        color: None,
-        points,
-        max_speed_mps: (1.2 * max_sog).max(super::knots_to_mps(DEFAULT_MAX_SPEED_KN)),
-    });
+    if tracks.len() > 1 {
+        s.warnings.push(format!(
+            "{file}: the boat column names {} boats; the rows were split by boat",
+            tracks.len()
+        ));
+    }
+    for tr in tracks {
+        for mut ser in tr.series {
+            ser.boat = Some(tr.id.clone());
+            s.series.push(ser);
+        }
+        s.boats.push(RawBoat {
+            name: tr.id.clone(),
+            id: tr.id,
+            color: None,
+            points: tr.points,
+            max_speed_mps: (1.2 * tr.max_sog).max(super::knots_to_mps(DEFAULT_MAX_SPEED_KN)),
+        });
+    }
     Ok(s)
 }

@@ -1,18 +1,20 @@
 //! The native race JSON of DESIGN.md, plus two optional fields: `"course"` (mark names in
 //! rounding order; default: the marks in file order) and `"wind"` (`{"from_deg", "speed_mps"}`).
-//! A boat may give `"max_speed_kn"` (its class's spike limit; default: no spike removal, the
-//! native format is taken as clean).
+//! A boat may give `"max_speed_kn"` (its class's spike limit; default 20 kn, the same rule as
+//! GPX: a 388,775 kn step is a broken fix, not a boat).
 
 use serde::Deserialize;
 
-use super::{Coords, RawBoat, RawMark, RawPoint, Source, Times, epoch_seconds};
+use super::{
+    Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawMark, RawPoint, Source, Times, epoch_seconds, q,
+};
 use crate::Wind;
 use crate::error::{RaceError, RaceResult};
 use crate::geo::GeoPoint;
 use crate::track::Logged;
 
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, expecting = "a race object with \"boats\"")]
 struct JsonRace {
     name: Option<String>,
     origin: Option<GeoPoint>,
@@ -25,7 +27,10 @@ struct JsonRace {
 }
 
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a boat object with \"id\" and \"track\""
+)]
 struct JsonBoat {
     id: String,
     name: Option<String>,
@@ -37,20 +42,18 @@ struct JsonBoat {
 }
 
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "a mark object with \"name\" and \"position\""
+)]
 struct JsonMark {
     name: String,
     position: [f64; 2],
 }
 
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
-    let r: JsonRace = serde_json::from_str(text).map_err(|e| {
-        let msg = e.to_string();
-        let msg = msg
-            .rsplit_once(" at line ")
-            .map_or(msg.as_str(), |(m, _)| m);
-        RaceError::at_line(file, e.line() as u64, format!("not a race file: {msg}"))
-    })?;
+    let r: JsonRace =
+        serde_json::from_str(text).map_err(|e| json_error(file, "a race file", &e))?;
     let mut s = Source::new(file, Coords::Local, Times::Relative);
     s.name = r.name;
     if let Some(o) = r.origin {
@@ -64,7 +67,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             .map_err(|_| {
                 RaceError::in_file(
                     file,
-                    format!("\"start_time\" is \"{st}\", not an RFC 3339 time such as 2025-06-21T11:23:29Z"),
+                    format!(
+                        "\"start_time\" is {}, not an RFC 3339 time such as 2025-06-21T11:23:29Z",
+                        q(st)
+                    ),
                 )
             })?;
         s.start_time = Some(epoch_seconds(t));
@@ -83,7 +89,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         if b.track.is_empty() {
             return Err(RaceError::in_file(
                 file,
-                format!("boat \"{}\" (boats[{bi}]) has no track points", b.id),
+                format!("boat {} (boats[{bi}]) has no track points", q(&b.id)),
             ));
         }
         if b.id.trim().is_empty() {
@@ -99,7 +105,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         {
             return Err(RaceError::in_file(
                 file,
-                format!("boat \"{}\" has color \"{c}\", not #rrggbb", b.id),
+                format!("boat {} has color {}, not #rrggbb", q(&b.id), q(c)),
             ));
         }
         if let Some(h) = &b.heel
@@ -108,8 +114,8 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             return Err(RaceError::in_file(
                 file,
                 format!(
-                    "boat \"{}\" has {} heel values for {} track points",
-                    b.id,
+                    "boat {} has {} heel values for {} track points",
+                    q(&b.id),
                     h.len(),
                     b.track.len()
                 ),
@@ -121,22 +127,19 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
                 return Err(RaceError::in_file(
                     file,
                     format!(
-                        "boat \"{}\" has max_speed_kn {k}; it must be positive",
-                        b.id
+                        "boat {} has max_speed_kn {k}; it must be positive",
+                        q(&b.id)
                     ),
                 ));
             }
-            None => f64::INFINITY,
+            None => super::knots_to_mps(DEFAULT_MAX_SPEED_KN),
         };
         let mut points = Vec::with_capacity(b.track.len());
         for (k, p) in b.track.iter().enumerate() {
-            if !p.iter().all(|v| v.is_finite() && v.abs() < 1e9) {
+            if let Some(what) = point_problem(p) {
                 return Err(RaceError::in_file(
                     file,
-                    format!(
-                        "boat \"{}\" track[{k}] = {p:?} is not three finite numbers",
-                        b.id
-                    ),
+                    format!("boat {} track[{k}]: {what}", q(&b.id)),
                 ));
             }
             let heel = b.heel.as_ref().map_or(f32::NAN, |h| h[k] as f32);
@@ -159,13 +162,12 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         });
     }
     for (k, m) in r.marks.into_iter().enumerate() {
-        if !m.position.iter().all(|v| v.is_finite() && v.abs() < 1e9) {
+        if let Some(what) = coordinate_problem("x", m.position[0])
+            .or_else(|| coordinate_problem("z", m.position[1]))
+        {
             return Err(RaceError::in_file(
                 file,
-                format!(
-                    "marks[{k}] (\"{}\") has a position that is not two finite numbers",
-                    m.name
-                ),
+                format!("marks[{k}] ({}): {what}", q(&m.name)),
             ));
         }
         s.marks.push(RawMark {
@@ -174,4 +176,47 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         });
     }
     Ok(s)
+}
+
+/// The largest race coordinate or time accepted, metres or seconds: 1e9 (a million km, or 31
+/// years). Beyond it f64 metres lose the centimetre and the value is certainly a broken field.
+const MAX_COORDINATE: f64 = 1e9;
+
+fn coordinate_problem(what: &str, v: f64) -> Option<String> {
+    if !v.is_finite() {
+        Some(format!("{what} is {v}, not a finite number"))
+    } else if v.abs() >= MAX_COORDINATE {
+        Some(format!(
+            "{what} = {v:e} is beyond ±1e9 (metres from the origin, or seconds): no race is that large"
+        ))
+    } else {
+        None
+    }
+}
+
+/// What is wrong with a track point `[t, x, z]`, if anything.
+fn point_problem(p: &[f64; 3]) -> Option<String> {
+    coordinate_problem("t", p[0])
+        .or_else(|| coordinate_problem("x", p[1]))
+        .or_else(|| coordinate_problem("z", p[2]))
+}
+
+/// A serde_json error as one line: where, and what, in the words of the format.
+pub(crate) fn json_error(file: &str, what: &str, e: &serde_json::Error) -> RaceError {
+    let msg = e.to_string();
+    let msg = msg
+        .rsplit_once(" at line ")
+        .map_or(msg.as_str(), |(m, _)| m);
+    let msg = crate::text::serde_message(
+        msg,
+        &[
+            ("a sequence", "a list"),
+            ("a map", "an object"),
+            ("struct Meta", "a maxSail meta-data object"),
+            ("struct GeoPoint", "an object with lat and lon"),
+            ("struct Wind", "an object with from_deg and speed_mps"),
+            ("struct Baliza", "a mark object with lat, lon and nombre"),
+        ],
+    );
+    RaceError::at_line(file, e.line() as u64, format!("not {what}: {msg}"))
 }

@@ -10,12 +10,9 @@ use super::{Coords, RawMark, Source, Times};
 use crate::Wind;
 use crate::error::{RaceError, RaceResult};
 
-pub(crate) fn is_maxsail(text: &str) -> bool {
-    text.contains("\"BALIZAS\"")
-}
-
 #[derive(Deserialize)]
 #[allow(non_snake_case)]
+#[serde(expecting = "a maxSail meta-data object with BALIZAS")]
 struct Meta {
     TWD: Option<f64>,
     TWS: Option<f64>,
@@ -25,6 +22,7 @@ struct Meta {
 }
 
 #[derive(Deserialize)]
+#[serde(expecting = "a mark object with lat, lon and nombre")]
 struct Baliza {
     lat: f64,
     lon: f64,
@@ -32,23 +30,14 @@ struct Baliza {
 }
 
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
-    let m: Meta = serde_json::from_str(text).map_err(|e| {
-        let msg = e.to_string();
-        let msg = msg
-            .rsplit_once(" at line ")
-            .map_or(msg.as_str(), |(m, _)| m);
-        RaceError::at_line(
-            file,
-            e.line() as u64,
-            format!("not a maxSail meta-data file: {msg}"),
-        )
-    })?;
+    let m: Meta = serde_json::from_str(text)
+        .map_err(|e| super::json::json_error(file, "a maxSail meta-data file", &e))?;
     let mut s = Source::new(file, Coords::Geo, Times::Absolute);
     for (k, b) in m.BALIZAS.iter().enumerate() {
         if let Some(p) = super::geo_problem(b.lat, b.lon) {
             return Err(RaceError::in_file(
                 file,
-                format!("BALIZAS[{k}] (\"{}\"): {p}", b.nombre),
+                format!("BALIZAS[{k}] ({}): {p}", super::q(&b.nombre)),
             ));
         }
         s.marks.push(RawMark {
