@@ -479,7 +479,9 @@ impl Renderer {
             let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), self.wake_budget);
             (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap);
             if frame.wake_drop.dropped > 0 {
-                log::warn!(
+                // Every frame of a bunched fleet drops some: the frame report carries it, the
+                // log only at info (a warning per frame would flood the terminal).
+                log::info!(
                     "{} wake sources dropped to fit the {} byte wake buffer cap: height error \
                      ≤ {:.2e} m",
                     frame.wake_drop.dropped,
