@@ -28,29 +28,44 @@ impl PoolMode {
         PoolPlay::orbit()
     }
 
-    pub fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) {
+    pub(super) fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) {
         let frame_tex = match st.surface.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
             | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
             _ => return,
         };
         let size = [st.surface.config.width, st.surface.config.height];
+        let target = frame_tex.texture.create_view(&Default::default());
+        self.render(&st.gpu, st.surface.config.format, &target, size, t, orbit);
+        st.window.pre_present_notify();
+        st.gpu.queue.present(frame_tex);
+        st.window
+            .set_title(&format!("Regatta: the pool at t = {t:.1} s"));
+    }
+
+    /// The window's per-frame work: the frame at `t` under `orbit` drawn into `target` by the
+    /// mode's renderer (made on the first frame), the view kept for the pointer.
+    pub fn render(
+        &mut self,
+        gpu: &render::Gpu,
+        format: wgpu::TextureFormat,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        t: f64,
+        orbit: &OrbitCamera,
+    ) -> PoolFrame {
         let settings = PoolSettings::default();
         let renderer = self
             .renderer
-            .get_or_insert_with(|| PoolRenderer::new(&st.gpu, st.surface.config.format, settings));
+            .get_or_insert_with(|| PoolRenderer::new(gpu, format, settings));
         let view = PoolView {
             camera: orbit.camera(),
             ..PoolView::default_desktop(size)
         };
         let frame = PoolFrame::new(&self.play.scene, t, &view, &settings);
-        let target = frame_tex.texture.create_view(&Default::default());
-        renderer.render(&st.gpu, &target, &frame);
+        renderer.render(gpu, target, &frame);
         self.play.view = Some(view);
-        st.window.pre_present_notify();
-        st.gpu.queue.present(frame_tex);
-        st.window
-            .set_title(&format!("Regatta: the pool at t = {t:.1} s"));
+        frame
     }
 
     /// A left press or release at `cursor`; true when the press grabbed a ball.
