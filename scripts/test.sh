@@ -30,6 +30,17 @@ mkdir -p "$XDG_RUNTIME_DIR"; chmod 700 "$XDG_RUNTIME_DIR"
 lvp=$(ls /usr/share/vulkan/icd.d/lvp_icd*.json 2>/dev/null | head -1 || true)
 if [ -n "$lvp" ]; then export VK_ICD_FILENAMES="$lvp"; export VK_DRIVER_FILES="$lvp"; fi
 export REGATTA_REQUIRE_GPU="${CI:-false}"
+# Every test that skips (no GPU adapter, no xvfb-run, no Android clang or ../shared/data/android)
+# appends one line to this file; the count is printed at the end, and under CI=true it must be 0.
+REGATTA_SKIP_LOG=$(mktemp "${TMPDIR:-/tmp}/regatta-skips.XXXXXX")
+export REGATTA_SKIP_LOG
+skip_count() { grep -c . "$REGATTA_SKIP_LOG" || true; }
+report_skips() {
+  printf '\nGPU tests skipped: %s (tests that found no GPU adapter, xvfb-run, Android clang or data)\n' "$(skip_count)" >&2
+  sed 's/^/  skipped: /' "$REGATTA_SKIP_LOG" >&2
+  rm -f "$REGATTA_SKIP_LOG"
+}
+trap report_skips EXIT
 
 start=$(date +%s)
 step "cargo fmt --check"
@@ -38,6 +49,10 @@ step "cargo clippy --workspace"
 cargo clippy --workspace --all-targets -- -D warnings
 step "cargo test --workspace"
 cargo test --workspace
+if [ "${CI:-false}" = true ] && [ "$(skip_count)" -gt 0 ]; then
+  echo "CI=true but $(skip_count) test(s) skipped (listed below)" >&2
+  exit 1
+fi
 step "cargo check --workspace --target aarch64-linux-android"
 cargo check --workspace --target aarch64-linux-android
 step "cargo clippy --workspace --target aarch64-linux-android"

@@ -49,16 +49,13 @@ fn render_effects(out: &str, list: &str) -> (i32, String, String) {
 
 #[test]
 fn a_frame_with_effects_reports_every_decision() {
-    let out = out_png("all");
-    let (code, stdout, err) = render_effects(&out, "all");
-    if code != 0 && err.contains("cannot render") {
-        assert!(
-            !render::gpu::gpu_required(),
-            "REGATTA_REQUIRE_GPU=true but: {err}"
-        );
-        eprintln!("skipped: no GPU adapter ({err})");
+    // Skip only when this process finds no adapter (counted, and a failure under
+    // REGATTA_REQUIRE_GPU); any "cannot render" from the binary is then a real failure.
+    if render::gpu::test_gpu().is_none() {
         return;
     }
+    let out = out_png("all");
+    let (code, stdout, err) = render_effects(&out, "all");
     assert_eq!(code, 0, "{err}");
     let report: Value = serde_json::from_str(&stdout).expect("JSON");
     let passes = report["passes"].as_array().expect("passes");

@@ -149,4 +149,12 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
         frame.sources.len()
     );
     assert!(peak > 1e-2, "no wake in the test field");
+    // README: 3e-8 m on lavapipe; asserted there at 1.5x that figure (other adapters' sin and
+    // cos differ: they are held to the stated per-point bound above).
+    if gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+        assert!(
+            worst <= 1.5 * 3e-8,
+            "max |Δh| {worst:.2e} m on lavapipe (README: 3e-8 m)"
+        );
+    }
 }

@@ -23,7 +23,7 @@ use crate::error::{CliError, CliResult};
 
 pub mod feed;
 pub mod overlay;
-mod pool;
+pub mod pool;
 pub mod smoke;
 
 #[derive(Debug, Args, Default)]
@@ -110,6 +110,29 @@ pub fn race_scene(
     }
     scene.camera = orbit.camera();
     scene
+}
+
+/// The window's race renderer: still frames kept (the timeline paused, the camera still), the
+/// race's wakes on. Tests that play frame by frame build theirs here too.
+pub fn window_renderer(
+    gpu: &render::Gpu,
+    format: wgpu::TextureFormat,
+    race: &race::Race,
+) -> Renderer {
+    let mut renderer = Renderer::new(
+        gpu,
+        format,
+        RenderOptions {
+            measure_gpu_time: false,
+            keep_still_frames: true,
+            ..Default::default()
+        },
+    );
+    match crate::cli::render::race_wake(race) {
+        Ok(w) => renderer.set_wake(Some(w)),
+        Err(e) => log::warn!("{e}; drawing no wakes"),
+    }
+    renderer
 }
 
 /// Race time: plays at real speed, pauses, loops over the race's span.
@@ -279,19 +302,7 @@ impl ApplicationHandler for App {
         let size = window.inner_size();
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
-                let mut renderer = Renderer::new(
-                    &gpu,
-                    surface.config.format,
-                    RenderOptions {
-                        measure_gpu_time: false,
-                        keep_still_frames: true,
-                        ..Default::default()
-                    },
-                );
-                match crate::cli::render::race_wake(&self.race) {
-                    Ok(w) => renderer.set_wake(Some(w)),
-                    Err(e) => log::warn!("{e}; drawing no wakes"),
-                }
+                let renderer = window_renderer(&gpu, surface.config.format, &self.race);
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
                     let title = self.race.name.clone();

@@ -40,32 +40,50 @@ impl PoolMode {
             _ => return Ok(false),
         };
         let size = [st.surface.config.width, st.surface.config.height];
-        let settings = PoolSettings::default();
-        let renderer = self
-            .renderer
-            .get_or_insert_with(|| PoolRenderer::new(&st.gpu, st.surface.config.format, settings));
-        let view = PoolView {
-            camera: orbit.camera(),
-            ..PoolView::default_desktop(size)
-        };
-        let frame = PoolFrame::new(&self.play.scene, t, &view, &settings);
         let target = frame_tex.texture.create_view(&Default::default());
-        renderer.render(&st.gpu, &target, &frame);
+        let format = st.surface.config.format;
+        let frame = self.render(&st.gpu, format, &target, size, t, orbit);
         st.window.pre_present_notify();
         st.gpu.queue.present(frame_tex);
         st.window
             .set_title(&format!("Regatta: the pool at t = {t:.1} s"));
         let exit = self.exit_after.frame_done();
-        if exit && let Some(path) = super::smoke::screenshot_path() {
-            let format = st.surface.config.format;
+        if exit
+            && let Some(path) = super::smoke::screenshot_path()
+            && let Some(renderer) = self.renderer.as_mut()
+        {
             let (img, _) = st
                 .gpu
                 .render_offscreen(size, format, |v| renderer.render(&st.gpu, v, &frame))
                 .map_err(|e| format!("{}: {e}", input::show_path(&path)))?;
             super::smoke::write_screenshot(img, format, &path)?;
         }
-        self.play.view = Some(view);
         Ok(exit)
+    }
+
+    /// The window's per-frame work: the frame at `t` under `orbit` drawn into `target` by the
+    /// mode's renderer (made on the first frame), the view kept for the pointer.
+    pub fn render(
+        &mut self,
+        gpu: &render::Gpu,
+        format: wgpu::TextureFormat,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        t: f64,
+        orbit: &OrbitCamera,
+    ) -> PoolFrame {
+        let settings = PoolSettings::default();
+        let renderer = self
+            .renderer
+            .get_or_insert_with(|| PoolRenderer::new(gpu, format, settings));
+        let view = PoolView {
+            camera: orbit.camera(),
+            ..PoolView::default_desktop(size)
+        };
+        let frame = PoolFrame::new(&self.play.scene, t, &view, &settings);
+        renderer.render(gpu, target, &frame);
+        self.play.view = Some(view);
+        frame
     }
 
     /// A left press or release at `cursor`; true when the press grabbed a ball.
