@@ -25,8 +25,11 @@ pub fn run(
     use crate::cli::render::{middle_time, note_unmet_error, print_report, race_orbit, race_wake};
     use render::{RenderOptions, Renderer};
 
-    let mut feed =
-        crate::desktop::feed::FeedView::open(dir)?.with_effects(effects.unwrap_or(EffectSet::ALL));
+    let mut feed = crate::desktop::feed::FeedView::open(dir)?;
+    // Without --effects, the window's own set.
+    if let Some(effects) = effects {
+        feed = feed.with_effects(effects);
+    }
     let frame = a.frame.unwrap_or(0);
     if frame >= feed.len() {
         return Err(CliError::new(format!(
