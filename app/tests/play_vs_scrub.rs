@@ -68,7 +68,9 @@ fn played_equals_scrubbed(effects: bool) {
     let mut o = orbit();
     let mut draw = |player: &mut Renderer, t: f64| {
         let scene = race_scene(&race, &sea, t, &mut o);
-        player.render(&gpu, &view, SIZE, &scene)
+        player
+            .render(&gpu, &view, SIZE, &scene)
+            .expect("the frame draws")
     };
     // Play 8 frames of a quarter second at the app's 8×.
     for _ in 0..8 {
@@ -101,7 +103,9 @@ fn played_equals_scrubbed(effects: bool) {
     let mut fresh = app_renderer(&gpu, &race, &sea, effects);
     let target = surface_like(&gpu);
     let scene = race_scene(&race, &sea, t, &mut orbit());
-    fresh.render(&gpu, &target.create_view(&Default::default()), SIZE, &scene);
+    fresh
+        .render(&gpu, &target.create_view(&Default::default()), SIZE, &scene)
+        .expect("the frame draws");
     let scrubbed = gpu.read_texture(&target).unwrap();
     let differ = played
         .pixels()

@@ -33,7 +33,7 @@ impl PoolMode {
 
     /// Draws a frame; `Ok(true)` when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`, after
     /// writing `REGATTA_SCREENSHOT`), `Err` when the screenshot could not be written.
-    pub fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) -> Result<bool, String> {
+    pub(super) fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) -> Result<bool, String> {
         let frame_tex = match st.surface.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f)
             | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
