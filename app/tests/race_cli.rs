@@ -142,7 +142,11 @@ fn bad_input_is_one_sentence_and_a_failure() {
         fails_with(&["race", "--t", "0", "--race", &w(name, text)], needle);
     };
     refused("empty.gpx", "", "empty.gpx: the file is empty.");
-    refused("race.txt", "x", "race.txt: starts with \"x\", which is no race format");
+    refused(
+        "race.txt",
+        "x",
+        "race.txt: starts with \"x\", which is no race format",
+    );
     refused(
         "log.csv",
         "time,lat,lon\n2025-01-01 00:00:00,39.4,-0.3\n2025-01-01 00:00:01,abc,-0.3\n",
