@@ -19,6 +19,7 @@ fn data(rel: &str) -> String {
 fn sample_race_json_matches_the_contract_and_the_library() {
     let v = ok_json(&["race", "--t", "300"]);
     assert_eq!(v["t"], 300.0);
+    assert_eq!(v["rank_basis"], "course");
     let boats = v["boats"].as_array().unwrap();
     let race = race::Race::sample();
     assert_eq!(boats.len(), race.boats.len());
@@ -213,4 +214,92 @@ fn a_closed_stdout_is_one_clear_error_not_a_panic() {
         assert!(err.contains("could not write"), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn keep_going_loads_what_would_be_refused_and_says_so_on_stderr() {
+    // The Expedition log's day count read as seconds by a generic CSV.
+    let text = std::fs::read_to_string(data("expedition/expedition-valencia.csv")).unwrap();
+    let mut csv = String::from("t,lat,lon\n");
+    for l in text.lines().skip(1).take(200) {
+        let c: Vec<&str> = l.split(',').collect();
+        csv.push_str(&format!("{},{},{}\n", c[0], c[37], c[38]));
+    }
+    let p = common::temp_file("days.csv", &csv);
+    let p = p.display().to_string();
+    fails_with(
+        &["race", "--t", "0", "--race", &p],
+        "cleaning would keep 1 of 200 samples, because",
+    );
+    let (code, out, err) = common::regatta(&["race", "--report", "--keep-going", "--race", &p]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("regatta: warning: ") && err.contains("loaded anyway (--keep-going)"),
+        "{err}"
+    );
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["import"]["boats"][0]["samples_kept"], 1);
+    assert_eq!(v["rank_basis"], "no_course");
+}
+
+#[test]
+fn new_formats_report_their_format_channels_and_date_source() {
+    let v = ok_json(&[
+        "race",
+        "--report",
+        "--race",
+        &data("nmea-signalk/plaka.log"),
+    ]);
+    let f = &v["import"]["file_reports"][0];
+    assert_eq!(f["format"], "NMEA 0183");
+    assert_eq!(f["fixes"], 7250);
+    assert!(
+        f["date_source"]
+            .as_str()
+            .unwrap()
+            .starts_with("none: the log has no date")
+    );
+    assert!(f["channels"].as_array().unwrap().iter().any(|c| c == "tws"));
+    let v = ok_json(&[
+        "race",
+        "--report",
+        "--race",
+        &data("sailgp-auckland-2025/race_xmls/25011905_03-13-55.xml"),
+        &data("sailgp-auckland-2025/boat_logs/data_NZL.csv"),
+    ]);
+    assert_eq!(v["course"][2], "LG1/LG2");
+    assert_eq!(v["rank_basis"], "course");
+    assert_eq!(v["boundary"].as_array().unwrap().len(), 12);
+}
+
+#[test]
+fn marks_and_course_flags_give_a_course() {
+    let marks = common::temp_file(
+        "marks.csv",
+        "name,lat,lon\nS1,39.40921,-0.32253\nB1,39.40691,-0.315\n",
+    );
+    let g = data("valencia/2025-06-21-ESP29375-P01.gpx");
+    let m = marks.display().to_string();
+    let v = ok_json(&[
+        "race", "--report", "--race", &g, "--marks", &m, "--course", "S1,B1,S1",
+    ]);
+    assert_eq!(v["course"], serde_json::json!(["S1", "B1", "S1"]));
+    fails_with(
+        &[
+            "race", "--t", "0", "--race", &g, "--marks", &m, "--course", "S1,X",
+        ],
+        "--course: the course names the mark \"X\", which no file defines.",
+    );
+    fails_with(
+        &["race", "--t", "0", "--race", &g, "--session", "0"],
+        "--session counts from 1",
+    );
+}
+
+#[test]
+fn a_device_is_refused_at_once() {
+    fails_with(
+        &["race", "--t", "0", "--race", "/dev/zero"],
+        "/dev/zero: is not a regular file",
+    );
 }

@@ -17,6 +17,7 @@ pub mod effects;
 pub mod mesh;
 pub mod pool;
 pub mod race;
+pub mod race_import;
 pub mod wakes;
 pub mod waves;
 

@@ -2,7 +2,8 @@
 //! 10 Hz (5.4 million samples) is written as native race JSON, loaded (parse, clean, derive,
 //! roundings), and queried: every boat's state at one time, and the leaderboard. The position
 //! error of the stored f32 slopes is measured against an f64 PCHIP reference.
-//! `--quick`: the same fleet over 20 minutes.
+//! `--quick`: the same fleet over 20 minutes. The import table (throughput per format, peak
+//! memory) is in `race_import`.
 
 use std::fmt::Write;
 use std::hint::black_box;
@@ -36,7 +37,7 @@ fn race_json(seconds: f64) -> String {
     for b in 0..BOATS {
         let _ = write!(
             s,
-            "{}{{\"id\": \"B{b}\", \"track\": [",
+            "{}{{\"id\": \"B{b}\", \"max_speed_kn\": 60, \"track\": [",
             if b > 0 { "," } else { "" }
         );
         for i in 0..n {
@@ -206,5 +207,6 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         "The f32 slopes are the only approximation: {max_err:.2e} m measured against the f64 \
          reference at 100,000 points (bound stated in track.rs: < 1e-4 m).",
     ));
-    Ok(vec![t])
+    let import = crate::bench::race_import::table(ctx)?;
+    Ok(vec![t, import])
 }

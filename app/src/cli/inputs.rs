@@ -60,8 +60,19 @@ pub fn drawn_waves_note(total: usize, c: &ocean::Culled) -> String {
 
 /// The race of `--race PATH ...` (files combined into one race), or the embedded sample race.
 pub fn load_race(paths: &[PathBuf]) -> CliResult<race::Race> {
+    load_race_with(paths, &race::LoadOptions::default())
+}
+
+/// [`load_race`] with options (`regatta race --keep-going --session --marks --course`). What
+/// the import dropped or changed is said on stderr, one escaped line each, so nothing is lost
+/// silently (the same warnings are in `regatta race --report`).
+pub fn load_race_with(paths: &[PathBuf], opts: &race::LoadOptions) -> CliResult<race::Race> {
     if paths.is_empty() {
         return Ok(race::Race::sample());
     }
-    race::Race::load(paths).map_err(|e| CliError::new(e.to_string()))
+    let r = race::Race::load_with(paths, opts).map_err(|e| CliError::new(e.to_string()))?;
+    for w in &r.report.warnings {
+        eprintln!("regatta: warning: {}", race::text::escape(w));
+    }
+    Ok(r)
 }

@@ -1,12 +1,13 @@
 //! `regatta race --t T [--race PATH ...]`: boat states and ranks at one race time (DESIGN.md
-//! contract); `regatta race --report`: the import and cleaning report.
+//! contract); `regatta race --report`: the import and cleaning report. Files of every format
+//! of docs/race-files.md; `--keep-going`, `--session N`, `--marks FILE`, `--course A,B,C`.
 
 use std::path::PathBuf;
 
 use clap::Args;
 use serde_json::{Value, json};
 
-use crate::cli::inputs::load_race;
+use crate::cli::inputs::load_race_with;
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
@@ -14,12 +15,47 @@ pub struct RaceArgs {
     /// Race time in seconds since the start.
     #[arg(long, allow_negative_numbers = true)]
     pub t: Option<f64>,
-    /// Race files (native JSON, GPX, CSV; several combine into one race). Default: the sample.
+    /// Race files (GPX, native JSON, CSV logs and exports, Expedition, NMEA 0183, SailGP race
+    /// XML; several combine into one race). Default: the sample.
     #[arg(long, num_args = 1..)]
     pub race: Vec<PathBuf>,
     /// Print the import and cleaning report (and the course and roundings) instead.
     #[arg(long)]
     pub report: bool,
+    /// Load boats even when cleaning drops more than half of their samples (with a warning).
+    #[arg(long)]
+    pub keep_going: bool,
+    /// For GPX tracks of several days: the session to race (1-based).
+    #[arg(long)]
+    pub session: Option<usize>,
+    /// Course marks for tracks that have none: GPX waypoints, JSON or CSV name,lat,lon.
+    #[arg(long)]
+    pub marks: Option<PathBuf>,
+    /// The course as mark names in order, e.g. S,W,G1a/G1b,F (a gate as two names with /).
+    #[arg(long, value_delimiter = ',')]
+    pub course: Vec<String>,
+}
+
+impl RaceArgs {
+    /// The load options these flags ask for.
+    pub fn load_options(&self) -> CliResult<race::LoadOptions> {
+        let marks = match &self.marks {
+            Some(p) => Some((
+                p.display().to_string(),
+                race::read_file(p).map_err(|e| CliError::new(e.to_string()))?,
+            )),
+            None => None,
+        };
+        if self.session == Some(0) {
+            return Err(CliError::new("--session counts from 1"));
+        }
+        Ok(race::LoadOptions {
+            keep_going: self.keep_going,
+            session: self.session,
+            course: (!self.course.is_empty()).then(|| self.course.clone()),
+            marks,
+        })
+    }
 }
 
 pub fn run(a: RaceArgs) -> CliResult {
@@ -35,7 +71,7 @@ pub fn run(a: RaceArgs) -> CliResult {
             "--t is {t}; it must be a finite number of seconds"
         )));
     }
-    let race = load_race(&a.race)?;
+    let race = load_race_with(&a.race, &a.load_options()?)?;
     let out = if a.report {
         report_json(&race)
     } else {
@@ -72,7 +108,13 @@ pub fn states_json(race: &race::Race, t: f64) -> Value {
             o
         })
         .collect();
-    json!({ "t": t, "boats": boats })
+    json!({ "t": t, "rank_basis": rank_basis(race), "boats": boats })
+}
+
+/// What `rank` means: "course" (marks passed, then distance to sail) or "no_course" (no
+/// marks: listed by metres sailed, which is no rank).
+fn rank_basis(race: &race::Race) -> Value {
+    json!(race.rank_basis())
 }
 
 fn report_json(race: &race::Race) -> Value {
@@ -91,6 +133,13 @@ fn report_json(race: &race::Race) -> Value {
         "leg_lengths_m": race.leg_lengths(),
         "rounding_radius_m": race.rounding_radius_m,
         "wind": race.wind,
+        "rank_basis": rank_basis(race),
+        "boundary": race.boundary,
+        "series": race
+            .series
+            .iter()
+            .map(|s| json!({"boat": s.boat, "channel": s.channel, "unit": s.unit, "samples": s.t.len()}))
+            .collect::<Vec<_>>(),
         "roundings": roundings,
         "import": race.report,
     })

@@ -197,11 +197,12 @@ pub fn scene_at(race: &race::Race, sea: &ocean::WaveSet, t: f64, camera: Option<
             length: BOAT_LENGTH_M,
         })
         .collect();
+    // Every buoy once: single marks and both ends of gates and lines.
     let marks: Vec<Mark> = race
-        .marks
-        .iter()
-        .map(|m| Mark {
-            position: DVec2::from(m.position),
+        .buoys()
+        .into_iter()
+        .map(|p| Mark {
+            position: DVec2::from(p),
         })
         .collect();
     let track_points = race

@@ -94,54 +94,58 @@ pub(crate) fn clean(
             "{file}: boat {id} had {out_of_order} samples out of time order; they were sorted"
         ));
     }
-    // Merge equal timestamps into their mean.
-    let mut merged: Vec<RawSample> = Vec::with_capacity(s.len());
+    // Merge equal timestamps into their mean (in place: logs hold millions of samples).
     let mut duplicates_merged = 0;
+    let mut w = 0;
     let mut i = 0;
     while i < s.len() {
         let mut j = i + 1;
         while j < s.len() && s[j].t == s[i].t {
             j += 1;
         }
-        let k = (j - i) as f64;
         let mut m = s[i];
         if j - i > 1 {
+            let k = (j - i) as f64;
             duplicates_merged += j - i - 1;
             m.x = s[i..j].iter().map(|p| p.x).sum::<f64>() / k;
             m.z = s[i..j].iter().map(|p| p.z).sum::<f64>() / k;
         }
-        merged.push(m);
+        s[w] = m;
+        w += 1;
         i = j;
     }
+    s.truncate(w);
     if duplicates_merged > 0 {
         warnings.push(format!(
             "{file}: boat {id} had {duplicates_merged} samples with a repeated timestamp; they were merged"
         ));
     }
     // Frozen fixes: the exact position of the previous fix while the boat is moving (by its
-    // logged speed, else by its previous step).
+    // logged speed, else by its previous step). In place, like the merge.
     let mut frozen_removed = 0;
-    let mut kept: Vec<RawSample> = Vec::with_capacity(merged.len());
-    for (i, p) in merged.iter().enumerate() {
-        if let Some(last) = kept.last()
-            && p.x == last.x
-            && p.z == last.z
-        {
+    let n = s.len();
+    let mut w = 0;
+    for i in 0..n {
+        let p = s[i];
+        if w > 0 && p.x == s[w - 1].x && p.z == s[w - 1].z {
             let moving = if p.sog.is_finite() {
                 p.sog > FROZEN_MIN_SPEED_MPS
-            } else if kept.len() >= 2 {
-                speed(&kept[kept.len() - 2], last) > FROZEN_MIN_SPEED_MPS
+            } else if w >= 2 {
+                speed(&s[w - 2], &s[w - 1]) > FROZEN_MIN_SPEED_MPS
             } else {
                 false
             };
             // A later fix that moves on: the frozen one is stale, not a stop.
-            if moving && i + 1 < merged.len() {
+            if moving && i + 1 < n {
                 frozen_removed += 1;
                 continue;
             }
         }
-        kept.push(*p);
+        s[w] = p;
+        w += 1;
     }
+    s.truncate(w);
+    let kept = s;
     // Spikes: keep a stack of accepted fixes. A fix too fast from the last accepted one is
     // either itself a spike (dropped) or proves the last accepted one was (popped, when the
     // fix is reachable from the one before it and the next fix does not vindicate the popped).
@@ -190,6 +194,7 @@ pub(crate) fn clean(
             });
         }
     }
+    drop(kept);
     spikes.sort_by(|a, b| a.t.total_cmp(&b.t));
     if frozen_removed > 0 {
         warnings.push(format!(

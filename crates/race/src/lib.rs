@@ -25,6 +25,7 @@ pub mod error;
 pub mod geo;
 mod import;
 pub mod synth;
+pub mod synth_logs;
 pub mod text;
 pub mod track;
 

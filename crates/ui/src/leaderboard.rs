@@ -64,8 +64,24 @@ pub fn parse_hex_color(s: &str) -> Option<Color32> {
     Some(Color32::from_rgb((v >> 16) as u8, (v >> 8) as u8, v as u8))
 }
 
-/// Draws the rows as a striped grid.
+/// The line under the grid when the race has no course (fewer than two marks): the order is
+/// by metres sailed, which is no rank.
+pub const NO_COURSE_NOTE: &str = "No course: listed by metres sailed, not ranked";
+
+/// Whether the rows come from a race without a course (see [`race::RankBasis`]).
+pub fn has_no_course(rows: &[LeaderboardRow]) -> bool {
+    rows.first().is_some_and(|r| r.legs.1 < 2)
+}
+
+/// Draws the rows as a striped grid (and says so when there is no course to rank on).
 pub fn leaderboard_ui(ui: &mut Ui, rows: &[LeaderboardRow]) {
+    leaderboard_grid(ui, rows);
+    if has_no_course(rows) {
+        ui.label(RichText::new(NO_COURSE_NOTE).weak());
+    }
+}
+
+fn leaderboard_grid(ui: &mut Ui, rows: &[LeaderboardRow]) {
     egui::Grid::new("leaderboard")
         .num_columns(6)
         .striped(true)

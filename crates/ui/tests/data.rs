@@ -27,6 +27,19 @@ fn leaderboard_rows_follow_the_race_standings() {
 }
 
 #[test]
+fn a_race_without_marks_is_said_to_have_no_course_rank() {
+    use ui::leaderboard::has_no_course;
+    let json = br#"{"boats": [{"id": "A", "track": [[0, 0, 0], [10, 20, 0]]}, {"id": "B", "track": [[0, 0, 5], [10, 10, 5]]}]}"#;
+    let race = race::Race::from_files(&[("n.json", json)]).unwrap();
+    assert_eq!(race.rank_basis(), race::RankBasis::NoCourse);
+    assert!(has_no_course(&leaderboard_rows(&race, 5.0)));
+    assert!(!has_no_course(&leaderboard_rows(
+        &race::Race::sample(),
+        5.0
+    )));
+}
+
+#[test]
 fn timeline_events_are_the_roundings_after_the_start_in_order() {
     let race = race::Race::sample();
     let ev = timeline_events(&race);

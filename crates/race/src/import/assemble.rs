@@ -108,7 +108,14 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
     let mut boats = Vec::new();
     let mut reports: Vec<BoatReport> = Vec::new();
     let mut series = Vec::new();
-    for (si, s) in sources.iter().enumerate() {
+    for si in 0..sources.len() {
+        // The raw points are taken, not copied: a 100 MB log holds millions of them.
+        let taken: Vec<Vec<super::RawPoint>> = sources[si]
+            .boats
+            .iter_mut()
+            .map(|b| std::mem::take(&mut b.points))
+            .collect();
+        let s = &sources[si];
         warnings.extend(s.warnings.iter().cloned());
         let shift = match (s.times, start, s.start_time) {
             (Times::Absolute, Some(st), _) => -st,
@@ -120,10 +127,9 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             ser.t.iter_mut().for_each(|t| *t += shift);
             series.push(ser);
         }
-        for (bi, b) in s.boats.iter().enumerate() {
-            let raw: Vec<RawSample> = b
-                .points
-                .iter()
+        for (bi, (b, points)) in s.boats.iter().zip(taken).enumerate() {
+            let raw: Vec<RawSample> = points
+                .into_iter()
                 .map(|p| {
                     let xz = to_race(s, p.c);
                     RawSample {

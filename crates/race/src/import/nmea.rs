@@ -18,8 +18,8 @@ use crate::clean::MPS_PER_KNOT;
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
 
-/// A channel while reading: name, unit, (day, time of day, value).
-type Channel = (&'static str, &'static str, Vec<(i64, f64, f32)>);
+/// A channel while reading: name, unit, (day, time of day, value); 16 bytes a sample.
+type Channel = (&'static str, &'static str, Vec<(i32, f32, f64)>);
 
 /// Per-log reading state.
 #[derive(Default)]
@@ -151,7 +151,7 @@ impl Log {
                 self.channels.len() - 1
             }
         };
-        self.channels[k].2.push((self.day, tod, v as f32));
+        self.channels[k].2.push((self.day as i32, v as f32, tod));
     }
 
     /// A speed field and its unit letter → m/s.
@@ -353,10 +353,9 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         epoch_of(1970, 1, 1, 0.0) + d as f64 * 86_400.0 + tod
     };
     let id = super::boat_id_from_file(file);
-    let points = log
-        .fixes
-        .iter()
-        .map(|&(day, tod, lat, lon, sog, heading)| RawPoint {
+    let points = std::mem::take(&mut log.fixes)
+        .into_iter()
+        .map(|(day, tod, lat, lon, sog, heading)| RawPoint {
             t: t_of(day, tod),
             c: [lat, lon],
             logged: Logged {
@@ -372,8 +371,8 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             boat: Some(id.clone()),
             channel: channel.into(),
             unit: unit.into(),
-            t: v.iter().map(|&(d, tod, _)| t_of(d, tod)).collect(),
-            v: v.iter().map(|x| x.2).collect(),
+            t: v.iter().map(|&(d, _, tod)| t_of(d as i64, tod)).collect(),
+            v: v.iter().map(|x| x.1).collect(),
         });
     }
     s.boats.push(RawBoat {
