@@ -2,7 +2,7 @@
 //! level of the water at y = 0, the pool centred on the origin).
 //!
 //! Every intersection here is closed form: a quadratic for a sphere, slabs for the box. The WGSL
-//! in `shaders/pool.wgsl` does the same in f32; these are its references.
+//! in `shaders/pool_common.wgsl` does the same in f32; these are its references.
 
 use glam::DVec3;
 

@@ -7,7 +7,7 @@
 //! [`water`]) and the caustics come from the moving surface (area ratio, see [`caustics`]).
 //!
 //! Everything in this module is f64 and GPU-free: it is the reference the shader
-//! (`shaders/pool.wgsl`) is tested against, and it gives the shader its f32-safe inputs.
+//! (`shaders/pool_common.wgsl` with `pool_scene.wgsl` and `pool_water.wgsl`) is tested against, and it gives the shader its f32-safe inputs.
 //! Pool space: metres, x east, y up, z south, the water's rest level at y = 0, the pool centred
 //! on the origin. In AR a model transform puts pool space on the detected table, exactly as it
 //! does for the race course.
