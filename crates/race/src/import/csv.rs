@@ -198,19 +198,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             ));
         }
         let cell = |i: usize| rec.get(i).unwrap_or("").trim();
-        let num = |i: usize| -> RaceResult<f64> {
-            let c = cell(i);
-            if c.is_empty() {
-                return Ok(f64::NAN);
-            }
-            c.parse::<f64>().map_err(|_| {
-                RaceError::at_line(
-                    file,
-                    line,
-                    format!("{} is {}, not a number", plain(names[i]), q(c)),
-                )
-            })
-        };
+        let num = |i: usize| number_cell(file, line, names[i], cell(i));
         let opt = |c: Col| -> RaceResult<f64> {
             match c {
                 Some((i, u)) => Ok(num(i)? * u),
@@ -368,4 +356,20 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         });
     }
     Ok(s)
+}
+
+/// A numeric cell of a log (CSV export or Expedition): NaN when empty (a sparse row), else the
+/// number, or one sentence naming the file, line and column.
+pub(super) fn number_cell(file: &str, line: u64, column: &str, cell: &str) -> RaceResult<f64> {
+    let c = cell.trim();
+    if c.is_empty() {
+        return Ok(f64::NAN);
+    }
+    c.parse::<f64>().map_err(|_| {
+        RaceError::at_line(
+            file,
+            line,
+            format!("{} is {}, not a number", plain(column), q(c)),
+        )
+    })
 }

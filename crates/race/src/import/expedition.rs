@@ -7,9 +7,9 @@
 //! decimals, so the file's own resolution is 1e-5 day = 0.864 s (f64 holds 38516.38857 days to
 //! 1e-11 day, about a microsecond).
 
-use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Series, Source, Times, q};
+use super::csv::number_cell;
+use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Series, Source, Times};
 use crate::error::{RaceError, RaceResult};
-use crate::text::plain;
 use crate::track::Logged;
 
 /// Days from 1899-12-30 (the spreadsheet epoch) to 1970-01-01.
@@ -81,19 +81,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         let line = i as u64 + 1;
         cells.clear();
         cells.extend(l.split(','));
-        let num = |k: usize| -> RaceResult<f64> {
-            let c = cells.get(k).map_or("", |c| c.trim());
-            if c.is_empty() {
-                return Ok(f64::NAN);
-            }
-            c.parse::<f64>().map_err(|_| {
-                RaceError::at_line(
-                    file,
-                    line,
-                    format!("{} is {}, not a number", plain(&header[k]), q(c)),
-                )
-            })
-        };
+        let num = |k: usize| number_cell(file, line, &header[k], cells.get(k).map_or("", |c| c));
         let days = num(utc)?;
         if !days.is_finite() {
             no_time += 1;
