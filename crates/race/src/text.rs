@@ -6,43 +6,24 @@
 /// The longest quoted value shown in a message, in characters; longer ones end in "…".
 pub const QUOTE_MAX_CHARS: usize = 40;
 
-/// `s` with every control character written as an escape (`\n`, `\r`, `\t`, `\0`, else
-/// `\u{1b}`): what a terminal shows is then exactly one line with no hidden effects.
-pub fn escape(s: &str) -> String {
-    if !s.chars().any(char::is_control) {
-        return s.to_string();
-    }
-    let mut out = String::with_capacity(s.len() + 8);
-    for c in s.chars() {
-        match c {
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            '\0' => out.push_str("\\0"),
-            c if c.is_control() => out.push_str(&format!("\\u{{{:x}}}", c as u32)),
-            c => out.push(c),
-        }
-    }
-    out
-}
+/// `s` with every control character written as an escape (`\n`, `\r`, `\t`, `\u{0}`,
+/// `\u{1b}`, …): what a terminal shows is then exactly one line with no hidden effects. The
+/// one rule of every Regatta program (`input::escape_controls`); applying it twice changes
+/// nothing.
+pub use input::escape_controls as escape;
 
 /// `s` escaped and cut to [`QUOTE_MAX_CHARS`] characters (with "…"), in double quotes.
 pub fn quote(s: &str) -> String {
-    format!("\"{}\"", cut(&escape(s), QUOTE_MAX_CHARS))
+    format!("\"{}\"", cut(s, QUOTE_MAX_CHARS))
 }
 
 /// `s` escaped and cut like [`quote`], without the quotes (for column names).
 pub fn plain(s: &str) -> String {
-    cut(&escape(s), QUOTE_MAX_CHARS)
+    cut(s, QUOTE_MAX_CHARS)
 }
 
-/// The first `max` characters of `s`, with "…" when something was cut.
-pub fn cut(s: &str, max: usize) -> String {
-    match s.char_indices().nth(max) {
-        Some((i, _)) => format!("{}…", &s[..i]),
-        None => s.to_string(),
-    }
-}
+/// The first `max` characters of `s` (with "…" when something was cut), escaped.
+pub use input::message::cut;
 
 /// A count with thousands grouped by commas: 11977 → "11,977".
 pub fn count(n: usize) -> String {
@@ -91,7 +72,7 @@ mod tests {
     fn controls_are_escaped_and_long_values_cut() {
         assert_eq!(
             escape("a\nb\r\u{1b}[31m\u{7}\0"),
-            "a\\nb\\r\\u{1b}[31m\\u{7}\\0"
+            "a\\nb\\r\\u{1b}[31m\\u{7}\\u{0}"
         );
         assert_eq!(quote(&"x".repeat(50)), format!("\"{}…\"", "x".repeat(40)));
         assert_eq!(count(11_977), "11,977");

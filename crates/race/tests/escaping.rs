@@ -37,7 +37,7 @@ fn quoted_input_is_escaped_and_cut() {
         br#"{"boats": [{"id": "A", "track": [[0,0,0]]}], "marks": [{"name": "M\u0000", "position": [1e300, 0]}]}"#,
     );
     assert!(
-        m.starts_with(r#"r.json: marks[0] ("M\0"): x = 1e300 is beyond"#),
+        m.starts_with(r#"r.json: marks[0] ("M\u{0}"): x = 1e300 is beyond"#),
         "{m}"
     );
     // A long value is cut to 40 characters.
