@@ -161,7 +161,7 @@ impl Governor {
 
     /// The frame budget in milliseconds that the governor holds now.
     pub fn budget_ms(&self) -> f64 {
-        1000.0 / self.fps()
+        1000.0 / self.fps(median(self.frames.iter().map(|&(_, ms)| ms)))
     }
 
     /// One drawn frame: trace time `t_s` (seconds, non-decreasing), its frame time in
@@ -195,7 +195,7 @@ impl Governor {
             let ratio = median / from_ms;
             self.cost[self.tier.index()] = self.cost[from.index()] * ratio;
         }
-        let budget = self.budget_ms();
+        let budget = 1000.0 / self.fps(median);
         let may_change = self
             .last_change
             .is_none_or(|c| t_s - c >= self.config.min_dwell_s);
@@ -228,15 +228,16 @@ impl Governor {
         median * self.cost[tier.index()] / self.cost[self.tier.index()]
     }
 
-    fn fps(&self) -> f64 {
+    /// The frame rate held, given the median frame time at the current tier (NaN: none yet).
+    fn fps(&self, median_ms: f64) -> f64 {
         match self.target {
             Target::Fps30 => 30.0,
             Target::Fps60 => 60.0,
             Target::Auto => {
                 // 60 when the frames measured so far say a tier of at least `medium` fits it.
-                let ms = median(self.frames.iter().map(|&(_, ms)| ms));
-                let fits_60 = ms.is_finite()
-                    && self.predict_ms(Tier::Medium, ms) <= 1000.0 / 60.0 * self.config.fit_margin;
+                let fits_60 = median_ms.is_finite()
+                    && self.predict_ms(Tier::Medium, median_ms)
+                        <= 1000.0 / 60.0 * self.config.fit_margin;
                 if fits_60 { 60.0 } else { 30.0 }
             }
         }
