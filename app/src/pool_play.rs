@@ -1,11 +1,11 @@
 //! The pool scene's play, shared by the desktop's mouse and the phone's finger: a press whose
-//! ray (`render::pool::pointer_ray` through the pixel, in the view of the last frame drawn)
+//! ray (`pool::pointer_ray` through the pixel, in the view of the last frame drawn)
 //! hits a moving sphere grabs it, and the sphere follows the pointer over the water
 //! (`PoolScene::grab`, `PoolScene::drag`), leaving ripples.
 
 use glam::DVec3;
+use pool::{PoolScene, PoolView, pointer_ray};
 use render::OrbitCamera;
-use render::pool::{PoolScene, PoolView, pointer_ray};
 
 /// The pool, the view its last frame was drawn with, and the sphere being dragged.
 pub struct PoolPlay {
@@ -36,7 +36,7 @@ impl PoolPlay {
             distance: 3.4,
             yaw: 2.7,
             pitch: 0.75,
-            far: render::pool::FAR_M,
+            far: pool::FAR_M,
         }
     }
 
@@ -72,8 +72,8 @@ impl PoolPlay {
 mod tests {
     use super::*;
     use glam::{DMat4, DQuat, DVec2};
+    use pool::PoolSettings;
     use render::Camera;
-    use render::pool::PoolSettings;
 
     /// A phone 40 cm above a table, looking down at 50° and rolled 20°, the pool stood on the
     /// table at 1:6 and turned 0.4 rad, as the Android app builds its view: the pixel where

@@ -6,12 +6,12 @@
 //! another (wake buffers, the kept still frame, the effects' reused offscreen textures, the
 //! pool's uniforms and rings).
 
+use effects::EffectSet;
 use glam::DVec3;
 use regatta::cli::render::FAR_M;
 use regatta::desktop::pool::PoolMode;
 use regatta::desktop::{race_scene, window_renderer};
 use regatta::overlay::initial_clock;
-use render::effects::EffectSet;
 use render::gpu::Gpu;
 use render::{FRAME_REUSED, OFFSCREEN_FORMAT, OrbitCamera, Renderer};
 
@@ -46,7 +46,7 @@ fn app_renderer(gpu: &Gpu, race: &race::Race, sea: &ocean::WaveSet, effects: boo
     let mut r = window_renderer(gpu, OFFSCREEN_FORMAT, race);
     if effects {
         let scene = race_scene(race, sea, race.time_span().0, &mut orbit());
-        render::effects::passes::add_scene_effects(&mut r, gpu, &scene, SIZE, EffectSet::ALL);
+        effects::passes::add_scene_effects(&mut r, gpu, &scene, SIZE, EffectSet::ALL);
     }
     r
 }

@@ -12,9 +12,9 @@ use std::path::Path;
 use ar::arcore::{CoursePlacement, hit_test, tap_ray};
 use ar::replay::{FrameFileFormat, TablePlane};
 use ar::{CameraFrame, PlaneKind, Pose, ReplayWriter};
+use effects::camera_frame::{CameraFrame as RenderCameraFrame, CameraImage};
 use glam::{DMat4, DQuat, DVec2, DVec3};
 use render::Camera;
-use render::effects::camera_frame::{CameraFrame as RenderCameraFrame, CameraImage};
 use render::optics::PinholeCamera;
 
 use super::frame::DisplayCamera;

@@ -30,9 +30,9 @@ use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction, Moti
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent};
 use ar::FrameSource;
 use ar::arcore::{Command, CoursePlacement, Event, SessionState, TwoFingerGesture};
+use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use glam::{DVec2, DVec3};
-use render::effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
-use render::pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
+use pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 use render::{Camera, OrbitCamera, RenderOptions, Renderer};
 use ui::{RegattaUi, TimelineEvent};
 

@@ -12,7 +12,7 @@
 
 use std::time::Instant;
 
-use render::effects::EffectSet;
+use effects::EffectSet;
 use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
 use wgpu::util::DeviceExt;
@@ -178,7 +178,7 @@ fn pass_times(gpu: &render::Gpu, size: [u32; 2], frames: usize) -> CliResult<(Pa
     let scene = scene_at(&race, &sea, t, None);
     let mut renderer = Renderer::new(gpu, OFFSCREEN_FORMAT, RenderOptions::default());
     renderer.set_wake(Some(race_wake(&race)?));
-    render::effects::passes::add_scene_effects(&mut renderer, gpu, &scene, size, EffectSet::ALL);
+    effects::passes::add_scene_effects(&mut renderer, gpu, &scene, size, EffectSet::ALL);
     let view = crate::bench::offscreen(gpu, size);
     let failed = |e: render::GpuError| CliError(e.to_string());
     renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up: pipelines, buffers

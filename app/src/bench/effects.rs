@@ -12,9 +12,9 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::Instant;
 
-use render::effects::camera_frame::{CameraFrame, CameraImage, Yuv420, YuvRange};
-use render::effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
-use render::effects::{Effect, EffectSet, demo_table_scene};
+use effects::camera_frame::{CameraFrame, CameraImage, Yuv420, YuvRange};
+use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
+use effects::{Effect, EffectSet, demo_table_scene};
 use render::optics::{N_AIR, N_WATER, brewster_angle, critical_angle, fresnel, schlick};
 use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
@@ -302,8 +302,8 @@ fn caustic_method_table(
     size: [u32; 2],
     frames: usize,
 ) -> Table {
-    use render::effects::caustic_map::{CAUSTIC_MAP_FORMAT, CausticMapPass, CausticMethod};
-    use render::effects::passes::caustic_region;
+    use effects::caustic_map::{CAUSTIC_MAP_FORMAT, CausticMapPass, CausticMethod};
+    use effects::passes::caustic_region;
     use render::frame::{FrameBindings, FrameContext};
     ctx.progress("effects: caustic map methods");
     let cfg = ArConfig::default();
@@ -375,9 +375,9 @@ fn caustic_method_table(
 /// displayed light (clamped to the texture's range, 1 = flat water) against the f64 map of a
 /// 512² surface grid on the same output cells.
 fn caustic_resolution_table(ctx: &BenchContext, size: [u32; 2]) -> Table {
-    use render::effects::caustics::MAX_INTENSITY;
-    use render::effects::caustics::area_ratio;
-    use render::effects::passes::caustic_region;
+    use effects::caustics::MAX_INTENSITY;
+    use effects::caustics::area_ratio;
+    use effects::passes::caustic_region;
     let scene = demo_table_scene(40.0);
     let cfg = ArConfig::default();
     let region = caustic_region(&scene, size, &cfg);

@@ -4,8 +4,8 @@
 
 use std::time::Instant;
 
-use render::pool::caustics::CausticMap;
-use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, render_pool_image};
+use pool::caustics::CausticMap;
+use pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, render_pool_image};
 use render::{Gpu, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
 use serde_json::json;
 

@@ -242,7 +242,7 @@ pub fn run(a: RenderArgs) -> CliResult {
     let effects = a
         .effects
         .as_deref()
-        .map(render::effects::EffectSet::parse)
+        .map(effects::EffectSet::parse)
         .transpose()
         .map_err(CliError::new)?;
     if let Some(t) = a.t
@@ -291,7 +291,7 @@ pub fn run(a: RenderArgs) -> CliResult {
         renderer.set_wake(Some(race_wake(&race)?));
     }
     if let Some(effects) = effects {
-        render::effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
+        effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
     }
     let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
@@ -309,27 +309,27 @@ pub fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> CliResult
     super::print_stdout("the frame record", &json)
 }
 
-/// `--scene pool`: the pool at `--t` (default [`render::pool::DEFAULT_T`]).
+/// `--scene pool`: the pool at `--t` (default [`pool::DEFAULT_T`]).
 fn run_pool(a: &RenderArgs, out: &ImageOut, size: [u32; 2]) -> CliResult {
-    use render::pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView};
+    use pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView};
     if !a.race.is_empty() {
         return Err(CliError::new("--race has no meaning with --scene pool"));
     }
-    let t = a.t.unwrap_or(render::pool::DEFAULT_T);
+    let t = a.t.unwrap_or(pool::DEFAULT_T);
     let mut scene = PoolScene::default();
     if let Some(p) = &a.sea {
         scene.water.waves = drawable_sea(load_sea(Some(p))?);
     }
     let mut view = PoolView::default_desktop(size);
     if let Some(c) = &a.camera {
-        view.camera = parse_camera(c, render::pool::FAR_M)?;
+        view.camera = parse_camera(c, pool::FAR_M)?;
     }
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     let settings = PoolSettings::default();
     let mut renderer = PoolRenderer::new(&gpu, render::OFFSCREEN_FORMAT, settings);
     let frame = PoolFrame::new(&scene, t, &view, &settings);
-    let (img, report) = render::pool::render_pool_image(&gpu, &mut renderer, &frame)
+    let (img, report) = pool::render_pool_image(&gpu, &mut renderer, &frame)
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     print_report(a, &report)

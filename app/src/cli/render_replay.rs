@@ -7,7 +7,7 @@
 
 use std::path::Path;
 
-use render::effects::EffectSet;
+use effects::EffectSet;
 
 use crate::cli::output::ImageOut;
 use crate::cli::render::RenderArgs;

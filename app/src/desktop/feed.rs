@@ -16,9 +16,9 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use ar::{CameraFrame, ReplayFeed, SynthConfig};
+use effects::camera_frame::CameraFrame as RenderCameraFrame;
+use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use glam::{DMat4, DVec2, DVec3};
-use render::effects::camera_frame::CameraFrame as RenderCameraFrame;
-use render::effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use render::optics::PinholeCamera;
 use render::{Camera, RenderOptions, Renderer, Scene};
 
@@ -113,7 +113,7 @@ impl FeedView {
     }
 
     /// The same feed with these effects over its image.
-    pub fn with_effects(mut self, effects: render::effects::EffectSet) -> Self {
+    pub fn with_effects(mut self, effects: effects::EffectSet) -> Self {
         self.config.effects = effects;
         self
     }

@@ -2,8 +2,8 @@
 //! (or any moving) ball grabs it and the ball follows the pointer over the water, leaving
 //! ripples; elsewhere a left drag orbits as in the race.
 
+use pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 use render::OrbitCamera;
-use render::pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 
 use super::State;
 use crate::pool_play::PoolPlay;

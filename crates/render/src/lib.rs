@@ -1,8 +1,10 @@
-//! `render`: the wgpu renderer of Regatta, shared by the desktop app, `regatta render` and the
-//! APK. It draws the analytic sea of `ocean` on a camera-following clip-map, the boats and the
-//! marks, and records for every frame which passes ran and why (the frame planner).
+//! `render`: the wgpu render core of Regatta, shared by the desktop app, `regatta render` and
+//! the APK. It draws the analytic sea of `ocean` on a camera-following clip-map, the boats and
+//! the marks, and records for every frame which passes ran and why (the frame planner). The AR
+//! effects (`effects`) and the pool scene (`pool`) are crates on top of it.
 //!
-//! Invariant: it knows nothing of ARCore, egui or the command line. Units: metres, seconds,
+//! Invariant: it knows nothing of ARCore, egui, the command line, races (`race`), the AR
+//! effects or the pool: they plug in through [`frame::Pass`] and the helpers here. Units: metres, seconds,
 //! world x east, y up, z south. No absolute race time or large coordinate reaches a shader:
 //! shaders work in *local* metres (world minus the frame's origin, the clip-map centre) and
 //! get wave phases reduced in f64 on the CPU (`ocean::WaveSet::gpu_waves`).
@@ -19,13 +21,13 @@
 //!   [`mesh_error`]: a clip-map's measured screen-space height error (the mesh bench).
 //!
 //! # Adding a pass (effects, wakes, pool)
-//! 1. **WGSL**: one file `shaders/<name>.wgsl` with `vs_main`/`fs_main` (or `cs_main`). It is
+//! 1. **WGSL**: one file `shaders/<name>.wgsl` (in the crate that owns the pass) with `vs_main`/`fs_main` (or `cs_main`). It is
 //!    appended to `shaders/common.wgsl` and `shaders/optics.wgsl` ([`shader::source`]), so it
 //!    uses bind group 0 as declared there (`frame`, `waves`) and its helpers (`gerstner`,
 //!    `surface_frame`, `sky_colour`, `fresnel_reflectance`, ...). Its own resources go in
 //!    bind group 1 and up. Add an `include_str!` constant for it in `shader.rs` (or in your
 //!    module).
-//! 2. **Rust**: a module (`passes/<name>.rs`, or your own `effects/`, `pool/`) with a type
+//! 2. **Rust**: a module (`passes/<name>.rs`, or in your own crate as `effects`, `pool` do) with a type
 //!    implementing [`frame::Pass`]: build the pipeline in `new` with
 //!    [`passes::pipeline`] (or by hand when you need more bind groups, using
 //!    [`renderer::Renderer::frame_layout`] for group 0); upload per-frame data in `prepare`;
@@ -41,7 +43,6 @@
 pub mod camera;
 pub mod clipmap;
 pub mod compute;
-pub mod effects;
 pub mod frame;
 #[doc(hidden)]
 pub mod golden;
@@ -50,7 +51,6 @@ pub mod hull;
 pub mod mesh_error;
 pub mod optics;
 pub mod passes;
-pub mod pool;
 pub mod renderer;
 pub mod scene;
 pub mod shader;

@@ -3,22 +3,23 @@
 //! file(s), concatenated here.
 
 /// Shared structs, bindings and functions (the frame uniform, waves, sky).
-pub const COMMON: &str = include_str!("../../../shaders/common.wgsl");
+pub const COMMON: &str = include_str!("../shaders/common.wgsl");
 /// Fresnel, Snell, reflection (the effects' optics, mirrored in f64 by `optics.rs`).
-pub const OPTICS: &str = include_str!("../../../shaders/optics.wgsl");
-pub const SKY: &str = include_str!("../../../shaders/sky.wgsl");
+pub const OPTICS: &str = include_str!("../shaders/optics.wgsl");
+pub const SKY: &str = include_str!("../shaders/sky.wgsl");
 /// The stretch of a frame drawn at a fraction of the screen (no shared files).
-pub const UPSCALE: &str = include_str!("../../../shaders/upscale.wgsl");
-pub const WATER: &str = include_str!("../../../shaders/water.wgsl");
-pub const BOATS: &str = include_str!("../../../shaders/boats.wgsl");
-pub const WAVE_HEIGHTS: &str = include_str!("../../../shaders/wave_heights.wgsl");
-/// The boats' wake sources (the wakes engineer's file; ocean::wake::gpu mirrors it in f32).
-pub const WAKE: &str = include_str!("../../../shaders/wake.wgsl");
+pub const UPSCALE: &str = include_str!("../shaders/upscale.wgsl");
+pub const WATER: &str = include_str!("../shaders/water.wgsl");
+pub const BOATS: &str = include_str!("../shaders/boats.wgsl");
+pub const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
+/// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` (`ocean::wake::gpu` mirrors it in
+/// f32), included once, there.
+pub const WAKE: &str = ocean::wake::WAKE_WGSL;
 /// The water pass's compute stage (sea and wakes per vertex, bind group 1) and the vertex
 /// stages that draw its output, or displace by the sea alone without compute.
-pub const WATER_VERTICES: &str = include_str!("../../../shaders/water_vertices.wgsl");
-pub const WATER_DISPLACED: &str = include_str!("../../../shaders/water_displaced.wgsl");
-pub const WATER_NO_WAKES: &str = include_str!("../../../shaders/water_no_wakes.wgsl");
+pub const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
+pub const WATER_DISPLACED: &str = include_str!("../shaders/water_displaced.wgsl");
+pub const WATER_NO_WAKES: &str = include_str!("../shaders/water_no_wakes.wgsl");
 
 /// A WGSL `f32` literal of `v` (always with a decimal point or exponent).
 fn wgsl_f32(v: f64) -> String {
@@ -61,19 +62,32 @@ pub fn module(device: &wgpu::Device, label: &str, parts: &[&str]) -> wgpu::Shade
 mod tests {
     use super::*;
 
-    /// Every WGSL file of the crate, as the passes and tests assemble them.
-    fn shader_files() -> Vec<(String, String)> {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders");
-        let mut files: Vec<(String, String)> = std::fs::read_dir(dir)
-            .expect("shaders/")
+    /// Every WGSL file of the workspace (`crates/*/shaders/*.wgsl`: the core's, the effects',
+    /// the pool's and `ocean`'s wake), named `crate/shaders/file.wgsl`.
+    pub(crate) fn shader_files() -> Vec<(String, String)> {
+        let crates = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        let mut files = Vec::new();
+        for krate in std::fs::read_dir(crates)
+            .expect("crates/")
             .filter_map(Result::ok)
-            .filter(|e| e.path().extension().is_some_and(|x| x == "wgsl"))
-            .map(|e| {
-                let text = std::fs::read_to_string(e.path()).expect("readable");
-                (e.file_name().to_string_lossy().into_owned(), text)
-            })
-            .collect();
+        {
+            let Ok(dir) = std::fs::read_dir(krate.path().join("shaders")) else {
+                continue;
+            };
+            for e in dir.filter_map(Result::ok) {
+                if e.path().extension().is_some_and(|x| x == "wgsl") {
+                    let text = std::fs::read_to_string(e.path()).expect("readable");
+                    let name = format!(
+                        "{}/shaders/{}",
+                        krate.file_name().to_string_lossy(),
+                        e.file_name().to_string_lossy()
+                    );
+                    files.push((name, text));
+                }
+            }
+        }
         files.sort();
+        assert!(files.len() >= 20, "found only {} WGSL files", files.len());
         files
     }
 

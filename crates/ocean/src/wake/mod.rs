@@ -54,4 +54,4 @@ pub use ring::{RingParams, RingWake};
 pub use track::{TrackSample, WakeError};
 
 /// The WGSL that evaluates the source buffer (`shaders/wake.wgsl`).
-pub const WAKE_WGSL: &str = include_str!("../../../../shaders/wake.wgsl");
+pub const WAKE_WGSL: &str = include_str!("../../shaders/wake.wgsl");

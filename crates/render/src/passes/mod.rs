@@ -52,7 +52,7 @@ pub fn pipeline(
 }
 
 /// A pipeline's vertex input, entry points and depth/cull state.
-pub(crate) struct Raster<'a> {
+pub struct Raster<'a> {
     pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     pub vertex: &'a str,
     pub fragment: &'a str,
@@ -63,7 +63,7 @@ pub(crate) struct Raster<'a> {
 
 /// A render pipeline with bind groups `layouts` (a `None` is an unused slot) into the shared
 /// colour/depth `targets`: the one place the descriptor is spelt.
-pub(crate) fn render_pipeline(
+pub fn render_pipeline(
     device: &wgpu::Device,
     label: &str,
     module: &wgpu::ShaderModule,
@@ -113,7 +113,7 @@ pub(crate) fn render_pipeline(
 }
 
 /// Light added up where triangles overlap (caustic maps): one + one.
-pub(crate) const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
+pub const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
     color: wgpu::BlendComponent {
         src_factor: wgpu::BlendFactor::One,
         dst_factor: wgpu::BlendFactor::One,
@@ -129,7 +129,7 @@ pub(crate) const ADDITIVE: wgpu::BlendState = wgpu::BlendState {
 /// A pipeline whose vertex shader makes its positions from the vertex index (no vertex
 /// buffers), into one colour target: full-screen and grid passes (the
 /// upscale, the caustic maps, the pool).
-pub(crate) struct BufferlessPipeline<'a> {
+pub struct BufferlessPipeline<'a> {
     pub label: &'a str,
     pub module: &'a wgpu::ShaderModule,
     /// Entry points.
@@ -142,10 +142,7 @@ pub(crate) struct BufferlessPipeline<'a> {
     pub depth: Option<wgpu::DepthStencilState>,
 }
 
-pub(crate) fn bufferless_pipeline(
-    device: &wgpu::Device,
-    p: BufferlessPipeline,
-) -> wgpu::RenderPipeline {
+pub fn bufferless_pipeline(device: &wgpu::Device, p: BufferlessPipeline) -> wgpu::RenderPipeline {
     let layout = p.layouts.map(|layouts| {
         device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(p.label),

@@ -1,6 +1,6 @@
 //! GPU tests of the pool passes on lavapipe (small sizes): the caustics map against its f64
 //! reference, and golden images. Without an adapter they skip, unless `REGATTA_REQUIRE_GPU`
-//! demands one ([`crate::gpu::test_gpu`]).
+//! demands one ([`render::gpu::test_gpu`]).
 //!
 //! Regenerate the golden images after an intended change of the picture:
 //! `REGATTA_UPDATE_GOLDEN=1 cargo test -p render --lib pool::gpu_tests`, then look at them.
@@ -10,8 +10,8 @@ use std::path::PathBuf;
 use super::caustics::CausticMap;
 use super::gpu::{PoolFrame, PoolRenderer, PoolSettings, PoolView, render_pool_image};
 use super::scene::PoolScene;
-use crate::gpu::test_gpu;
-use crate::renderer::OFFSCREEN_FORMAT;
+use render::gpu::test_gpu;
+use render::renderer::OFFSCREEN_FORMAT;
 
 fn small_settings() -> PoolSettings {
     PoolSettings {
@@ -31,9 +31,9 @@ fn golden(name: &str, t: f64, size: [u32; 2]) {
     let (img, report) = render_pool_image(&gpu, &mut r, &frame).unwrap();
     assert_eq!(report.spheres, 4);
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("src/pool/golden")
+        .join("golden")
         .join(format!("{name}.png"));
-    crate::golden::check(&path, &img).unwrap_or_else(|e| panic!("{e}"));
+    render::golden::check(&path, &img).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]
@@ -120,7 +120,7 @@ fn gpu_water_matches_the_f64_trace_on_still_water() {
     let settings = small_settings();
     let size = [64, 64];
     let mut view = PoolView::default_desktop(size);
-    view.camera = crate::camera::Camera::look_at(
+    view.camera = render::camera::Camera::look_at(
         glam::DVec3::new(0.1, 2.0, 0.4),
         glam::DVec3::new(0.0, -1.0, 0.0),
         super::FAR_M,

@@ -28,24 +28,26 @@ use super::caustics::CausticRegion;
 use super::flowmap::{DEFAULT_JUMP, flow_phases};
 use super::planner::{EffectDecision, EffectFrame, decide};
 use super::{Effect, EffectSet};
-use crate::frame::{FrameBindings, FrameContext, FrameUniform, OffscreenTimestamps, Pass, Targets};
-use crate::gpu::Gpu;
-use crate::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
-use crate::passes::boats::BoatsPass;
-use crate::passes::water::{WaterPass, supports_wakes, vertex_stage};
-use crate::renderer::{DEPTH_FORMAT, Renderer};
-use crate::shader;
+use render::frame::{
+    FrameBindings, FrameContext, FrameUniform, OffscreenTimestamps, Pass, Targets,
+};
+use render::gpu::Gpu;
+use render::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
+use render::passes::boats::BoatsPass;
+use render::passes::water::{WaterPass, supports_wakes, vertex_stage};
+use render::renderer::{DEPTH_FORMAT, Renderer};
+use render::shader;
 
-pub const EFFECTS_COMMON: &str = include_str!("../../../../shaders/effects_common.wgsl");
-pub const BACKGROUND: &str = include_str!("../../../../shaders/background.wgsl");
-pub const REFLECTION: &str = include_str!("../../../../shaders/reflection.wgsl");
-pub const REFRACTION: &str = include_str!("../../../../shaders/refraction.wgsl");
-pub const CAUSTICS: &str = include_str!("../../../../shaders/caustics.wgsl");
-pub const FLOWMAP: &str = include_str!("../../../../shaders/flowmap.wgsl");
-pub const AR_WATER: &str = include_str!("../../../../shaders/ar_water.wgsl");
-pub const CAUSTIC_MAP: &str = include_str!("../../../../shaders/caustic_map.wgsl");
-pub const CAUSTIC_SCATTER: &str = include_str!("../../../../shaders/caustic_scatter.wgsl");
-pub const REFLECTION_ROOM: &str = include_str!("../../../../shaders/reflection_room.wgsl");
+pub const EFFECTS_COMMON: &str = include_str!("../shaders/effects_common.wgsl");
+pub const BACKGROUND: &str = include_str!("../shaders/background.wgsl");
+pub const REFLECTION: &str = include_str!("../shaders/reflection.wgsl");
+pub const REFRACTION: &str = include_str!("../shaders/refraction.wgsl");
+pub const CAUSTICS: &str = include_str!("../shaders/caustics.wgsl");
+pub const FLOWMAP: &str = include_str!("../shaders/flowmap.wgsl");
+pub const AR_WATER: &str = include_str!("../shaders/ar_water.wgsl");
+pub const CAUSTIC_MAP: &str = include_str!("../shaders/caustic_map.wgsl");
+pub const CAUSTIC_SCATTER: &str = include_str!("../shaders/caustic_scatter.wgsl");
+pub const REFLECTION_ROOM: &str = include_str!("../shaders/reflection_room.wgsl");
 
 /// How the effects are set up.
 #[derive(Debug, Clone, PartialEq)]
@@ -202,7 +204,7 @@ impl Shared {
         image: &CameraImage,
     ) -> Shared {
         let device = &gpu.device;
-        use crate::gpu::layout;
+        use render::gpu::layout;
         let fs = wgpu::ShaderStages::FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("effects"),
@@ -222,14 +224,14 @@ impl Shared {
                 layout::sampler(4, fs),
             ],
         });
-        let uniform = crate::gpu::uniform_buffer(
+        let uniform = render::gpu::uniform_buffer(
             device,
             "effects uniform",
             size_of::<EffectsUniform>() as u64,
         );
         let yuv_conversion = YuvConversion::new(gpu);
         let n = cfg.caustic_resolution.1 as u32;
-        let caustic_tex = crate::gpu::texture_2d(
+        let caustic_tex = render::gpu::texture_2d(
             device,
             "caustic map",
             [n, n],
@@ -286,14 +288,14 @@ impl Shared {
         if fits {
             return;
         }
-        let colour = crate::gpu::texture_2d(
+        let colour = render::gpu::texture_2d(
             device,
             "planar reflection",
             size,
             self.colour_format,
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
         );
-        let depth = crate::gpu::texture_2d(
+        let depth = render::gpu::texture_2d(
             device,
             "planar reflection depth",
             size,
@@ -431,7 +433,7 @@ impl Shared {
 /// the point looked at, as wide as the view there (world metres), cut to the water (the play
 /// area and a margin of twice the depth: table points seen through the water's edge at up to
 /// 63° from straight down).
-pub fn caustic_region(scene: &crate::Scene, size: [u32; 2], cfg: &ArConfig) -> CausticRegion {
+pub fn caustic_region(scene: &render::Scene, size: [u32; 2], cfg: &ArConfig) -> CausticRegion {
     let cam = &scene.camera;
     let dist = (cam.target - cam.eye).length();
     let aspect = f64::from(size[0]) / f64::from(size[1].max(1));
@@ -464,13 +466,13 @@ fn fx_pipeline(
     module: &wgpu::ShaderModule,
     draw: FxDraw,
 ) -> wgpu::RenderPipeline {
-    crate::passes::render_pipeline(
+    render::passes::render_pipeline(
         &gpu.device,
         label,
         module,
         &[Some(frame_layout), None, Some(fx_layout)],
         targets,
-        crate::passes::Raster {
+        render::passes::Raster {
             buffers: draw.buffers,
             vertex: draw.vertex,
             fragment: draw.fragment,
@@ -699,11 +701,11 @@ pub const OFFSCREEN_REUSED: &str =
 struct OffscreenInputs {
     t: f64,
     sea: ocean::WaveSet,
-    boats: Vec<crate::Boat>,
-    marks: Vec<crate::Mark>,
+    boats: Vec<render::Boat>,
+    marks: Vec<render::Mark>,
     play_area: [f64; 4],
     sun: DVec3,
-    camera: crate::Camera,
+    camera: render::Camera,
     size: [u32; 2],
     mask: u32,
 }
@@ -811,8 +813,11 @@ impl ArWaterPass {
         );
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("planar reflection"),
-            color_attachments: &[Some(crate::gpu::colour_attachment(&cv, Some(HORIZON_HAZE)))],
-            depth_stencil_attachment: Some(crate::gpu::depth_attachment(&dv, true)),
+            color_attachments: &[Some(render::gpu::colour_attachment(
+                &cv,
+                Some(HORIZON_HAZE),
+            ))],
+            depth_stencil_attachment: Some(render::gpu::depth_attachment(&dv, true)),
             timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,
@@ -1084,7 +1089,7 @@ pub fn add_effect_passes(
 pub fn add_scene_effects(
     renderer: &mut Renderer,
     gpu: &Gpu,
-    scene: &crate::Scene,
+    scene: &render::Scene,
     size: [u32; 2],
     effects: EffectSet,
 ) -> EffectsHandle {
@@ -1120,7 +1125,7 @@ mod tests {
         // area, including its displaced edges, at any race time.
         let size = [640, 480];
         for t in [0.0, 40.0, 1234.5] {
-            let scene = super::super::demo_table_scene(t);
+            let scene = crate::demo_table_scene(t);
             let frame = FrameContext::new(&scene, size, 1.0);
             let [x, y, w, h] = play_area_scissor(&frame).expect("the play area is not all");
             assert!(w * h < size[0] * size[1] * 9 / 10, "{:?}", [x, y, w, h]);
@@ -1158,8 +1163,8 @@ mod tests {
     #[test]
     fn a_camera_inside_the_grown_play_area_box_gets_the_whole_screen() {
         // Eye below the box's top (a corner behind the camera): no scissor.
-        let mut scene = super::super::demo_table_scene(40.0);
-        scene.camera = crate::Camera::look_at(
+        let mut scene = crate::demo_table_scene(40.0);
+        scene.camera = render::Camera::look_at(
             glam::DVec3::new(0.0, 0.5, 0.0),
             glam::DVec3::new(10.0, 0.0, 0.0),
             500.0,

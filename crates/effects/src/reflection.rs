@@ -15,7 +15,7 @@
 use glam::{DVec2, DVec3};
 
 use super::refraction::edge_weight;
-use crate::optics::PinholeCamera;
+use render::optics::PinholeCamera;
 
 /// The vertical ring the room's image stands on.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,10 +64,10 @@ pub fn room_sample(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optics::{Plane, reflect};
+    use render::optics::{Plane, reflect};
 
     fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
-        super::super::test_camera(eye, target, 300.0)
+        crate::test_camera(eye, target, 300.0)
     }
 
     const RING: Ring = Ring {

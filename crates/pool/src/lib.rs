@@ -1,4 +1,4 @@
-//! The pool scene (`--scene pool`): a tiled box pool with moving water, floating and moving
+//! `pool`: the pool scene (`--scene pool`): a tiled box pool with moving water, floating and moving
 //! spheres, reflection and refraction traced against the analytic spheres and the box, the full
 //! Fresnel equations, Phong shading and caustics on the floor and walls.
 //!
@@ -6,8 +6,12 @@
 //! moves (Gerstner waves from `ocean` plus analytic ripples where a sphere moves, see
 //! [`water`]) and the caustics come from the moving surface (area ratio, see [`caustics`]).
 //!
-//! Everything in this module is f64 and GPU-free: it is the reference the shader
-//! (`shaders/pool_common.wgsl` with `pool_scene.wgsl` and `pool_water.wgsl`) is tested against, and it gives the shader its f32-safe inputs.
+//! Invariant: it knows nothing of ARCore, egui, the command line, races or the AR effects;
+//! `render` (the core it draws with) knows nothing of it.
+//!
+//! Everything here but [`gpu`] is f64 and GPU-free: it is the reference the shader
+//! (`shaders/pool_common.wgsl` with `pool_scene.wgsl`, `pool_water.wgsl` and
+//! `pool_caustics.wgsl`) is tested against, and it gives the shader its f32-safe inputs.
 //! Pool space: metres, x east, y up, z south, the water's rest level at y = 0, the pool centred
 //! on the origin. In AR a model transform puts pool space on the detected table, exactly as it
 //! does for the race course.

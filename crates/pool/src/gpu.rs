@@ -25,21 +25,21 @@ use ocean::GpuWave;
 use serde::Serialize;
 
 use super::scene::PoolScene;
-use crate::camera::Camera;
-use crate::clipmap::MAX_WAVES;
-use crate::frame::{FrameBindings, FrameUniform, PassRecord};
-use crate::gpu::{DepthBuffer, Gpu, GpuError, texture_2d};
-use crate::renderer::DEPTH_FORMAT;
-use crate::shader;
+use render::camera::Camera;
+use render::clipmap::MAX_WAVES;
+use render::frame::{FrameBindings, FrameUniform, PassRecord};
+use render::gpu::{DepthBuffer, Gpu, GpuError, texture_2d};
+use render::renderer::DEPTH_FORMAT;
+use render::shader;
 
 /// Spheres and ripple rings the shader holds (as `pool_common.wgsl`).
 pub const MAX_SPHERES: usize = 8;
 pub const MAX_RINGS: usize = 256;
 
-const POOL_COMMON: &str = include_str!("../../../../shaders/pool_common.wgsl");
-const POOL_CAUSTICS: &str = include_str!("../../../../shaders/pool_caustics.wgsl");
-const POOL_SCENE: &str = include_str!("../../../../shaders/pool_scene.wgsl");
-const POOL_WATER: &str = include_str!("../../../../shaders/pool_water.wgsl");
+const POOL_COMMON: &str = include_str!("../shaders/pool_common.wgsl");
+const POOL_CAUSTICS: &str = include_str!("../shaders/pool_caustics.wgsl");
+const POOL_SCENE: &str = include_str!("../shaders/pool_scene.wgsl");
+const POOL_WATER: &str = include_str!("../shaders/pool_water.wgsl");
 
 /// The caustics map's format: blendable and filterable everywhere (WebGPU core).
 pub const CAUSTIC_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
@@ -302,9 +302,9 @@ struct PipelineParts<'a> {
 
 fn build_pipeline(device: &wgpu::Device, p: PipelineParts) -> wgpu::RenderPipeline {
     let module = shader::module(device, p.label, &[POOL_COMMON, p.pass_wgsl]);
-    crate::passes::bufferless_pipeline(
+    render::passes::bufferless_pipeline(
         device,
-        crate::passes::BufferlessPipeline {
+        render::passes::BufferlessPipeline {
             label: p.label,
             module: &module,
             vertex: "vs_main",
@@ -330,14 +330,14 @@ fn depth_state(compare: wgpu::CompareFunction) -> Option<wgpu::DepthStencilState
 impl PoolRenderer {
     /// Pipelines drawing into `colour` textures (linear shader output; use an sRGB format).
     pub fn new(gpu: &Gpu, colour: wgpu::TextureFormat, settings: PoolSettings) -> PoolRenderer {
-        use crate::gpu::layout;
+        use render::gpu::layout;
         let device = &gpu.device;
         let bindings = FrameBindings::new(device);
-        let crate::gpu::UniformGroup {
+        let render::gpu::UniformGroup {
             layout: pool_layout,
             buffer: pool_buffer,
             group: pool_group,
-        } = crate::gpu::UniformGroup::new(device, "pool", size_of::<PoolUniform>() as u64);
+        } = render::gpu::UniformGroup::new(device, "pool", size_of::<PoolUniform>() as u64);
         let caustic_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("pool caustics map"),
             entries: &[
@@ -383,7 +383,7 @@ impl PoolRenderer {
                 pass_wgsl: POOL_CAUSTICS,
                 layouts: &[Some(&bindings.layout), Some(&pool_layout)],
                 format: CAUSTIC_FORMAT,
-                blend: Some(crate::passes::ADDITIVE),
+                blend: Some(render::passes::ADDITIVE),
                 depth: None,
             },
         );
@@ -468,7 +468,7 @@ impl PoolRenderer {
         let water_cells = u64::from(self.settings.water_grid).pow(2);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         {
-            let mut pass = crate::gpu::colour_pass(
+            let mut pass = render::gpu::colour_pass(
                 &mut enc,
                 "pool caustics",
                 &self.caustic_view,
@@ -487,11 +487,11 @@ impl PoolRenderer {
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("pool scene and water"),
-                color_attachments: &[Some(crate::gpu::colour_attachment(
+                color_attachments: &[Some(render::gpu::colour_attachment(
                     target,
                     (!frame.over_camera_image).then_some(wgpu::Color::BLACK),
                 ))],
-                depth_stencil_attachment: Some(crate::gpu::depth_attachment(&depth, true)),
+                depth_stencil_attachment: Some(render::gpu::depth_attachment(&depth, true)),
                 timestamp_writes: None,
                 occlusion_query_set: None,
                 multiview_mask: None,

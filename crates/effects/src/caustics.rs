@@ -16,7 +16,7 @@
 use glam::{DVec2, DVec3};
 use ocean::WaveSet;
 
-use crate::optics::{N_AIR, N_WATER, refract};
+use render::optics::{N_AIR, N_WATER, refract};
 
 /// Where to compute caustics: a square of the table, in the waves' horizontal coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]

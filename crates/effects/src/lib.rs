@@ -1,6 +1,10 @@
-//! The AR water effects of source 000, made physical where 000 names its own limitations:
+//! `effects`: the AR water effects of source 000, made physical where 000 names its own limitations:
 //! camera background, planar reflection, refraction of the real table, caustics and flow-map
-//! distortion, mixed by the full Fresnel equations of source 004 ([`crate::optics`]).
+//! distortion, mixed by the full Fresnel equations of source 004 ([`render::optics`]). A crate on the render
+//! core (`render`): its passes implement [`render::Pass`] and draw with the core's helpers.
+//!
+//! Invariant: it knows nothing of ARCore (a camera image arrives as a [`camera_frame`] value),
+//! egui, the command line, races or the pool scene; `render` knows nothing of it.
 //!
 //! Each effect has a pure, host-tested model here (f64, no GPU): the GPU passes follow these
 //! models, and their tests compare against them.
@@ -30,14 +34,14 @@ use std::fmt;
 /// The effects' test camera: a 640×480 pinhole at `eye` looking at `target`, focal length
 /// `focal` px. Looking straight down, "up" in the image is north.
 #[cfg(test)]
-fn test_camera(eye: glam::DVec3, target: glam::DVec3, focal: f64) -> crate::optics::PinholeCamera {
+fn test_camera(eye: glam::DVec3, target: glam::DVec3, focal: f64) -> render::optics::PinholeCamera {
     use glam::DVec3;
     let up = if (target - eye).normalize().y.abs() > 0.999 {
         DVec3::NEG_Z
     } else {
         DVec3::Y
     };
-    crate::optics::PinholeCamera {
+    render::optics::PinholeCamera {
         fx: focal,
         fy: focal,
         cx: 320.0,
@@ -51,7 +55,7 @@ fn test_camera(eye: glam::DVec3, target: glam::DVec3, focal: f64) -> crate::opti
 use glam::{DVec2, DVec3};
 use ocean::{Wave, WaveSet};
 
-use crate::{Boat, Camera, Mark, Scene};
+use render::{Boat, Camera, Mark, Scene};
 
 /// One effect pass, in draw order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -10,8 +10,8 @@ use super::camera_frame::{
 };
 use super::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use super::{Effect, EffectSet};
-use crate::gpu::Gpu;
-use crate::{Camera, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
+use render::gpu::Gpu;
+use render::{Camera, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
 
 /// The screen, and every camera image that fills it pixel for pixel.
 const SIZE: [u32; 2] = [64, 48];
@@ -106,7 +106,7 @@ fn background_renderer(gpu: &Gpu, image: CameraImage) -> (Renderer, EffectsHandl
 /// One frame into a target the renderer may keep still frames of (it can copy to and from
 /// it), read back.
 fn draw(gpu: &Gpu, r: &mut Renderer, scene: &Scene) -> image::RgbaImage {
-    let tex = crate::gpu::texture_2d(
+    let tex = render::gpu::texture_2d(
         &gpu.device,
         "camera test target",
         SIZE,
@@ -137,7 +137,7 @@ const TOLERANCE: u8 = 1;
 
 #[test]
 fn a_yuv_frame_draws_as_the_cpu_reference_converts_it() {
-    let Some(gpu) = crate::gpu::test_gpu() else {
+    let Some(gpu) = render::gpu::test_gpu() else {
         return;
     };
     let image = yuv_image(SIZE, 7);
@@ -159,7 +159,7 @@ fn a_yuv_frame_draws_as_the_cpu_reference_converts_it() {
 
 #[test]
 fn set_camera_frame_redraws_the_same_renderer_over_the_new_image() {
-    let Some(gpu) = crate::gpu::test_gpu() else {
+    let Some(gpu) = render::gpu::test_gpu() else {
         return;
     };
     let scene = sky_scene();
@@ -188,7 +188,7 @@ fn set_camera_frame_redraws_the_same_renderer_over_the_new_image() {
 
 #[test]
 fn set_camera_frame_takes_new_sizes_and_kinds() {
-    let Some(gpu) = crate::gpu::test_gpu() else {
+    let Some(gpu) = render::gpu::test_gpu() else {
         return;
     };
     let scene = sky_scene();

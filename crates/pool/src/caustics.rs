@@ -3,7 +3,7 @@
 //! The water surface is a grid of triangles. Sunlight of irradiance E (normal to the sun)
 //! crossing one triangle carries the flux Φ = E · T · A⊥, with A⊥ the triangle's area projected
 //! onto a plane perpendicular to the light and T the Fresnel transmittance (full equations, from
-//! [`crate::optics`]). Each vertex's ray is refracted (Snell, [`crate::optics::refract`]) and
+//! [`render::optics`]). Each vertex's ray is refracted (Snell, [`render::optics::refract`]) and
 //! followed to the face of the box it lands on; the three landing points span the receiving
 //! triangle of area A_r. That triangle receives irradiance Φ / A_r, spread evenly over it:
 //! where the surface focuses light the receiving triangle is small and bright, where it spreads
@@ -28,7 +28,7 @@ use glam::DVec3;
 use super::geometry::{Face, PoolBox, Ray};
 use super::scene::PoolScene;
 use super::water::Ring;
-use crate::optics::{N_AIR, fresnel, refract};
+use render::optics::{N_AIR, fresnel, refract};
 
 /// The caustics texture: irradiance / E over the unfolded net of the box, row-major, row 0 at
 /// the net's −z edge, column 0 at its −x edge.
@@ -208,9 +208,9 @@ fn land(scene: &PoolScene, pool: &PoolBox, p: super::water::WaterPoint) -> Optio
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optics::N_WATER;
-    use crate::pool::water::{PoolWater, RippleModel};
+    use crate::water::{PoolWater, RippleModel};
     use ocean::{Wave, WaveSet};
+    use render::optics::N_WATER;
 
     fn scene_with(waves: Vec<Wave>, to_light: DVec3) -> PoolScene {
         PoolScene {

@@ -10,7 +10,7 @@ use glam::DVec3;
 use super::caustics::CausticMap;
 use super::geometry::{Face, Ray};
 use super::scene::{PoolScene, SceneSphere};
-use crate::optics::{N_AIR, fresnel, reflect, refract};
+use render::optics::{N_AIR, fresnel, reflect, refract};
 
 /// Absorption coefficients of clear pool water for red, green and blue, 1/m: light loses
 /// e^(−μ s) over a path of s metres (pure water absorbs red most).
@@ -198,7 +198,7 @@ pub fn shade_water(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optics::N_WATER;
+    use render::optics::N_WATER;
 
     fn sin_angle(a: DVec3, n: DVec3) -> f64 {
         a.cross(n).length()

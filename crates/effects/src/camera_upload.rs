@@ -10,10 +10,10 @@
 //! texel more).
 
 use super::camera_frame::CameraImage;
-use crate::gpu::Gpu;
-use crate::shader;
+use render::gpu::Gpu;
+use render::shader;
 
-pub const CAMERA_YUV: &str = include_str!("../../../../shaders/camera_yuv.wgsl");
+pub const CAMERA_YUV: &str = include_str!("../shaders/camera_yuv.wgsl");
 
 /// The camera image's texture (`texture`, RGBA to sample) and, for YUV images, its planes.
 pub struct CameraTextures {
@@ -61,7 +61,7 @@ impl YuvConversion {
     /// or linear values into an `Rgba8UnormSrgb` one.
     fn with_target(gpu: &Gpu, encoded_target: bool) -> YuvConversion {
         let device = &gpu.device;
-        use crate::gpu::layout;
+        use render::gpu::layout;
         let fs = wgpu::ShaderStages::FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("camera yuv"),
@@ -73,9 +73,9 @@ impl YuvConversion {
         });
         let constant = format!("const ENCODED_TARGET: bool = {encoded_target};");
         let module = shader::module(device, "camera yuv", &[CAMERA_YUV, &constant]);
-        let pipeline = crate::passes::bufferless_pipeline(
+        let pipeline = render::passes::bufferless_pipeline(
             device,
-            crate::passes::BufferlessPipeline {
+            render::passes::BufferlessPipeline {
                 label: "camera yuv",
                 module: &module,
                 vertex: "vs_main",
@@ -90,7 +90,7 @@ impl YuvConversion {
                 depth: None,
             },
         );
-        let format = crate::gpu::uniform_buffer(
+        let format = render::gpu::uniform_buffer(
             device,
             "camera yuv format",
             size_of::<CameraFormatUniform>() as u64,
@@ -111,14 +111,14 @@ impl CameraTextures {
         let planes = match image {
             CameraImage::Rgba(_) => None,
             CameraImage::Yuv420(_) => {
-                let luma = crate::gpu::texture_2d(
+                let luma = render::gpu::texture_2d(
                     device,
                     "camera luma",
                     size,
                     wgpu::TextureFormat::R8Unorm,
                     texture_usage,
                 );
-                let chroma = crate::gpu::texture_2d(
+                let chroma = render::gpu::texture_2d(
                     device,
                     "camera chroma",
                     camera_image::Yuv420::chroma_size(size[0], size[1]),
@@ -165,7 +165,7 @@ impl CameraTextures {
             ),
             Some(_) => (srgb, converted, &[]),
         };
-        let texture = crate::gpu::texture_2d_with_views(
+        let texture = render::gpu::texture_2d_with_views(
             device,
             "camera image",
             size,
@@ -212,7 +212,7 @@ impl CameraTextures {
                 let view = self.texture.create_view(&Default::default());
                 let mut enc = gpu.device.create_command_encoder(&Default::default());
                 {
-                    let mut pass = crate::gpu::colour_pass(
+                    let mut pass = render::gpu::colour_pass(
                         &mut enc,
                         "camera yuv",
                         &view,
@@ -270,7 +270,7 @@ mod tests {
     /// the transfer function and back).
     #[test]
     fn yuv_planes_convert_on_the_gpu_as_the_cpu_reference() {
-        let Some(gpu) = crate::gpu::test_gpu() else {
+        let Some(gpu) = render::gpu::test_gpu() else {
             return;
         };
         let (w, h) = (37u32, 22u32);

@@ -9,9 +9,9 @@
 use glam::{DVec2, DVec3};
 
 use super::caustics::{CausticRegion, MAX_INTENSITY};
-use crate::frame::{FrameContext, OffscreenTimestamps};
-use crate::gpu::Gpu;
-use crate::shader;
+use render::frame::{FrameContext, OffscreenTimestamps};
+use render::gpu::Gpu;
+use render::shader;
 
 /// The caustic map's texel format: additive, filterable, values well above 1.
 pub const CAUSTIC_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
@@ -65,7 +65,7 @@ impl CausticMethod {
 
 /// The pass: its grid uniform (group 1) and the method's pipelines and buffers.
 pub struct CausticMapPass {
-    uniform: crate::gpu::UniformGroup,
+    uniform: render::gpu::UniformGroup,
     method: Method,
     /// Grid points per side and texels per side of the prepared map.
     side: u32,
@@ -131,20 +131,20 @@ impl CausticMapPass {
     ) -> CausticMapPass {
         let device = &gpu.device;
         let uniform =
-            crate::gpu::UniformGroup::new(device, "caustic grid", size_of::<CausticGrid>() as u64);
+            render::gpu::UniformGroup::new(device, "caustic grid", size_of::<CausticGrid>() as u64);
         let method = match method {
             CausticMethod::Raster => {
                 let module = shader::module(device, "caustic map", &[super::passes::CAUSTIC_MAP]);
-                let pipeline = crate::passes::bufferless_pipeline(
+                let pipeline = render::passes::bufferless_pipeline(
                     device,
-                    crate::passes::BufferlessPipeline {
+                    render::passes::BufferlessPipeline {
                         label: "caustic map",
                         module: &module,
                         vertex: "vs_main",
                         fragment: "fs_main",
                         layouts: Some(&[Some(frame_layout), Some(&uniform.layout)]),
                         format: CAUSTIC_MAP_FORMAT,
-                        blend: Some(crate::passes::ADDITIVE),
+                        blend: Some(render::passes::ADDITIVE),
                         depth: None,
                     },
                 );
@@ -236,7 +236,7 @@ impl CausticMapPass {
         let writes = |index| OffscreenTimestamps::render(timestamps, index, count);
         match &self.method {
             Method::Raster { pipeline, indices } => {
-                let mut pass = crate::gpu::colour_pass(
+                let mut pass = render::gpu::colour_pass(
                     enc,
                     "caustic map",
                     target,
@@ -253,7 +253,7 @@ impl CausticMapPass {
             }
             Method::Scatter(scatter) => {
                 let Some(b) = &scatter.buffers else {
-                    crate::gpu::colour_pass(
+                    render::gpu::colour_pass(
                         enc,
                         "caustic map",
                         target,
@@ -276,7 +276,7 @@ impl CausticMapPass {
                     pass.set_pipeline(&scatter.triangles);
                     pass.dispatch_workgroups((cells * cells).div_ceil(64), 1, 1);
                 }
-                let mut pass = crate::gpu::colour_pass(
+                let mut pass = render::gpu::colour_pass(
                     enc,
                     "caustic map",
                     target,
@@ -319,7 +319,7 @@ fn grid_indices(gpu: &Gpu, side: u32) -> (u32, wgpu::Buffer, u32) {
 
 impl Scatter {
     fn new(gpu: &Gpu, frame_layout: &wgpu::BindGroupLayout) -> Scatter {
-        use crate::gpu::layout;
+        use render::gpu::layout;
         let device = &gpu.device;
         let compute = wgpu::ShaderStages::COMPUTE;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -358,9 +358,9 @@ impl Scatter {
                 cache: None,
             })
         };
-        let resolve = crate::passes::bufferless_pipeline(
+        let resolve = render::passes::bufferless_pipeline(
             device,
-            crate::passes::BufferlessPipeline {
+            render::passes::BufferlessPipeline {
                 label: "caustic resolve",
                 module: &module,
                 vertex: "vs_resolve",

@@ -7,8 +7,8 @@
 
 use glam::{DMat4, DVec2, DVec3};
 
-use crate::camera::Camera;
-use crate::optics::{PinholeCamera, Plane};
+use render::camera::Camera;
+use render::optics::{PinholeCamera, Plane};
 
 pub use camera_image::{CameraImage, LayoutError, StridedYuv420, Yuv420, YuvRange, YuvToRgb};
 

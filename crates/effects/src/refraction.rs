@@ -20,7 +20,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::optics::{N_AIR, N_WATER, PinholeCamera, Plane, refract};
+use render::optics::{N_AIR, N_WATER, PinholeCamera, Plane, refract};
 
 /// How far outside the image (UV units) the refracted sample fades out completely.
 pub const EDGE_FADE: f64 = 0.05;
@@ -91,7 +91,7 @@ mod tests {
     use glam::DQuat;
 
     fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
-        super::super::test_camera(eye, target, 400.0)
+        crate::test_camera(eye, target, 400.0)
     }
 
     #[test]

@@ -12,10 +12,10 @@ use wgpu::util::DeviceExt;
 use super::camera_frame::CameraFrame;
 use super::passes::{ArConfig, OFFSCREEN_REUSED, add_effect_passes};
 use super::{Effect, EffectSet};
-use crate::golden::{Region, compare, differing, verify};
-use crate::gpu::{Gpu, test_gpu};
-use crate::optics::{N_AIR, N_WATER, fresnel, refract, schlick};
-use crate::{OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene, render_image};
+use render::golden::{Region, compare, differing, verify};
+use render::gpu::{Gpu, test_gpu};
+use render::optics::{N_AIR, N_WATER, fresnel, refract, schlick};
+use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene, render_image};
 
 const SIZE: [u32; 2] = [128, 96];
 
@@ -81,7 +81,7 @@ const EFFECT_LIMITS: [(Effect, &str, f64); 4] = [
 
 fn golden_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("src/effects/golden")
+        .join("golden")
         .join(format!("{name}.png"))
 }
 
@@ -111,7 +111,7 @@ fn regions(effects: EffectSet) -> Vec<Region> {
 fn golden(name: &str, effects: EffectSet) {
     let Some(gpu) = test_gpu() else { return };
     let img = render_with(&gpu, &table_scene(40.0), Some(effects));
-    crate::golden::check_regions(&golden_path(name), &img, &regions(effects))
+    render::golden::check_regions(&golden_path(name), &img, &regions(effects))
         .unwrap_or_else(|e| panic!("{e}"));
 }
 
@@ -245,7 +245,7 @@ fn wgsl_optics(gpu: &Gpu, cosines: &[f32]) -> Vec<[f32; 4]> {
     let device = &gpu.device;
     let src = format!(
         "{}\n{}",
-        crate::shader::OPTICS,
+        render::shader::OPTICS,
         r#"
 @group(0) @binding(0) var<storage, read> input: array<f32>;
 @group(0) @binding(1) var<storage, read_write> output: array<vec4<f32>>;
@@ -284,7 +284,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let group = crate::gpu::buffer_group(
+    let group = render::gpu::buffer_group(
         device,
         "optics parity",
         &pipeline.get_bind_group_layout(0),
@@ -417,7 +417,7 @@ fn a_paused_still_frame_reuses_the_reflection_and_caustics_and_looks_the_same() 
     let cfg = config(EffectSet::ALL);
     let frame = frame_for(&scene, &cfg);
     add_effect_passes(&mut r, &gpu, cfg, frame);
-    let reason = |report: &crate::FrameReport| {
+    let reason = |report: &render::FrameReport| {
         let p = report.passes.iter().find(|p| p.name == "ar_water");
         p.expect("ar_water").reason.clone()
     };
@@ -505,7 +505,7 @@ fn wgsl_current_matches_the_f64_potential_flow() {
     let points: Vec<[f32; 2]> = (0..41 * 41)
         .map(|k| [(k % 41) as f32 - 20.0, (k / 41) as f32 - 15.0 + 0.37])
         .collect();
-    let src = crate::shader::source(&[
+    let src = render::shader::source(&[
         super::passes::EFFECTS_COMMON,
         super::passes::FLOWMAP,
         r#"
@@ -664,12 +664,12 @@ fn gpu_caustic_map_matches_the_f64_area_ratio() {
 fn caustic_map_against_the_reference(gpu: &Gpu, method: super::caustic_map::CausticMethod) {
     use super::caustic_map::{CAUSTIC_MAP_FORMAT, CausticMapPass};
     use super::caustics::{CausticRegion, area_ratio};
-    use crate::frame::{FrameBindings, FrameContext};
+    use render::frame::{FrameBindings, FrameContext};
     let (src, out, depth) = (48usize, 64u32, 3.0);
     let mut pass =
         CausticMapPass::with_method(gpu, &FrameBindings::new(&gpu.device).layout, method);
     let bindings = FrameBindings::new(&gpu.device);
-    let target = crate::gpu::texture_2d(
+    let target = render::gpu::texture_2d(
         &gpu.device,
         "caustic map",
         [out, out],
