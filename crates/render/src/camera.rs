@@ -3,7 +3,7 @@
 //! view-projection that shaders get in *local* metres (world minus the frame's origin), so the
 //! matrix never holds a large coordinate. [`OrbitCamera`] is the desktop app's mouse camera.
 
-use glam::{DMat4, DVec2, DVec3, DVec4, Mat4};
+use glam::{DMat4, DVec2, DVec3, DVec4};
 
 /// A perspective camera in world metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -81,14 +81,9 @@ impl Camera {
         glam::dcamera::rh::view::look_at_mat4(self.eye - o, self.target - o, self.up)
     }
 
-    /// The same matrix in f32 for a shader (every entry is a local, small number).
-    pub fn view_proj_local_f32(&self, origin: DVec2, aspect: f64) -> Mat4 {
-        self.view_proj_local(origin, aspect).as_mat4()
-    }
-
     /// Pixels per metre of something at distance `d` metres, facing the camera, on a viewport
     /// `height` pixels tall.
-    pub fn pixels_per_metre(&self, d: f64, height: u32) -> f64 {
+    pub(crate) fn pixels_per_metre(&self, d: f64, height: u32) -> f64 {
         f64::from(height) / (2.0 * d.max(1e-6) * (self.fov_y / 2.0).tan())
     }
 }
@@ -102,7 +97,7 @@ pub struct Frustum {
 
 impl Frustum {
     /// Gribb–Hartmann extraction from a view-projection with depth range [0, 1].
-    pub fn from_matrix(m: DMat4) -> Frustum {
+    pub(crate) fn from_matrix(m: DMat4) -> Frustum {
         let r = [m.row(0), m.row(1), m.row(2), m.row(3)];
         let planes = [
             r[3] + r[0],
@@ -119,7 +114,7 @@ impl Frustum {
 
     /// False when the axis-aligned box [lo, hi] lies entirely outside one plane (conservative:
     /// a box that is reported visible may still be off screen).
-    pub fn intersects_box(&self, lo: DVec3, hi: DVec3) -> bool {
+    pub(crate) fn intersects_box(&self, lo: DVec3, hi: DVec3) -> bool {
         self.planes.iter().all(|p| {
             // The box corner furthest along the plane's normal.
             let c = DVec3::new(
@@ -148,8 +143,8 @@ pub struct OrbitCamera {
 }
 
 impl OrbitCamera {
-    pub const MIN_PITCH: f64 = 2.0 * std::f64::consts::PI / 180.0;
-    pub const MAX_PITCH: f64 = 89.0 * std::f64::consts::PI / 180.0;
+    pub(crate) const MIN_PITCH: f64 = 2.0 * std::f64::consts::PI / 180.0;
+    pub(crate) const MAX_PITCH: f64 = 89.0 * std::f64::consts::PI / 180.0;
 
     pub fn camera(&self) -> Camera {
         let (sy, cy) = self.yaw.sin_cos();

@@ -53,11 +53,11 @@ use ocean::WaveSet;
 use crate::camera::Frustum;
 
 /// Cells per side of a culling tile.
-pub const TILE_CELLS: u32 = 8;
+pub(crate) const TILE_CELLS: u32 = 8;
 /// Most clip-map levels (the frame uniform's wave masks hold 16).
-pub const MAX_LEVELS: u32 = 16;
+pub(crate) const MAX_LEVELS: u32 = 16;
 /// Default outer fraction of a level over which vertices morph.
-pub const DEFAULT_MORPH_BAND: f64 = 0.2;
+pub(crate) const DEFAULT_MORPH_BAND: f64 = 0.2;
 /// Most waves a shader evaluates (the frame uniform's wave array).
 pub const MAX_WAVES: usize = 64;
 
@@ -94,12 +94,12 @@ impl ErrorTarget {
     }
 
     /// Error allowed at distance `d` metres, pixels.
-    pub fn pixels_at(&self, d: f64) -> f64 {
+    pub(crate) fn pixels_at(&self, d: f64) -> f64 {
         self.pixels * (d / GRADED_FROM).max(1.0).powf(self.distance_exponent)
     }
 
     /// Metres that one pixel spans at distance `d`.
-    pub fn metres_per_pixel(&self, d: f64) -> f64 {
+    pub(crate) fn metres_per_pixel(&self, d: f64) -> f64 {
         d * 2.0 * (self.fov_y / 2.0).tan() / f64::from(self.viewport_height)
     }
 }
@@ -115,7 +115,7 @@ pub struct LevelRatio {
 
 impl LevelRatio {
     /// The classic clip-map's doubling.
-    pub const DOUBLING: LevelRatio = LevelRatio { p: 2, q: 1 };
+    pub(crate) const DOUBLING: LevelRatio = LevelRatio { p: 2, q: 1 };
 
     /// p/q.
     pub fn value(self) -> f64 {
@@ -126,7 +126,7 @@ impl LevelRatio {
     /// nearest (fine point i s lies at i q/p coarse cells), ties to the lower one. Monotone
     /// and onto (a coarse cell is p/q ≥ 1 fine cells wide), exact on the shared lattice
     /// (i a multiple of p maps to i q/p).
-    pub fn coarse_index(self, i: i64) -> i64 {
+    pub(crate) fn coarse_index(self, i: i64) -> i64 {
         let (p, q) = (i64::from(self.p), i64::from(self.q));
         (2 * i * q + p - 1).div_euclid(2 * p)
     }
@@ -193,13 +193,13 @@ impl ClipMapConfig {
     }
 
     /// World (x, z) `w` in lattice coordinates (rotated by −angle).
-    pub fn to_lattice(&self, w: DVec2) -> DVec2 {
+    pub(crate) fn to_lattice(&self, w: DVec2) -> DVec2 {
         let (s, c) = self.angle.sin_cos();
         DVec2::new(c * w.x + s * w.y, c * w.y - s * w.x)
     }
 
     /// Lattice coordinates `a` in world (x, z) (rotated by angle).
-    pub fn to_world(&self, a: DVec2) -> DVec2 {
+    pub(crate) fn to_world(&self, a: DVec2) -> DVec2 {
         let (s, c) = self.angle.sin_cos();
         DVec2::new(c * a.x - s * a.y, s * a.x + c * a.y)
     }
@@ -223,7 +223,7 @@ impl ClipMapConfig {
     /// Grid to which level `l`'s centre snaps, metres: p s_l, the smallest length on both
     /// level l's lattice and level l + 1's (q s_{l+1}), so the level's border (its half side
     /// is a multiple of it) lies on the coarser lattice.
-    pub fn snap(&self, l: u32) -> f64 {
+    pub(crate) fn snap(&self, l: u32) -> f64 {
         f64::from(self.ratio.p) * self.cell(l)
     }
 
@@ -234,7 +234,7 @@ impl ClipMapConfig {
     }
 
     /// Triangles of the whole map without culling: 2n₀² + Σ 2(n_L² − (n_{L−1} q/p)²).
-    pub fn full_triangles(&self) -> u64 {
+    pub(crate) fn full_triangles(&self) -> u64 {
         let (p, q) = (u64::from(self.ratio.p), u64::from(self.ratio.q));
         let mut hole = 0;
         let mut t = 0;
@@ -249,7 +249,7 @@ impl ClipMapConfig {
     /// Does level `l`'s square, wherever the eye puts the centres, lie inside level `l + 1`
     /// (inside its unmorphed part unless `l + 1` is the last level, which does not morph)?
     /// This keeps the coarse vertices that the finer border meets at rest (no cracks).
-    pub fn nests(&self, l: u32) -> bool {
+    pub(crate) fn nests(&self, l: u32) -> bool {
         let inner = self.half_extent(l) + self.max_centre_offset(l);
         let outer = self.half_extent(l + 1);
         if l + 2 >= self.levels() {
@@ -455,7 +455,7 @@ pub const BASE_LADDER_STEPS: u32 = 8;
 
 /// The interpolation bound Σ A k² (extent along D)² of a lattice turned by `angle` radians
 /// that keeps all of `sea`'s waves, 1/m (per cell² of a unit cell).
-pub fn lattice_bound(sea: &WaveSet, angle: f64) -> f64 {
+pub(crate) fn lattice_bound(sea: &WaveSet, angle: f64) -> f64 {
     let cfg = ClipMapConfig {
         angle,
         ..ClipMapConfig::uniform(1, 8, 1.0)
@@ -470,14 +470,14 @@ pub fn lattice_bound(sea: &WaveSet, angle: f64) -> f64 {
 }
 
 /// Lattice orientations [`lattice_angle`] tries: every degree of a half turn.
-pub const LATTICE_ANGLES: u32 = 180;
+pub(crate) const LATTICE_ANGLES: u32 = 180;
 
 /// The lattice orientation, radians, with the smallest interpolation bound Σ A k² (extent
 /// along D)² over the sea's waves (the bound of a level that keeps them all). A wave running
 /// along the cells' split diagonal errs twice as much as one running across it (its triangles
 /// are √2 against 1/√2 cells long along it), so the lattice turns its diagonal across the
 /// short, curved waves. The first best of whole degrees in [0°, 180°).
-pub fn lattice_angle(sea: &WaveSet) -> f64 {
+pub(crate) fn lattice_angle(sea: &WaveSet) -> f64 {
     (0..LATTICE_ANGLES)
         .map(|deg| f64::from(deg).to_radians())
         .map(|a| (lattice_bound(sea, a), a))
@@ -492,7 +492,7 @@ pub fn lattice_angle(sea: &WaveSet) -> f64 {
 /// (in lattice coordinates): the triangles are (0,0),(0,1),(1,1) and (0,0),(1,1),(1,0) in
 /// cell units. Between 1/√2 (a wave across the split diagonal), 1 (along an axis) and √2
 /// (along the diagonal).
-pub fn extent_along(d: [f64; 2]) -> f64 {
+pub(crate) fn extent_along(d: [f64; 2]) -> f64 {
     let range = |a: f64, b: f64, c: f64| a.max(b).max(c) - a.min(b).min(c);
     let diag = d[0] + d[1];
     range(0.0, d[1], diag).max(range(0.0, d[0], diag))
@@ -556,12 +556,12 @@ impl ClipMesh {
 impl ClipMapConfig {
     /// Level `l`'s centre in its own lattice indices for an eye at world (x, z) `eye`: the eye
     /// snapped to [`ClipMapConfig::snap`].
-    pub fn centre_index(&self, l: u32, eye: DVec2) -> I64Vec2 {
+    pub(crate) fn centre_index(&self, l: u32, eye: DVec2) -> I64Vec2 {
         (self.to_lattice(eye) / self.snap(l)).round().as_i64vec2() * i64::from(self.ratio.p)
     }
 
     /// Lattice coordinates of level `l`'s centre for an eye at world (x, z) `eye`.
-    pub fn centre_lattice(&self, l: u32, eye: DVec2) -> DVec2 {
+    pub(crate) fn centre_lattice(&self, l: u32, eye: DVec2) -> DVec2 {
         self.centre_index(l, eye).as_dvec2() * self.cell(l)
     }
 
@@ -571,7 +571,7 @@ impl ClipMapConfig {
     }
 
     /// The local origin of the mesh for an eye at world (x, z): the coarsest centre.
-    pub fn origin_for(&self, eye: DVec2) -> DVec2 {
+    pub(crate) fn origin_for(&self, eye: DVec2) -> DVec2 {
         self.centre(self.levels() - 1, eye)
     }
 
@@ -606,7 +606,7 @@ impl ClipMapConfig {
     /// `l` (at (i s_l, j s_l)) whose level centre has index `c`: it slides towards the
     /// coarser level's lattice point ([`LevelRatio::coarse_index`]) and reaches it on the
     /// border, where the position is the coarse vertex's own, bit for bit.
-    pub fn morphed_vertex(&self, l: u32, i: i64, j: i64, c: I64Vec2) -> (DVec2, f64) {
+    pub(crate) fn morphed_vertex(&self, l: u32, i: i64, j: i64, c: I64Vec2) -> (DVec2, f64) {
         let s = self.cell(l);
         let p = DVec2::new(i as f64 * s, j as f64 * s);
         let m = self.morph(l, (i - c.x).abs().max((j - c.y).abs()));
@@ -765,7 +765,7 @@ impl ClipMapConfig {
     }
 
     /// Triangles that [`ClipMapConfig::build`] would emit, without building the mesh.
-    pub fn triangles_drawn(&self, eye: DVec2, culling: &Culling) -> u64 {
+    pub(crate) fn triangles_drawn(&self, eye: DVec2, culling: &Culling) -> u64 {
         self.visit_tiles(eye, culling, |_, _, _| {})
             .iter()
             .map(|s| s.triangles)
@@ -824,7 +824,7 @@ impl ClipMapConfig {
     /// displaced by the waves `kept[level]`), or `None` outside the map. Used to *measure* the
     /// mesh's height error against the analytic sea; the morph band blends this level's
     /// surface with the next coarser one's, each measured here.
-    pub fn interpolated_height(
+    pub(crate) fn interpolated_height(
         &self,
         sea: &WaveSet,
         kept: &[Vec<usize>],
@@ -865,8 +865,9 @@ impl ClipMapConfig {
 
 /// The displacement that the water pass's vertex shader gives vertex `v`, evaluated on the CPU
 /// in f64 from the sea at race time `t`: the kept waves of `v.level` at weight 1 where the next
-/// level keeps them too, `v.fade` where it does not. Used by tests and the mesh bench.
-pub fn vertex_displacement(
+/// level keeps them too, `v.fade` where it does not. Used by the tests.
+#[cfg(test)]
+pub(crate) fn vertex_displacement(
     sea: &WaveSet,
     plan: &[LevelPlan],
     v: &ClipVertex,

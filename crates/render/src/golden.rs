@@ -37,7 +37,7 @@ pub fn test_scene(t: f64, boats: Vec<crate::Boat>) -> crate::Scene {
 /// Largest mean absolute difference per channel, levels.
 pub const MEAN_TOLERANCE: f64 = 2.0;
 /// A pixel is off when some channel differs by more than this many levels.
-pub const PIXEL_TOLERANCE: u8 = 24;
+pub(crate) const PIXEL_TOLERANCE: u8 = 24;
 /// Largest fraction of pixels off.
 pub const MAX_OFF_FRACTION: f64 = 0.01;
 
@@ -50,7 +50,11 @@ pub fn compare(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
 
 /// [`compare`] over the pixels where `mask` (row-major, one per pixel) is true; an empty
 /// region or a mask of the wrong size is entirely off.
-pub fn compare_in(a: &image::RgbaImage, b: &image::RgbaImage, mask: Option<&[bool]>) -> (f64, f64) {
+pub(crate) fn compare_in(
+    a: &image::RgbaImage,
+    b: &image::RgbaImage,
+    mask: Option<&[bool]>,
+) -> (f64, f64) {
     let n_pixels = (a.width() * a.height()) as usize;
     if a.dimensions() != b.dimensions()
         || n_pixels == 0
@@ -91,7 +95,7 @@ pub struct Region {
 
 /// Should goldens be rewritten? `REGATTA_UPDATE_GOLDEN` = `1`/`true` yes; unset, empty,
 /// `0`/`false` no; anything else is an error (a typo must not rewrite every golden).
-pub fn update_requested(value: Option<&str>) -> Result<bool, String> {
+pub(crate) fn update_requested(value: Option<&str>) -> Result<bool, String> {
     match value.map(|v| v.trim().to_ascii_lowercase()).as_deref() {
         None | Some("" | "0" | "false") => Ok(false),
         Some("1" | "true") => Ok(true),

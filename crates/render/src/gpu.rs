@@ -13,7 +13,7 @@ use wgpu::{Backends, Features};
 use crate::renderer::DEPTH_FORMAT;
 
 /// Features Regatta uses when the adapter has them; none is required.
-pub const OPTIONAL_FEATURES: Features = Features::TIMESTAMP_QUERY
+pub(crate) const OPTIONAL_FEATURES: Features = Features::TIMESTAMP_QUERY
     .union(Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
     .union(Features::PIPELINE_STATISTICS_QUERY);
 
@@ -238,7 +238,7 @@ impl Gpu {
     }
 
     /// Read a buffer written by the GPU (it must have `MAP_READ`) into bytes.
-    pub fn read_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    pub(crate) fn read_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
         let (tx, rx) = std::sync::mpsc::channel();
         buffer.map_async(wgpu::MapMode::Read, .., move |r| {
             let _ = tx.send(r);
@@ -531,7 +531,7 @@ pub fn test_gpu_on(backends: Backends) -> Option<Arc<Gpu>> {
 
 /// The environment variable naming a file that gets one line per skipped test;
 /// scripts/test.sh sets it, prints the count at the end and fails under CI when it is not 0.
-pub const SKIP_LOG_ENV: &str = "REGATTA_SKIP_LOG";
+pub(crate) const SKIP_LOG_ENV: &str = "REGATTA_SKIP_LOG";
 
 /// Report a test that skips (no adapter, no display server): "skipped: REASON" on stderr, which
 /// the harness hides for a passing test, and a line "TEST: REASON" appended to the file named
@@ -561,11 +561,6 @@ fn append_skip(log: &std::path::Path, test: &str, reason: &str) -> std::io::Resu
 /// The device for a GPU test on any backend (lavapipe in CI); see [`test_gpu_on`].
 pub fn test_gpu() -> Option<Arc<Gpu>> {
     test_gpu_on(Backends::all())
-}
-
-/// The device and queue for a GPU test, for code that needs nothing else; see [`test_gpu_on`].
-pub fn test_device() -> Option<(wgpu::Device, wgpu::Queue)> {
-    test_gpu().map(|g| (g.device.clone(), g.queue.clone()))
 }
 
 /// Bind group layout entries, spelt once: a uniform buffer, a storage buffer, a filterable 2-D

@@ -5,20 +5,20 @@
 /// One vertex of a procedural mesh (28 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct MeshVertex {
+pub(crate) struct MeshVertex {
     pub position: [f32; 3],
     pub normal: [f32; 3],
     /// 0 = hull (instance colour), 1 = sail, 2 = deck and mast.
     pub part: u32,
 }
 
-pub const HULL: u32 = 0;
-pub const SAIL: u32 = 1;
-pub const DARK: u32 = 2;
+pub(crate) const HULL: u32 = 0;
+pub(crate) const SAIL: u32 = 1;
+pub(crate) const DARK: u32 = 2;
 
 /// A flat-shaded triangle list.
 #[derive(Debug, Clone, Default)]
-pub struct Mesh {
+pub(crate) struct Mesh {
     pub vertices: Vec<MeshVertex>,
 }
 
@@ -47,7 +47,8 @@ impl Mesh {
         self.tri(a, c, d, part);
     }
 
-    pub fn triangles(&self) -> u64 {
+    #[cfg(test)]
+    pub(crate) fn triangles(&self) -> u64 {
         (self.vertices.len() / 3) as u64
     }
 }

@@ -47,7 +47,7 @@ pub mod frame;
 #[doc(hidden)]
 pub mod golden;
 pub mod gpu;
-pub mod hull;
+pub(crate) mod hull;
 pub mod mesh_error;
 pub mod optics;
 pub mod passes;

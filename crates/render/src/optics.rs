@@ -78,7 +78,7 @@ pub fn fresnel(cos_i: f64, n1: f64, n2: f64) -> Fresnel {
 }
 
 /// Reflectance at normal incidence, R0 = ((n1 − n2)/(n1 + n2))².
-pub fn reflectance_normal(n1: f64, n2: f64) -> f64 {
+pub(crate) fn reflectance_normal(n1: f64, n2: f64) -> f64 {
     ((n1 - n2) / (n1 + n2)).powi(2)
 }
 
@@ -141,7 +141,8 @@ pub struct Plane {
 
 impl Plane {
     /// The plane through `point` with normal `normal` (normalised here; must not be zero).
-    pub fn from_point_normal(point: DVec3, normal: DVec3) -> Plane {
+    #[cfg(test)]
+    pub(crate) fn from_point_normal(point: DVec3, normal: DVec3) -> Plane {
         let normal = normal.normalize();
         Plane {
             normal,
@@ -158,12 +159,12 @@ impl Plane {
     }
 
     /// Signed distance of `p` from the plane (positive on the front side).
-    pub fn signed_distance(&self, p: DVec3) -> f64 {
+    pub(crate) fn signed_distance(&self, p: DVec3) -> f64 {
         self.normal.dot(p) + self.d
     }
 
     /// The plane as the 4-vector (a, b, c, d), for homogeneous products.
-    pub fn as_vec4(&self) -> DVec4 {
+    pub(crate) fn as_vec4(&self) -> DVec4 {
         self.normal.extend(self.d)
     }
 

@@ -17,7 +17,7 @@ pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Default screen-space error target of the clip-map, pixels.
 pub const DEFAULT_ERROR_PX: f64 = 1.0;
 /// Wake culling tolerance: height error allowed per left-out wake source, metres.
-pub const WAKE_EPSILON_M: f64 = 1e-4;
+pub(crate) const WAKE_EPSILON_M: f64 = 1e-4;
 
 /// Options of a [`Renderer`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -3,23 +3,23 @@
 //! file(s), concatenated here.
 
 /// Shared structs, bindings and functions (the frame uniform, waves, sky).
-pub const COMMON: &str = include_str!("../shaders/common.wgsl");
+pub(crate) const COMMON: &str = include_str!("../shaders/common.wgsl");
 /// Fresnel, Snell, reflection (the effects' optics, mirrored in f64 by `optics.rs`).
 pub const OPTICS: &str = include_str!("../shaders/optics.wgsl");
-pub const SKY: &str = include_str!("../shaders/sky.wgsl");
+pub(crate) const SKY: &str = include_str!("../shaders/sky.wgsl");
 /// The stretch of a frame drawn at a fraction of the screen (no shared files).
-pub const UPSCALE: &str = include_str!("../shaders/upscale.wgsl");
+pub(crate) const UPSCALE: &str = include_str!("../shaders/upscale.wgsl");
 pub const WATER: &str = include_str!("../shaders/water.wgsl");
 pub const BOATS: &str = include_str!("../shaders/boats.wgsl");
-pub const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
+pub(crate) const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
 /// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` (`ocean::wake::gpu` mirrors it in
 /// f32), included once, there.
-pub const WAKE: &str = ocean::wake::WAKE_WGSL;
+pub(crate) const WAKE: &str = ocean::wake::WAKE_WGSL;
 /// The water pass's compute stage (sea and wakes per vertex, bind group 1) and the vertex
 /// stages that draw its output, or displace by the sea alone without compute.
-pub const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
-pub const WATER_DISPLACED: &str = include_str!("../shaders/water_displaced.wgsl");
-pub const WATER_NO_WAKES: &str = include_str!("../shaders/water_no_wakes.wgsl");
+pub(crate) const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
+pub(crate) const WATER_DISPLACED: &str = include_str!("../shaders/water_displaced.wgsl");
+pub(crate) const WATER_NO_WAKES: &str = include_str!("../shaders/water_no_wakes.wgsl");
 
 /// A WGSL `f32` literal of `v` (always with a decimal point or exponent).
 fn wgsl_f32(v: f64) -> String {

@@ -24,8 +24,8 @@ pub const WAKE_BUFFER_BUDGET_BYTES: u64 = 64 << 20;
 
 /// Bins per side of the wake grid, and how far (m) around a bin its list reaches: the
 /// gradient is closed-form, so the margin only covers rounding of the bin lookup.
-pub const WAKE_BINS: u32 = 128;
-pub const WAKE_MARGIN_M: f32 = 0.5;
+pub(crate) const WAKE_BINS: u32 = 128;
+pub(crate) const WAKE_MARGIN_M: f32 = 0.5;
 
 /// Bytes of one source in the buffer, one bin entry and one index.
 const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
@@ -34,7 +34,7 @@ const INDEX_BYTES: u64 = 4;
 
 /// The cap on one frame's wake buffers, bytes: `budget` within the device's limits for one
 /// storage binding and one buffer.
-pub fn wake_buffer_cap(limits: &wgpu::Limits, budget: u64) -> u64 {
+pub(crate) fn wake_buffer_cap(limits: &wgpu::Limits, budget: u64) -> u64 {
     budget
         .min(limits.max_storage_buffer_binding_size)
         .min(limits.max_buffer_size)
@@ -152,7 +152,7 @@ fn reach(sources: &[GpuWakeSource], half: f32, margin: f32) -> Option<([f32; 2],
 impl WakeBins {
     /// Bin `sources` over the rectangle their cull circles (grown by `margin`) cover, clipped
     /// to the square [−half, half]² (local metres).
-    pub fn over_reach(
+    pub(crate) fn over_reach(
         sources: &[GpuWakeSource],
         half: f32,
         max_bins: u32,

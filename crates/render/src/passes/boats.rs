@@ -15,15 +15,15 @@ use crate::shader;
 /// Per-instance data: model matrix (local metres) and colour.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct Instance {
+pub(crate) struct Instance {
     pub model: [[f32; 4]; 4],
     pub colour: [f32; 4],
 }
 
 /// Diameter of a course-mark buoy, metres.
-pub const BUOY_DIAMETER: f64 = 2.0;
+pub(crate) const BUOY_DIAMETER: f64 = 2.0;
 /// Colour of a course-mark buoy (linear RGB).
-pub const BUOY_COLOUR: [f32; 3] = [0.9, 0.25, 0.02];
+pub(crate) const BUOY_COLOUR: [f32; 3] = [0.9, 0.25, 0.02];
 
 pub struct BoatsPass {
     pipeline: wgpu::RenderPipeline,
@@ -77,7 +77,7 @@ impl BoatsPass {
     }
 
     /// The instances of a frame: boats, then buoys, each floated on the sea.
-    pub fn instances(frame: &FrameContext) -> [Vec<Instance>; 2] {
+    pub(crate) fn instances(frame: &FrameContext) -> [Vec<Instance>; 2] {
         let s = frame.scene;
         let inst = |p: DVec2, heading: f64, length: f64, beam: f64, colour: [f32; 3]| {
             let pose = float_pose(&s.sea, s.t, p, heading, length, beam);

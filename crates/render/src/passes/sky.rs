@@ -6,7 +6,7 @@ use crate::gpu::Gpu;
 use crate::passes::{PipelineSpec, pipeline};
 use crate::shader;
 
-pub struct SkyPass {
+pub(crate) struct SkyPass {
     pipeline: wgpu::RenderPipeline,
 }
 

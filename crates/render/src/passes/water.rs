@@ -136,7 +136,7 @@ const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
 
 /// The clip-map vertex buffer layout, for pipelines that draw the water mesh with another
 /// fragment shader (the AR effects' `ArWaterPass`).
-pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
+pub(crate) fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     wgpu::VertexBufferLayout {
         array_stride: size_of::<ClipVertex>() as u64,
         step_mode: wgpu::VertexStepMode::Vertex,
