@@ -2,7 +2,7 @@
 //! images of each effect. Without an adapter they skip, unless `REGATTA_REQUIRE_GPU=true`.
 //!
 //! Regenerate the golden images after an intended change of the picture:
-//! `REGATTA_UPDATE_GOLDEN=1 cargo test -p render --lib effects::gpu_tests`, then look at them.
+//! `REGATTA_UPDATE_GOLDEN=1 cargo test -p effects --lib gpu_tests`, then look at them.
 
 use std::path::PathBuf;
 

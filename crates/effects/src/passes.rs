@@ -554,7 +554,7 @@ pub struct ArWaterPass {
     scissor: Option<Scissor>,
 }
 
-/// The sky's colour at the horizon (`sky_colour_rough` in `shaders/common.wgsl`): the reflection
+/// The sky's colour at the horizon (`sky_colour_rough` in `render/shaders/common.wgsl`): the reflection
 /// texture's clear colour, shown where nothing is mirrored.
 const HORIZON_HAZE: wgpu::Color = wgpu::Color {
     r: 0.62,

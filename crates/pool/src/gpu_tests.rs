@@ -3,7 +3,7 @@
 //! demands one ([`render::gpu::test_gpu`]).
 //!
 //! Regenerate the golden images after an intended change of the picture:
-//! `REGATTA_UPDATE_GOLDEN=1 cargo test -p render --lib pool::gpu_tests`, then look at them.
+//! `REGATTA_UPDATE_GOLDEN=1 cargo test -p pool --lib gpu_tests`, then look at them.
 
 use std::path::PathBuf;
 
