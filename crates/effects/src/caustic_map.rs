@@ -13,6 +13,10 @@ use render::frame::{FrameContext, OffscreenTimestamps};
 use render::gpu::Gpu;
 use render::shader;
 
+/// The caustic map's surface grid, landed on the table (both methods).
+pub const CAUSTIC_MAP: &str = include_str!("../shaders/caustic_map.wgsl");
+/// The compute method's scatter and resolve (with [`CAUSTIC_MAP`]).
+pub const CAUSTIC_SCATTER: &str = include_str!("../shaders/caustic_scatter.wgsl");
 /// The caustic map's texel format: additive, filterable, values well above 1.
 pub const CAUSTIC_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 
@@ -134,7 +138,7 @@ impl CausticMapPass {
             render::gpu::UniformGroup::new(device, "caustic grid", size_of::<CausticGrid>() as u64);
         let method = match method {
             CausticMethod::Raster => {
-                let module = shader::module(device, "caustic map", &[super::passes::CAUSTIC_MAP]);
+                let module = shader::module(device, "caustic map", &[CAUSTIC_MAP]);
                 let pipeline = render::passes::bufferless_pipeline(
                     device,
                     render::passes::BufferlessPipeline {
@@ -338,11 +342,7 @@ impl Scatter {
                 layout::uniform(1, fragment),
             ],
         });
-        let module = shader::module(
-            device,
-            "caustic scatter",
-            &[super::passes::CAUSTIC_MAP, super::passes::CAUSTIC_SCATTER],
-        );
+        let module = shader::module(device, "caustic scatter", &[CAUSTIC_MAP, CAUSTIC_SCATTER]);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("caustic scatter"),
             bind_group_layouts: &[Some(frame_layout), Some(&layout)],

@@ -28,8 +28,8 @@ use super::scene::PoolScene;
 use render::camera::Camera;
 use render::clipmap::MAX_WAVES;
 use render::frame::{FrameBindings, FrameUniform, PassRecord};
+use render::gpu::DEPTH_FORMAT;
 use render::gpu::{DepthBuffer, Gpu, GpuError, texture_2d};
-use render::renderer::DEPTH_FORMAT;
 use render::shader;
 
 /// Spheres and ripple rings the shader holds (as `pool_common.wgsl`).

@@ -15,6 +15,9 @@ use crate::clipmap::{ClipMapConfig, ClipMesh, Culling, ErrorTarget, LevelPlan, M
 use crate::gpu::Gpu;
 use crate::scene::Scene;
 
+/// The plan's reason for every pass when the last frame is re-presented.
+pub const FRAME_REUSED: &str =
+    "timeline paused and camera still: the last frame is re-presented (a copy), nothing is drawn";
 /// The per-frame uniform, `Frame` in `shaders/common.wgsl` (bind group 0, binding 0).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -385,7 +388,7 @@ impl FrameReport {
         let mut r = self.clone();
         for p in &mut r.passes {
             p.ran = false;
-            p.reason = crate::renderer::FRAME_REUSED.into();
+            p.reason = FRAME_REUSED.into();
             p.triangles = 0;
             p.gpu_ms = None;
             p.offscreen_gpu_ms = None;

@@ -10,8 +10,8 @@ use std::sync::Arc;
 
 use wgpu::{Backends, Features};
 
-use crate::renderer::DEPTH_FORMAT;
-
+/// Depth buffer format of every pass.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Features Regatta uses when the adapter has them; none is required.
 pub(crate) const OPTIONAL_FEATURES: Features = Features::TIMESTAMP_QUERY
     .union(Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
@@ -650,6 +650,38 @@ impl UniformGroup {
             buffer,
             group,
         }
+    }
+}
+
+/// Grow-only GPU buffer upload: reuse `slot` when it is big enough.
+pub(crate) fn upload(
+    gpu: &Gpu,
+    slot: &mut Option<wgpu::Buffer>,
+    usage: wgpu::BufferUsages,
+    bytes: &[u8],
+) {
+    let need = (bytes.len() as u64)
+        .max(16)
+        .next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
+    if slot.as_ref().is_none_or(|b| b.size() < need) {
+        // Room to grow, but never past what one binding or buffer may be (a buffer bound
+        // whole must fit the binding limit).
+        let limits = gpu.device.limits();
+        let most = limits
+            .max_buffer_size
+            .min(limits.max_storage_buffer_binding_size)
+            .max(need);
+        *slot = Some(gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("pass data"),
+            size: need.next_power_of_two().min(most),
+            usage: usage | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        }));
+    }
+    if let Some(b) = slot
+        && !bytes.is_empty()
+    {
+        gpu.queue.write_buffer(b, 0, bytes);
     }
 }
 

@@ -57,7 +57,7 @@ pub mod shader;
 pub mod wake_bins;
 
 pub use camera::{Camera, OrbitCamera};
-pub use frame::{FrameReport, Pass};
+pub use frame::{FRAME_REUSED, FrameReport, Pass};
 pub use gpu::{Gpu, GpuError};
-pub use renderer::{FRAME_REUSED, OFFSCREEN_FORMAT, RenderOptions, Renderer, render_image};
+pub use renderer::{OFFSCREEN_FORMAT, RenderOptions, Renderer, render_image};
 pub use scene::{Boat, Mark, Scene};

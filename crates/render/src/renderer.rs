@@ -12,8 +12,9 @@ use crate::gpu::{Gpu, GpuError};
 use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
 use crate::scene::Scene;
 
-/// Depth buffer format of every pass.
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Depth buffer format of every pass (defined beside the device helpers that make depth
+/// buffers; named here too for the passes that plug into the renderer).
+pub use crate::gpu::DEPTH_FORMAT;
 /// Default screen-space error target of the clip-map, pixels.
 pub const DEFAULT_ERROR_PX: f64 = 1.0;
 /// Wake culling tolerance: height error allowed per left-out wake source, metres.
@@ -71,10 +72,6 @@ struct Timer {
     resolve: wgpu::Buffer,
     read: wgpu::Buffer,
 }
-
-/// The plan's reason for every pass when the last frame is re-presented.
-pub const FRAME_REUSED: &str =
-    "timeline paused and camera still: the last frame is re-presented (a copy), nothing is drawn";
 
 /// What a frame was drawn from, to tell whether the next one would look the same.
 #[derive(Debug, Clone, PartialEq)]
@@ -340,7 +337,7 @@ impl Renderer {
     /// With [`RenderOptions::keep_still_frames`], a frame that looks like the last one (same
     /// scene, size and inputs: the timeline paused and the camera still) is not drawn again:
     /// the second identical frame is kept, and from the third on the kept copy is
-    /// re-presented, every pass recorded as skipped with [`FRAME_REUSED`].
+    /// re-presented, every pass recorded as skipped with [`crate::frame::FRAME_REUSED`].
     ///
     /// A device error while the frame is recorded (validation, out of memory, internal) is
     /// caught in error scopes, logged, and fails this frame with one line; the renderer and

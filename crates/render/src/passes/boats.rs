@@ -5,9 +5,8 @@
 use glam::{DVec2, DVec3};
 
 use crate::frame::{FrameContext, Pass, Targets};
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, upload};
 use crate::hull::{self, MeshVertex};
-use crate::passes::water::upload;
 use crate::passes::{PipelineSpec, pipeline};
 use crate::scene::{float_matrix, float_pose};
 use crate::shader;

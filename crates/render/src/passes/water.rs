@@ -12,7 +12,7 @@
 
 use crate::clipmap::ClipVertex;
 use crate::frame::{FrameContext, Pass, Targets};
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, upload};
 use crate::passes::{PipelineSpec, pipeline};
 use crate::shader;
 
@@ -164,38 +164,6 @@ impl WaterPass {
         pass.set_index_buffer(i.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..self.index_count, 0, 0..1);
         u64::from(self.index_count / 3)
-    }
-}
-
-/// Grow-only GPU buffer upload: reuse `slot` when it is big enough.
-pub(crate) fn upload(
-    gpu: &Gpu,
-    slot: &mut Option<wgpu::Buffer>,
-    usage: wgpu::BufferUsages,
-    bytes: &[u8],
-) {
-    let need = (bytes.len() as u64)
-        .max(16)
-        .next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
-    if slot.as_ref().is_none_or(|b| b.size() < need) {
-        // Room to grow, but never past what one binding or buffer may be (a buffer bound
-        // whole must fit the binding limit).
-        let limits = gpu.device.limits();
-        let most = limits
-            .max_buffer_size
-            .min(limits.max_storage_buffer_binding_size)
-            .max(need);
-        *slot = Some(gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("pass data"),
-            size: need.next_power_of_two().min(most),
-            usage: usage | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        }));
-    }
-    if let Some(b) = slot
-        && !bytes.is_empty()
-    {
-        gpu.queue.write_buffer(b, 0, bytes);
     }
 }
 

@@ -1,0 +1,63 @@
+//! How the effects are set up ([`ArConfig`]).
+
+use glam::DVec2;
+
+use crate::EffectSet;
+
+/// How the effects are set up.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArConfig {
+    /// Effects asked for.
+    pub effects: EffectSet,
+    /// Depth of the water over the table, metres of the scene (table units × scale).
+    pub table_depth: f64,
+    /// Radius of the ring the camera image is reflected on; `None`: 1.05 × half the play
+    /// area's diagonal (000: at least half the water's diagonal).
+    pub ring_radius: Option<f64>,
+    /// Reflection texture size as a fraction of the screen's (000 uses a quarter).
+    pub reflection_fraction: f64,
+    /// Far tidal current, m/s (x, z).
+    pub current: DVec2,
+    /// Radius of a course mark in the current, metres.
+    pub mark_radius: f64,
+    /// Flow-map restart period, seconds.
+    pub flow_period: f64,
+    /// Side of one tile of the flow-distorted detail texture, metres.
+    pub detail_tile: f64,
+    /// Use the cheap overhead-sun caustics instead of the area-ratio map.
+    pub cheap_caustics: bool,
+    /// Surface grid and output cells per side of the area-ratio caustic map.
+    pub caustic_resolution: (usize, usize),
+    /// Test hook, 0 in use: these effects' bits (`1 << Effect as u8`) are left out of the AR
+    /// water shader's `FX_MASK` while every pass still runs, so the effect's term is dead (the
+    /// golden tests prove they catch that).
+    #[doc(hidden)]
+    pub shader_knockout: u8,
+}
+
+impl Default for ArConfig {
+    fn default() -> Self {
+        ArConfig {
+            effects: EffectSet::ALL,
+            table_depth: 3.0,
+            ring_radius: None,
+            reflection_fraction: 0.25,
+            current: DVec2::new(0.6, 0.2),
+            mark_radius: 4.0,
+            flow_period: 2.0,
+            detail_tile: 12.0,
+            cheap_caustics: false,
+            caustic_resolution: (48, 64),
+            shader_knockout: 0,
+        }
+    }
+}
+
+impl ArConfig {
+    /// The ring radius for a scene's play area.
+    pub fn ring_radius_for(&self, play_area: [f64; 4]) -> f64 {
+        let [ax, az, bx, bz] = play_area;
+        self.ring_radius
+            .unwrap_or_else(|| 1.05 * 0.5 * DVec2::new(bx - ax, bz - az).length())
+    }
+}

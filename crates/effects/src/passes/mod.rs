@@ -1,0 +1,123 @@
+//! The effect passes on the GPU, added to a [`Renderer`] by [`add_effect_passes`]:
+//!
+//! - [`BackgroundPass`] (`shaders/background.wgsl`): the camera frame behind everything.
+//! - [`ArWaterPass`] (`shaders/ar_water.wgsl` with `reflection.wgsl`, `refraction.wgsl`,
+//!   `caustics.wgsl`, `flowmap.wgsl`): takes the water pass's place and draws its mesh (waves
+//!   and wakes, `water.wgsl`'s vertex shader) with a fragment shader that shades each water
+//!   pixel once with the effects the planner chose, mixed by the full Fresnel equations, and
+//!   the sea's and wakes' normals and foam; when no effect runs it draws the plain water. When
+//!   boats or marks are reflected, its `prepare` first draws them into the planar reflection
+//!   texture (a fraction of the screen) with the reflection matrix and oblique near-plane
+//!   clipping at the water.
+//!
+//! Both share bind group 2 (`shaders/effects_common.wgsl`; group 1 is unused): the [`EffectsUniform`], the camera image (binding 1: an sRGB RGBA view, YUV
+//! 4:2:0 converted into it once per camera frame, [`super::camera_upload`]), the reflection
+//! texture, the caustic map and a sampler. [`add_effect_passes`] returns an [`EffectsHandle`]
+//! that writes each new camera frame into the same textures. The caustic map is the f64
+//! area-ratio map of [`super::caustics`] at the frame's race time, uploaded each frame.
+
+mod background;
+mod config;
+mod pipelines;
+mod scissor;
+mod shared;
+mod water;
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use glam::DVec2;
+
+use crate::EffectSet;
+use crate::camera_frame::CameraFrame;
+use render::gpu::Gpu;
+use render::renderer::Renderer;
+
+pub use background::{BACKGROUND, BackgroundPass};
+pub use config::ArConfig;
+pub use pipelines::{AR_WATER, CAUSTICS, FLOWMAP, REFLECTION, REFRACTION};
+use shared::Shared;
+pub use shared::{EFFECTS_COMMON, EffectsUniform, caustic_region, effect_frame};
+pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};
+
+/// The camera frame of the effect passes, for their owner to change: from
+/// [`add_effect_passes`]. Cheap to clone; it outlives the passes harmlessly.
+#[derive(Clone)]
+pub struct EffectsHandle {
+    shared: Rc<RefCell<Shared>>,
+}
+
+impl EffectsHandle {
+    /// Draw the next frames over `frame`: its image is written into the textures the passes
+    /// already bind (made anew only when the image's kind (RGBA or YUV) or size changes), its
+    /// camera and display transform go into the next frame's uniform, and the renderer draws
+    /// the next frame even if the scene stands still. No pass or pipeline is rebuilt.
+    pub fn set_camera_frame(&self, gpu: &Gpu, frame: CameraFrame) {
+        let (image, camera) = frame.split();
+        let mut shared = self.shared.borrow_mut();
+        shared.set_image(gpu, &image);
+        shared.camera = camera;
+    }
+
+    /// Size of the camera image now on the GPU, pixels.
+    pub fn camera_image_size(&self) -> [u32; 2] {
+        self.shared.borrow().camera_image.size
+    }
+}
+
+/// Add the background pass for `cfg` over `camera`'s frame to `renderer` and put the AR
+/// water pass in the water pass's place. Effects that are not in `cfg.effects` never run (the
+/// passes report "not requested"). Later frames go in through the returned handle
+/// ([`EffectsHandle::set_camera_frame`]).
+pub fn add_effect_passes(
+    renderer: &mut Renderer,
+    gpu: &Gpu,
+    cfg: ArConfig,
+    camera: CameraFrame,
+) -> EffectsHandle {
+    let targets = renderer.targets;
+    let (image, camera) = camera.split();
+    let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera, &image)));
+    let handle = EffectsHandle {
+        shared: shared.clone(),
+    };
+    let frame_layout = renderer.frame_layout().clone();
+    let background = BackgroundPass::new(gpu, &frame_layout, targets, shared.clone());
+    let water = ArWaterPass::new(gpu, frame_layout, targets, shared);
+    renderer.add_pass(Box::new(background));
+    if !renderer.replace_pass("water", Box::new(water)) {
+        log::warn!("no water pass to shade with the effects: the renderer has none");
+    }
+    handle
+}
+
+/// The effects for a scene without a frame source yet: the default [`ArConfig`] with
+/// `effects`, over a synthetic camera frame of `size` pixels seen from the scene's camera
+/// (checkers of 1/24 of the play area's width). `regatta render --effects` uses this.
+pub fn add_scene_effects(
+    renderer: &mut Renderer,
+    gpu: &Gpu,
+    scene: &render::Scene,
+    size: [u32; 2],
+    effects: EffectSet,
+) -> EffectsHandle {
+    let cfg = ArConfig {
+        effects,
+        ..ArConfig::default()
+    };
+    let [ax, az, bx, bz] = scene.play_area;
+    let centre = DVec2::new(ax + bx, az + bz) / 2.0;
+    let square = ((bx - ax).max(bz - az) / 24.0).max(1e-3);
+    // The camera image need not be larger than 640 pixels wide: it is sampled, not shown 1:1.
+    let scale = (640.0 / f64::from(size[0].max(1))).min(1.0);
+    let frame_size = size.map(|v| ((f64::from(v) * scale).round() as u32).max(1));
+    let frame = CameraFrame::synthetic(
+        &scene.camera,
+        frame_size,
+        cfg.table_depth,
+        centre,
+        cfg.ring_radius_for(scene.play_area),
+        square,
+    );
+    add_effect_passes(renderer, gpu, cfg, frame)
+}
