@@ -4,8 +4,14 @@
 //! number: nothing in the scene depends on how the clock got there, so a frame reached by playing
 //! to t equals the frame reached by scrubbing to t (tested in `tests/clock.rs` and by the app).
 
-/// Playback speeds, race seconds per wall second.
-pub const SPEEDS: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
+/// Playback speeds, race seconds per wall second: backwards (−64× … −1×) and forwards
+/// (1× … 64×).
+pub const SPEEDS: [f64; 14] = [
+    -64.0, -32.0, -16.0, -8.0, -4.0, -2.0, -1.0, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0,
+];
+
+/// The index of 1× in [`SPEEDS`].
+const FORWARD_1X: usize = 7;
 
 /// Race time under the timeline's control.
 #[derive(Clone, Debug, PartialEq)]
@@ -17,7 +23,8 @@ pub struct RaceClock {
     playing: bool,
     /// Index into [`SPEEDS`].
     speed: usize,
-    /// Start playing again from the start when play runs off the end.
+    /// Start playing again from the start when play runs off the end (from the end when
+    /// reverse play runs off the start).
     pub looping: bool,
 }
 
@@ -31,7 +38,7 @@ impl RaceClock {
             t: span.0,
             span,
             playing: false,
-            speed: 0,
+            speed: FORWARD_1X,
             looping: false,
         }
     }
@@ -49,14 +56,22 @@ impl RaceClock {
         self.playing
     }
 
-    /// Race seconds per wall second.
+    /// Race seconds per wall second; negative plays backwards.
     pub fn speed(&self) -> f64 {
         SPEEDS[self.speed]
     }
 
+    /// Whether play runs backwards.
+    pub fn is_reverse(&self) -> bool {
+        self.speed() < 0.0
+    }
+
+    /// Plays; at the end (at the start, playing backwards) it starts over from the other end.
     pub fn play(&mut self) {
-        if self.t >= self.span.1 {
+        if !self.is_reverse() && self.t >= self.span.1 {
             self.t = self.span.0;
+        } else if self.is_reverse() && self.t <= self.span.0 {
+            self.t = self.span.1;
         }
         self.playing = true;
     }
@@ -81,31 +96,47 @@ impl RaceClock {
                     .abs()
                     .total_cmp(&(SPEEDS[b] - speed).abs())
             })
-            .unwrap_or(0);
+            .unwrap_or(FORWARD_1X);
     }
 
+    /// Twice as fast in the same direction (up to 64×).
     pub fn faster(&mut self) {
-        self.speed = (self.speed + 1).min(SPEEDS.len() - 1);
+        self.speed = if self.is_reverse() {
+            self.speed.saturating_sub(1)
+        } else {
+            (self.speed + 1).min(SPEEDS.len() - 1)
+        };
     }
 
+    /// Half as fast in the same direction (down to 1×).
     pub fn slower(&mut self) {
-        self.speed = self.speed.saturating_sub(1);
+        if self.is_reverse() {
+            self.speed = (self.speed + 1).min(FORWARD_1X - 1);
+        } else {
+            self.speed = self.speed.saturating_sub(1).max(FORWARD_1X);
+        }
     }
 
-    /// Advances by `wall_dt` wall seconds when playing; returns whether race time moved. Play
-    /// stops at the end of the span (or starts over, with `looping`).
+    /// The same speed the other way (8× ↔ −8×).
+    pub fn reverse(&mut self) {
+        self.set_speed(-self.speed());
+    }
+
+    /// Advances by `wall_dt` wall seconds when playing (backwards at a negative speed);
+    /// returns whether race time moved. Play stops at the end of the span, or at its start
+    /// playing backwards (or goes round to the other end, with `looping`).
     pub fn advance(&mut self, wall_dt: f64) -> bool {
         if !self.playing || wall_dt.is_nan() || wall_dt <= 0.0 {
             return false;
         }
         let before = self.t;
         self.t += wall_dt * self.speed();
-        if self.t >= self.span.1 {
+        let (a, b) = self.span;
+        if self.t >= b || self.t <= a {
             if self.looping {
-                let (a, b) = self.span;
                 self.t = a + (self.t - a).rem_euclid(b - a);
             } else {
-                self.t = self.span.1;
+                self.t = self.t.clamp(a, b);
                 self.playing = false;
             }
         }
@@ -125,9 +156,10 @@ impl RaceClock {
         self.scrub_to(self.t + f64::from(direction.signum()) * self.step_seconds());
     }
 
-    /// The step size: one second of race at 1×, growing with speed so a step stays visible.
+    /// The step size: one second of race at 1×, growing with speed (either way) so a step
+    /// stays visible.
     pub fn step_seconds(&self) -> f64 {
-        self.speed()
+        self.speed().abs()
     }
 
     /// Jumps to the start signal (race time 0), or the span's start when the data begin later.

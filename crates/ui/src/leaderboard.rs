@@ -9,6 +9,8 @@ pub const KNOTS_PER_MPS: f64 = 3600.0 / 1852.0;
 /// One line of the leaderboard.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LeaderboardRow {
+    /// Index into `Race::boats`.
+    pub boat: usize,
     pub rank: usize,
     pub name: String,
     pub color: Color32,
@@ -36,6 +38,7 @@ pub fn leaderboard_rows(race: &Race, t: f64) -> Vec<LeaderboardRow> {
             let boat = &race.boats[s.boat];
             let st = &states[s.boat];
             LeaderboardRow {
+                boat: s.boat,
                 rank: s.rank,
                 name: if boat.name.is_empty() {
                     boat.id.clone()
@@ -73,15 +76,18 @@ pub fn has_no_course(rows: &[LeaderboardRow]) -> bool {
     rows.first().is_some_and(|r| r.legs.1 < 2)
 }
 
-/// Draws the rows as a striped grid (and says so when there is no course to rank on).
-pub fn leaderboard_ui(ui: &mut Ui, rows: &[LeaderboardRow]) {
-    leaderboard_grid(ui, rows);
+/// Draws the rows as a striped grid (and says so when there is no course to rank on); the
+/// boats in `selection` are highlighted. Returns the boat whose name was clicked (to select it).
+pub fn leaderboard_ui(ui: &mut Ui, rows: &[LeaderboardRow], selection: &[usize]) -> Option<usize> {
+    let clicked = leaderboard_grid(ui, rows, selection);
     if has_no_course(rows) {
         ui.label(RichText::new(NO_COURSE_NOTE).weak());
     }
+    clicked
 }
 
-fn leaderboard_grid(ui: &mut Ui, rows: &[LeaderboardRow]) {
+fn leaderboard_grid(ui: &mut Ui, rows: &[LeaderboardRow], selection: &[usize]) -> Option<usize> {
+    let mut clicked = None;
     egui::Grid::new("leaderboard")
         .num_columns(6)
         .striped(true)
@@ -101,7 +107,13 @@ fn leaderboard_grid(ui: &mut Ui, rows: &[LeaderboardRow]) {
                     if !r.racing && !r.finished {
                         name = name.weak();
                     }
-                    ui.label(name);
+                    if ui
+                        .selectable_label(selection.contains(&r.boat), name)
+                        .on_hover_text("Select (two to compare)")
+                        .clicked()
+                    {
+                        clicked = Some(r.boat);
+                    }
                 });
                 ui.label(format!("{:.1}", r.speed_kn));
                 ui.label(format!("{:03.0}°", r.heading_deg));
@@ -118,6 +130,7 @@ fn leaderboard_grid(ui: &mut Ui, rows: &[LeaderboardRow]) {
                 ui.end_row();
             }
         });
+    clicked
 }
 
 /// `35 m`, `1.24 km`.

@@ -1,20 +1,11 @@
-//! The race-timeline scrubber: transport buttons, speed, the race clock, and a track with a
-//! tick at every mark rounding that can be dragged or clicked to scrub.
+//! The race-timeline scrubber: transport buttons, speed (backwards too), the race clock, and a
+//! track with a tick at every event (start, roundings, lead changes) that can be dragged or
+//! clicked to scrub.
 
-use egui::{Align2, Color32, FontId, Rect, Sense, Stroke, StrokeKind, Ui, Vec2, pos2};
+use egui::{Align2, FontId, Rect, Sense, Stroke, StrokeKind, Ui, Vec2, pos2};
 
 use crate::clock::{RaceClock, SPEEDS, format_race_time};
-
-/// A moment on the timeline worth jumping to: a mark rounding.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TimelineEvent {
-    /// Race seconds.
-    pub t: f64,
-    /// For the hover text, e.g. "ESP29375 rounds B1".
-    pub label: String,
-    /// The boat's colour.
-    pub color: Color32,
-}
+pub use crate::events::TimelineEvent;
 
 /// Height of the scrub track, points.
 const TRACK_HEIGHT: f32 = 26.0;
@@ -37,8 +28,8 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
             clock.jump_to_start();
         }
         if ui
-            .button("⏪ Mark")
-            .on_hover_text("Jump to the previous mark rounding")
+            .button("⏪ Event")
+            .on_hover_text("Jump to the previous event (start, rounding, lead change)")
             .clicked()
         {
             clock.jump_to_previous(&times);
@@ -46,10 +37,10 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
         if ui.button("◀ Step").on_hover_text("Step back").clicked() {
             clock.step(-1);
         }
-        let play_label = if clock.is_playing() {
-            "⏸ Pause"
-        } else {
-            "▶ Play"
+        let play_label = match (clock.is_playing(), clock.is_reverse()) {
+            (true, _) => "⏸ Pause",
+            (false, false) => "▶ Play",
+            (false, true) => "◀ Play back",
         };
         if ui.button(play_label).clicked() {
             clock.toggle();
@@ -58,22 +49,29 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
             clock.step(1);
         }
         if ui
-            .button("Mark ⏩")
-            .on_hover_text("Jump to the next mark rounding")
+            .button("Event ⏩")
+            .on_hover_text("Jump to the next event (start, rounding, lead change)")
             .clicked()
         {
             clock.jump_to_next(&times);
         }
         let mut speed = clock.speed();
         egui::ComboBox::new("race-speed", "speed")
-            .selected_text(format!("{speed}×"))
-            .width(56.0)
+            .selected_text(speed_text(speed))
+            .width(60.0)
             .show_ui(ui, |ui| {
-                for s in SPEEDS {
-                    ui.selectable_value(&mut speed, s, format!("{s}×"));
+                for s in SPEEDS.into_iter().rev() {
+                    ui.selectable_value(&mut speed, s, speed_text(s));
                 }
             });
         clock.set_speed(speed);
+        if ui
+            .button("⇄")
+            .on_hover_text("Play the other way (R)")
+            .clicked()
+        {
+            clock.reverse();
+        }
         ui.separator();
         let (_, end) = clock.span();
         ui.label(
@@ -95,6 +93,15 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
     scrub_track(ui, clock, events);
     let after = (clock.time(), clock.is_playing(), clock.speed());
     before != after
+}
+
+/// `8×`, `−8×` (a true minus sign, easier to see than a hyphen).
+pub fn speed_text(speed: f64) -> String {
+    if speed < 0.0 {
+        format!("−{}×", -speed)
+    } else {
+        format!("{speed}×")
+    }
 }
 
 /// The scrub track: the span as a bar, elapsed part filled, ticks at events, a handle at now.
@@ -122,14 +129,6 @@ fn scrub_track(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent]) {
     painter.rect_filled(bar, 4.0, visuals.extreme_bg_color);
     let done = Rect::from_min_max(bar.min, pos2(x_of(t), bar.max.y));
     painter.rect_filled(done, 4.0, visuals.selection.bg_fill);
-    // The start signal, where the data begin before it.
-    if a < 0.0 && b > 0.0 {
-        let x = x_of(0.0);
-        painter.line_segment(
-            [pos2(x, rect.top()), pos2(x, rect.bottom())],
-            Stroke::new(2.0, Color32::from_rgb(40, 200, 90)),
-        );
-    }
     for e in events {
         let x = x_of(e.t);
         painter.line_segment(
@@ -151,7 +150,7 @@ fn scrub_track(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent]) {
         StrokeKind::Inside,
     );
     if let Some(hover) = response.hover_pos() {
-        // Name the nearest rounding under the pointer, if any is within 4 points.
+        // Name the nearest event under the pointer, if any is within 4 points.
         let near = events.iter().min_by(|p, q| {
             (x_of(p.t) - hover.x)
                 .abs()

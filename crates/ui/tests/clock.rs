@@ -12,7 +12,10 @@ fn playing_to_t_and_scrubbing_to_t_give_the_same_time() {
         for _ in 0..90 {
             played.advance(1.0 / 60.0);
         }
-        let expected = -60.0 + 1.5 * speed;
+        // Backwards from the end, forwards from the start.
+        let from = if speed < 0.0 { 3600.0 } else { -60.0 };
+        played.scrub_to(from);
+        let expected = from + 1.5 * speed;
         assert!(
             (played.time() - expected).abs() < 1e-9,
             "{speed}×: {}",
@@ -23,12 +26,13 @@ fn playing_to_t_and_scrubbing_to_t_give_the_same_time() {
         assert!((scrubbed.time() - played.time()).abs() < 1e-9);
         // With binary-exact frame times the two agree to the bit.
         let mut exact = RaceClock::new((-60.0, 3600.0));
+        exact.scrub_to(from);
         exact.set_speed(speed);
         exact.play();
         for _ in 0..96 {
             exact.advance(1.0 / 64.0);
         }
-        scrubbed.scrub_to(-60.0 + 1.5 * speed);
+        scrubbed.scrub_to(from + 1.5 * speed);
         assert_eq!(exact.time(), scrubbed.time());
     }
 }
@@ -72,7 +76,53 @@ fn speeds_snap_to_the_list_and_saturate() {
         c.slower();
     }
     assert_eq!(c.speed(), 1.0);
-    assert_eq!(SPEEDS, [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]);
+    // Slower in reverse stops at −1×, faster at −64×; reverse keeps the magnitude.
+    c.set_speed(-5.0);
+    assert_eq!(c.speed(), -4.0);
+    for _ in 0..10 {
+        c.slower();
+    }
+    assert_eq!(c.speed(), -1.0);
+    for _ in 0..10 {
+        c.faster();
+    }
+    assert_eq!(c.speed(), -64.0);
+    c.set_speed(8.0);
+    c.reverse();
+    assert_eq!(c.speed(), -8.0);
+    c.reverse();
+    assert_eq!(c.speed(), 8.0);
+    assert_eq!(
+        SPEEDS,
+        [-64.0, -32.0, -16.0, -8.0, -4.0, -2.0, -1.0, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
+    );
+}
+
+/// Reverse play runs race time backwards at the speed's magnitude, stops at the span's start
+/// (or goes round to the end when looping), and play at the start starts from the end.
+#[test]
+fn reverse_play_runs_back_and_stops_at_the_start() {
+    let mut c = RaceClock::new((0.0, 100.0));
+    c.scrub_to(90.0);
+    c.set_speed(-32.0);
+    c.play();
+    assert!(c.advance(0.5));
+    assert_eq!(c.time(), 74.0);
+    c.advance(3.0);
+    assert_eq!(c.time(), 0.0);
+    assert!(!c.is_playing());
+    c.play();
+    assert_eq!(c.time(), 100.0);
+    let mut l = RaceClock::new((0.0, 100.0));
+    l.looping = true;
+    l.scrub_to(10.0);
+    l.set_speed(-64.0);
+    l.play();
+    l.advance(0.5); // 10 − 32 s: 22 s before the end.
+    assert!((l.time() - 78.0).abs() < 1e-12 && l.is_playing());
+    // A step is |speed| race seconds in the direction asked, whichever way play runs.
+    l.step(1);
+    assert!((l.time() - 142.0_f64.min(100.0)).abs() < 1e-12);
 }
 
 #[test]

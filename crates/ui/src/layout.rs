@@ -1,0 +1,321 @@
+//! [`RegattaUi`]: every panel and where it goes. The timeline runs along the bottom with a row
+//! of panel switches; the leaderboard sits top right, the performance overlay top left, and the
+//! open panels (Boats, Events, Scene, Races) in a column on the left. On a narrow screen (a
+//! phone held upright) the column takes the whole width and only one panel is open at a time,
+//! so every control stays on the screen.
+
+use egui::{Align2, Color32, Frame, RichText, Ui};
+
+use crate::events::event_list_ui;
+use crate::leaderboard::{LeaderboardRow, leaderboard_ui, parse_hex_color};
+use crate::open::{OpenRequest, RacesPanel, races_ui};
+use crate::perf::{PerfStats, perf_ui};
+use crate::plots::{PlotCache, compare_ui, speed_plot_ui};
+use crate::settings::{SceneSettings, SettingChange, scene_settings_ui};
+use crate::timeline::{NARROW_WIDTH, timeline_ui};
+use crate::{EffectToggle, RaceClock, TimelineEvent};
+
+/// Width of the left column on a wide screen, points.
+pub const COLUMN_WIDTH: f32 = 340.0;
+
+/// How many boats can be selected at once (two: compare).
+pub const MAX_SELECTED: usize = 2;
+
+/// Selects `boat`, or unselects it when selected; a third selection drops the oldest.
+pub fn toggle_selection(selection: &mut Vec<usize>, boat: usize) {
+    if let Some(i) = selection.iter().position(|&b| b == boat) {
+        selection.remove(i);
+    } else {
+        selection.push(boat);
+        if selection.len() > MAX_SELECTED {
+            selection.remove(0);
+        }
+    }
+}
+
+/// What changed this frame because of the user.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct UiResponse {
+    /// Race time or play state moved (play, scrub, step, jump, speed, an event or plot click).
+    pub clock_changed: bool,
+    /// Some effect, overlay or water setting changed (the list: `settings`).
+    pub effects_changed: bool,
+    /// What the Scene panel changed, by name, for the app to map onto its renderer.
+    pub settings: Vec<SettingChange>,
+    /// A boat whose name was clicked: the app toggles it in its selection
+    /// ([`toggle_selection`]).
+    pub clicked_boat: Option<usize>,
+    /// "Clear" in the Boats panel.
+    pub clear_selection: bool,
+    /// The Races panel asked to open a race, show the file dialog or rescan.
+    pub open: Option<OpenRequest>,
+}
+
+/// Per-frame inputs of [`RegattaUi::show`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct UiFrame<'a> {
+    pub rows: &'a [LeaderboardRow],
+    pub events: &'a [TimelineEvent],
+    pub perf: Option<&'a PerfStats>,
+    /// Title line: race name and, when one plays, the camera feed.
+    pub title: &'a str,
+    /// The race (for the Boats panel's plots); `None` hides them.
+    pub race: Option<&'a race::Race>,
+    /// The selected boats (indices into `race.boats`, at most two), owned by the app.
+    pub selection: &'a [usize],
+    /// The Races panel's contents; `None`: no Races panel.
+    pub races: Option<RacesPanel<'a>>,
+}
+
+/// The panels of the left column.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Side {
+    Boats,
+    Events,
+    Scene,
+    Races,
+}
+
+/// All panels and their state.
+#[derive(Clone, Debug)]
+pub struct RegattaUi {
+    pub clock: RaceClock,
+    pub settings: SceneSettings,
+    pub show_leaderboard: bool,
+    pub show_perf: bool,
+    pub show_boats: bool,
+    pub show_events: bool,
+    /// The Scene panel (effects, overlays, water).
+    pub show_scene: bool,
+    pub show_races: bool,
+    /// The orbit camera follows the first selected boat.
+    pub follow: bool,
+    pub plots: PlotCache,
+    /// Points at the top of the screen kept free for the platform's own bar (the phone's
+    /// Race | Pool | Record bar).
+    pub top_inset: f32,
+}
+
+impl RegattaUi {
+    pub fn new(clock: RaceClock, effects: Vec<EffectToggle>) -> Self {
+        Self {
+            clock,
+            settings: SceneSettings::new(effects),
+            show_leaderboard: true,
+            show_perf: true,
+            show_boats: false,
+            show_events: false,
+            show_scene: false,
+            show_races: false,
+            follow: false,
+            plots: PlotCache::default(),
+            top_inset: 0.0,
+        }
+    }
+
+    fn side_open(&self, s: Side) -> bool {
+        match s {
+            Side::Boats => self.show_boats,
+            Side::Events => self.show_events,
+            Side::Scene => self.show_scene,
+            Side::Races => self.show_races,
+        }
+    }
+
+    /// The switches row (in reverse order for a right-to-left layout); on a narrow screen
+    /// turning one panel on turns the others off.
+    fn switches(&mut self, ui: &mut Ui, narrow: bool, has_races: bool, reversed: bool) {
+        const LABELS: [&str; 6] = ["Leaderboard", "Boats", "Events", "Scene", "Races", "Perf"];
+        let before = self.panel_flags();
+        let mut flags = before;
+        let mut order: Vec<usize> = (0..LABELS.len())
+            .filter(|&i| has_races || LABELS[i] != "Races")
+            .collect();
+        if reversed {
+            order.reverse();
+        }
+        for i in order {
+            ui.toggle_value(&mut flags[i], LABELS[i]);
+        }
+        if narrow && let Some(i) = (0..flags.len()).find(|&i| flags[i] && !before[i]) {
+            flags = [false; 6];
+            flags[i] = true;
+        }
+        self.set_panel_flags(flags);
+    }
+
+    fn panel_flags(&self) -> [bool; 6] {
+        [
+            self.show_leaderboard,
+            self.show_boats,
+            self.show_events,
+            self.show_scene,
+            self.show_races,
+            self.show_perf,
+        ]
+    }
+
+    fn set_panel_flags(&mut self, f: [bool; 6]) {
+        [
+            self.show_leaderboard,
+            self.show_boats,
+            self.show_events,
+            self.show_scene,
+            self.show_races,
+            self.show_perf,
+        ] = f;
+    }
+
+    /// Lays out the panels over the scene (see the module docs). Translucent frames keep the
+    /// scene visible behind them.
+    pub fn show(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
+        let mut out = UiResponse::default();
+        let ctx = ui.ctx().clone();
+        let screen = ctx.content_rect();
+        let narrow = screen.width() < NARROW_WIDTH;
+        let glass = Frame::window(&ctx.global_style())
+            .fill(Color32::from_black_alpha(170))
+            .corner_radius(6.0);
+        egui::Panel::bottom("timeline")
+            .frame(
+                Frame::side_top_panel(&ctx.global_style())
+                    .fill(Color32::from_black_alpha(190))
+                    .inner_margin(8.0),
+            )
+            .show(ui, |ui| {
+                let has_races = frame.races.is_some();
+                if narrow {
+                    ui.label(RichText::new(frame.title).strong());
+                    ui.horizontal_wrapped(|ui| self.switches(ui, true, has_races, false));
+                } else {
+                    ui.horizontal(|ui| {
+                        ui.label(RichText::new(frame.title).strong());
+                        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                            self.switches(ui, false, has_races, true)
+                        });
+                    });
+                }
+                out.clock_changed = timeline_ui(ui, &mut self.clock, frame.events);
+            });
+        let sides: Vec<Side> = [Side::Boats, Side::Events, Side::Scene, Side::Races]
+            .into_iter()
+            .filter(|&s| self.side_open(s) && (s != Side::Races || frame.races.is_some()))
+            .collect();
+        let mut column = 0.0;
+        if !sides.is_empty() {
+            let width = if narrow {
+                screen.width()
+            } else {
+                COLUMN_WIDTH
+            };
+            column = width;
+            egui::Panel::left("side-panels")
+                .exact_size(width)
+                .resizable(false)
+                .frame(
+                    Frame::side_top_panel(&ctx.global_style())
+                        .fill(Color32::from_black_alpha(170))
+                        .inner_margin(8.0),
+                )
+                .show(ui, |ui| {
+                    ui.add_space(self.top_inset);
+                    egui::ScrollArea::vertical()
+                        .auto_shrink([false, false])
+                        .show(ui, |ui| {
+                            for (i, s) in sides.iter().enumerate() {
+                                if i > 0 {
+                                    ui.separator();
+                                }
+                                self.side_ui(ui, *s, frame, &mut out);
+                            }
+                        });
+                });
+        }
+        if self.show_leaderboard && !frame.rows.is_empty() {
+            egui::Area::new(egui::Id::unique("leaderboard-area"))
+                .anchor(Align2::RIGHT_TOP, [-10.0, 10.0 + self.top_inset])
+                .show(&ctx, |ui| {
+                    glass.show(ui, |ui| {
+                        if let Some(b) = leaderboard_ui(ui, frame.rows, frame.selection) {
+                            out.clicked_boat = Some(b);
+                        }
+                    });
+                });
+        }
+        if self.show_perf
+            && let Some(p) = frame.perf
+        {
+            egui::Area::new(egui::Id::unique("perf-area"))
+                .anchor(Align2::LEFT_TOP, [column + 10.0, 10.0 + self.top_inset])
+                .show(&ctx, |ui| {
+                    glass.show(ui, |ui| perf_ui(ui, p));
+                });
+        }
+        out.effects_changed = !out.settings.is_empty();
+        out
+    }
+
+    fn side_ui(&mut self, ui: &mut Ui, side: Side, frame: &UiFrame<'_>, out: &mut UiResponse) {
+        let heading = |ui: &mut Ui, s: &str| ui.label(RichText::new(s).strong().size(16.0));
+        match side {
+            Side::Boats => {
+                heading(ui, "Boats");
+                self.boats_ui(ui, frame, out);
+            }
+            Side::Events => {
+                heading(ui, "Events");
+                out.clock_changed |= event_list_ui(ui, frame.events, &mut self.clock);
+            }
+            Side::Scene => {
+                heading(ui, "Scene");
+                out.settings = scene_settings_ui(ui, &mut self.settings);
+            }
+            Side::Races => {
+                heading(ui, "Races");
+                if let Some(r) = &frame.races {
+                    out.open = races_ui(ui, r);
+                }
+            }
+        }
+    }
+
+    /// Selection (every boat as a chip), follow, the speed plot and the comparison.
+    fn boats_ui(&mut self, ui: &mut Ui, frame: &UiFrame<'_>, out: &mut UiResponse) {
+        let Some(race) = frame.race else {
+            ui.label(RichText::new("No race").weak());
+            return;
+        };
+        ui.horizontal_wrapped(|ui| {
+            for (i, b) in race.boats.iter().enumerate() {
+                let colour = parse_hex_color(&b.color).unwrap_or(Color32::GRAY);
+                let text = RichText::new(&b.id).color(colour).strong();
+                if ui
+                    .selectable_label(frame.selection.contains(&i), text)
+                    .clicked()
+                {
+                    out.clicked_boat = Some(i);
+                }
+            }
+            if !frame.selection.is_empty() && ui.small_button("Clear").clicked() {
+                out.clear_selection = true;
+            }
+        });
+        ui.add_enabled(
+            !frame.selection.is_empty(),
+            egui::Checkbox::new(&mut self.follow, "Follow the selected boat"),
+        )
+        .on_hover_text("The camera orbits the first selected boat (F)")
+        .on_disabled_hover_text("Select a boat to follow it");
+        self.plots.update(race, frame.selection);
+        let t = self.clock.time();
+        ui.label(RichText::new("Speed").strong());
+        let mut scrub = speed_plot_ui(ui, race, &self.plots, t);
+        ui.label(RichText::new("Compare").strong());
+        scrub = scrub.or(compare_ui(ui, race, &self.plots, frame.selection, t));
+        if let Some(t) = scrub {
+            self.clock.pause();
+            self.clock.scrub_to(t);
+            out.clock_changed = true;
+        }
+    }
+}

@@ -1,0 +1,151 @@
+//! The "Scene" panel: one switch per renderer effect, one per scene overlay (`labels`,
+//! `trails`, `course`, `lines`, `wind`: the names of `regatta render --overlays`), and the
+//! water (depth over the table, turbidity). ui knows none of the renderer's types: the panel
+//! returns what changed as [`SettingChange`]s named as on the command line, and the app maps
+//! each name onto its renderer (and says which it cannot apply, [`SceneSettings::unavailable`]).
+
+use egui::{RichText, Ui};
+
+use crate::effects::{EffectToggle, effects_ui};
+
+/// The scene overlays, as `--overlays` names them, with what a person sees.
+pub const OVERLAYS: [(&str, &str); 5] = [
+    ("labels", "Boat labels"),
+    ("trails", "Trails"),
+    ("course", "Course and marks"),
+    ("lines", "Ahead/behind lines"),
+    ("wind", "Wind"),
+];
+
+/// Water depth over the table, metres of the scene, that the slider spans.
+pub const DEPTH_RANGE_M: std::ops::RangeInclusive<f64> = 0.5..=20.0;
+
+/// One thing the user changed this frame.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SettingChange {
+    /// An effect (`background`, `reflection`, …, `wakes`) on or off.
+    Effect { key: String, enabled: bool },
+    /// An overlay (`labels`, `trails`, `course`, `lines`, `wind`) on or off.
+    Overlay { key: String, enabled: bool },
+    /// Water depth over the table, metres of the scene.
+    WaterDepth(f64),
+    /// Turbidity, 0 (clear) … 1 (murky).
+    Turbidity(f64),
+}
+
+/// Everything the Scene panel shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneSettings {
+    pub effects: Vec<EffectToggle>,
+    pub overlays: Vec<EffectToggle>,
+    pub water_depth_m: f64,
+    pub turbidity: f64,
+    /// Keys the app cannot apply in this build or scene (e.g. an overlay without its pass, or
+    /// the water sliders without a table): shown disabled, with why on hover.
+    pub unavailable: Vec<(String, String)>,
+}
+
+impl SceneSettings {
+    /// `effects` as the app offers them, every overlay on, 3 m of clear water.
+    pub fn new(effects: Vec<EffectToggle>) -> Self {
+        Self {
+            effects,
+            overlays: OVERLAYS
+                .iter()
+                .map(|(k, l)| EffectToggle::new(k, l, true))
+                .collect(),
+            water_depth_m: 3.0,
+            turbidity: 0.0,
+            unavailable: Vec::new(),
+        }
+    }
+
+    /// Why `key` cannot be applied, if it cannot.
+    pub fn why_unavailable(&self, key: &str) -> Option<&str> {
+        self.unavailable
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, why)| why.as_str())
+    }
+
+    /// Whether overlay `key` is on.
+    pub fn overlay(&self, key: &str) -> bool {
+        self.overlays.iter().any(|o| o.key == key && o.enabled)
+    }
+
+    /// Whether effect `key` is on.
+    pub fn effect(&self, key: &str) -> bool {
+        self.effects.iter().any(|o| o.key == key && o.enabled)
+    }
+}
+
+/// The panel; returns what the user changed this frame, in the order shown.
+pub fn scene_settings_ui(ui: &mut Ui, s: &mut SceneSettings) -> Vec<SettingChange> {
+    let mut out = Vec::new();
+    ui.label(RichText::new("Effects").strong());
+    let before = s.effects.clone();
+    toggles_ui(ui, &mut s.effects, &s.unavailable);
+    for (b, a) in before.iter().zip(&s.effects) {
+        if b.enabled != a.enabled {
+            out.push(SettingChange::Effect {
+                key: a.key.clone(),
+                enabled: a.enabled,
+            });
+        }
+    }
+    ui.separator();
+    ui.label(RichText::new("Overlays").strong());
+    let before = s.overlays.clone();
+    toggles_ui(ui, &mut s.overlays, &s.unavailable);
+    for (b, a) in before.iter().zip(&s.overlays) {
+        if b.enabled != a.enabled {
+            out.push(SettingChange::Overlay {
+                key: a.key.clone(),
+                enabled: a.enabled,
+            });
+        }
+    }
+    ui.separator();
+    ui.label(RichText::new("Water").strong());
+    let depth_why = s.why_unavailable("depth").map(str::to_string);
+    let turbidity_why = s.why_unavailable("turbidity").map(str::to_string);
+    let depth = ui
+        .add_enabled(
+            depth_why.is_none(),
+            egui::Slider::new(&mut s.water_depth_m, DEPTH_RANGE_M)
+                .text("Depth")
+                .suffix(" m")
+                .max_decimals(1),
+        )
+        .on_disabled_hover_text(depth_why.unwrap_or_default());
+    if depth.changed() {
+        out.push(SettingChange::WaterDepth(s.water_depth_m));
+    }
+    let turbidity = ui
+        .add_enabled(
+            turbidity_why.is_none(),
+            egui::Slider::new(&mut s.turbidity, 0.0..=1.0)
+                .text("Turbidity")
+                .max_decimals(2),
+        )
+        .on_disabled_hover_text(turbidity_why.unwrap_or_default());
+    if turbidity.changed() {
+        out.push(SettingChange::Turbidity(s.turbidity));
+    }
+    out
+}
+
+/// Checkboxes, the unavailable ones greyed out with their reason on hover.
+fn toggles_ui(ui: &mut Ui, toggles: &mut [EffectToggle], unavailable: &[(String, String)]) {
+    for t in toggles.iter_mut() {
+        match unavailable.iter().find(|(k, _)| *k == t.key) {
+            Some((_, why)) => {
+                ui.add_enabled(false, egui::Checkbox::new(&mut t.enabled, t.label.as_str()))
+                    .on_disabled_hover_text(why);
+            }
+            None => {
+                effects_ui(ui, std::slice::from_mut(t));
+            }
+        }
+    }
+}
