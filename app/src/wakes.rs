@@ -6,7 +6,9 @@
 //! wake source's spacing). Every boat gets the default wake boat (`WakeParams::default()`:
 //! a 6 m, 1 t keelboat's pressure patch), since race files carry no hull data.
 
-use ocean::wake::{TrackSample, Wake, WakeParams};
+use std::sync::Arc;
+
+use ocean::wake::{TableModel, TrackSample, Wake, WakeParams};
 
 use crate::error::{CliError, CliResult};
 
@@ -43,4 +45,34 @@ pub fn race_wake(race: &race::Race, params: WakeParams) -> CliResult<Wake> {
         };
         CliError::new(msg)
     })
+}
+
+/// The wake the table scene draws: `wake` (the boats' own, full size) Froude-scaled for boats
+/// drawn `drawn_length` race metres long, with `world_per_table` race metres per table metre
+/// (docs/wakes.md, "Wakes at table scale"). The boat's own wake when the drawn hull is no
+/// longer than the wake boat's waterline (nothing to scale up), or when scaling fails.
+pub fn table_wake(wake: &Arc<Wake>, drawn_length: f64, world_per_table: f64) -> Arc<Wake> {
+    let model = TableModel {
+        boat_length: wake.params.waterline_length(),
+        model_length: drawn_length / world_per_table,
+        world_per_table,
+    };
+    let s = model.world_scale();
+    if !(s > 1.0) {
+        return wake.clone();
+    }
+    match wake.froude_scaled(s) {
+        Ok(w) => {
+            log::info!(
+                "table wakes: Froude-scaled ×{s:.1} (a {:.3} m model, λ = {:.5})",
+                model.model_length,
+                model.length_ratio()
+            );
+            Arc::new(w)
+        }
+        Err(e) => {
+            log::warn!("{e}; drawing the boats' own wakes");
+            wake.clone()
+        }
+    }
 }

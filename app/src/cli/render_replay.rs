@@ -22,7 +22,7 @@ pub fn run(
     effects: Option<EffectSet>,
 ) -> CliResult {
     use crate::cli::inputs::{drawable_sea, load_race, load_sea};
-    use crate::cli::render::{middle_time, note_unmet_error, print_report, race_orbit, race_wake};
+    use crate::cli::render::{middle_time, note_unmet_error, print_report, race_wake};
     use render::{RenderOptions, Renderer};
 
     let mut feed = crate::desktop::feed::FeedView::open(dir)?;
@@ -41,7 +41,6 @@ pub fn run(
     let sea = drawable_sea(load_sea(a.sea.as_ref())?);
     let race = load_race(&a.race)?;
     let t = a.t.unwrap_or_else(|| middle_time(&race));
-    let mut scene = crate::desktop::race_scene(&race, &sea, t, &mut race_orbit());
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     let options = RenderOptions {
@@ -55,22 +54,61 @@ pub fn run(
     } else {
         Some(race_wake(&race)?)
     };
-    feed.prepare_frame(
-        &gpu,
-        &mut renderer,
-        render::OFFSCREEN_FORMAT,
-        options,
-        wake,
-        &scene,
+    let table = TableFrame {
+        race: &race,
+        sea: &sea,
+        t,
         size,
         frame,
-    )?;
-    feed.apply(&mut scene);
-    let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    };
+    let (img, report) = table.draw(&mut feed, &gpu, &mut renderer, options, wake, |_| {})?;
     out.save(&img)?;
     note_unmet_error(&report);
     print_report(a, &report)
+}
+
+/// One picture of the table scene, as `run` draws it: `race` at race time `t` over feed frame
+/// `frame`, `size` pixels.
+#[cfg(not(target_os = "android"))]
+pub struct TableFrame<'a> {
+    pub race: &'a race::Race,
+    pub sea: &'a ocean::WaveSet,
+    pub t: f64,
+    pub size: [u32; 2],
+    pub frame: usize,
+}
+
+#[cfg(not(target_os = "android"))]
+impl TableFrame<'_> {
+    /// Draws it through `feed` with `renderer` (built anew with `options` on the feed's first
+    /// frame) and `wake` (the boats' own: the feed scales it for the table); `edit` changes the
+    /// scene last (tests leave boats out).
+    pub fn draw(
+        &self,
+        feed: &mut crate::desktop::feed::FeedView,
+        gpu: &render::Gpu,
+        renderer: &mut render::Renderer,
+        options: render::RenderOptions,
+        wake: Option<std::sync::Arc<ocean::wake::Wake>>,
+        edit: impl FnOnce(&mut render::Scene),
+    ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
+        let mut orbit = crate::cli::render::race_orbit();
+        let mut scene = crate::desktop::race_scene(self.race, self.sea, self.t, &mut orbit);
+        feed.prepare_frame(
+            gpu,
+            renderer,
+            render::OFFSCREEN_FORMAT,
+            options,
+            wake,
+            &scene,
+            self.size,
+            self.frame,
+        )?;
+        feed.apply(&mut scene);
+        edit(&mut scene);
+        render::render_image(gpu, renderer, &scene, self.size)
+            .map_err(|e| CliError::new(format!("cannot render: {e}")))
+    }
 }
 
 #[cfg(target_os = "android")]

@@ -49,11 +49,29 @@ pub struct FeedView {
     /// The effects drawn over the feed (all of them in the window; `--effects` for
     /// `regatta render --replay`).
     config: ArConfig,
+    /// The wake handed in (the boats' own, or none) and what the renderer draws for it on this
+    /// table: Froude-scaled for the models ([`crate::wakes::table_wake`]), per map scale.
+    table_wake: Option<TableWake>,
+}
+
+/// A wake as handed in, the table's scale it was fitted for, and the wake drawn.
+struct TableWake {
+    given: Option<Arc<ocean::wake::Wake>>,
+    scale: f64,
+    drawn: Option<Arc<ocean::wake::Wake>>,
 }
 
 /// Length of a boat model on the table, AR metres: a real boat at table scale is a fraction of
 /// a millimetre, so the boats are drawn as 5 cm models (their positions stay exact).
 pub const MODEL_BOAT_M: f64 = 0.05;
+
+/// The length boats are drawn at on the table of `map`, race metres: [`MODEL_BOAT_M`] in race
+/// metres, or `None` where that is no longer than the full-size hull (a small course: boats
+/// and wakes at full size).
+pub fn model_length(map: &TableMap) -> Option<f64> {
+    let model = MODEL_BOAT_M * map.scale;
+    (model > crate::cli::render::BOAT_LENGTH_M).then_some(model)
+}
 
 /// How the table's AR metres map to race metres.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -109,6 +127,7 @@ impl FeedView {
             camera: None,
             map: None,
             config: ArConfig::default(),
+            table_wake: None,
         })
     }
 
@@ -136,10 +155,42 @@ impl FeedView {
     pub fn apply(&self, scene: &mut Scene) {
         if let (Some(c), Some(m)) = (self.camera, self.map) {
             scene.camera = c;
-            for b in &mut scene.boats {
-                b.length = b.length.max(MODEL_BOAT_M * m.scale);
+            if let Some(model) = model_length(&m) {
+                for b in &mut scene.boats {
+                    b.length = b.length.max(model);
+                }
             }
         }
+    }
+
+    /// The wake to draw on the table of `map` for `given`, and whether it differs from what
+    /// was drawn before (then the renderer must take it).
+    fn wake_for_table(
+        &mut self,
+        given: Option<Arc<ocean::wake::Wake>>,
+        map: &TableMap,
+    ) -> (Option<Arc<ocean::wake::Wake>>, bool) {
+        let same = |a: &Option<Arc<_>>, b: &Option<Arc<_>>| match (a, b) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        };
+        if let Some(tw) = &self.table_wake
+            && tw.scale == map.scale
+            && same(&tw.given, &given)
+        {
+            return (tw.drawn.clone(), false);
+        }
+        let drawn = match (&given, model_length(map)) {
+            (Some(w), Some(model)) => Some(crate::wakes::table_wake(w, model, map.scale)),
+            _ => given.clone(),
+        };
+        self.table_wake = Some(TableWake {
+            given,
+            scale: map.scale,
+            drawn: drawn.clone(),
+        });
+        (drawn, true)
     }
 
     /// Picks the feed frame for the wall clock; when it or the window's `size` changed, hands
@@ -185,6 +236,12 @@ impl FeedView {
         i: usize,
     ) -> CliResult {
         if self.shown == Some((i, size)) {
+            if let Some(map) = self.map {
+                let (w, changed) = self.wake_for_table(wake, &map);
+                if changed {
+                    renderer.set_wake(w);
+                }
+            }
             return Ok(());
         }
         let frame = match &mut self.source {
@@ -208,8 +265,14 @@ impl FeedView {
             .to_camera_image()
             .map_err(|e| CliError::new(format!("feed frame {i}: {e}")))?;
         let render_frame = view.with_image(image);
+        let (wake, wake_changed) = self.wake_for_table(wake, &map);
         match &self.effects {
-            Some(effects) => effects.set_camera_frame(gpu, render_frame),
+            Some(effects) => {
+                effects.set_camera_frame(gpu, render_frame);
+                if wake_changed {
+                    renderer.set_wake(wake);
+                }
+            }
             None => {
                 let mut fresh = Renderer::new(gpu, format, options);
                 fresh.set_wake(wake);

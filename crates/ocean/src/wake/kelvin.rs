@@ -292,6 +292,9 @@ pub struct Wake {
     pub params: WakeParams,
     /// Per boat, sources in time order.
     pub boats: Vec<Vec<KelvinSource>>,
+    /// The checked tracks the sources came from (to re-emit them for other parameters, e.g.
+    /// [`Wake::froude_scaled`]).
+    pub(crate) tracks: Vec<Vec<TrackSample>>,
 }
 
 impl Wake {
@@ -304,7 +307,11 @@ impl Wake {
             check_track(i, tr)?;
             boats.push(emit_sources(tr, &params));
         }
-        Ok(Wake { params, boats })
+        Ok(Wake {
+            params,
+            boats,
+            tracks: tracks.iter().map(|t| t.to_vec()).collect(),
+        })
     }
 
     /// The sources alive at time t (emitted by t and younger than max_age), per boat slice.

@@ -33,6 +33,7 @@
 //! `WGSL_SIN_ERROR` for a GPU). `app/tests/wake_gpu.rs` runs the WGSL in a compute pass and
 //! checks it against the mirror.
 
+pub mod froude;
 pub mod gpu;
 pub mod kelvin;
 pub mod measure;
@@ -48,6 +49,7 @@ pub use gpu::{
     source_height_grad_f32, source_peak_bound, wake_foam_f32, wake_height_f32,
     wake_height_grad_f32,
 };
+pub use froude::{TableModel, capillary_gravity_transverse_wavelength};
 pub use kelvin::{KelvinSource, SEA_WATER_DENSITY, Wake, WakeParams};
 pub use reference::{SteadyPatch, kelvin_reference, kelvin_wave_height};
 pub use ring::{RingParams, RingWake};
