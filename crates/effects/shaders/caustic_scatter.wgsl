@@ -20,7 +20,7 @@ const LIGHT_SCALE: f32 = 65536.0;
 // Per map texel, row-major from the region's −z edge: light × LIGHT_SCALE.
 @group(1) @binding(2) var<storage, read_write> light_sum: array<atomic<u32>>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_points(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x < grid.side * grid.side {
         let g = grid_point(id.x);
@@ -87,7 +87,7 @@ fn triangle(i0: u32, i1: u32, i2: u32) {
     }
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_triangles(@builtin(global_invocation_id) id: vec3<u32>) {
     let cells = grid.side - 1u;
     if id.x < cells * cells {

@@ -1,14 +1,11 @@
 // Shared by the AR effect passes (background, reflection, refraction, caustics, flow map):
 // their uniform and textures (bind group 2; group 1 is unused), the
 // full-screen triangle, and the camera image through the camera's intrinsics and pose.
-// Appended to common.wgsl and optics.wgsl; mirrored in f64 by crates/render/src/effects/*.rs.
+// Appended to common.wgsl and optics.wgsl; mirrored in f64 by crates/effects/src/*.rs.
 
-// Effect bits, as render::effects::Effect's discriminants (the AR water's FX_MASK).
-const FX_BACKGROUND: u32 = 1u;
-const FX_REFLECTION: u32 = 2u;
-const FX_REFRACTION: u32 = 4u;
-const FX_CAUSTICS: u32 = 8u;
-const FX_FLOWMAP: u32 = 16u;
+// Effect bits FX_BACKGROUND, FX_REFLECTION, FX_REFRACTION, FX_CAUSTICS, FX_FLOWMAP (the AR
+// water's FX_MASK) and EDGE_FADE: generated from effects::Effect and
+// effects::refraction::EDGE_FADE (effects::wgsl::prelude).
 
 struct Effects {
     // Local world -> camera of the physical camera (right-handed, looking down -z, y up).
@@ -69,7 +66,6 @@ fn camera_uv(p: vec3<f32>) -> vec3<f32> {
 }
 
 // 1 inside the image, falling to 0 at EDGE_FADE outside it (effects::refraction::edge_weight).
-const EDGE_FADE: f32 = 0.05;
 fn edge_weight(uv: vec2<f32>) -> f32 {
     let outside = max(max(-uv, uv - vec2<f32>(1.0)), vec2<f32>(0.0));
     return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);

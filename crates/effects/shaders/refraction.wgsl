@@ -1,5 +1,5 @@
 // Refraction of the real table (f64 reference: effects/refraction.rs). The view ray is bent
-// by Snell's law (n = 1.333) through the surface normal, followed down to the table plane
+// by Snell's law (n = N_WATER) through the surface normal, followed down to the table plane
 // `depth` below the rest level and projected into the camera image. Outside the image the
 // refracted point is clamped to the edge and fades to the unrefracted one over EDGE_FADE:
 // weight w as in the reference, but one texture sample at the point w of the way from the

@@ -11,7 +11,6 @@
 
 use super::camera_frame::CameraImage;
 use render::gpu::Gpu;
-use render::shader;
 
 pub const CAMERA_YUV: &str = include_str!("../shaders/camera_yuv.wgsl");
 
@@ -72,7 +71,7 @@ impl YuvConversion {
             ],
         });
         let constant = format!("const ENCODED_TARGET: bool = {encoded_target};");
-        let module = shader::module(device, "camera yuv", &[CAMERA_YUV, &constant]);
+        let module = crate::wgsl::module(device, "camera yuv", &[CAMERA_YUV, &constant]);
         let pipeline = render::passes::bufferless_pipeline(
             device,
             render::passes::BufferlessPipeline {

@@ -11,7 +11,6 @@ use glam::{DVec2, DVec3};
 use super::caustics::{CausticRegion, MAX_INTENSITY};
 use render::frame::{FrameContext, OffscreenTimestamps};
 use render::gpu::Gpu;
-use render::shader;
 
 /// The caustic map's surface grid, landed on the table (both methods).
 pub const CAUSTIC_MAP: &str = include_str!("../shaders/caustic_map.wgsl");
@@ -138,7 +137,7 @@ impl CausticMapPass {
             render::gpu::UniformGroup::new(device, "caustic grid", size_of::<CausticGrid>() as u64);
         let method = match method {
             CausticMethod::Raster => {
-                let module = shader::module(device, "caustic map", &[CAUSTIC_MAP]);
+                let module = crate::wgsl::module(device, "caustic map", &[CAUSTIC_MAP]);
                 let pipeline = render::passes::bufferless_pipeline(
                     device,
                     render::passes::BufferlessPipeline {
@@ -275,10 +274,18 @@ impl CausticMapPass {
                     pass.set_bind_group(0, frame_group, &[]);
                     pass.set_bind_group(1, &b.group, &[]);
                     pass.set_pipeline(&scatter.points);
-                    pass.dispatch_workgroups((self.side * self.side).div_ceil(64), 1, 1);
+                    pass.dispatch_workgroups(
+                        (self.side * self.side).div_ceil(render::shader::WORKGROUP_SIZE),
+                        1,
+                        1,
+                    );
                     let cells = self.side.saturating_sub(1);
                     pass.set_pipeline(&scatter.triangles);
-                    pass.dispatch_workgroups((cells * cells).div_ceil(64), 1, 1);
+                    pass.dispatch_workgroups(
+                        (cells * cells).div_ceil(render::shader::WORKGROUP_SIZE),
+                        1,
+                        1,
+                    );
                 }
                 let mut pass = render::gpu::colour_pass(
                     enc,
@@ -342,7 +349,8 @@ impl Scatter {
                 layout::uniform(1, fragment),
             ],
         });
-        let module = shader::module(device, "caustic scatter", &[CAUSTIC_MAP, CAUSTIC_SCATTER]);
+        let module =
+            crate::wgsl::module(device, "caustic scatter", &[CAUSTIC_MAP, CAUSTIC_SCATTER]);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("caustic scatter"),
             bind_group_layouts: &[Some(frame_layout), Some(&layout)],

@@ -244,12 +244,13 @@ fn each_effect_changes_the_picture_and_none_changes_nothing() {
 fn wgsl_optics(gpu: &Gpu, cosines: &[f32]) -> Vec<[f32; 4]> {
     let device = &gpu.device;
     let src = format!(
-        "{}\n{}",
+        "{}{}\n{}",
+        render::shader::prelude(),
         render::shader::OPTICS,
         r#"
 @group(0) @binding(0) var<storage, read> input: array<f32>;
 @group(0) @binding(1) var<storage, read_write> output: array<vec4<f32>>;
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= arrayLength(&input) { return; }
     let c = input[id.x];
@@ -505,13 +506,15 @@ fn wgsl_current_matches_the_f64_potential_flow() {
     let points: Vec<[f32; 2]> = (0..41 * 41)
         .map(|k| [(k % 41) as f32 - 20.0, (k / 41) as f32 - 15.0 + 0.37])
         .collect();
+    let prelude = crate::wgsl::prelude();
     let src = render::shader::source(&[
+        &prelude,
         super::passes::EFFECTS_COMMON,
         super::passes::FLOWMAP,
         r#"
 @group(0) @binding(10) var<storage, read> points: array<vec2<f32>>;
 @group(0) @binding(11) var<storage, read_write> velocity: array<vec2<f32>>;
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x < arrayLength(&points) {
         velocity[id.x] = current_at(points[id.x]);

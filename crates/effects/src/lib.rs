@@ -28,6 +28,7 @@ pub mod passes;
 pub mod planner;
 pub mod reflection;
 pub mod refraction;
+pub mod wgsl;
 
 use std::fmt;
 

@@ -1,31 +1,17 @@
 // The pool scene: shared structs, the moving water, rays against the analytic spheres and the
 // tiled box, shading. Appended to common.wgsl and optics.wgsl; each pool pass file follows it.
-// f32 mirrors of crates/render/src/pool/{water,geometry,trace}.rs, which are the f64 references.
+// f32 mirrors of crates/pool/src/{water,geometry,trace}.rs, which are the f64 references.
 //
 // Pool space: metres, y up, the water's rest level at y = 0, the pool centred on the origin.
 // The frame uniform (group 0) is in pool space: in AR its view-projection already contains the
 // model transform that stands the pool on the table, and eye and sun are given in pool space.
 // No absolute time reaches this file: wave phases come reduced, ripple rings come with ages.
 
-const POOL_MAX_SPHERES: u32 = 8u;
-const POOL_MAX_RINGS: u32 = 256u;
+// POOL_MAX_SPHERES, POOL_MAX_RINGS, the faces of the box FACE_FLOOR ... FACE_SOUTH (as
+// pool::Face) and FACE_NONE, ABSORPTION and the Phong and tile constants: generated from the
+// Rust values (pool::wgsl::prelude).
 const NO_HIT: f32 = -1.0;
-// Faces of the box, as pool::Face.
-const FACE_FLOOR: u32 = 0u;
-const FACE_WEST: u32 = 1u;
-const FACE_EAST: u32 = 2u;
-const FACE_NORTH: u32 = 3u;
-const FACE_SOUTH: u32 = 4u;
-const FACE_NONE: u32 = 5u;
 
-// Water absorption, 1/m (pool::trace::WATER_ABSORPTION); Phong coefficients of source 004.
-const ABSORPTION: vec3<f32> = vec3<f32>(0.45, 0.09, 0.06);
-const AMBIENT: f32 = 0.25;
-const DIFFUSE: f32 = 0.8;
-const SPECULAR: f32 = 0.4;
-const SHININESS: f32 = 60.0;
-const TILE: f32 = 0.1;
-const GROUT: f32 = 0.007;
 
 struct PoolSphere {
     // Centre (pool space) and radius, metres.

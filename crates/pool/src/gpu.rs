@@ -36,7 +36,8 @@ use render::shader;
 pub const MAX_SPHERES: usize = 8;
 pub const MAX_RINGS: usize = 256;
 
-const POOL_COMMON: &str = include_str!("../shaders/pool_common.wgsl");
+/// The pool's shared WGSL (structs, water, rays, shading): every pool pass file follows it.
+pub const POOL_COMMON: &str = include_str!("../shaders/pool_common.wgsl");
 const POOL_CAUSTICS: &str = include_str!("../shaders/pool_caustics.wgsl");
 const POOL_SCENE: &str = include_str!("../shaders/pool_scene.wgsl");
 const POOL_WATER: &str = include_str!("../shaders/pool_water.wgsl");
@@ -301,7 +302,8 @@ struct PipelineParts<'a> {
 }
 
 fn build_pipeline(device: &wgpu::Device, p: PipelineParts) -> wgpu::RenderPipeline {
-    let module = shader::module(device, p.label, &[POOL_COMMON, p.pass_wgsl]);
+    let prelude = crate::wgsl::prelude();
+    let module = shader::module(device, p.label, &[&prelude, POOL_COMMON, p.pass_wgsl]);
     render::passes::bufferless_pipeline(
         device,
         render::passes::BufferlessPipeline {

@@ -23,6 +23,7 @@ pub mod interact;
 pub mod scene;
 pub mod trace;
 pub mod water;
+pub mod wgsl;
 
 pub use caustics::CausticMap;
 pub use geometry::{BoxHit, Face, PoolBox, Ray, Sphere};

@@ -6,7 +6,6 @@
 // phase θ0 = (k D·o − ω t + φ) mod 2π reduced in f64 on the CPU (ocean::WaveSet::gpu_waves).
 
 const PI: f32 = 3.14159265358979;
-const MAX_WAVES: u32 = 64u;
 
 // One Gerstner wave (ocean::GpuWave, 32 bytes).
 struct Wave {
@@ -40,7 +39,7 @@ struct Frame {
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
-@group(0) @binding(1) var<uniform> waves: array<Wave, 64>;
+@group(0) @binding(1) var<uniform> waves: array<Wave, MAX_WAVES>;
 
 // True when clip-map level `level` evaluates wave `i`.
 fn wave_in_level(i: u32, level: u32) -> bool {

@@ -3,8 +3,7 @@
 //
 // Conventions as in optics.rs: unit vectors; `n1` is the index on the side the ray comes from.
 
-const N_AIR: f32 = 1.0;
-const N_WATER: f32 = 1.333;
+// N_AIR, N_WATER: from the generated prelude (render::optics).
 
 // Unpolarised reflectance by the full Fresnel equations (source 004), 1.0 under total internal
 // reflection. Rs = ((n1 ci − n2 ct)/(n1 ci + n2 ct))², Rp = ((n1 ct − n2 ci)/(n1 ct + n2 ci))².

@@ -63,7 +63,7 @@ struct DisplacedVertex {
 @group(1) @binding(4) var<storage, read> clip_vertices: array<ClipVertex>;
 @group(1) @binding(5) var<storage, read_write> displaced: array<DisplacedVertex>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_displace(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&clip_vertices) {

@@ -10,7 +10,7 @@
 @group(1) @binding(0) var<storage, read> points: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> displaced: array<vec4<f32>>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&points) {
@@ -24,7 +24,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     displaced[i] = vec4<f32>(d, 0.0);
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_sea_displaced(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&points) {
@@ -34,7 +34,7 @@ fn cs_sea_displaced(@builtin(global_invocation_id) id: vec3<u32>) {
     displaced[i] = vec4<f32>(sea_displaced(v.xy, v.z, bitcast<u32>(v.w)), 0.0);
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_foam(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&points) {

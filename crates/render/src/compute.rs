@@ -130,3 +130,59 @@ pub fn gpu_foam(
     let out = evaluate(gpu, &waves_uniform(&waves), &waves, "cs_foam", &inputs)?;
     Ok(out.iter().map(|d| [d[0], d[1]]).collect())
 }
+
+/// Run `cs_main` of the WGSL `source` (assembled by its owner, e.g. with
+/// [`shader::source`]) once per item of `input`: the kernel reads
+/// `@group(0) @binding(10) var<storage, read> input` and writes
+/// `@group(0) @binding(11) var<storage, read_write> output`, `output_item_bytes` per item
+/// (bindings 0 and 1 of group 0 are the frame's in the shared files). Returns the output.
+/// The GPU side of the mirrored functions' parity tests.
+pub fn run_kernel<In: bytemuck::Pod>(
+    gpu: &Gpu,
+    label: &str,
+    source: &str,
+    input: &[In],
+    output_item_bytes: usize,
+) -> Result<Vec<u8>, GpuError> {
+    let device = &gpu.device;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        module: &module,
+        entry_point: Some("cs_main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let input_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytemuck::cast_slice(input),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: (input.len() * output_item_bytes).max(16) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 10,
+                resource: input_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 11,
+                resource: output.as_entire_binding(),
+            },
+        ],
+    });
+    let mut bytes = gpu.dispatch_and_read(&pipeline, &[&group], input.len(), &output)?;
+    bytes.truncate(input.len() * output_item_bytes);
+    Ok(bytes)
+}

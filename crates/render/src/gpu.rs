@@ -277,7 +277,7 @@ impl Gpu {
             for (i, group) in groups.iter().enumerate() {
                 pass.set_bind_group(i as u32, *group, &[]);
             }
-            pass.dispatch_workgroups((items as u32).div_ceil(64), 1, 1);
+            pass.dispatch_workgroups((items as u32).div_ceil(crate::shader::WORKGROUP_SIZE), 1, 1);
         }
         enc.copy_buffer_to_buffer(output, 0, &read, 0, output.size());
         self.queue.submit([enc.finish()]);

@@ -54,6 +54,7 @@ pub mod passes;
 pub mod renderer;
 pub mod scene;
 pub mod shader;
+mod timing;
 pub mod wake_bins;
 
 pub use camera::{Camera, OrbitCamera};

@@ -11,6 +11,7 @@ use crate::frame::{
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
 use crate::scene::Scene;
+use crate::timing::{GpuTimer, PassStats};
 
 /// Depth buffer format of every pass (defined beside the device helpers that make depth
 /// buffers; named here too for the passes that plug into the renderer).
@@ -49,28 +50,6 @@ impl Default for RenderOptions {
             render_scale: 1.0,
         }
     }
-}
-
-/// Pipeline-statistics queries: primitives entering the clipper, one query per pass.
-struct Stats {
-    queries: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    read: wgpu::Buffer,
-    capacity: u32,
-}
-
-/// Passes a frame can time.
-const TIMED_PASSES: u32 = 16;
-/// Timestamp slots of pass k: 4k.. begin and end of its render pass and its compute stage.
-/// The passes with offscreen work follow from OFFSCREEN_SLOTS, two each, in order: only
-/// written slots are resolved (a query never written has no defined value), and a resolve
-/// lands at a multiple of 256 bytes (wgpu::QUERY_RESOLVE_BUFFER_ALIGNMENT).
-const OFFSCREEN_SLOTS: u32 = 4 * TIMED_PASSES;
-
-struct Timer {
-    queries: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    read: wgpu::Buffer,
 }
 
 /// What a frame was drawn from, to tell whether the next one would look the same.
@@ -179,8 +158,8 @@ pub struct Renderer {
     bindings: FrameBindings,
     passes: Vec<Box<dyn Pass>>,
     depth: crate::gpu::DepthBuffer,
-    timer: Option<Timer>,
-    stats: Option<Stats>,
+    timer: Option<GpuTimer>,
+    stats: Option<PassStats>,
     wake: Option<Arc<ocean::wake::Wake>>,
     /// Bumped when an input outside the [`Scene`] changes (wakes, passes).
     revision: u64,
@@ -211,67 +190,8 @@ impl Renderer {
             )),
             Box::new(BoatsPass::new(device, &bindings.layout, targets)),
         ];
-        let timer = gpu
-            .features
-            .contains(wgpu::Features::TIMESTAMP_QUERY)
-            .then(|| {
-                // Per pass: begin and end of its render pass, its compute stage and its
-                // offscreen passes (OFFSCREEN_SLOTS).
-                let capacity = 6 * TIMED_PASSES;
-                let size = u64::from(capacity) * 8;
-                Timer {
-                    queries: device.create_query_set(&wgpu::QuerySetDescriptor {
-                        label: Some("pass timestamps"),
-                        ty: wgpu::QueryType::Timestamp,
-                        count: capacity,
-                    }),
-                    resolve: device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("timestamps"),
-                        size,
-                        usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                        mapped_at_creation: false,
-                    }),
-                    read: device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("timestamps read"),
-                        size,
-                        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
-                    }),
-                }
-            });
-        let stats = gpu
-            .features
-            .contains(wgpu::Features::PIPELINE_STATISTICS_QUERY)
-            .then(|| {
-                let capacity = 16;
-                let size = u64::from(capacity) * 8;
-                let buffer = |label, usage| {
-                    device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some(label),
-                        size,
-                        usage,
-                        mapped_at_creation: false,
-                    })
-                };
-                Stats {
-                    queries: device.create_query_set(&wgpu::QuerySetDescriptor {
-                        label: Some("pass primitives"),
-                        ty: wgpu::QueryType::PipelineStatistics(
-                            wgpu::PipelineStatisticsTypes::CLIPPER_INVOCATIONS,
-                        ),
-                        count: capacity,
-                    }),
-                    resolve: buffer(
-                        "primitives",
-                        wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                    ),
-                    read: buffer(
-                        "primitives read",
-                        wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                    ),
-                    capacity,
-                }
-            });
+        let timer = GpuTimer::new(gpu);
+        let stats = PassStats::new(gpu);
         Renderer {
             targets,
             options,
@@ -443,7 +363,7 @@ impl Renderer {
         report
     }
 
-    /// Plan and draw one frame.
+    /// Plan, record and measure one frame.
     fn draw(
         &mut self,
         gpu: &Gpu,
@@ -462,58 +382,69 @@ impl Renderer {
         let scene = raised.as_ref().map_or(scene, |(s, _)| s);
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
         if let Some(w) = &self.wake {
-            // Sources that can reach any water the clip-map draws.
-            let eye = DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
-            let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
-            let view = ocean::wake::WakeView::around([eye.x, eye.y], reach);
-            frame.wakes = w.gpu_sources(
-                scene.t,
-                [frame.origin.x, frame.origin.y],
-                &view,
-                WAKE_EPSILON_M,
-            );
-            let half = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
-            let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), self.wake_budget);
-            (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap);
-            if frame.wake_drop.dropped > 0 {
-                // Every frame of a bunched fleet drops some: the frame report carries it, the
-                // log only at info (a warning per frame would flood the terminal).
-                log::info!(
-                    "{} wake sources dropped to fit the {} byte wake buffer cap: height error \
-                     ≤ {:.2e} m",
-                    frame.wake_drop.dropped,
-                    cap,
-                    frame.wake_drop.height_bound_m
-                );
-            }
-            frame.uniform.counts[2] = frame.wakes.sources.len() as u32;
+            gather_wakes(gpu, w, self.wake_budget, &mut frame);
         }
         self.bindings
             .upload(&gpu.queue, &frame.uniform, &frame.waves);
         let depth = self.depth.view(gpu, size);
+        // Plan.
+        let (run, mut records) = self.plan(gpu, &frame);
+        // Record.
+        let measure = self.options.measure_gpu_time;
+        let timer = self
+            .timer
+            .as_ref()
+            .filter(|_| measure && GpuTimer::fits(run.len()));
+        // Pipeline statistics block on a read-back too: only when measuring.
+        let stats = self.stats.as_ref().filter(|s| measure && s.fits(run.len()));
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        // The passes' offscreen work first (reflection texture, caustic map), in the frame's
+        // encoder: one command buffer, one submission.
+        let offscreen = record_offscreen(&mut self.passes, &mut enc, &run, timer);
+        if run.is_empty() {
+            // Nothing is needed: still clear, so the frame shows no stale image.
+            crate::gpu::colour_pass(&mut enc, "clear", target, wgpu::Color::BLACK, None);
+        }
+        let recording = Recording {
+            target,
+            depth: &depth,
+            frame_group: &self.bindings.group,
+            timer,
+            stats,
+        };
+        recording.passes(&mut enc, &self.passes, &run, &mut records);
+        if !run.is_empty() {
+            if let Some(st) = stats {
+                st.resolve(&mut enc, run.len());
+            }
+            if let Some(t) = timer {
+                let timed_offscreen = offscreen.iter().flatten().count() as u32;
+                t.resolve(&mut enc, run.len(), timed_offscreen);
+            }
+        }
+        gpu.queue.submit([enc.finish()]);
+        // Measure.
+        let triangles_source = measure_frame(gpu, timer, stats, &run, &offscreen, &mut records);
+        self.report(
+            gpu,
+            &frame,
+            records,
+            triangles_source,
+            raised.as_ref().map(|(_, m)| *m),
+        )
+    }
+
+    /// Plan the frame: each pass's decision (with the backdrop rule), the passes that run
+    /// prepared. Returns their indices and every pass's record.
+    fn plan(&mut self, gpu: &Gpu, frame: &FrameContext) -> (Vec<usize>, Vec<PassRecord>) {
         let mut records = Vec::new();
         let mut run = Vec::new();
         let mut decisions: Vec<Result<String, String>> =
-            self.passes.iter().map(|p| p.plan(&frame)).collect();
-        // A pass that fills every pixel behind the scene (the camera image) hides the sky.
-        if let Some(cover) = self
-            .passes
-            .iter()
-            .zip(&decisions)
-            .find(|(p, d)| p.fills_background() && d.is_ok())
-            .map(|(p, _)| p.name())
-        {
-            for (p, d) in self.passes.iter().zip(&mut decisions) {
-                if p.is_backdrop() && d.is_ok() {
-                    *d = Err(format!(
-                        "hidden: the {cover} pass fills every pixel behind the scene"
-                    ));
-                }
-            }
-        }
+            self.passes.iter().map(|p| p.plan(frame)).collect();
+        hide_backdrops(&self.passes, &mut decisions);
         for ((i, p), decision) in self.passes.iter_mut().enumerate().zip(decisions) {
             if decision.is_ok() {
-                p.prepare(gpu, &frame);
+                p.prepare(gpu, frame);
                 run.push(i);
             }
             let ran = decision.is_ok();
@@ -527,150 +458,31 @@ impl Renderer {
                 offscreen_gpu_ms: None,
             });
         }
-        let timer = self
-            .timer
-            .as_ref()
-            .filter(|_| self.options.measure_gpu_time && run.len() <= TIMED_PASSES as usize);
-        // Pipeline statistics block on a read-back too: only when measuring.
-        let stats = self
-            .stats
-            .as_ref()
-            .filter(|s| self.options.measure_gpu_time && run.len() <= s.capacity as usize);
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        // The passes' offscreen work first (reflection texture, caustic map), in the frame's
-        // encoder: one command buffer, one submission.
-        let slot = |k: usize, i: u32| 4 * k as u32 + i;
-        // For each pass that recorded offscreen work, its index among those.
-        let mut offscreen: Vec<Option<u32>> = Vec::with_capacity(run.len());
-        let mut timed_offscreen = 0;
-        for &i in &run {
-            let timestamps = timer.map(|t| crate::frame::OffscreenTimestamps {
-                queries: &t.queries,
-                begin: OFFSCREEN_SLOTS + 2 * timed_offscreen,
-                end: OFFSCREEN_SLOTS + 2 * timed_offscreen + 1,
-            });
-            let recorded = self.passes[i].record_offscreen(&mut enc, timestamps);
-            offscreen.push(recorded.then_some(timed_offscreen));
-            timed_offscreen += u32::from(recorded);
-        }
-        if run.is_empty() {
-            // Nothing is needed: still clear, so the frame shows no stale image.
-            crate::gpu::colour_pass(&mut enc, "clear", target, wgpu::Color::BLACK, None);
-        }
-        for (k, &i) in run.iter().enumerate() {
-            let first = k == 0;
-            {
-                // The pass's compute stage (empty for most; always begun, so that its
-                // timestamps are written).
-                let mut compute = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some(self.passes[i].name()),
-                    timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
-                        query_set: &t.queries,
-                        beginning_of_pass_write_index: Some(slot(k, 2)),
-                        end_of_pass_write_index: Some(slot(k, 3)),
-                    }),
-                });
-                compute.set_bind_group(0, &self.bindings.group, &[]);
-                self.passes[i].dispatch(&mut compute);
-            }
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(self.passes[i].name()),
-                color_attachments: &[Some(crate::gpu::colour_attachment(
-                    target,
-                    first.then_some(wgpu::Color::BLACK),
-                ))],
-                depth_stencil_attachment: Some(crate::gpu::depth_attachment(&depth, first)),
-                timestamp_writes: timer.map(|t| wgpu::RenderPassTimestampWrites {
-                    query_set: &t.queries,
-                    beginning_of_pass_write_index: Some(slot(k, 0)),
-                    end_of_pass_write_index: Some(slot(k, 1)),
-                }),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_bind_group(0, &self.bindings.group, &[]);
-            if let Some(st) = stats {
-                pass.begin_pipeline_statistics_query(&st.queries, k as u32);
-            }
-            records[i].triangles = self.passes[i].draw(&mut pass);
-            if stats.is_some() {
-                pass.end_pipeline_statistics_query();
-            }
-        }
-        if let Some(st) = stats
-            && !run.is_empty()
-        {
-            let n = run.len() as u32;
-            enc.resolve_query_set(&st.queries, 0..n, &st.resolve, 0);
-            enc.copy_buffer_to_buffer(&st.resolve, 0, &st.read, 0, u64::from(n) * 8);
-        }
-        if let Some(t) = timer
-            && !run.is_empty()
-        {
-            let n = 4 * run.len() as u32;
-            enc.resolve_query_set(&t.queries, 0..n, &t.resolve, 0);
-            let m = 2 * timed_offscreen;
-            let at = u64::from(OFFSCREEN_SLOTS) * 8;
-            if m > 0 {
-                enc.resolve_query_set(
-                    &t.queries,
-                    OFFSCREEN_SLOTS..OFFSCREEN_SLOTS + m,
-                    &t.resolve,
-                    at,
-                );
-            }
-            enc.copy_buffer_to_buffer(&t.resolve, 0, &t.read, 0, at + u64::from(m) * 8);
-        }
-        gpu.queue.submit([enc.finish()]);
-        if let Some(t) = timer
-            && !run.is_empty()
-        {
-            match gpu.read_buffer(&t.read) {
-                Ok(bytes) => {
-                    let ticks: &[u64] = bytemuck::cast_slice(&bytes);
-                    let period_ns = f64::from(gpu.queue.get_timestamp_period());
-                    let ms = |ticks: u64| ticks as f64 * period_ns * 1e-6;
-                    for (k, &i) in run.iter().enumerate() {
-                        let q = &ticks[slot(k, 0) as usize..slot(k + 1, 0) as usize];
-                        let own = q[1].saturating_sub(q[0]) + q[3].saturating_sub(q[2]);
-                        records[i].gpu_ms = Some(ms(own));
-                        records[i].offscreen_gpu_ms = offscreen[k].map(|m| {
-                            let o = (OFFSCREEN_SLOTS + 2 * m) as usize;
-                            ms(ticks[o + 1].saturating_sub(ticks[o]))
-                        });
-                    }
-                }
-                Err(e) => log::warn!("no GPU timings this frame: {e}"),
-            }
-        }
-        let mut triangles_source = "counted";
-        if let Some(st) = stats
-            && !run.is_empty()
-        {
-            match gpu.read_buffer(&st.read) {
-                Ok(bytes) => {
-                    let prims: &[u64] = bytemuck::cast_slice(&bytes);
-                    for (k, &i) in run.iter().enumerate() {
-                        records[i].triangles = prims[k];
-                    }
-                    triangles_source = "pipeline_statistics";
-                }
-                Err(e) => log::warn!("no pipeline statistics this frame: {e}"),
-            }
-        }
+        (run, records)
+    }
+
+    /// The frame's report from the passes' records.
+    fn report(
+        &self,
+        gpu: &Gpu,
+        frame: &FrameContext,
+        records: Vec<PassRecord>,
+        triangles_source: &str,
+        camera_raised_m: Option<f64>,
+    ) -> FrameReport {
         let gpu_ms = records
             .iter()
             .filter_map(PassRecord::total_gpu_ms)
             .reduce(|a, b| a + b);
         FrameReport {
-            t: scene.t,
-            size,
+            t: frame.scene.t,
+            size: frame.size,
             adapter: gpu.describe(),
             triangles: records.iter().map(|r| r.triangles).sum(),
             triangles_source: triangles_source.into(),
             passes: records,
             gpu_ms,
-            clipmap: ClipMapRecord::of(&frame),
+            clipmap: ClipMapRecord::of(frame),
             wakes: self.wake.as_ref().map(|_| WakeRecord {
                 sources: frame.wakes.sources.len(),
                 culled: frame.wakes.culled,
@@ -681,9 +493,172 @@ impl Renderer {
                 buffer_cap_bytes: frame.wake_drop.cap_bytes,
             }),
             reused_last_frame: false,
-            camera_raised_m: raised.as_ref().map(|(_, m)| *m),
+            camera_raised_m,
         }
     }
+}
+
+/// The wake sources of `wake` that can reach any water the clip-map draws, binned for the GPU
+/// within `budget` bytes, into `frame`.
+fn gather_wakes(gpu: &Gpu, wake: &ocean::wake::Wake, budget: u64, frame: &mut FrameContext) {
+    let scene = frame.scene;
+    let eye = DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
+    let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
+    let view = ocean::wake::WakeView::around([eye.x, eye.y], reach);
+    frame.wakes = wake.gpu_sources(
+        scene.t,
+        [frame.origin.x, frame.origin.y],
+        &view,
+        WAKE_EPSILON_M,
+    );
+    let half = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
+    let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), budget);
+    (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap);
+    if frame.wake_drop.dropped > 0 {
+        // Every frame of a bunched fleet drops some: the frame report carries it, the
+        // log only at info (a warning per frame would flood the terminal).
+        log::info!(
+            "{} wake sources dropped to fit the {} byte wake buffer cap: height error \
+             ≤ {:.2e} m",
+            frame.wake_drop.dropped,
+            cap,
+            frame.wake_drop.height_bound_m
+        );
+    }
+    frame.uniform.counts[2] = frame.wakes.sources.len() as u32;
+}
+
+/// The backdrop rule: a pass that fills every pixel behind the scene (the camera image) hides
+/// the sky, so a backdrop pass planned to run is skipped with the reason.
+fn hide_backdrops(passes: &[Box<dyn Pass>], decisions: &mut [Result<String, String>]) {
+    let Some(cover) = passes
+        .iter()
+        .zip(decisions.iter())
+        .find(|(p, d)| p.fills_background() && d.is_ok())
+        .map(|(p, _)| p.name())
+    else {
+        return;
+    };
+    for (p, d) in passes.iter().zip(decisions.iter_mut()) {
+        if p.is_backdrop() && d.is_ok() {
+            *d = Err(format!(
+                "hidden: the {cover} pass fills every pixel behind the scene"
+            ));
+        }
+    }
+}
+
+/// Record the offscreen work of the passes that run (`run`). Returns, for each, its index
+/// among the passes that recorded any (their timestamp slots), or `None`.
+fn record_offscreen(
+    passes: &mut [Box<dyn Pass>],
+    enc: &mut wgpu::CommandEncoder,
+    run: &[usize],
+    timer: Option<&GpuTimer>,
+) -> Vec<Option<u32>> {
+    let mut offscreen = Vec::with_capacity(run.len());
+    let mut timed_offscreen = 0;
+    for &i in run {
+        let timestamps = timer.map(|t| t.offscreen(timed_offscreen));
+        let recorded = passes[i].record_offscreen(enc, timestamps);
+        offscreen.push(recorded.then_some(timed_offscreen));
+        timed_offscreen += u32::from(recorded);
+    }
+    offscreen
+}
+
+/// Where and with what the passes of a frame record.
+struct Recording<'a> {
+    target: &'a wgpu::TextureView,
+    depth: &'a wgpu::TextureView,
+    frame_group: &'a wgpu::BindGroup,
+    timer: Option<&'a GpuTimer>,
+    stats: Option<&'a PassStats>,
+}
+
+impl Recording<'_> {
+    /// Record the compute stage and the render pass of every pass that runs (`run`), in order;
+    /// the first clears the targets. The triangles each draws go into its record.
+    fn passes(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        passes: &[Box<dyn Pass>],
+        run: &[usize],
+        records: &mut [PassRecord],
+    ) {
+        for (k, &i) in run.iter().enumerate() {
+            let first = k == 0;
+            {
+                // The pass's compute stage (empty for most; always begun, so that its
+                // timestamps are written).
+                let mut compute = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(passes[i].name()),
+                    timestamp_writes: self.timer.map(|t| t.compute(k)),
+                });
+                compute.set_bind_group(0, self.frame_group, &[]);
+                passes[i].dispatch(&mut compute);
+            }
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(passes[i].name()),
+                color_attachments: &[Some(crate::gpu::colour_attachment(
+                    self.target,
+                    first.then_some(wgpu::Color::BLACK),
+                ))],
+                depth_stencil_attachment: Some(crate::gpu::depth_attachment(self.depth, first)),
+                timestamp_writes: self.timer.map(|t| t.render(k)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, self.frame_group, &[]);
+            if let Some(st) = self.stats {
+                st.begin(&mut pass, k);
+            }
+            records[i].triangles = passes[i].draw(&mut pass);
+            if self.stats.is_some() {
+                PassStats::end(&mut pass);
+            }
+        }
+    }
+}
+
+/// Read the submitted frame's measurements into the records of the passes that ran (`run`):
+/// GPU milliseconds and, with pipeline statistics, the primitives drawn. Returns where the
+/// triangle counts come from.
+fn measure_frame(
+    gpu: &Gpu,
+    timer: Option<&GpuTimer>,
+    stats: Option<&PassStats>,
+    run: &[usize],
+    offscreen: &[Option<u32>],
+    records: &mut [PassRecord],
+) -> &'static str {
+    if run.is_empty() {
+        return "counted";
+    }
+    if let Some(t) = timer {
+        match t.read(gpu, offscreen) {
+            Ok(durations) => {
+                for (&i, (own, off)) in run.iter().zip(durations) {
+                    records[i].gpu_ms = Some(own);
+                    records[i].offscreen_gpu_ms = off;
+                }
+            }
+            Err(e) => log::warn!("no GPU timings this frame: {e}"),
+        }
+    }
+    let mut triangles_source = "counted";
+    if let Some(st) = stats {
+        match st.read(gpu, run.len()) {
+            Ok(prims) => {
+                for (&i, p) in run.iter().zip(prims) {
+                    records[i].triangles = p;
+                }
+                triangles_source = "pipeline_statistics";
+            }
+            Err(e) => log::warn!("no pipeline statistics this frame: {e}"),
+        }
+    }
+    triangles_source
 }
 
 /// Copy all of `from` into `to` (same size and format).

@@ -5,7 +5,6 @@ use std::rc::Rc;
 
 use render::frame::{FrameContext, Pass, Targets};
 use render::gpu::Gpu;
-use render::shader;
 
 use super::pipelines::{FxDraw, fx_pipeline};
 use super::shared::{EFFECTS_COMMON, Shared, effect_frame};
@@ -70,7 +69,7 @@ impl BackgroundPass {
                 &fx_layout,
                 targets,
                 "background",
-                &shader::module(&gpu.device, "background", &[EFFECTS_COMMON, BACKGROUND]),
+                &crate::wgsl::module(&gpu.device, "background", &[EFFECTS_COMMON, BACKGROUND]),
                 FxDraw {
                     buffers: &[],
                     vertex: "vs_main",

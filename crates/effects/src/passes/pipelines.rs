@@ -115,7 +115,7 @@ impl ArPipelines {
             &self.fx_layout,
             self.targets,
             &label,
-            &shader::module(&gpu.device, &label, &parts),
+            &crate::wgsl::module(&gpu.device, &label, &parts),
             FxDraw {
                 buffers: &[Some(buffer)],
                 vertex: "vs_ar",

@@ -14,7 +14,6 @@ use render::gpu::Gpu;
 use render::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
 use render::passes::boats::BoatsPass;
 use render::passes::water::{WaterPass, supports_wakes};
-use render::shader;
 
 use super::pipelines::{ArPipelines, FxDraw, REFLECTION, fx_pipeline};
 use super::scissor::{Scissor, play_area_scissor};
@@ -154,7 +153,7 @@ impl ArWaterPass {
             &room_layout,
             targets,
             "reflected room",
-            &shader::module(
+            &crate::wgsl::module(
                 &gpu.device,
                 "reflected room",
                 &[EFFECTS_COMMON, REFLECTION, REFLECTION_ROOM],

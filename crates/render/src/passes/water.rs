@@ -299,7 +299,7 @@ impl Pass for WaterPass {
         {
             pass.set_pipeline(&c.pipeline);
             pass.set_bind_group(1, group, &[]);
-            pass.dispatch_workgroups(c.vertex_count.div_ceil(64), 1, 1);
+            pass.dispatch_workgroups(c.vertex_count.div_ceil(crate::shader::WORKGROUP_SIZE), 1, 1);
         }
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
