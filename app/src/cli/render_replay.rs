@@ -20,6 +20,7 @@ pub fn run(
     out: &ImageOut,
     size: [u32; 2],
     effects: Option<EffectSet>,
+    overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
     use crate::cli::inputs::{drawable_sea, load_race, load_sea};
     use crate::cli::render::{middle_time, note_unmet_error, print_report, race_orbit, race_wake};
@@ -66,8 +67,9 @@ pub fn run(
         frame,
     )?;
     feed.apply(&mut scene);
-    let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    let (img, report) =
+        crate::scene_overlay::render_headless(&gpu, &mut renderer, &race, &scene, size, overlays)
+            .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     note_unmet_error(&report);
     print_report(a, &report)
@@ -80,6 +82,7 @@ pub fn run(
     _out: &ImageOut,
     _size: [u32; 2],
     _effects: Option<EffectSet>,
+    _overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
     Err(CliError::new(
         "render --replay draws through the desktop window's feed view, which Android does not build",

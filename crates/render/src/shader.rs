@@ -11,6 +11,8 @@ pub const SKY: &str = include_str!("../../../shaders/sky.wgsl");
 pub const UPSCALE: &str = include_str!("../../../shaders/upscale.wgsl");
 pub const WATER: &str = include_str!("../../../shaders/water.wgsl");
 pub const BOATS: &str = include_str!("../../../shaders/boats.wgsl");
+/// The scene overlays: world segments as screen-space capsules (`passes::overlay`).
+pub const OVERLAY: &str = include_str!("../../../shaders/overlay.wgsl");
 pub const WAVE_HEIGHTS: &str = include_str!("../../../shaders/wave_heights.wgsl");
 /// The boats' wake sources (the wakes engineer's file; ocean::wake::gpu mirrors it in f32).
 pub const WAKE: &str = include_str!("../../../shaders/wake.wgsl");

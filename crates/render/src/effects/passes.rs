@@ -477,6 +477,7 @@ fn fx_pipeline(
             depth_write: draw.depth_write,
             depth_compare: draw.depth_compare,
             cull: None,
+            blend: None,
         },
     )
 }
