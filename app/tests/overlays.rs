@@ -49,10 +49,14 @@ fn masthead_as_drawn(scene: &Scene, position: [f64; 2], heading_deg: f64, length
 #[test]
 fn every_label_anchor_is_within_two_pixels_of_its_masthead() {
     let race = race::Race::sample();
-    for (t, size) in [(600.0, [1280, 720]), (300.0, [720, 1600])] {
-        let scene = orbit_scene(&race, t);
+    // The desktop's orbit view, and `regatta render`'s framing view at phone size.
+    let framing = |t| regatta::cli::render::scene_at(&race, &sea(), t, None);
+    for (t, size, scene) in [
+        (600.0, [1280, 720], orbit_scene(&race, 600.0)),
+        (300.0, [720, 1600], framing(300.0)),
+    ] {
         let f = scene_overlay::frame(&race, &scene, size, 1.0, &OverlaySettings::default());
-        assert!(f.hulls.len() >= 4, "t = {t}: {} boats on screen", f.hulls.len());
+        assert!(f.hulls.len() >= 2, "t = {t}: {} boats on screen", f.hulls.len());
         for h in &f.hulls {
             let s = race.boats[h.boat].state_at(t);
             let top = masthead_as_drawn(&scene, s.position, s.heading_deg, 10.0);
@@ -125,15 +129,16 @@ fn trails_break_at_the_gaps_of_a_real_garmin_track() {
     let boat = &race.boats[0];
     let (t0, t1) = boat.time_span();
     let mut seen = Vec::new();
-    // Ten-minute trails every five minutes over the whole track.
+    // Twenty-minute trails every five minutes over the whole track.
+    const WINDOW_S: f64 = 1200.0;
     let mut t = t0;
     while t <= t1 {
-        for line in regatta::scene_overlay::geometry::trail_polylines(boat, t, 600.0) {
+        let lines = regatta::scene_overlay::geometry::trail_polylines(boat, t, WINDOW_S);
+        for line in &lines {
             for w in line.windows(2) {
                 assert!(w[1].0 - w[0].0 < 60.0, "a trail spans {:.0} s", w[1].0 - w[0].0);
             }
         }
-        let lines = regatta::scene_overlay::geometry::trail_polylines(boat, t, 600.0);
         for pair in lines.windows(2) {
             seen.push(pair[1][0].0 - pair[0].last().unwrap().0);
         }

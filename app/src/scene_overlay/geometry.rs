@@ -363,8 +363,8 @@ pub fn ahead_behind(v: &View, texts: &mut Vec<SceneText>) -> Layer {
         let across = DVec2::new(-axis.y, axis.x);
         let half = (0.12 * leg_len).max(3.0 * v.boat_length);
         let is_leader = st.rank == 1;
-        let colour = if is_leader { rgba(WHITE, 0.8) } else { rgba(b.colour, 0.7) };
-        out.extend(water_line(v, p - across * half, p + across * half, 12, colour, v.px(2.0)));
+        let colour = if is_leader { rgba(WHITE, 0.6) } else { rgba(b.colour, 0.5) };
+        out.extend(water_line(v, p - across * half, p + across * half, 12, colour, v.px(1.5)));
         let text = if is_leader {
             "leader".to_string()
         } else {
@@ -385,30 +385,37 @@ pub fn ahead_behind(v: &View, texts: &mut Vec<SceneText>) -> Layer {
     Layer::Draw(out)
 }
 
-/// The wind indicator: an arrow on the water upwind of the fleet, pointing downwind, with the
-/// wind's figure at its tail.
+/// The wind indicator: an arrow on the water pointing downwind, between the camera and what
+/// it looks at (so it is in view whatever the camera does), a sixth of that distance long,
+/// with the wind's figure at its tail.
 pub fn wind_arrow(v: &View, wind: Option<WindInfo>, texts: &mut Vec<SceneText>) -> Layer {
     let Some(w) = wind else {
         return Layer::Nothing("no wind in the race and a calm sea".into());
     };
-    let centre = if v.boats.is_empty() {
-        let [x0, z0, x1, z1] = v.scene.play_area;
-        DVec2::new(x0 + x1, z0 + z1) / 2.0
+    let cam = &v.scene.camera;
+    // Where the view's centre meets the sea level (the AR camera's target is one metre ahead).
+    let forward = (cam.target - cam.eye).normalize();
+    let look = if forward.y < -1e-3 {
+        cam.eye + forward * (-cam.eye.y / forward.y)
     } else {
-        v.boats.iter().map(|b| DVec2::from(b.state.position)).sum::<DVec2>() / v.boats.len() as f64
+        cam.target
     };
+    let (eye, target) = (DVec2::new(cam.eye.x, cam.eye.z), DVec2::new(look.x, look.z));
+    let centre = target.lerp(eye, 0.35);
     let from = w.from_deg.to_radians();
     let upwind = DVec2::new(from.sin(), -from.cos());
-    let len = 4.0 * v.boat_length;
-    let tail = centre + upwind * 3.0 * v.boat_length + upwind * len;
+    let len = (eye.distance(target) / 6.0).max(2.0 * v.boat_length);
+    let tail = centre + upwind * len / 2.0;
     let head = tail - upwind * len;
-    let colour = [0.95, 0.97, 1.0, 0.9];
-    let width = v.px(4.0);
-    let mut out = water_line(v, tail, head, 8, colour, width);
     let side = DVec2::new(-upwind.y, upwind.x);
-    for s in [-1.0, 1.0] {
-        let barb = head + (upwind + side * s * 0.6) * 0.3 * len;
-        out.extend(water_line(v, head, barb, 2, colour, width));
+    let barbs = [-1.0, 1.0].map(|s| head + (upwind + side * s * 0.6) * 0.3 * len);
+    let mut out = Vec::new();
+    // A dark edge under a white arrow: it reads on bright water and on dark.
+    for (colour, width) in [([0.0, 0.02, 0.05, 0.6], v.px(8.0)), ([0.95, 0.97, 1.0, 0.95], v.px(5.0))] {
+        out.extend(water_line(v, tail, head, 8, colour, width));
+        for barb in barbs {
+            out.extend(water_line(v, head, barb, 2, colour, width));
+        }
     }
     texts.push(SceneText {
         at: v.on_water(tail),

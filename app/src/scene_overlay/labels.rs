@@ -26,6 +26,10 @@ pub const PAD_PT: f64 = 4.0;
 /// Width of the team-colour bar at a label's left, points.
 pub const BAR_PT: f64 = 5.0;
 
+/// Rows of candidate spots above a masthead: a bunched fleet stacks its labels this high
+/// before one is hidden.
+pub const ROWS: usize = 5;
+
 /// A label placed on screen (pixels, y down).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlacedLabel {
@@ -40,7 +44,7 @@ pub struct PlacedLabel {
     pub rect: [f64; 4],
 }
 
-fn overlaps(a: &[f64; 4], b: &[f64; 4], margin: f64) -> bool {
+pub fn overlaps(a: &[f64; 4], b: &[f64; 4], margin: f64) -> bool {
     a[0] < b[2] + margin && b[0] < a[2] + margin && a[1] < b[3] + margin && b[1] < a[3] + margin
 }
 
@@ -103,7 +107,7 @@ pub struct LabelSpec {
 }
 
 /// Places labels in priority order, each at the first candidate spot (above its anchor,
-/// then shifted right, left, and one or two rows higher) that stays on the `screen` and
+/// then shifted right and left by up to a label's width, and up to [`ROWS`] − 1 rows higher) that stays on the `screen` and
 /// overlaps no label placed before it; a label with no free spot is hidden (`None`).
 pub fn declutter(specs: &[LabelSpec], screen: [f64; 2], stem: f64) -> Vec<Option<[f64; 4]>> {
     let mut order: Vec<usize> = (0..specs.len()).collect();
@@ -114,10 +118,18 @@ pub fn declutter(specs: &[LabelSpec], screen: [f64; 2], stem: f64) -> Vec<Option
         let s = &specs[k];
         let [w, h] = s.size;
         let [ax, ay] = s.anchor;
-        let spot = (0..3)
+        let spot = (0..ROWS)
             .flat_map(|row| {
                 let y = ay - stem - h - row as f64 * (h + 0.25 * stem);
-                [ax - w / 2.0, ax + 0.3 * stem, ax - w - 0.3 * stem].map(move |x| [x, y])
+                let g = 0.3 * stem;
+                [
+                    ax - w / 2.0,
+                    ax + g,
+                    ax - w - g,
+                    ax + w + 2.0 * g,
+                    ax - 2.0 * w - 2.0 * g,
+                ]
+                .map(move |x| [x, y])
             })
             .map(|[x, y]| {
                 // Kept on the frame sideways (a boat at the edge keeps its label).

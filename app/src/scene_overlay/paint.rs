@@ -80,13 +80,24 @@ pub fn paint(ctx: &egui::Context, frame: &OverlayFrame, screen_px: [u32; 2]) -> 
     );
     let painter = ctx.layer_painter(egui::LayerId::background());
     let pt = |p: [f64; 2]| egui::pos2((p[0] / ppp) as f32, (p[1] / ppp) as f32);
+    // Scene texts where they overlap no label and no text before them, on a dark plate.
+    let mut taken: Vec<[f64; 4]> = placed.iter().map(|l| l.rect).collect();
+    let pad = 3.0 * ppp;
     for t in &frame.texts {
+        let [w, h] = measure(ctx, &t.text, SCENE_TEXT_PT * ppp);
+        let r = [t.pos[0], t.pos[1] - h / 2.0 - pad, t.pos[0] + w + 2.0 * pad, t.pos[1] + h / 2.0 + pad];
+        if taken.iter().any(|q| labels::overlaps(q, &r, 1.0)) {
+            continue;
+        }
+        taken.push(r);
+        let plate = egui::Rect::from_min_max(pt([r[0], r[1]]), pt([r[2], r[3]]));
+        painter.rect_filled(plate, 3.0, egui::Color32::from_black_alpha(150));
         painter.text(
-            pt(t.pos) + egui::vec2(4.0, 0.0),
+            egui::pos2(plate.left() + 3.0, plate.center().y),
             egui::Align2::LEFT_CENTER,
             &t.text,
             egui::FontId::proportional(SCENE_TEXT_PT as f32),
-            colour32(t.colour, 255),
+            colour32(t.colour.map(|c| 0.35 + 0.65 * c), 255),
         );
     }
     // Lowest priority first, so the leader's and the selected boats' labels end on top.
