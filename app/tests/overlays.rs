@@ -56,7 +56,11 @@ fn every_label_anchor_is_within_two_pixels_of_its_masthead() {
         (300.0, [720, 1600], framing(300.0)),
     ] {
         let f = scene_overlay::frame(&race, &scene, size, 1.0, &OverlaySettings::default());
-        assert!(f.hulls.len() >= 2, "t = {t}: {} boats on screen", f.hulls.len());
+        assert!(
+            f.hulls.len() >= 2,
+            "t = {t}: {} boats on screen",
+            f.hulls.len()
+        );
         for h in &f.hulls {
             let s = race.boats[h.boat].state_at(t);
             let top = masthead_as_drawn(&scene, s.position, s.heading_deg, 10.0);
@@ -136,7 +140,11 @@ fn trails_break_at_the_gaps_of_a_real_garmin_track() {
         let lines = regatta::scene_overlay::geometry::trail_polylines(boat, t, WINDOW_S);
         for line in &lines {
             for w in line.windows(2) {
-                assert!(w[1].0 - w[0].0 < 60.0, "a trail spans {:.0} s", w[1].0 - w[0].0);
+                assert!(
+                    w[1].0 - w[0].0 < 60.0,
+                    "a trail spans {:.0} s",
+                    w[1].0 - w[0].0
+                );
             }
         }
         for pair in lines.windows(2) {
@@ -174,7 +182,14 @@ fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
         ..Default::default()
     };
     let f = scene_overlay::frame(&no_wind, &calm, [640, 360], 1.0, &settings);
-    let layer = |k| f.layers.iter().find(|(kind, _)| *kind == k).unwrap().1.clone();
+    let layer = |k| {
+        f.layers
+            .iter()
+            .find(|(kind, _)| *kind == k)
+            .unwrap()
+            .1
+            .clone()
+    };
     assert_eq!(
         layer(OverlayKind::Wind),
         Layer::Nothing("no wind in the race and a calm sea".into())
@@ -196,7 +211,15 @@ fn bad_overlay_lists_are_one_line_errors() {
         "contradictory",
     );
     common::fails_with(
-        &["render", "--out", out, "--scene", "pool", "--overlays", "all"],
+        &[
+            "render",
+            "--out",
+            out,
+            "--scene",
+            "pool",
+            "--overlays",
+            "all",
+        ],
         "--overlays",
     );
 }

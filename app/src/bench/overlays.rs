@@ -86,12 +86,24 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let mut t = Table::new(
         "overlays_cost",
         "Race overlays: all of them against the water-only frame",
-        &["frame", "median ms/frame", "ratio", "median GPU ms", "GPU ratio"],
+        &[
+            "frame",
+            "median ms/frame",
+            "ratio",
+            "median GPU ms",
+            "GPU ratio",
+        ],
     );
     let water_ms = median(&mut wall[0]);
     let all_ms = median(&mut wall[1]);
     let (g0, g1) = (median(&mut gpu_ms[0]), median(&mut gpu_ms[1]));
-    t.row(vec![json!("water only"), json!(water_ms), json!(1.0), json!(g0), json!(1.0)]);
+    t.row(vec![
+        json!("water only"),
+        json!(water_ms),
+        json!(1.0),
+        json!(g0),
+        json!(1.0),
+    ]);
     let ratio = all_ms / water_ms;
     t.row(vec![
         json!("all overlays (passes + CPU + egui labels)"),
@@ -112,7 +124,11 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     t.note(format!(
         "Goal: all overlays ≤ {GOAL_RATIO}× the water-only frame. Measured: {ratio:.3}× wall \
          clock ({}).",
-        if ratio <= GOAL_RATIO { "met" } else { "NOT met" }
+        if ratio <= GOAL_RATIO {
+            "met"
+        } else {
+            "NOT met"
+        }
     ));
     Ok(vec![t])
 }

@@ -244,7 +244,8 @@ impl App {
             o.apply_effects(&mut st.renderer);
             let ppp = st.window.scale_factor();
             let (race, r) = (&self.race, &mut st.renderer);
-            o.scene_overlays.prepare(&st.gpu, r, race, &scene, size, ppp);
+            o.scene_overlays
+                .prepare(&st.gpu, r, race, &scene, size, ppp);
         }
         // A failed frame is logged by the renderer; the window shows the next one.
         let report = st.renderer.render(&st.gpu, &view, size, &scene).ok();
@@ -348,9 +349,9 @@ impl ApplicationHandler for App {
                 let pressed = state == ElementState::Pressed;
                 // A click without a drag on the scene selects the boat under it.
                 if !pressed
-                    && self.press_at.is_some_and(|(x, y)| {
-                        (x - self.cursor.0).hypot(y - self.cursor.1) < 4.0
-                    })
+                    && self
+                        .press_at
+                        .is_some_and(|(x, y)| (x - self.cursor.0).hypot(y - self.cursor.1) < 4.0)
                     && let Some(o) = self.state.as_mut().and_then(|s| s.overlay.as_mut())
                 {
                     o.scene_overlays.click([self.cursor.0, self.cursor.1]);

@@ -95,7 +95,10 @@ impl<'a> View<'a> {
 
     /// The sea's height at world (x, z), metres (rest level where the inverse fails).
     pub fn sea_height(&self, p: DVec2) -> f64 {
-        self.scene.sea.height_at([p.x, p.y], self.scene.t).unwrap_or(0.0)
+        self.scene
+            .sea
+            .height_at([p.x, p.y], self.scene.t)
+            .unwrap_or(0.0)
     }
 
     /// How far above the sea overlay lines float: a twentieth of a drawn hull, so they stay
@@ -111,7 +114,12 @@ impl<'a> View<'a> {
 
     /// The masthead of boat `b` as drawn (floating on the sea), world metres.
     pub fn masthead(&self, b: &BoatAt) -> DVec3 {
-        masthead(self.scene, b.state.position, b.state.heading_deg, self.boat_length)
+        masthead(
+            self.scene,
+            b.state.position,
+            b.state.heading_deg,
+            self.boat_length,
+        )
     }
 
     /// A line width of `points` points, in pixels.
@@ -142,7 +150,14 @@ fn rgba(c: [f32; 3], a: f32) -> [f32; 4] {
 const WHITE: [f32; 3] = [1.0, 1.0, 1.0];
 
 /// A polyline on the water from `a` to `b` in `n` pieces, so it follows the waves.
-fn water_line(v: &View, a: DVec2, b: DVec2, n: usize, colour: [f32; 4], width: f32) -> Vec<Segment> {
+fn water_line(
+    v: &View,
+    a: DVec2,
+    b: DVec2,
+    n: usize,
+    colour: [f32; 4],
+    width: f32,
+) -> Vec<Segment> {
     let pts: Vec<DVec3> = (0..=n)
         .map(|k| v.on_water(a.lerp(b, k as f64 / n as f64)))
         .collect();
@@ -174,9 +189,21 @@ pub fn rings(v: &View, settings: &OverlaySettings) -> Layer {
     let mut out = Vec::new();
     for b in &v.boats {
         let c = DVec2::from(b.state.position);
-        out.extend(ring(v, c, 0.7 * v.boat_length, rgba(b.colour, 0.95), v.px(3.0)));
+        out.extend(ring(
+            v,
+            c,
+            0.7 * v.boat_length,
+            rgba(b.colour, 0.95),
+            v.px(3.0),
+        ));
         if settings.selected.contains(&b.index) {
-            out.extend(ring(v, c, 0.95 * v.boat_length, rgba(WHITE, 1.0), v.px(4.0)));
+            out.extend(ring(
+                v,
+                c,
+                0.95 * v.boat_length,
+                rgba(WHITE, 1.0),
+                v.px(4.0),
+            ));
         }
     }
     Layer::Draw(out)
@@ -194,8 +221,7 @@ pub fn trail_polylines(boat: &race::Boat, t: f64, window_s: f64) -> Vec<Vec<(f64
     let mut lines: Vec<Vec<(f64, [f64; 2])>> = Vec::new();
     let mut current: Vec<(f64, [f64; 2])> = Vec::new();
     let mut last_t = f64::NEG_INFINITY;
-    for i in a..b {
-        let f = &fixes[i];
+    for (i, f) in fixes.iter().enumerate().take(b).skip(a) {
         let at_gap = boat.gap_after(i) || (i > 0 && boat.gap_after(i - 1));
         if current.is_empty() || at_gap || f.t - last_t >= step || i + 1 == b {
             current.push((f.t, f.pos()));
@@ -224,7 +250,12 @@ pub fn trails(v: &View, window_s: f64) -> Layer {
             continue;
         }
         let colour = crate::cli::render::linear_colour(&b.color);
-        let fade = |tp: f64| rgba(colour, (0.9 * (1.0 - (t - tp) / window_s)).clamp(0.0, 0.9) as f32);
+        let fade = |tp: f64| {
+            rgba(
+                colour,
+                (0.9 * (1.0 - (t - tp) / window_s)).clamp(0.0, 0.9) as f32,
+            )
+        };
         for line in trail_polylines(b, t, window_s) {
             let pts: Vec<(f64, DVec3)> = line
                 .iter()
@@ -240,10 +271,7 @@ pub fn trails(v: &View, window_s: f64) -> Layer {
         }
     }
     if out.is_empty() {
-        return Layer::Nothing(format!(
-            "no boat has fixes in the last {:.0} s",
-            window_s
-        ));
+        return Layer::Nothing(format!("no boat has fixes in the last {:.0} s", window_s));
     }
     Layer::Draw(out)
 }
@@ -287,7 +315,10 @@ pub fn course(v: &View, rhumb: bool, wind: Option<WindInfo>) -> Layer {
         }
     }
     if rhumb {
-        let pts: Vec<DVec2> = race.course_marks().map(|m| DVec2::from(m.position)).collect();
+        let pts: Vec<DVec2> = race
+            .course_marks()
+            .map(|m| DVec2::from(m.position))
+            .collect();
         for w in pts.windows(2) {
             out.extend(water_line(v, w[0], w[1], 24, [1.0, 1.0, 1.0, 0.35], width));
         }
@@ -295,10 +326,21 @@ pub fn course(v: &View, rhumb: bool, wind: Option<WindInfo>) -> Layer {
     let n = race.boundary.len();
     for k in 0..n {
         let (a, b) = (race.boundary[k], race.boundary[(k + 1) % n]);
-        out.extend(water_line(v, DVec2::from(a), DVec2::from(b), 16, rgba(BOUNDARY, 0.7), width));
+        out.extend(water_line(
+            v,
+            DVec2::from(a),
+            DVec2::from(b),
+            16,
+            rgba(BOUNDARY, 0.7),
+            width,
+        ));
     }
     if let (Some(w), Some(mark)) = (wind, next_windward_mark(v, wind)) {
-        let leg = race.leg_lengths().into_iter().fold(0.0, f64::max).max(10.0 * v.boat_length);
+        let leg = race
+            .leg_lengths()
+            .into_iter()
+            .fold(0.0, f64::max)
+            .max(10.0 * v.boat_length);
         for side in [-1.0, 1.0] {
             // From the mark downwind, LAYLINE_ANGLE_DEG either side of the wind's direction.
             let bearing = (w.from_deg + side * LAYLINE_ANGLE_DEG).to_radians();
@@ -363,8 +405,19 @@ pub fn ahead_behind(v: &View, texts: &mut Vec<SceneText>) -> Layer {
         let across = DVec2::new(-axis.y, axis.x);
         let half = (0.12 * leg_len).max(3.0 * v.boat_length);
         let is_leader = st.rank == 1;
-        let colour = if is_leader { rgba(WHITE, 0.6) } else { rgba(b.colour, 0.5) };
-        out.extend(water_line(v, p - across * half, p + across * half, 12, colour, v.px(1.5)));
+        let colour = if is_leader {
+            rgba(WHITE, 0.6)
+        } else {
+            rgba(b.colour, 0.5)
+        };
+        out.extend(water_line(
+            v,
+            p - across * half,
+            p + across * half,
+            12,
+            colour,
+            v.px(1.5),
+        ));
         let text = if is_leader {
             "leader".to_string()
         } else {
@@ -411,7 +464,10 @@ pub fn wind_arrow(v: &View, wind: Option<WindInfo>, texts: &mut Vec<SceneText>) 
     let barbs = [-1.0, 1.0].map(|s| head + (upwind + side * s * 0.6) * 0.3 * len);
     let mut out = Vec::new();
     // A dark edge under a white arrow: it reads on bright water and on dark.
-    for (colour, width) in [([0.0, 0.02, 0.05, 0.6], v.px(8.0)), ([0.95, 0.97, 1.0, 0.95], v.px(5.0))] {
+    for (colour, width) in [
+        ([0.0, 0.02, 0.05, 0.6], v.px(8.0)),
+        ([0.95, 0.97, 1.0, 0.95], v.px(5.0)),
+    ] {
         out.extend(water_line(v, tail, head, 8, colour, width));
         for barb in barbs {
             out.extend(water_line(v, head, barb, 2, colour, width));

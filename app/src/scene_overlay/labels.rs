@@ -66,7 +66,11 @@ pub fn hulls(v: &View) -> Vec<Hull> {
             }
             // Half the hull's length on screen, seen across (bow to stern at the same depth).
             let bow = glam::DVec3::new(foot.x, 0.0, foot.y)
-                + v.scene.camera.up.cross(v.scene.camera.target - v.scene.camera.eye).normalize()
+                + v.scene
+                    .camera
+                    .up
+                    .cross(v.scene.camera.target - v.scene.camera.eye)
+                    .normalize()
                     * (0.5 * v.boat_length);
             let half = v
                 .project(bow)
@@ -136,7 +140,9 @@ pub fn declutter(specs: &[LabelSpec], screen: [f64; 2], stem: f64) -> Vec<Option
                 let x = x.clamp(0.0, (screen[0] - w).max(0.0));
                 [x, y, x + w, y + h]
             })
-            .find(|r| r[1] >= 0.0 && r[3] <= screen[1] && !placed.iter().any(|p| overlaps(p, r, 1.0)));
+            .find(|r| {
+                r[1] >= 0.0 && r[3] <= screen[1] && !placed.iter().any(|p| overlaps(p, r, 1.0))
+            });
         if let Some(r) = spot {
             placed.push(r);
             out[k] = Some(r);
@@ -312,8 +318,15 @@ mod tests {
                 anchor: [120.0, 100.0],
             },
         ];
-        assert_eq!(pick(std::slice::from_ref(&label), &hulls, [70.0, 80.0]), Some(4));
-        assert_eq!(pick(&[], &hulls, [117.0, 131.0]), Some(2), "the nearest hull");
+        assert_eq!(
+            pick(std::slice::from_ref(&label), &hulls, [70.0, 80.0]),
+            Some(4)
+        );
+        assert_eq!(
+            pick(&[], &hulls, [117.0, 131.0]),
+            Some(2),
+            "the nearest hull"
+        );
         assert_eq!(pick(&[], &hulls, [300.0, 300.0]), None, "the water");
     }
 }

@@ -300,7 +300,10 @@ mod tests {
         assert!(s.is_on(OverlayKind::Labels) && s.is_on(OverlayKind::Trails));
         assert!(!s.is_on(OverlayKind::Wind) && !s.is_on(OverlayKind::Course));
         let e = OverlaySet::parse("labels,wakes").unwrap_err();
-        assert!(e.starts_with("--overlays") && e.contains("\"wakes\""), "{e}");
+        assert!(
+            e.starts_with("--overlays") && e.contains("\"wakes\""),
+            "{e}"
+        );
         assert!(!e.contains('\n'));
         let e = OverlaySet::parse("all,labels").unwrap_err();
         assert!(e.contains("contradictory"), "{e}");

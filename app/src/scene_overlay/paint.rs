@@ -85,7 +85,12 @@ pub fn paint(ctx: &egui::Context, frame: &OverlayFrame, screen_px: [u32; 2]) -> 
     let pad = 3.0 * ppp;
     for t in &frame.texts {
         let [w, h] = measure(ctx, &t.text, SCENE_TEXT_PT * ppp);
-        let r = [t.pos[0], t.pos[1] - h / 2.0 - pad, t.pos[0] + w + 2.0 * pad, t.pos[1] + h / 2.0 + pad];
+        let r = [
+            t.pos[0],
+            t.pos[1] - h / 2.0 - pad,
+            t.pos[0] + w + 2.0 * pad,
+            t.pos[1] + h / 2.0 + pad,
+        ];
         if taken.iter().any(|q| labels::overlaps(q, &r, 1.0)) {
             continue;
         }

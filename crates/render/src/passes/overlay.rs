@@ -82,8 +82,12 @@ impl OverlayKind {
             OverlayKind::Labels => "labels are on and a boat is in view",
             OverlayKind::Trails => "trails are on and a boat's recent track is in view",
             OverlayKind::Course => "the course is on, the race has marks and one is in view",
-            OverlayKind::Lines => "ahead/behind lines are on, the race has a course and a racing boat is in view",
-            OverlayKind::Wind => "the wind indicator is on and the wind is known (race data or the sea)",
+            OverlayKind::Lines => {
+                "ahead/behind lines are on, the race has a course and a racing boat is in view"
+            }
+            OverlayKind::Wind => {
+                "the wind indicator is on and the wind is known (race data or the sea)"
+            }
         }
     }
 }
@@ -261,7 +265,10 @@ impl Pass for OverlayPass {
     }
     fn plan(&self, frame: &FrameContext) -> Result<String, String> {
         match self.handle.layer(self.kind) {
-            Layer::Off => Err(format!("turned off (\"{}\" not in --overlays)", self.kind.name())),
+            Layer::Off => Err(format!(
+                "turned off (\"{}\" not in --overlays)",
+                self.kind.name()
+            )),
             Layer::Nothing(why) => Err(why),
             Layer::Draw(segments) => match Self::in_view(frame, &segments).count() {
                 0 if segments.is_empty() => Err("nothing to draw".into()),
@@ -341,10 +348,16 @@ mod tests {
         assert_eq!(OverlayKind::from_name("wakes"), None);
         let h = OverlayHandle::default();
         let r0 = h.revision();
-        h.set(OverlayKind::Wind, Layer::Nothing("no wind in the race".into()));
+        h.set(
+            OverlayKind::Wind,
+            Layer::Nothing("no wind in the race".into()),
+        );
         let r1 = h.revision();
         assert!(r1 > r0);
-        h.set(OverlayKind::Wind, Layer::Nothing("no wind in the race".into()));
+        h.set(
+            OverlayKind::Wind,
+            Layer::Nothing("no wind in the race".into()),
+        );
         assert_eq!(h.revision(), r1, "the same layer again changes nothing");
     }
 }
