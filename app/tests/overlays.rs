@@ -110,6 +110,31 @@ fn the_sample_fleets_labels_never_overlap_and_the_leader_is_labelled() {
 }
 
 #[test]
+fn a_selected_boat_gets_a_white_ring_and_its_label_first() {
+    let race = race::Race::sample();
+    let scene = orbit_scene(&race, 600.0);
+    let layer = |selected: Vec<usize>| {
+        let settings = OverlaySettings {
+            selected,
+            ..Default::default()
+        };
+        let f = scene_overlay::frame(&race, &scene, [1280, 720], 1.0, &settings);
+        let (_, layer) = f.layers.into_iter().find(|(k, _)| *k == OverlayKind::Labels).unwrap();
+        let Layer::Draw(segments) = layer else {
+            panic!("{layer:?}")
+        };
+        let white = segments.iter().filter(|s| s.colour_a == [1.0; 4]).count();
+        (f.labels, white)
+    };
+    let (_, none) = layer(Vec::new());
+    let (labels, one) = layer(vec![5]);
+    assert_eq!(none, 0);
+    assert!(one >= 24, "a full white ring: {one} segments");
+    let placed = labels::place(&labels, [1280.0, 720.0], 1.0, &measure);
+    assert!(placed[0].boat == 5 && placed[0].selected, "{:?}", placed[0]);
+}
+
+#[test]
 fn phone_labels_are_at_least_twelve_points() {
     for size in [[720, 1600], [1080, 2400]] {
         let ppp = scene_overlay::paint::headless_pixels_per_point(size);
