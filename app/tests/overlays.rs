@@ -119,7 +119,11 @@ fn a_selected_boat_gets_a_white_ring_and_its_label_first() {
             ..Default::default()
         };
         let f = scene_overlay::frame(&race, &scene, [1280, 720], 1.0, &settings);
-        let (_, layer) = f.layers.into_iter().find(|(k, _)| *k == OverlayKind::Labels).unwrap();
+        let (_, layer) = f
+            .layers
+            .into_iter()
+            .find(|(k, _)| *k == OverlayKind::Labels)
+            .unwrap();
         let Layer::Draw(segments) = layer else {
             panic!("{layer:?}")
         };
