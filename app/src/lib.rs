@@ -8,6 +8,7 @@ pub mod desktop;
 pub mod error;
 pub mod overlay;
 pub mod pool_play;
+pub mod scene_overlay;
 pub mod wakes;
 
 #[cfg(target_os = "android")]

@@ -67,6 +67,7 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
         t,
         size: SIZE,
         frame: 0,
+        overlays: None,
     };
     let mut feed = FeedView::open(Path::new(SYNTH)).unwrap();
     let options = RenderOptions {

@@ -15,6 +15,7 @@ use crate::error::{CliError, CliResult};
 pub mod budget;
 pub mod effects;
 pub mod mesh;
+pub mod overlays;
 pub mod pool;
 pub mod race;
 pub mod race_import;
@@ -185,6 +186,7 @@ pub const SECTIONS: &[Section] = &[
     ("wakes", wakes::run),
     ("pool", pool::run),
     ("budget", budget::run),
+    ("overlays", overlays::run),
 ];
 
 /// A render target of `size` pixels in the offscreen format that the GPU sections draw

@@ -50,6 +50,10 @@ pub struct RenderArgs {
     /// Draw no boat wakes.
     #[arg(long)]
     pub no_wakes: bool,
+    /// Race overlays: a comma-separated list of labels, trails, course, lines, wind, or all /
+    /// none; all without it (docs/overlays.md).
+    #[arg(long, value_name = "LIST")]
+    pub overlays: Option<String>,
     /// A recorded camera feed (replay folder, TUM RGB-D folder, or `synth`): the race fitted on
     /// its table and drawn over one of its frames, as `regatta run --replay` shows it.
     #[arg(long, value_name = "DIR")]
@@ -250,10 +254,11 @@ pub fn run(a: RenderArgs) -> CliResult {
     {
         return Err(CliError::new("--t must be a finite number of seconds"));
     }
+    let overlays = overlay_settings(&a)?;
     if a.scene == SceneKind::Pool {
-        if effects.is_some() || a.replay.is_some() {
+        if effects.is_some() || a.replay.is_some() || a.overlays.is_some() {
             return Err(CliError::new(
-                "--effects and --replay have no meaning with --scene pool (the pool traces its own)",
+                "--effects, --overlays and --replay have no meaning with --scene pool (the pool traces its own)",
             ));
         }
         return run_pool(&a, &out, size);
@@ -265,7 +270,7 @@ pub fn run(a: RenderArgs) -> CliResult {
                 "--camera has no meaning with --replay: the feed's camera draws",
             ));
         }
-        return super::render_replay::run(&a, dir, &out, size, effects);
+        return super::render_replay::run(&a, dir, &out, size, effects, &overlays);
     }
     let camera = a
         .camera
@@ -293,11 +298,24 @@ pub fn run(a: RenderArgs) -> CliResult {
     if let Some(effects) = effects {
         effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
     }
-    let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    let (img, report) =
+        crate::scene_overlay::render_headless(&gpu, &mut renderer, &race, &scene, size, &overlays)
+            .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     note_unmet_error(&report);
     print_report(&a, &report)
+}
+
+/// The overlays `--overlays` asks for (all without it).
+pub fn overlay_settings(a: &RenderArgs) -> CliResult<crate::scene_overlay::OverlaySettings> {
+    let set = match a.overlays.as_deref() {
+        Some(list) => crate::scene_overlay::OverlaySet::parse(list).map_err(CliError::new)?,
+        None => crate::scene_overlay::OverlaySet::ALL,
+    };
+    Ok(crate::scene_overlay::OverlaySettings {
+        set,
+        ..Default::default()
+    })
 }
 
 /// Print the frame record and write it to `--report`.

@@ -20,6 +20,7 @@ pub fn run(
     out: &ImageOut,
     size: [u32; 2],
     effects: Option<EffectSet>,
+    overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
     use crate::cli::inputs::{drawable_sea, load_race, load_sea};
     use crate::cli::render::{middle_time, note_unmet_error, print_report, race_wake};
@@ -60,6 +61,7 @@ pub fn run(
         t,
         size,
         frame,
+        overlays: Some(overlays),
     };
     let (img, report) = table.draw(&mut feed, &gpu, &mut renderer, options, wake, |_| {})?;
     out.save(&img)?;
@@ -76,6 +78,8 @@ pub struct TableFrame<'a> {
     pub t: f64,
     pub size: [u32; 2],
     pub frame: usize,
+    /// The scene overlays drawn over it (labels through egui), or none.
+    pub overlays: Option<&'a crate::scene_overlay::OverlaySettings>,
 }
 
 #[cfg(not(target_os = "android"))]
@@ -106,8 +110,13 @@ impl TableFrame<'_> {
         )?;
         feed.apply(&mut scene);
         edit(&mut scene);
-        render::render_image(gpu, renderer, &scene, self.size)
-            .map_err(|e| CliError::new(format!("cannot render: {e}")))
+        match self.overlays {
+            Some(overlays) => crate::scene_overlay::render_headless(
+                gpu, renderer, self.race, &scene, self.size, overlays,
+            ),
+            None => render::render_image(gpu, renderer, &scene, self.size),
+        }
+        .map_err(|e| CliError::new(format!("cannot render: {e}")))
     }
 }
 
@@ -118,6 +127,7 @@ pub fn run(
     _out: &ImageOut,
     _size: [u32; 2],
     _effects: Option<EffectSet>,
+    _overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
     Err(CliError::new(
         "render --replay draws through the desktop window's feed view, which Android does not build",

@@ -79,6 +79,7 @@ pub fn run(a: RunArgs) -> CliResult {
             last: Instant::now(),
         },
         drag: None,
+        press_at: None,
         cursor: (0.0, 0.0),
         error: None,
     };
@@ -163,6 +164,8 @@ struct App {
     orbit: OrbitCamera,
     clock: Clock,
     drag: Option<(f64, f64)>,
+    /// Where the left button went down (a release there is a click).
+    press_at: Option<(f64, f64)>,
     cursor: (f64, f64),
     error: Option<CliError>,
 }
@@ -239,6 +242,10 @@ impl App {
         let size = [st.surface.config.width, st.surface.config.height];
         if let Some(o) = st.overlay.as_mut() {
             o.apply_effects(&mut st.renderer);
+            let ppp = st.window.scale_factor();
+            let (race, r) = (&self.race, &mut st.renderer);
+            o.scene_overlays
+                .prepare(&st.gpu, r, race, &scene, size, ppp);
         }
         // A failed frame is logged by the renderer; the window shows the next one.
         let report = st.renderer.render(&st.gpu, &view, size, &scene).ok();
@@ -340,6 +347,16 @@ impl ApplicationHandler for App {
                 ..
             } => {
                 let pressed = state == ElementState::Pressed;
+                // A click without a drag on the scene selects the boat under it.
+                if !pressed
+                    && self
+                        .press_at
+                        .is_some_and(|(x, y)| (x - self.cursor.0).hypot(y - self.cursor.1) < 4.0)
+                    && let Some(o) = self.state.as_mut().and_then(|s| s.overlay.as_mut())
+                {
+                    o.scene_overlays.click([self.cursor.0, self.cursor.1]);
+                }
+                self.press_at = pressed.then_some(self.cursor);
                 // In the pool, a press on a moving ball grabs the ball instead of the camera.
                 let grabbed = self
                     .pool

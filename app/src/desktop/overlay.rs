@@ -33,6 +33,8 @@ pub struct Overlay {
     exit_after: super::smoke::ExitAfter,
     /// The surface's colour format (the screenshot texture uses it too).
     format: wgpu::TextureFormat,
+    /// The race overlays in the scene (labels, trails, course, lines, wind).
+    pub scene_overlays: crate::scene_overlay::live::LiveOverlays,
 }
 
 /// The window's first size: 1280×720 points, or `REGATTA_WINDOW_SIZE=WxH` (physical pixels;
@@ -89,6 +91,7 @@ impl Overlay {
             wakes_shown: true,
             format,
             exit_after: super::smoke::ExitAfter::from_env(),
+            scene_overlays: Default::default(),
         }
     }
 
@@ -161,9 +164,15 @@ impl Overlay {
         race: &race::Race,
     ) {
         let raw = self.input.take_egui_input(window);
-        let (panels, events, perf, title) =
-            (&mut self.panels, &self.events, &self.perf, &self.title);
+        let (panels, events, perf, title, scene) = (
+            &mut self.panels,
+            &self.events,
+            &self.perf,
+            &self.title,
+            &mut self.scene_overlays,
+        );
         let platform = self.painter.paint(device, queue, texture, size, raw, |ui| {
+            scene.paint(ui.ctx(), size);
             crate::overlay::race_panels(ui, panels, race, events, Some(perf), title);
         });
         self.input.handle_platform_output(window, platform);

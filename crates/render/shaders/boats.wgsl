@@ -5,7 +5,7 @@
 struct MeshVertex {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    // 0 = hull (boat colour), 1 = sail (white), 2 = deck/mast (dark).
+    // 0 = hull (boat colour), 1 = sail (sailcloth tinted with the team colour), 2 = deck/mast (dark).
     @location(2) part: u32,
 }
 
@@ -34,7 +34,8 @@ fn vs_main(v: MeshVertex, inst: Instance) -> BoatOut {
     out.world = world.xyz;
     var c = inst.colour.rgb;
     if v.part == 1u {
-        c = vec3<f32>(0.92, 0.92, 0.88);
+        // The team colour on the sails too, so a boat reads as its team from any angle.
+        c = mix(vec3<f32>(0.92, 0.92, 0.88), inst.colour.rgb, 0.45);
     } else if v.part == 2u {
         c = vec3<f32>(0.12, 0.12, 0.13);
     }

@@ -234,6 +234,11 @@ impl Renderer {
         self.passes.push(pass);
     }
 
+    /// Whether a pass named `name` is registered (the app adds its overlay passes once).
+    pub fn has_pass(&self, name: &str) -> bool {
+        self.passes.iter().any(|p| p.name() == name)
+    }
+
     /// Put `pass` in the place of the pass named `name` (the AR effects replace "water" with
     /// a pass that draws the same mesh shaded once with the effects); false if there is none.
     pub fn replace_pass(&mut self, name: &str, pass: Box<dyn Pass>) -> bool {

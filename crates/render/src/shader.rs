@@ -11,6 +11,8 @@ pub(crate) const SKY: &str = include_str!("../shaders/sky.wgsl");
 pub(crate) const UPSCALE: &str = include_str!("../shaders/upscale.wgsl");
 pub const WATER: &str = include_str!("../shaders/water.wgsl");
 pub const BOATS: &str = include_str!("../shaders/boats.wgsl");
+/// The scene overlays: world segments as screen-space capsules (`passes::overlay`).
+pub(crate) const OVERLAY: &str = include_str!("../shaders/overlay.wgsl");
 pub(crate) const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
 /// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` (`ocean::wake::gpu` mirrors it in
 /// f32), included once, there.

@@ -48,6 +48,7 @@ pub(super) fn fx_pipeline(
             depth_write: draw.depth_write,
             depth_compare: draw.depth_compare,
             cull: None,
+            blend: None,
         },
     )
 }

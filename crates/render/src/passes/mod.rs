@@ -2,6 +2,7 @@
 //! here; the renderer runs them through [`crate::frame::Pass`].
 
 pub mod boats;
+pub mod overlay;
 pub mod sky;
 pub mod water;
 
@@ -47,6 +48,7 @@ pub fn pipeline(
                 wgpu::CompareFunction::Always
             },
             cull: spec.cull,
+            blend: None,
         },
     )
 }
@@ -59,6 +61,8 @@ pub struct Raster<'a> {
     pub depth_write: bool,
     pub depth_compare: wgpu::CompareFunction,
     pub cull: Option<wgpu::Face>,
+    /// Colour blending (`None`: replace; the overlays blend over the scene).
+    pub blend: Option<wgpu::BlendState>,
 }
 
 /// A render pipeline with bind groups `layouts` (a `None` is an unused slot) into the shared
@@ -103,7 +107,7 @@ pub fn render_pipeline(
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format: targets.colour,
-                blend: None,
+                blend: raster.blend,
                 write_mask: wgpu::ColorWrites::ALL,
             })],
         }),

@@ -1,0 +1,64 @@
+//! The overlays of a window (desktop; the phone's loop can hold one the same way): the user's
+//! settings, the overlay passes' handle, this frame's overlay and the labels as last painted,
+//! so a click or tap picks what the user saw.
+
+use render::passes::overlay::{OverlayHandle, add_overlay_passes};
+
+use super::labels::{PlacedLabel, pick};
+use super::{OverlayFrame, OverlaySettings, WindInfo};
+
+#[derive(Default)]
+pub struct LiveOverlays {
+    pub settings: OverlaySettings,
+    handle: OverlayHandle,
+    frame: Option<OverlayFrame>,
+    placed: Vec<PlacedLabel>,
+}
+
+impl LiveOverlays {
+    /// Turns the overlay `name` on or off (labels, trails, course, lines, wind).
+    pub fn set_overlay(&mut self, name: &str, on: bool) -> Result<(), String> {
+        self.settings.set_overlay(name, on)
+    }
+
+    /// The selected boats (indices into `Race::boats`), oldest first: "compare" takes two.
+    pub fn selected(&self) -> &[usize] {
+        &self.settings.selected
+    }
+
+    /// The wind this frame shows, for the panel.
+    pub fn wind(&self) -> Option<WindInfo> {
+        self.frame.as_ref().and_then(|f| f.wind)
+    }
+
+    /// Before the renderer draws `scene`: makes sure it has the overlay passes and feeds them.
+    pub fn prepare(
+        &mut self,
+        gpu: &render::Gpu,
+        renderer: &mut render::Renderer,
+        race: &race::Race,
+        scene: &render::Scene,
+        size: [u32; 2],
+        pixels_per_point: f64,
+    ) {
+        add_overlay_passes(renderer, gpu, &self.handle);
+        let f = super::frame(race, scene, size, pixels_per_point, &self.settings);
+        f.push(&self.handle);
+        self.frame = Some(f);
+    }
+
+    /// Inside the window's egui pass: paints the labels and texts (`size`: the frame, pixels).
+    pub fn paint(&mut self, ctx: &egui::Context, size: [u32; 2]) {
+        if let Some(f) = &self.frame {
+            self.placed = super::paint::paint(ctx, f, size);
+        }
+    }
+
+    /// A click or tap at framebuffer pixel `p` on the scene: selects the boat there (label or
+    /// hull), or clears the selection on the water.
+    pub fn click(&mut self, p: [f64; 2]) {
+        let hulls = self.frame.as_ref().map_or(&[][..], |f| &f.hulls[..]);
+        let boat = pick(&self.placed, hulls, p);
+        self.settings.click(boat);
+    }
+}

@@ -1,0 +1,359 @@
+//! The race drawn over the scene: boat labels, team rings, trails, course, ahead/behind lines
+//! and the wind (docs/overlays.md). The same code serves `regatta render` (headless), the
+//! desktop window and the phone: [`SceneOverlay::frame`] turns (race, scene, settings) into
+//! the render crate's overlay layers (world-space segments, `render::passes::overlay`) and
+//! the screen-space labels and texts that egui paints after the frame ([`paint`]).
+//!
+//! Picking ([`labels::pick`]) maps a screen point to the boat under it (label or hull), so a
+//! click or tap selects; [`OverlaySettings::selected`] keeps up to two boats for "compare".
+
+pub mod geometry;
+pub mod labels;
+pub mod live;
+pub mod paint;
+
+use render::passes::overlay::{Layer, OverlayHandle, OverlayKind};
+
+/// Which overlays are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OverlaySet {
+    on: [bool; 5],
+}
+
+impl Default for OverlaySet {
+    fn default() -> Self {
+        OverlaySet::ALL
+    }
+}
+
+impl OverlaySet {
+    pub const ALL: OverlaySet = OverlaySet { on: [true; 5] };
+    pub const NONE: OverlaySet = OverlaySet { on: [false; 5] };
+
+    fn slot(kind: OverlayKind) -> usize {
+        OverlayKind::ALL
+            .iter()
+            .position(|k| *k == kind)
+            .expect("every kind is in ALL")
+    }
+
+    pub fn is_on(&self, kind: OverlayKind) -> bool {
+        self.on[Self::slot(kind)]
+    }
+
+    pub fn with(mut self, kind: OverlayKind, on: bool) -> Self {
+        self.on[Self::slot(kind)] = on;
+        self
+    }
+
+    /// `--overlays LIST`: comma-separated names of [`OverlayKind`], or `all` / `none` alone.
+    pub fn parse(list: &str) -> Result<OverlaySet, String> {
+        let names: Vec<&str> = list.split(',').map(str::trim).collect();
+        let shown = input::quote(list);
+        if names.len() > 1
+            && let Some(whole) = names.iter().find(|n| matches!(**n, "all" | "none"))
+        {
+            return Err(format!(
+                "--overlays {shown} is contradictory: \"{whole}\" stands alone, not in a list"
+            ));
+        }
+        let mut set = OverlaySet::NONE;
+        for name in names {
+            match name {
+                "all" => set = OverlaySet::ALL,
+                "none" => {}
+                _ => match OverlayKind::from_name(name) {
+                    Some(k) => set = set.with(k, true),
+                    None => {
+                        let valid: Vec<&str> = OverlayKind::ALL.iter().map(|k| k.name()).collect();
+                        return Err(format!(
+                            "--overlays names the unknown overlay {}; the overlays are: {}, all, none",
+                            input::quote(name),
+                            valid.join(", ")
+                        ));
+                    }
+                },
+            }
+        }
+        Ok(set)
+    }
+}
+
+/// Default length of the trails, seconds of race time.
+pub const DEFAULT_TRAIL_S: f64 = 120.0;
+/// How many boats "compare" holds.
+pub const MAX_SELECTED: usize = 2;
+
+/// What the user chose: overlays on, trail length, rhumb lines, selected boats.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OverlaySettings {
+    pub set: OverlaySet,
+    /// Trail length, seconds of race time (the last N minutes).
+    pub trail_s: f64,
+    /// Draw the rhumb lines between consecutive course marks.
+    pub rhumb_lines: bool,
+    /// Selected boats (indices into `Race::boats`), oldest first, at most [`MAX_SELECTED`].
+    pub selected: Vec<usize>,
+}
+
+impl Default for OverlaySettings {
+    fn default() -> Self {
+        OverlaySettings {
+            set: OverlaySet::ALL,
+            trail_s: DEFAULT_TRAIL_S,
+            rhumb_lines: true,
+            selected: Vec::new(),
+        }
+    }
+}
+
+impl OverlaySettings {
+    /// Turns the overlay `name` on or off (the Effects panel's toggles, by name).
+    pub fn set_overlay(&mut self, name: &str, on: bool) -> Result<(), String> {
+        let kind = OverlayKind::from_name(name)
+            .ok_or_else(|| format!("there is no overlay named {}", input::quote(name)))?;
+        self.set = self.set.with(kind, on);
+        Ok(())
+    }
+
+    /// A click or tap on `boat` (or on the water: `None`): a selected boat is deselected,
+    /// another is added (the oldest of [`MAX_SELECTED`] dropped); the water clears the selection.
+    pub fn click(&mut self, boat: Option<usize>) {
+        match boat {
+            None => self.selected.clear(),
+            Some(b) => {
+                if let Some(k) = self.selected.iter().position(|&s| s == b) {
+                    self.selected.remove(k);
+                } else {
+                    if self.selected.len() == MAX_SELECTED {
+                        self.selected.remove(0);
+                    }
+                    self.selected.push(b);
+                }
+            }
+        }
+    }
+}
+
+/// Where the wind figure comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WindSource {
+    /// The race file states it.
+    Race,
+    /// The sea's dominant wave travels downwind (direction only).
+    Sea,
+}
+
+/// The wind the scene shows (and the panel prints).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct WindInfo {
+    /// Compass direction the wind blows from, degrees.
+    pub from_deg: f64,
+    /// Metres per second, where known.
+    pub speed_mps: Option<f64>,
+    pub source: WindSource,
+}
+
+impl WindInfo {
+    /// "8.7 kn from 0°", or "from 225° (sea)" without a speed.
+    pub fn text(&self) -> String {
+        let from = format!("from {:.0}°", self.from_deg);
+        match (self.speed_mps, self.source) {
+            (Some(v), _) => format!("wind {:.1} kn {from}", v * 3600.0 / 1852.0),
+            (None, WindSource::Sea) => format!("wind {from} (the sea's waves)"),
+            (None, WindSource::Race) => format!("wind {from}"),
+        }
+    }
+}
+
+/// The wind of the race, or where it states none, the direction the sea's dominant wave
+/// (largest amplitude) comes from; `None` for a race without wind on a calm sea.
+pub fn wind_of(race: &race::Race, sea: &ocean::WaveSet) -> Option<WindInfo> {
+    if let Some(w) = race.wind {
+        return Some(WindInfo {
+            from_deg: w.from_deg,
+            speed_mps: Some(w.speed_mps),
+            source: WindSource::Race,
+        });
+    }
+    let amplitude = |w: &ocean::Wave| w.steepness * w.wavelength / std::f64::consts::TAU;
+    let dominant = sea
+        .waves
+        .iter()
+        .filter(|w| w.steepness > 0.0)
+        .max_by(|a, b| amplitude(a).total_cmp(&amplitude(b)))?;
+    let d = dominant.direction;
+    Some(WindInfo {
+        from_deg: race::track::bearing_deg([-d[0], -d[1]]),
+        speed_mps: None,
+        source: WindSource::Sea,
+    })
+}
+
+/// Everything the overlays show in one frame: the GPU layers and the screen items.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OverlayFrame {
+    /// Per overlay, in [`OverlayKind::ALL`] order.
+    pub layers: Vec<(OverlayKind, Layer)>,
+    /// The boats' labels to measure and place when egui paints ([`labels::place`]).
+    pub labels: Vec<labels::LabelCandidate>,
+    /// Every boat on screen (for picking hulls).
+    pub hulls: Vec<labels::Hull>,
+    /// Texts anchored in the scene (gaps on the ahead/behind lines, the wind figure), on
+    /// screen.
+    pub texts: Vec<paint::ScreenText>,
+    pub wind: Option<WindInfo>,
+}
+
+impl OverlayFrame {
+    /// Hands the layers to the render passes.
+    pub fn push(&self, handle: &OverlayHandle) {
+        for (kind, layer) in &self.layers {
+            handle.set(*kind, layer.clone());
+        }
+    }
+}
+
+/// The overlays of `race` over `scene` (its camera, time and boats as drawn) on a `size`
+/// pixel frame at `pixels_per_point`.
+pub fn frame(
+    race: &race::Race,
+    scene: &render::Scene,
+    size: [u32; 2],
+    pixels_per_point: f64,
+    settings: &OverlaySettings,
+) -> OverlayFrame {
+    let view = geometry::View::new(race, scene, size, pixels_per_point);
+    let wind = wind_of(race, &scene.sea);
+    let mut texts = Vec::new();
+    let mut layers = Vec::new();
+    for kind in OverlayKind::ALL {
+        let layer = if !settings.set.is_on(kind) {
+            Layer::Off
+        } else {
+            match kind {
+                OverlayKind::Labels => geometry::rings(&view, settings),
+                OverlayKind::Trails => geometry::trails(&view, settings.trail_s),
+                OverlayKind::Course => geometry::course(&view, settings.rhumb_lines, wind),
+                OverlayKind::Lines => geometry::ahead_behind(&view, &mut texts),
+                OverlayKind::Wind => geometry::wind_arrow(&view, wind, &mut texts),
+            }
+        };
+        layers.push((kind, layer));
+    }
+    let hulls = labels::hulls(&view);
+    let labels = if settings.set.is_on(OverlayKind::Labels) {
+        labels::candidates(&view, &hulls, &settings.selected)
+    } else {
+        Vec::new()
+    };
+    let texts = texts
+        .into_iter()
+        .filter_map(|t| {
+            let (pos, _) = view.project(t.at)?;
+            view.on_screen(pos).then_some(paint::ScreenText {
+                pos,
+                text: t.text,
+                colour: t.colour,
+            })
+        })
+        .collect();
+    OverlayFrame {
+        layers,
+        labels,
+        hulls,
+        texts,
+        wind,
+    }
+}
+
+/// Draws `scene` headless with the overlays of `settings` (`regatta render`): adds the
+/// overlay passes to `renderer`, feeds them, draws, and paints the labels and texts with egui
+/// over the frame, at the pixel scale [`paint::headless_pixels_per_point`] gives `size`.
+pub fn render_headless(
+    gpu: &render::Gpu,
+    renderer: &mut render::Renderer,
+    race: &race::Race,
+    scene: &render::Scene,
+    size: [u32; 2],
+    settings: &OverlaySettings,
+) -> Result<(image::RgbaImage, render::FrameReport), render::GpuError> {
+    let handle = OverlayHandle::default();
+    render::passes::overlay::add_overlay_passes(renderer, gpu, &handle);
+    let ppp = paint::headless_pixels_per_point(size);
+    let f = frame(race, scene, size, ppp, settings);
+    f.push(&handle);
+    let (img, report, _) = paint::render_with_overlays(gpu, renderer, scene, size, &f, ppp)?;
+    Ok((img, report))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overlays_parse_and_bad_lists_name_the_flag_and_the_name() {
+        assert_eq!(OverlaySet::parse("all").unwrap(), OverlaySet::ALL);
+        assert_eq!(OverlaySet::parse("none").unwrap(), OverlaySet::NONE);
+        let s = OverlaySet::parse("labels, trails").unwrap();
+        assert!(s.is_on(OverlayKind::Labels) && s.is_on(OverlayKind::Trails));
+        assert!(!s.is_on(OverlayKind::Wind) && !s.is_on(OverlayKind::Course));
+        let e = OverlaySet::parse("labels,wakes").unwrap_err();
+        assert!(
+            e.starts_with("--overlays") && e.contains("\"wakes\""),
+            "{e}"
+        );
+        assert!(!e.contains('\n'));
+        let e = OverlaySet::parse("all,labels").unwrap_err();
+        assert!(e.contains("contradictory"), "{e}");
+        let e = OverlaySet::parse("tr\u{1b}ails").unwrap_err();
+        assert!(!e.contains('\u{1b}'), "control characters are escaped: {e}");
+        let e = OverlaySet::parse("").unwrap_err();
+        assert!(e.contains("--overlays"), "{e}");
+    }
+
+    #[test]
+    fn clicks_select_up_to_two_boats() {
+        let mut s = OverlaySettings::default();
+        s.click(Some(3));
+        s.click(Some(5));
+        assert_eq!(s.selected, [3, 5]);
+        s.click(Some(1));
+        assert_eq!(s.selected, [5, 1], "the oldest gives way");
+        s.click(Some(5));
+        assert_eq!(s.selected, [1], "a second click deselects");
+        s.click(None);
+        assert!(s.selected.is_empty());
+        assert!(s.set_overlay("trails", false).is_ok());
+        assert!(!s.set.is_on(OverlayKind::Trails));
+        assert!(s.set_overlay("wakes", false).is_err());
+    }
+
+    #[test]
+    fn the_wind_comes_from_the_race_or_against_the_dominant_wave() {
+        let race = race::Race::sample();
+        let w = wind_of(&race, &ocean::WaveSet::default_sea()).unwrap();
+        assert_eq!((w.from_deg, w.speed_mps), (0.0, Some(4.5)));
+        let mut no_wind = race.clone();
+        no_wind.wind = None;
+        // One wave travelling east (+x): the wind blows from the west, 270°.
+        let sea = ocean::WaveSet {
+            gravity: 9.81,
+            depth: None,
+            waves: vec![ocean::Wave {
+                direction: [1.0, 0.0],
+                steepness: 0.1,
+                wavelength: 20.0,
+                phase: 0.0,
+            }],
+        };
+        let w = wind_of(&no_wind, &sea).unwrap();
+        assert!((w.from_deg - 270.0).abs() < 1e-9 && w.speed_mps.is_none());
+        let calm = ocean::WaveSet {
+            waves: Vec::new(),
+            ..sea
+        };
+        assert!(wind_of(&no_wind, &calm).is_none());
+    }
+}
