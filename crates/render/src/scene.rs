@@ -123,7 +123,7 @@ pub struct FloatPose {
 /// radians) on `sea` at time `t`: height is the mean of the sea at bow, stern, port and
 /// starboard; pitch and roll are the slopes between them. Heights come from ocean's inverse
 /// (the sea at a world point); where it does not converge the body sits at rest level.
-pub(crate) fn float_pose(
+pub fn float_pose(
     sea: &WaveSet,
     t: f64,
     position: DVec2,
@@ -152,7 +152,7 @@ pub(crate) fn float_pose(
 
 /// Model matrix (local metres, relative to `origin`) of a body whose model space has the bow
 /// along −z, starboard +x, up +y.
-pub(crate) fn float_matrix(
+pub fn float_matrix(
     position: DVec2,
     heading: f64,
     pose: &FloatPose,

@@ -20,7 +20,7 @@ pub(crate) struct Instance {
 }
 
 /// Diameter of a course-mark buoy, metres.
-pub(crate) const BUOY_DIAMETER: f64 = 2.0;
+pub const BUOY_DIAMETER: f64 = 2.0;
 /// Colour of a course-mark buoy (linear RGB).
 pub(crate) const BUOY_COLOUR: [f32; 3] = [0.9, 0.25, 0.02];
 

@@ -15,7 +15,7 @@ use glam::DVec3;
 
 use crate::frame::{FrameContext, Pass, Targets};
 use crate::gpu::Gpu;
-use crate::passes::water::upload;
+use crate::gpu::upload;
 use crate::renderer::Renderer;
 use crate::shader;
 
