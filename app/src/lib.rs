@@ -9,6 +9,7 @@ pub mod error;
 pub mod overlay;
 pub mod pool_play;
 pub mod wakes;
+pub mod water;
 
 #[cfg(target_os = "android")]
 mod android;

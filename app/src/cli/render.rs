@@ -50,6 +50,9 @@ pub struct RenderArgs {
     /// Draw no boat wakes.
     #[arg(long)]
     pub no_wakes: bool,
+    /// The water's depth and turbidity (the AR effects' water: `--replay`, `--effects`).
+    #[command(flatten)]
+    pub water: crate::water::WaterArgs,
     /// A recorded camera feed (replay folder, TUM RGB-D folder, or `synth`): the race fitted on
     /// its table and drawn over one of its frames, as `regatta run --replay` shows it.
     #[arg(long, value_name = "DIR")]
@@ -290,8 +293,13 @@ pub fn run(a: RenderArgs) -> CliResult {
     if !a.no_wakes {
         renderer.set_wake(Some(race_wake(&race)?));
     }
+    let fx = render::effects::passes::ArConfig::default();
+    let water = a.water.look(fx.water)?;
     if let Some(effects) = effects {
-        render::effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
+        let h =
+            render::effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
+        // The synthetic table stays where its image shows it; the water's optics are asked.
+        h.set_water(water, fx.table_depth);
     }
     let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;

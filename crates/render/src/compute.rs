@@ -130,3 +130,86 @@ pub fn gpu_foam(
     let out = evaluate(gpu, &waves_uniform(&waves), &waves, "cs_foam", &inputs)?;
     Ok(out.iter().map(|d| [d[0], d[1]]).collect())
 }
+
+/// The AR water's transmitted light (`shaders/water_look.wgsl`'s `water_transmitted`) on the
+/// GPU, per item: (dry table colour, room radiance, view path in metres of water) for `look`,
+/// its uniform made as the effects make it (`WaterLook::gpu_uniform`, a scene in real
+/// metres). The parity test's GPU side of `water_look::transmitted`.
+pub fn gpu_water_transmitted(
+    gpu: &Gpu,
+    look: &crate::water_look::WaterLook,
+    items: &[([f32; 3], [f32; 3], f32)],
+) -> Result<Vec<[f32; 3]>, GpuError> {
+    const ENTRY: &str = "
+@group(0) @binding(0) var<storage, read> inputs: array<vec4<f32>>;
+@group(0) @binding(1) var<storage, read_write> outputs: array<vec4<f32>>;
+@compute @workgroup_size(64)
+fn cs_water(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&outputs) { return; }
+    let a = inputs[3u * i];
+    let b = inputs[3u * i + 1u];
+    let w = inputs[3u * i + 2u];
+    outputs[i] = vec4<f32>(water_transmitted(a.xyz, b.xyz, a.w * b.w, w), 0.0);
+}";
+    if items.is_empty() {
+        return Ok(Vec::new());
+    }
+    // The scene in real metres: the table lies the water's depth down.
+    let [water_a, water_b] = look.gpu_uniform(look.depth_m);
+    let inputs: Vec<[f32; 4]> = items
+        .iter()
+        .flat_map(|(t, r, path)| {
+            [
+                [t[0], t[1], t[2], *path],
+                [r[0], r[1], r[2], water_b[0]],
+                water_a,
+            ]
+        })
+        .collect();
+    let device = &gpu.device;
+    let src = format!(
+        "{}{}\n{ENTRY}",
+        shader::prelude(),
+        crate::water_look::WATER_LOOK_WGSL
+    );
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("water look"),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let io_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("water look io"),
+        entries: &[
+            crate::gpu::layout::storage(0, wgpu::ShaderStages::COMPUTE, true),
+            crate::gpu::layout::storage(1, wgpu::ShaderStages::COMPUTE, false),
+        ],
+    });
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("water look"),
+        bind_group_layouts: &[Some(&io_layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("water look"),
+        layout: Some(&layout),
+        module: &module,
+        entry_point: Some("cs_water"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("water look in"),
+        contents: bytemuck::cast_slice(&inputs),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("water look out"),
+        size: (items.len() * 16) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let io = crate::gpu::buffer_group(device, "water look io", &io_layout, &[&input, &output]);
+    let bytes = gpu.dispatch_and_read(&pipeline, &[&io], items.len(), &output)?;
+    let out: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+    Ok(out.iter().map(|o| [o[0], o[1], o[2]]).collect())
+}

@@ -55,6 +55,7 @@ pub mod renderer;
 pub mod scene;
 pub mod shader;
 pub mod wake_bins;
+pub mod water_look;
 
 pub use camera::{Camera, OrbitCamera};
 pub use frame::{FrameReport, Pass};

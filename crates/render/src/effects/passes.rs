@@ -54,6 +54,9 @@ pub struct ArConfig {
     pub effects: EffectSet,
     /// Depth of the water over the table, metres of the scene (table units × scale).
     pub table_depth: f64,
+    /// The water's optics: its real depth and turbidity (`crate::water_look`); real metres
+    /// per scene metre are `water.depth_m / table_depth`.
+    pub water: crate::water_look::WaterLook,
     /// Radius of the ring the camera image is reflected on; `None`: 1.05 × half the play
     /// area's diagonal (000: at least half the water's diagonal).
     pub ring_radius: Option<f64>,
@@ -83,6 +86,11 @@ impl Default for ArConfig {
         ArConfig {
             effects: EffectSet::ALL,
             table_depth: 3.0,
+            // The scene at full size: 3 m of water.
+            water: crate::water_look::WaterLook {
+                depth_m: 3.0,
+                ..Default::default()
+            },
             ring_radius: None,
             reflection_fraction: 0.25,
             current: DVec2::new(0.6, 0.2),
@@ -120,6 +128,9 @@ pub struct EffectsUniform {
     pub current: [f32; 4],
     pub flags: [u32; 4],
     pub marks: [[f32; 4]; 8],
+    /// `WaterLook::gpu_uniform`: the way down to the table and b_p; metres per scene metre.
+    pub water_a: [f32; 4],
+    pub water_b: [f32; 4],
 }
 
 /// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
@@ -385,6 +396,7 @@ impl Shared {
         let centre = DVec2::new(ax + bx, az + bz) / 2.0 - o;
         let region = self.caustic_region(frame);
         let [a, b] = flow_phases(s.t, self.cfg.flow_period, DEFAULT_JUMP);
+        let [water_a, water_b] = self.cfg.water.gpu_uniform(self.cfg.table_depth);
         let mut marks = [[0.0f32; 4]; 8];
         let mut near: Vec<DVec2> = s.marks.iter().map(|m| m.position - o).collect();
         let target = DVec2::new(s.camera.target.x, s.camera.target.z) - o;
@@ -419,6 +431,8 @@ impl Shared {
             ],
             flags: [0, near.len().min(8) as u32, 0, 0],
             marks,
+            water_a,
+            water_b,
         }
     }
 
@@ -667,6 +681,7 @@ impl ArPipelines {
             REFRACTION,
             CAUSTICS,
             FLOWMAP,
+            crate::water_look::WATER_LOOK_WGSL,
             AR_WATER,
             &constants,
         ];
@@ -976,6 +991,14 @@ impl EffectsHandle {
         let mut shared = self.shared.borrow_mut();
         shared.set_image(gpu, &image);
         shared.camera = camera;
+    }
+
+    /// The water's optics from the next frame on, its table `table_depth` scene metres down
+    /// (`ArConfig::water`, `ArConfig::table_depth`).
+    pub fn set_water(&self, water: crate::water_look::WaterLook, table_depth: f64) {
+        let mut shared = self.shared.borrow_mut();
+        shared.cfg.water = water;
+        shared.cfg.table_depth = table_depth;
     }
 
     /// Size of the camera image now on the GPU, pixels.
