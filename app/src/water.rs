@@ -9,7 +9,7 @@ use crate::error::{CliError, CliResult};
 /// The water settings of the command line.
 #[derive(Debug, Args, Default, Clone, Copy)]
 pub struct WaterArgs {
-    /// Depth of the water over the table, real metres (0.0001 to 0.25; default 0.01 on a
+    /// Depth of the water over the table, real metres (0.0001 to 0.1; default 0.01 on a
     /// table; with `--effects` at full size, the optical depth over the scene's table).
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
     pub water_depth: Option<f64>,
@@ -69,8 +69,8 @@ mod tests {
             let e = a(None, Some(t)).look(WaterLook::default()).unwrap_err();
             assert!(e.to_string().starts_with("--turbidity"), "{e}");
         }
-        let ok = a(Some(0.2), Some(3.0)).look(WaterLook::default()).unwrap();
-        assert_eq!((ok.depth_m, ok.turbidity_ntu), (0.2, 3.0));
+        let ok = a(Some(0.08), Some(3.0)).look(WaterLook::default()).unwrap();
+        assert_eq!((ok.depth_m, ok.turbidity_ntu), (0.08, 3.0));
         assert_eq!(a(None, None).look(WaterLook::default()).unwrap(), WaterLook::default());
         // What the flags allow is what the renderer's own check allows.
         assert!(ok.check().is_ok());

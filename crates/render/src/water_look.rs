@@ -99,10 +99,10 @@ pub fn pure_water_absorption() -> [f64; 3] {
 /// taken as pure scattering, the same in every band.
 pub const SCATTERING_PER_NTU: f64 = 1.0;
 
-/// Deepest water the settings take, m: the water's surface floats this far above the table,
-/// and the synthetic feed's camera is 0.55 m above its table (a surface near the camera hides
-/// the scene).
-pub const MAX_DEPTH_M: f64 = 0.25;
+/// Deepest water the settings take, m: the water's surface floats this far above the table
+/// (no tank walls are drawn, so a deep layer reads as a floating sheet), and the synthetic
+/// feed's camera is 0.55 m above its table (a surface near the camera hides the scene).
+pub const MAX_DEPTH_M: f64 = 0.1;
 /// Shallowest, m (a film: 0.1 mm).
 pub const MIN_DEPTH_M: f64 = 1e-4;
 /// Most turbid water the settings take, NTU (muddy river water).
@@ -364,8 +364,7 @@ mod tests {
             .lines()
             .find(|l| l.starts_with("const WATER_ABSORPTION: vec3<f32> = vec3<f32>("))
             .expect("the prelude defines WATER_ABSORPTION");
-        let inner = line.split_once("vec3<f32>(").unwrap().1;
-        let inner = inner.split_once("vec3<f32>(").unwrap().1.trim_end_matches(");");
+        let inner = line.split_once("vec3<f32>(").unwrap().1.trim_end_matches(");");
         let v: Vec<f32> = inner.split(", ").map(|x| x.parse().unwrap()).collect();
         let a = pure_water_absorption();
         assert_eq!(v, a.map(|x| x as f32).to_vec());

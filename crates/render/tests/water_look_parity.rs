@@ -38,7 +38,7 @@ fn worst_error(look: &WaterLook, gpu_out: &[[f32; 3]]) -> f64 {
 
 fn looks() -> Vec<WaterLook> {
     let mut v = Vec::new();
-    for depth_m in [1e-4, 0.01, 0.25] {
+    for depth_m in [1e-4, 0.01, 0.1] {
         for turbidity_ntu in [0.0, 0.5, 20.0, 100.0] {
             v.push(WaterLook {
                 depth_m,

@@ -86,10 +86,11 @@ impl Default for ArConfig {
         ArConfig {
             effects: EffectSet::ALL,
             table_depth: 3.0,
-            // The scene at full size: 3 m of water.
+            // The scene at full size: 3 m of pure water (turbidity over metres would veil the
+            // table and every effect under it).
             water: crate::water_look::WaterLook {
                 depth_m: 3.0,
-                ..Default::default()
+                turbidity_ntu: 0.0,
             },
             ring_radius: None,
             reflection_fraction: 0.25,
