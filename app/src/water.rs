@@ -71,7 +71,10 @@ mod tests {
         }
         let ok = a(Some(0.08), Some(3.0)).look(WaterLook::default()).unwrap();
         assert_eq!((ok.depth_m, ok.turbidity_ntu), (0.08, 3.0));
-        assert_eq!(a(None, None).look(WaterLook::default()).unwrap(), WaterLook::default());
+        assert_eq!(
+            a(None, None).look(WaterLook::default()).unwrap(),
+            WaterLook::default()
+        );
         // What the flags allow is what the renderer's own check allows.
         assert!(ok.check().is_ok());
     }

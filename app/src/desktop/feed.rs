@@ -145,11 +145,17 @@ impl FeedView {
     /// `WaterLook::check`, out-of-range values are clamped into them).
     pub fn set_water(&mut self, water: render::water_look::WaterLook) {
         use render::water_look::{MAX_DEPTH_M, MAX_TURBIDITY_NTU, MIN_DEPTH_M};
-        let clamp = |v: f64, lo: f64, hi: f64, or: f64| if v.is_finite() { v.clamp(lo, hi) } else { or };
+        let clamp =
+            |v: f64, lo: f64, hi: f64, or: f64| if v.is_finite() { v.clamp(lo, hi) } else { or };
         let base = render::water_look::WaterLook::default();
         self.water = render::water_look::WaterLook {
             depth_m: clamp(water.depth_m, MIN_DEPTH_M, MAX_DEPTH_M, base.depth_m),
-            turbidity_ntu: clamp(water.turbidity_ntu, 0.0, MAX_TURBIDITY_NTU, base.turbidity_ntu),
+            turbidity_ntu: clamp(
+                water.turbidity_ntu,
+                0.0,
+                MAX_TURBIDITY_NTU,
+                base.turbidity_ntu,
+            ),
         };
         // The next frame fits the table anew (its depth) and hands the water to the effects.
         self.shown = None;

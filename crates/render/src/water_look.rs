@@ -346,7 +346,13 @@ mod tests {
     #[test]
     fn settings_out_of_range_are_refused_with_the_setting_named() {
         assert!(WaterLook::default().check().is_ok());
-        for (d, t) in [(0.0, 0.0), (0.3, 0.0), (f64::NAN, 0.0), (0.1, -1.0), (0.1, 101.0)] {
+        for (d, t) in [
+            (0.0, 0.0),
+            (0.3, 0.0),
+            (f64::NAN, 0.0),
+            (0.1, -1.0),
+            (0.1, 101.0),
+        ] {
             let e = WaterLook {
                 depth_m: d,
                 turbidity_ntu: t,
@@ -364,17 +370,29 @@ mod tests {
             .lines()
             .find(|l| l.starts_with("const WATER_ABSORPTION: vec3<f32> = vec3<f32>("))
             .expect("the prelude defines WATER_ABSORPTION");
-        let inner = line.split_once("vec3<f32>(").unwrap().1.trim_end_matches(");");
+        let inner = line
+            .split_once("vec3<f32>(")
+            .unwrap()
+            .1
+            .trim_end_matches(");");
         let v: Vec<f32> = inner.split(", ").map(|x| x.parse().unwrap()).collect();
         let a = pure_water_absorption();
         assert_eq!(v, a.map(|x| x as f32).to_vec());
-        for name in ["WATER_DIFFUSE_ENTRY", "WATER_INTERNAL_REFLECTANCE", "WATER_N2"] {
+        for name in [
+            "WATER_DIFFUSE_ENTRY",
+            "WATER_INTERNAL_REFLECTANCE",
+            "WATER_N2",
+        ] {
             assert!(p.contains(&format!("const {name}: f32 = ")), "{name}");
         }
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders");
         for e in std::fs::read_dir(dir).unwrap().filter_map(Result::ok) {
             let text = std::fs::read_to_string(e.path()).unwrap_or_default();
-            assert!(!text.contains("const WATER_"), "{:?} defines a water constant", e.path());
+            assert!(
+                !text.contains("const WATER_"),
+                "{:?} defines a water constant",
+                e.path()
+            );
         }
     }
 }

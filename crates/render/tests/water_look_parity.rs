@@ -11,9 +11,14 @@ const TOLERANCE: f64 = 1.0 / 255.0;
 /// Table colours (linear), room radiances and view paths (metres of water) to test.
 fn items(look: &WaterLook) -> Vec<([f32; 3], [f32; 3], f32)> {
     let mut v = Vec::new();
-    for (i, t) in [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0], [0.6, 0.35, 0.15], [0.9, 0.1, 0.5]]
-        .into_iter()
-        .enumerate()
+    for (i, t) in [
+        [0.0, 0.0, 0.0],
+        [1.0, 1.0, 1.0],
+        [0.6, 0.35, 0.15],
+        [0.9, 0.1, 0.5],
+    ]
+    .into_iter()
+    .enumerate()
     {
         for path in [0.0, 1.0, 1.3, 3.0] {
             let room = [1.0, 0.8 - 0.1 * i as f32, 0.6];

@@ -176,7 +176,10 @@ mod tests {
             }
         }
         assert!(peak > 1e-3, "the wake must be there: {peak}");
-        assert!(worst <= 1e-9 * peak, "scaled vs magnified: {worst} of {peak}");
+        assert!(
+            worst <= 1e-9 * peak,
+            "scaled vs magnified: {worst} of {peak}"
+        );
     }
 
     #[test]
