@@ -10,6 +10,7 @@ pub mod overlay;
 pub mod pool_play;
 pub mod scene_overlay;
 pub mod wakes;
+pub mod water;
 
 #[cfg(target_os = "android")]
 mod android;

@@ -58,7 +58,7 @@ pub fn table_wake(wake: &Arc<Wake>, drawn_length: f64, world_per_table: f64) -> 
         world_per_table,
     };
     let s = model.world_scale();
-    if !(s > 1.0) {
+    if s.is_nan() || s <= 1.0 {
         return wake.clone();
     }
     match wake.froude_scaled(s) {

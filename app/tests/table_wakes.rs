@@ -28,7 +28,10 @@ fn luma(img: &image::RgbaImage) -> Vec<f64> {
 
 /// Pixels where the two pictures differ by at least `VISIBLE`.
 fn changed(a: &[f64], b: &[f64]) -> Vec<bool> {
-    a.iter().zip(b).map(|(x, y)| (x - y).abs() >= VISIBLE).collect()
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs() >= VISIBLE)
+        .collect()
 }
 
 /// Where the ray through pixel (px, py) meets y = 0, world (x, z).
@@ -128,6 +131,9 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
     }
     assert!(tested >= 4, "too few boats at 2 m/s or more: {tested}");
     for (id, r) in ratios {
-        assert!(r >= 2.0, "{id}: visible wake behind the boat / silhouette = {r:.2}");
+        assert!(
+            r >= 2.0,
+            "{id}: visible wake behind the boat / silhouette = {r:.2}"
+        );
     }
 }

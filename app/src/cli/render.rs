@@ -54,6 +54,9 @@ pub struct RenderArgs {
     /// none; all without it (docs/overlays.md).
     #[arg(long, value_name = "LIST")]
     pub overlays: Option<String>,
+    /// The water's depth and turbidity (the AR effects' water: `--replay`, `--effects`).
+    #[command(flatten)]
+    pub water: crate::water::WaterArgs,
     /// A recorded camera feed (replay folder, TUM RGB-D folder, or `synth`): the race fitted on
     /// its table and drawn over one of its frames, as `regatta run --replay` shows it.
     #[arg(long, value_name = "DIR")]
@@ -295,8 +298,12 @@ pub fn run(a: RenderArgs) -> CliResult {
     if !a.no_wakes {
         renderer.set_wake(Some(race_wake(&race)?));
     }
+    let fx = effects::passes::ArConfig::default();
+    let water = a.water.look(fx.water)?;
     if let Some(effects) = effects {
-        effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
+        let h = effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
+        // The synthetic table stays where its image shows it; the water's optics are asked.
+        h.set_water(water, fx.table_depth);
     }
     let (img, report) =
         crate::scene_overlay::render_headless(&gpu, &mut renderer, &race, &scene, size, &overlays)

@@ -27,6 +27,7 @@ pub fn run(
     use render::{RenderOptions, Renderer};
 
     let mut feed = crate::desktop::feed::FeedView::open(dir)?;
+    feed.set_water(a.water.look(feed.water())?);
     // Without --effects, the window's own set.
     if let Some(effects) = effects {
         feed = feed.with_effects(effects);

@@ -49,6 +49,9 @@ pub struct FeedView {
     /// The effects drawn over the feed (all of them in the window; `--effects` for
     /// `regatta render --replay`).
     config: ArConfig,
+    /// The water's depth (real metres: the table lies that deep under the race's sea, in race
+    /// metres `depth × scale`) and turbidity.
+    water: render::water_look::WaterLook,
     /// The wake handed in (the boats' own, or none) and what the renderer draws for it on this
     /// table: Froude-scaled for the models ([`crate::wakes::table_wake`]), per map scale.
     table_wake: Option<TableWake>,
@@ -127,6 +130,7 @@ impl FeedView {
             camera: None,
             map: None,
             config: ArConfig::default(),
+            water: render::water_look::WaterLook::default(),
             table_wake: None,
         })
     }
@@ -135,6 +139,31 @@ impl FeedView {
     pub fn with_effects(mut self, effects: effects::EffectSet) -> Self {
         self.config.effects = effects;
         self
+    }
+
+    /// The water's look on the table from the next frame on (the panel's setter; ranges as
+    /// `WaterLook::check`, out-of-range values are clamped into them).
+    pub fn set_water(&mut self, water: render::water_look::WaterLook) {
+        use render::water_look::{MAX_DEPTH_M, MAX_TURBIDITY_NTU, MIN_DEPTH_M};
+        let clamp =
+            |v: f64, lo: f64, hi: f64, or: f64| if v.is_finite() { v.clamp(lo, hi) } else { or };
+        let base = render::water_look::WaterLook::default();
+        self.water = render::water_look::WaterLook {
+            depth_m: clamp(water.depth_m, MIN_DEPTH_M, MAX_DEPTH_M, base.depth_m),
+            turbidity_ntu: clamp(
+                water.turbidity_ntu,
+                0.0,
+                MAX_TURBIDITY_NTU,
+                base.turbidity_ntu,
+            ),
+        };
+        // The next frame fits the table anew (its depth) and hands the water to the effects.
+        self.shown = None;
+    }
+
+    /// The water's look on the table.
+    pub fn water(&self) -> render::water_look::WaterLook {
+        self.water
     }
 
     /// How many frames the feed has.
@@ -249,7 +278,7 @@ impl FeedView {
             Source::Synth(c, cache) => cache[i].get_or_insert_with(|| c.frame(i)).clone(),
         };
         let started = Instant::now();
-        let cfg = self.config.clone();
+        let mut cfg = self.config.clone();
         let (extent, centre) = match frame.planes.first() {
             Some(p) => (
                 p.extent.as_dvec2(),
@@ -258,6 +287,10 @@ impl FeedView {
             // No table recorded (TUM): a 1 m table under the first frame's view centre.
             None => (DVec2::ONE, DVec3::ZERO),
         };
+        // The table lies the water's depth down, in race metres at the table's scale.
+        let scale = TableMap::fit(scene.play_area, centre, extent, 0.0).scale;
+        cfg.table_depth = self.water.depth_m * scale;
+        cfg.water = self.water;
         let map = TableMap::fit(scene.play_area, centre, extent, cfg.table_depth);
         let (camera, view) = to_render(&frame, &map, size);
         let image = frame
@@ -269,6 +302,7 @@ impl FeedView {
         match &self.effects {
             Some(effects) => {
                 effects.set_camera_frame(gpu, render_frame);
+                effects.set_water(cfg.water, cfg.table_depth);
                 if wake_changed {
                     renderer.set_wake(wake);
                 }

@@ -41,6 +41,9 @@ pub struct RunArgs {
     /// table; `synth` for the built-in synthetic table (what `regatta` alone opens).
     #[arg(long, value_name = "DIR")]
     pub replay: Option<PathBuf>,
+    /// The water's depth and turbidity on the table.
+    #[command(flatten)]
+    pub water: crate::water::WaterArgs,
 }
 
 impl RunArgs {
@@ -59,7 +62,12 @@ pub fn run(a: RunArgs) -> CliResult {
     let sea = crate::cli::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
     let race = load_race(&a.race)?;
     // A bad feed is refused before a window opens (file and line named).
-    let feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
+    let mut feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
+    if let Some(f) = feed.as_mut() {
+        f.set_water(a.water.look(f.water())?);
+    } else {
+        a.water.look(render::water_look::WaterLook::default())?;
+    }
     let event_loop = EventLoop::new()
         .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
     let (t0, t1) = race.time_span();

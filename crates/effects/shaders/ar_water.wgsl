@@ -1,7 +1,7 @@
 // The AR water: the water pass's mesh (water.wgsl's vs_main: waves and wakes) shaded once with
 // the effects this frame needs, mixed by the full Fresnel equations (source 004):
 // R·reflection + (1 − R)·the table seen through the water (refracted, lit by caustics,
-// absorbed along the path), then foam. Replaces water.wgsl's fs_main when an effect runs, so
+// through clear water: water_look.wgsl), then foam. Replaces water.wgsl's fs_main when an effect runs, so
 // no water pixel is shaded twice. Appended after the water pass's files and the effect files;
 // the pass appends the pipeline's constants last:
 //
@@ -13,20 +13,6 @@
 // of a uniform branch under execution masks, so a flag in the uniform saves nothing there).
 // Every function of the effect files has one exit: Mesa 22.3's lavapipe crashed drawing some
 // of these pipelines when an inlined function returned early (see ArPipelines).
-
-// Light left after a path of x table depths through the water, exp(−(0.9, 0.35, 0.25)·x)
-// (relative to the depth, so a scaled table looks the same; red goes first). One exponential
-// for the three: the coefficients are 18, 7 and 5 times 0.05, so with e = exp(−0.05 x) they
-// are e¹⁸, e⁷ and e⁵ (products of e, e², e⁴; relative error under 2e-6). lavapipe pays for
-// every exponential of every pixel.
-fn transmittance(x: f32) -> vec3<f32> {
-    let e = exp(-0.05 * x);
-    let e2 = e * e;
-    let e4 = e2 * e2;
-    let e5 = e4 * e;
-    let e7 = e5 * e2;
-    return vec3<f32>(e7 * e7 * e4, e7, e5);
-}
 
 // Does this pipeline shade with effect `bit`?
 fn fx_on(bit: u32) -> bool {
@@ -104,8 +90,10 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     if fx_on(FX_CAUSTICS) {
         light = caustic_light(q, n);
     }
-    let depth = max(fx.table.x, 1e-3);
-    let transmitted = table.rgb * light * transmittance(table.w / depth);
+    // Clear water from physical optics (water_look.wgsl): the table through the water's
+    // depth, absorbed, and veiled by the turbidity's scattered room light. The room's
+    // radiance is the camera's white (the assumption that makes the table's colour its albedo).
+    let transmitted = water_transmitted(table.rgb * light, vec3<f32>(1.0), table.w * fx.water_b.x, fx.water_a);
     var colour = r * reflected + (1.0 - r) * transmitted;
     // Foam of breaking crests (Jacobian) and of the boats' wakes, as the water pass draws it.
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);

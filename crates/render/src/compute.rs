@@ -186,3 +186,49 @@ pub fn run_kernel<In: bytemuck::Pod>(
     bytes.truncate(input.len() * output_item_bytes);
     Ok(bytes)
 }
+
+/// The AR water's transmitted light (`shaders/water_look.wgsl`'s `water_transmitted`) on the
+/// GPU, per item: (dry table colour, room radiance, view path in metres of water) for `look`,
+/// its uniform made as the effects make it (`WaterLook::gpu_uniform`, a scene in real
+/// metres). The parity test's GPU side of `water_look::transmitted`.
+pub fn gpu_water_transmitted(
+    gpu: &Gpu,
+    look: &crate::water_look::WaterLook,
+    items: &[([f32; 3], [f32; 3], f32)],
+) -> Result<Vec<[f32; 3]>, GpuError> {
+    const ENTRY: &str = "
+@group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 3>>;
+@group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;
+@compute @workgroup_size(64)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&input) { return; }
+    let a = input[i][0];
+    let b = input[i][1];
+    let w = input[i][2];
+    output[i] = vec4<f32>(water_transmitted(a.xyz, b.xyz, a.w * b.w, w), 0.0);
+}";
+    if items.is_empty() {
+        return Ok(Vec::new());
+    }
+    // The scene in real metres: the table lies the water's depth down.
+    let [water_a, water_b] = look.gpu_uniform(look.depth_m);
+    let inputs: Vec<[[f32; 4]; 3]> = items
+        .iter()
+        .map(|(t, r, path)| {
+            [
+                [t[0], t[1], t[2], *path],
+                [r[0], r[1], r[2], water_b[0]],
+                water_a,
+            ]
+        })
+        .collect();
+    let src = format!(
+        "{}{}\n{ENTRY}",
+        shader::prelude(),
+        crate::water_look::WATER_LOOK_WGSL
+    );
+    let bytes = run_kernel(gpu, "water look", &src, &inputs, 16)?;
+    let out: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+    Ok(out.iter().map(|o| [o[0], o[1], o[2]]).collect())
+}

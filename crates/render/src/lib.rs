@@ -56,6 +56,7 @@ pub mod scene;
 pub mod shader;
 mod timing;
 pub mod wake_bins;
+pub mod water_look;
 
 pub use camera::{Camera, OrbitCamera};
 pub use frame::{FRAME_REUSED, FrameReport, Pass};

@@ -11,6 +11,9 @@ pub struct ArConfig {
     pub effects: EffectSet,
     /// Depth of the water over the table, metres of the scene (table units × scale).
     pub table_depth: f64,
+    /// The water's optics: its real depth and turbidity (`render::water_look`); real metres
+    /// per scene metre are `water.depth_m / table_depth`.
+    pub water: render::water_look::WaterLook,
     /// Radius of the ring the camera image is reflected on; `None`: 1.05 × half the play
     /// area's diagonal (000: at least half the water's diagonal).
     pub ring_radius: Option<f64>,
@@ -40,6 +43,12 @@ impl Default for ArConfig {
         ArConfig {
             effects: EffectSet::ALL,
             table_depth: 3.0,
+            // The scene at full size: 3 m of pure water (turbidity over metres would veil the
+            // table and every effect under it).
+            water: render::water_look::WaterLook {
+                depth_m: 3.0,
+                turbidity_ntu: 0.0,
+            },
             ring_radius: None,
             reflection_fraction: 0.25,
             current: DVec2::new(0.6, 0.2),

@@ -59,6 +59,14 @@ impl EffectsHandle {
         shared.camera = camera;
     }
 
+    /// The water's optics from the next frame on, its table `table_depth` scene metres down
+    /// (`ArConfig::water`, `ArConfig::table_depth`).
+    pub fn set_water(&self, water: render::water_look::WaterLook, table_depth: f64) {
+        let mut shared = self.shared.borrow_mut();
+        shared.cfg.water = water;
+        shared.cfg.table_depth = table_depth;
+    }
+
     /// Size of the camera image now on the GPU, pixels.
     pub fn camera_image_size(&self) -> [u32; 2] {
         self.shared.borrow().camera_image.size

@@ -106,6 +106,7 @@ impl ArPipelines {
             REFRACTION,
             CAUSTICS,
             FLOWMAP,
+            render::water_look::WATER_LOOK_WGSL,
             AR_WATER,
             &constants,
         ];

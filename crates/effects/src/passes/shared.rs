@@ -33,6 +33,9 @@ pub struct EffectsUniform {
     pub current: [f32; 4],
     pub flags: [u32; 4],
     pub marks: [[f32; 4]; 8],
+    /// `WaterLook::gpu_uniform`: the way down to the table and b_p; metres per scene metre.
+    pub water_a: [f32; 4],
+    pub water_b: [f32; 4],
 }
 
 /// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
@@ -298,6 +301,7 @@ impl Shared {
         let centre = DVec2::new(ax + bx, az + bz) / 2.0 - o;
         let region = self.caustic_region(frame);
         let [a, b] = flow_phases(s.t, self.cfg.flow_period, DEFAULT_JUMP);
+        let [water_a, water_b] = self.cfg.water.gpu_uniform(self.cfg.table_depth);
         let mut marks = [[0.0f32; 4]; 8];
         let mut near: Vec<DVec2> = s.marks.iter().map(|m| m.position - o).collect();
         let target = DVec2::new(s.camera.target.x, s.camera.target.z) - o;
@@ -332,6 +336,8 @@ impl Shared {
             ],
             flags: [0, near.len().min(8) as u32, 0, 0],
             marks,
+            water_a,
+            water_b,
         }
     }
 

@@ -126,8 +126,8 @@ mod tests {
 
     const G: f64 = crate::STANDARD_GRAVITY;
 
-    /// A boat along +x at `u`, at the origin at `t_end`, for `duration` s (samples 1 s apart
-    /// scaled by `dt`: the track is exactly linear either way).
+    /// A boat along +x at `u`, at the origin at `t_end`, for `duration` s in `n` equal steps
+    /// (the track is exactly linear whatever the step).
     fn straight(u: f64, duration: f64, t_end: f64, n: usize) -> Vec<TrackSample> {
         (0..=n)
             .map(|i| {
@@ -176,7 +176,10 @@ mod tests {
             }
         }
         assert!(peak > 1e-3, "the wake must be there: {peak}");
-        assert!(worst <= 1e-9 * peak, "scaled vs magnified: {worst} of {peak}");
+        assert!(
+            worst <= 1e-9 * peak,
+            "scaled vs magnified: {worst} of {peak}"
+        );
     }
 
     #[test]
