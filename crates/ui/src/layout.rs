@@ -166,9 +166,18 @@ impl RegattaUi {
         ] = f;
     }
 
-    /// Lays out the panels over the scene (see the module docs). Translucent frames keep the
-    /// scene visible behind them.
+    /// Lays out the panels over the scene (see the module docs), inside the screen's safe area
+    /// (`Context::content_rect`: the screen minus the phone's status and navigation bars).
+    /// Translucent frames keep the scene visible behind them.
     pub fn show(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
+        let safe = ui.ctx().content_rect();
+        ui.scope_builder(egui::UiBuilder::new().max_rect(safe), |ui| {
+            self.show_inside(ui, frame)
+        })
+        .inner
+    }
+
+    fn show_inside(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
         let mut out = UiResponse::default();
         let ctx = ui.ctx().clone();
         let screen = ctx.content_rect();
@@ -287,10 +296,15 @@ impl RegattaUi {
         };
         ui.horizontal_wrapped(|ui| {
             for (i, b) in race.boats.iter().enumerate() {
+                // The boat's colour, white on the highlight when selected (colour on blue is
+                // hard to read).
+                let selected = frame.selection.contains(&i);
                 let colour = parse_hex_color(&b.color).unwrap_or(Color32::GRAY);
-                let text = RichText::new(&b.id).color(colour).strong();
+                let text = RichText::new(&b.id)
+                    .color(if selected { Color32::WHITE } else { colour })
+                    .strong();
                 if ui
-                    .selectable_label(frame.selection.contains(&i), text)
+                    .selectable_label(selected, text)
                     .clicked()
                 {
                     out.clicked_boat = Some(i);

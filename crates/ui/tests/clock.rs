@@ -5,16 +5,16 @@ use ui::{RaceClock, SPEEDS, format_race_time};
 #[test]
 fn playing_to_t_and_scrubbing_to_t_give_the_same_time() {
     for &speed in &SPEEDS {
+        // Backwards from the end, forwards from the start.
+        let from = if speed < 0.0 { 3600.0 } else { -60.0 };
         let mut played = RaceClock::new((-60.0, 3600.0));
+        played.scrub_to(from);
         played.set_speed(speed);
         played.play();
         // 90 frames of a 60 Hz display.
         for _ in 0..90 {
             played.advance(1.0 / 60.0);
         }
-        // Backwards from the end, forwards from the start.
-        let from = if speed < 0.0 { 3600.0 } else { -60.0 };
-        played.scrub_to(from);
         let expected = from + 1.5 * speed;
         assert!(
             (played.time() - expected).abs() < 1e-9,
