@@ -56,7 +56,7 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
             clock.jump_to_next(&times);
         }
         let mut speed = clock.speed();
-        egui::ComboBox::new("race-speed", "")
+        egui::ComboBox::new("race-speed", "speed")
             .selected_text(speed_text(speed))
             .width(60.0)
             .show_ui(ui, |ui| {
