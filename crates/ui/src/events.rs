@@ -54,7 +54,7 @@ pub fn event_list_ui(ui: &mut Ui, events: &[TimelineEvent], clock: &mut RaceCloc
     let current = events.iter().rposition(|e| e.t <= now + 1e-3);
     let mut jumped = None;
     egui::ScrollArea::vertical()
-        .max_height(ui.available_height().clamp(120.0, 260.0))
+        .max_height(ui.available_height().max(120.0))
         .auto_shrink([false, true])
         .show(ui, |ui| {
             for (i, e) in events.iter().enumerate() {

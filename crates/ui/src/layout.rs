@@ -144,6 +144,19 @@ impl RegattaUi {
         self.set_panel_flags(flags);
     }
 
+    /// On a narrow screen at most one panel is open (the window may have been narrowed, or
+    /// started with several open): a column panel first, then the leaderboard, then Perf.
+    fn one_panel_only(&mut self) {
+        let flags = self.panel_flags();
+        if flags.iter().filter(|&&f| f).count() > 1
+            && let Some(i) = [1, 2, 3, 4, 0, 5].into_iter().find(|&i| flags[i])
+        {
+            let mut only = [false; 6];
+            only[i] = true;
+            self.set_panel_flags(only);
+        }
+    }
+
     fn panel_flags(&self) -> [bool; 6] {
         [
             self.show_leaderboard,
@@ -182,6 +195,9 @@ impl RegattaUi {
         let ctx = ui.ctx().clone();
         let screen = ctx.content_rect();
         let narrow = screen.width() < NARROW_WIDTH;
+        if narrow {
+            self.one_panel_only();
+        }
         let glass = Frame::window(&ctx.global_style())
             .fill(Color32::from_black_alpha(170))
             .corner_radius(6.0);

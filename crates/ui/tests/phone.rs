@@ -164,6 +164,9 @@ fn every_control_is_inside_the_safe_area_on_phones() {
         let mut h = phone_harness(builder(p), &race, &ev, &entries, &perf);
         set_insets(&mut h, p);
         h.run();
+        // The desktop's start (leaderboard and Perf both open) becomes one panel on a phone.
+        let open = (h.state().ui.show_leaderboard, h.state().ui.show_perf);
+        assert_eq!(open, (true, false), "{}", p.name);
         let safe = Rect::from_min_max(
             egui::pos2(0.0, p.top),
             egui::pos2(p.size.x, p.size.y - p.bottom),
