@@ -54,7 +54,6 @@ pub fn window_size() -> winit::dpi::Size {
     }
 }
 
-
 impl Overlay {
     /// Panels for `race` in `window`. The surface gets a non-sRGB view format: egui blends in
     /// gamma space, so it paints through a `*Unorm` view of the `*UnormSrgb` surface texture

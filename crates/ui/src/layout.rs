@@ -228,11 +228,7 @@ impl RegattaUi {
             .collect();
         let mut column = 0.0;
         if !sides.is_empty() {
-            let width = if narrow {
-                screen.width()
-            } else {
-                COLUMN_WIDTH
-            };
+            let width = if narrow { screen.width() } else { COLUMN_WIDTH };
             column = width;
             egui::Panel::left("side-panels")
                 .exact_size(width)
@@ -319,10 +315,7 @@ impl RegattaUi {
                 let text = RichText::new(&b.id)
                     .color(if selected { Color32::WHITE } else { colour })
                     .strong();
-                if ui
-                    .selectable_label(selected, text)
-                    .clicked()
-                {
+                if ui.selectable_label(selected, text).clicked() {
                     out.clicked_boat = Some(i);
                 }
             }

@@ -6,8 +6,8 @@
 //! `REGATTA_REQUIRE_GPU=true`, where they fail (`render::gpu::test_gpu`).
 
 use egui::Vec2;
-use egui_kittest::kittest::Queryable;
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 
 mod common;
 use common::snapshot;

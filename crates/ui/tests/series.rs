@@ -53,12 +53,18 @@ fn the_gap_at_a_mark_is_the_rounding_time_difference() {
         let g = gap_near(&gaps, t, 5.0).unwrap();
         let s = g.seconds.unwrap();
         assert!(g.metres > 0.0, "{g:?}");
-        assert!((s - want).abs() <= 3.0, "at {t}: {s} s, want {want} s ({g:?})");
+        assert!(
+            (s - want).abs() <= 3.0,
+            "at {t}: {s} s, want {want} s ({g:?})"
+        );
     }
     // Seen from the other side the gap is the same, negative.
     let back = gap_series(&race, trail, lead);
     let g = gap_near(&back, 1397.0, 5.0).unwrap();
-    assert!(g.metres < 0.0 && (g.seconds.unwrap() + 48.0).abs() <= 3.0, "{g:?}");
+    assert!(
+        g.metres < 0.0 && (g.seconds.unwrap() + 48.0).abs() <= 3.0,
+        "{g:?}"
+    );
 }
 
 /// A race without a course has no gap to compare (nothing to measure it along).

@@ -26,4 +26,3 @@ pub fn snapshot(name: &str, size: Vec2, app: impl FnMut(&mut egui::Ui) + 'static
     h.run();
     h.snapshot(name);
 }
-
