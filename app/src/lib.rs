@@ -7,6 +7,7 @@ pub mod cli;
 pub mod desktop;
 pub mod error;
 pub mod overlay;
+pub mod panels;
 pub mod pool_play;
 pub mod scene_overlay;
 pub mod wakes;

@@ -203,6 +203,8 @@ impl App {
         // statistics.
         panels.show_perf = false;
         panels.show_leaderboard = false;
+        // The panels' column starts under the Race | Pool | Record bar.
+        panels.top_inset = crate::overlay::PHONE_BAR_HEIGHT;
         Ok(Self {
             events: ui::timeline_events(&race),
             panels,
@@ -772,7 +774,7 @@ impl App {
             .egui
             .paint(&g.gpu.device, &g.gpu.queue, texture, size, raw, |ui| {
                 if choice == SceneChoice::Race {
-                    race_panels(ui, panels, race, events, None, &race.name);
+                    race_panels(ui, panels, race, events, None, &race.name, &[], None);
                 }
                 let bar = phone_bar(ui.ctx(), &mut choice, recording, message.as_ref());
                 record |= bar.record_toggled;

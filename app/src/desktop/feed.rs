@@ -166,6 +166,12 @@ impl FeedView {
         self.water
     }
 
+    /// The effect passes' handle, once the first frame built them (the Scene panel's
+    /// switches go through it).
+    pub fn effects_handle(&self) -> Option<&EffectsHandle> {
+        self.effects.as_ref()
+    }
+
     /// How many frames the feed has.
     pub fn len(&self) -> usize {
         match &self.source {

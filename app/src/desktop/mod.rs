@@ -1,6 +1,8 @@
 //! The desktop window (`regatta`, `regatta run`): the embedded race and sea (or the files
 //! given) under an orbiting camera. Left-drag orbits, the wheel zooms, space pauses, the arrow
 //! keys step race time by ±10 s. Race time plays at real speed from the start and loops.
+//! Race files dropped on the window (or chosen in the Races panel's dialog) replace the race;
+//! one that fails to load leaves the race shown and says why in the panel.
 //!
 //! winit 0.30's `ApplicationHandler`; the device comes from `render::Gpu::for_window`.
 
@@ -90,6 +92,7 @@ pub fn run(a: RunArgs) -> CliResult {
         press_at: None,
         cursor: (0.0, 0.0),
         error: None,
+        dropped: Vec::new(),
     };
     if app.pool.is_some() {
         app.orbit = pool::PoolMode::orbit();
@@ -176,6 +179,9 @@ struct App {
     press_at: Option<(f64, f64)>,
     cursor: (f64, f64),
     error: Option<CliError>,
+    /// Files dropped on the window since the last frame (one drop of several files arrives as
+    /// several events): loaded together as one race at the next frame.
+    dropped: Vec<PathBuf>,
 }
 
 impl App {
@@ -202,7 +208,44 @@ impl App {
         }
     }
 
+    /// Opens what was dropped on the window or asked for in the Races panel.
+    fn open_requested(&mut self) {
+        let Some(st) = self.state.as_mut() else {
+            return;
+        };
+        let Some(o) = st.overlay.as_mut() else {
+            return;
+        };
+        let mut files = std::mem::take(&mut self.dropped);
+        match o.open_request.take() {
+            Some(ui::OpenRequest::Files(f)) => files = f,
+            Some(ui::OpenRequest::Dialog) => {
+                if let Some(f) = crate::panels::pick_race_files() {
+                    files = f;
+                }
+            }
+            Some(ui::OpenRequest::Rescan) | None => {}
+        }
+        if files.is_empty() {
+            return;
+        }
+        match crate::panels::load_race_files(&files) {
+            Ok(race) => {
+                log::info!("opened {}", race.name);
+                o.set_race(&race, &mut st.renderer);
+                let (t0, t1) = race.time_span();
+                self.span = (t0, t1.max(t0 + 1.0));
+                self.race = race;
+            }
+            Err(e) => {
+                log::warn!("{e}");
+                o.load_error = Some(e);
+            }
+        }
+    }
+
     fn draw(&mut self, el: &ActiveEventLoop) {
+        self.open_requested();
         self.tick();
         if let Some(p) = self.pool.as_mut() {
             if let Some(st) = self.state.as_ref() {
@@ -215,6 +258,15 @@ impl App {
             return;
         }
         let mut scene = race_scene(&self.race, &self.sea, self.clock.t, &mut self.orbit);
+        // "Follow": the orbit turns about the first selected boat instead of the fleet.
+        if let Some(o) = self.state.as_ref().and_then(|s| s.overlay.as_ref())
+            && o.panels.follow
+            && let Some(target) =
+                crate::panels::follow_target(&self.race, o.scene_overlays.selected(), self.clock.t)
+        {
+            self.orbit.target = target;
+            scene.camera = self.orbit.camera();
+        }
         // With a feed, its camera (mapped onto the race) replaces the orbit.
         if let (Some(f), Some(st)) = (self.feed.as_mut(), self.state.as_mut()) {
             let size = [st.surface.config.width, st.surface.config.height];
@@ -249,7 +301,14 @@ impl App {
         let view = frame.texture.create_view(&Default::default());
         let size = [st.surface.config.width, st.surface.config.height];
         if let Some(o) = st.overlay.as_mut() {
-            o.apply_effects(&mut st.renderer);
+            let handle = self.feed.as_ref().and_then(|f| f.effects_handle());
+            o.apply_effects(&mut st.renderer, handle);
+            if let Some(feed) = self.feed.as_mut() {
+                let look = o.water_look();
+                if feed.water() != look {
+                    feed.set_water(look);
+                }
+            }
             let ppp = st.window.scale_factor();
             let (race, r) = (&self.race, &mut st.renderer);
             o.scene_overlays
@@ -321,7 +380,21 @@ impl ApplicationHandler for App {
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
                     let title = self.race.name.clone();
-                    overlay::Overlay::new(&window, &gpu.device, &mut surface, &self.race, title)
+                    let fx = self.feed.is_some();
+                    let mut o = overlay::Overlay::new(
+                        &window,
+                        &gpu.device,
+                        &mut surface,
+                        &self.race,
+                        title,
+                        fx,
+                    );
+                    // The sliders start at the water the command line chose.
+                    if let Some(feed) = &self.feed {
+                        o.panels.settings.water_depth_m = feed.water().depth_m;
+                        o.panels.settings.turbidity = feed.water().turbidity_ntu;
+                    }
+                    o
                 });
                 self.state = Some(State {
                     window,
@@ -344,6 +417,7 @@ impl ApplicationHandler for App {
         }
         match event {
             WindowEvent::CloseRequested => el.exit(),
+            WindowEvent::DroppedFile(path) => self.dropped.push(path),
             WindowEvent::Resized(s) => {
                 if let Some(st) = self.state.as_mut() {
                     st.surface.resize(&st.gpu.device, s.width, s.height);

@@ -9,7 +9,7 @@ use std::time::Instant;
 use ocean::wake::Wake;
 
 use render::FrameReport;
-use ui::{FpsMeter, PerfStats, RegattaUi, TimelineEvent};
+use ui::{FpsMeter, OpenRequest, PerfStats, RegattaUi, TimelineEvent};
 use winit::event::WindowEvent;
 use winit::window::Window;
 
@@ -26,9 +26,12 @@ pub struct Overlay {
     perf: PerfStats,
     last: Instant,
     title: String,
-    /// The race's wakes, kept so the "Wakes" toggle can take them out of the renderer and back.
-    wake: Option<Arc<Wake>>,
-    wakes_shown: bool,
+    /// The Scene panel's switches applied to the renderer (the wakes kept while off).
+    scene: crate::panels::SceneApplier,
+    /// The last race that failed to open, as one sentence (the race shown stays).
+    pub load_error: Option<String>,
+    /// What the Races panel asked for this frame, for the app to do.
+    pub open_request: Option<OpenRequest>,
     /// When the app exits by itself (`REGATTA_EXIT_AFTER_FRAMES`, for the smoke test).
     exit_after: super::smoke::ExitAfter,
     /// The surface's colour format (the screenshot texture uses it too).
@@ -51,11 +54,6 @@ pub fn window_size() -> winit::dpi::Size {
     }
 }
 
-/// The effect toggles the desktop offers.
-pub fn effect_toggles() -> Vec<ui::EffectToggle> {
-    vec![ui::EffectToggle::new("wakes", "Wakes", true)]
-}
-
 impl Overlay {
     /// Panels for `race` in `window`. The surface gets a non-sRGB view format: egui blends in
     /// gamma space, so it paints through a `*Unorm` view of the `*UnormSrgb` surface texture
@@ -66,6 +64,7 @@ impl Overlay {
         surface: &mut render::gpu::SurfaceTarget,
         race: &race::Race,
         title: String,
+        with_effect_passes: bool,
     ) -> Self {
         let format = surface.config.format;
         // Desktop Vulkan, Metal and DX12 all take other view formats of the surface.
@@ -78,20 +77,29 @@ impl Overlay {
             None,
             Some(device.limits().max_texture_dimension_2d as usize),
         );
+        let mut panels = RegattaUi::new(
+            initial_clock(race),
+            crate::panels::effect_toggles(with_effect_passes),
+        );
+        crate::panels::set_water_ranges(&mut panels.settings, with_effect_passes);
+        let mut scene_overlays = crate::scene_overlay::live::LiveOverlays::default();
+        // The selected boats (at most two: follow, the plots, compare, the highlighted labels).
+        crate::panels::panels_from_env(&mut panels, &mut scene_overlays.settings.selected, race);
         Self {
             input,
             painter,
-            panels: RegattaUi::new(initial_clock(race), effect_toggles()),
+            panels,
             events: ui::timeline_events(race),
             fps: FpsMeter::new(30),
             perf: PerfStats::default(),
             last: Instant::now(),
             title,
-            wake: crate::cli::render::race_wake(race).ok(),
-            wakes_shown: true,
+            scene: crate::panels::SceneApplier::new(crate::cli::render::race_wake(race).ok()),
+            load_error: None,
+            open_request: None,
             format,
             exit_after: super::smoke::ExitAfter::from_env(),
-            scene_overlays: Default::default(),
+            scene_overlays,
         }
     }
 
@@ -125,26 +133,44 @@ impl Overlay {
         self.perf = perf_stats(report, &self.fps);
     }
 
-    /// Applies the effect toggles to the renderer (before it draws the frame).
-    pub fn apply_effects(&mut self, renderer: &mut render::Renderer) {
-        let want = self
-            .panels
-            .effects
-            .iter()
-            .any(|e| e.key == "wakes" && e.enabled);
-        if want != self.wakes_shown {
-            renderer.set_wake(if want { self.wake.clone() } else { None });
-            self.wakes_shown = want;
+    /// Applies the Scene panel's switches to the renderer (before it draws the frame): the
+    /// wakes, and the AR effects through `effects` where the effect passes draw.
+    pub fn apply_effects(
+        &mut self,
+        renderer: &mut render::Renderer,
+        effects: Option<&effects::passes::EffectsHandle>,
+    ) {
+        let settings = &self.panels.settings;
+        self.scene.apply(settings, renderer, effects);
+        for (name, _) in ui::settings::OVERLAYS {
+            // The names are the overlays' own: setting one cannot fail.
+            let _ = self.scene_overlays.set_overlay(name, settings.overlay(name));
         }
+    }
+
+    /// The water the Scene panel asks for (the feed applies it on the table).
+    pub fn water_look(&self) -> render::water_look::WaterLook {
+        crate::panels::water_look(&self.panels.settings)
     }
 
     /// The race's wakes when the "Wakes" toggle is on (for a renderer built afresh).
     pub fn wake(&self) -> Option<Arc<Wake>> {
-        if self.wakes_shown {
-            self.wake.clone()
-        } else {
-            None
-        }
+        self.scene.current_wake()
+    }
+
+    /// Shows `race` from now on: a fresh timeline, events, selection and plots; its wakes in
+    /// `renderer`. The title names it.
+    pub fn set_race(&mut self, race: &race::Race, renderer: &mut render::Renderer) {
+        // The panels that were open stay open, the switches as they were.
+        self.panels.clock = initial_clock(race);
+        self.panels.plots.clear();
+        self.panels.follow = false;
+        self.events = ui::timeline_events(race);
+        self.scene_overlays.settings.selected.clear();
+        self.load_error = None;
+        self.title = race.name.clone();
+        self.scene
+            .set_race_wake(crate::cli::render::race_wake(race).ok(), renderer);
     }
 
     /// Counts a drawn frame; true when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`).
@@ -171,11 +197,38 @@ impl Overlay {
             &self.title,
             &mut self.scene_overlays,
         );
+        let races = ui::RacesPanel {
+            current: &race.name,
+            error: self.load_error.as_deref(),
+            dialog: true,
+            ..Default::default()
+        };
+        let mut response = None;
         let platform = self.painter.paint(device, queue, texture, size, raw, |ui| {
             scene.paint(ui.ctx(), size);
-            crate::overlay::race_panels(ui, panels, race, events, Some(perf), title);
+            response = Some(crate::overlay::race_panels(
+                ui,
+                panels,
+                race,
+                events,
+                Some(perf),
+                title,
+                &scene.settings.selected,
+                Some(races),
+            ));
         });
         self.input.handle_platform_output(window, platform);
+        if let Some(r) = response {
+            if let Some(b) = r.clicked_boat {
+                ui::toggle_selection(&mut self.scene_overlays.settings.selected, b);
+            }
+            if r.clear_selection {
+                self.scene_overlays.settings.selected.clear();
+            }
+            if r.open.is_some() {
+                self.open_request = r.open;
+            }
+        }
     }
 }
 
@@ -218,15 +271,17 @@ impl Overlay {
 
 /// Gives `event` to the panels first: true when they used it (a click on a panel, or the
 /// timeline's keys: space plays and pauses, ←/→ step, Home jumps to the start, PgUp/PgDn jump
-/// between mark roundings), so the app must not use it too.
+/// between events, R plays the other way, [ and ] halve and double the speed, F follows the
+/// selected boat), so the app must not use it too.
 pub fn handle_event(o: &mut Overlay, window: &Window, event: &WindowEvent) -> bool {
     use winit::event::ElementState;
     use winit::keyboard::{Key, NamedKey};
     let consumed = o.on_event(window, event);
     match event {
-        WindowEvent::CloseRequested | WindowEvent::Resized(_) | WindowEvent::RedrawRequested => {
-            false
-        }
+        WindowEvent::CloseRequested
+        | WindowEvent::Resized(_)
+        | WindowEvent::RedrawRequested
+        | WindowEvent::DroppedFile(_) => false,
         WindowEvent::KeyboardInput { event, .. }
             if event.state == ElementState::Pressed && !o.wants_keyboard() =>
         {
@@ -243,6 +298,13 @@ pub fn handle_event(o: &mut Overlay, window: &Window, event: &WindowEvent) -> bo
                 Key::Named(NamedKey::PageUp) => {
                     clock.jump_to_previous(&times);
                 }
+                Key::Character(ref c) => match c.as_str() {
+                    "r" | "R" => clock.reverse(),
+                    "[" => clock.slower(),
+                    "]" => clock.faster(),
+                    "f" | "F" => o.panels.follow = !o.panels.follow && !o.scene_overlays.selected().is_empty(),
+                    _ => return consumed,
+                },
                 _ => return consumed,
             }
             true

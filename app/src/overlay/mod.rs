@@ -41,7 +41,9 @@ pub fn perf_stats(report: &FrameReport, fps: &FpsMeter) -> PerfStats {
     }
 }
 
-/// Lays out the race panels (`crates/ui`'s [`RegattaUi`]) at the panels' race time.
+/// Lays out the race panels (`crates/ui`'s [`RegattaUi`]) at the panels' race time, with the
+/// app's boat `selection` and, where the platform opens races, the Races panel.
+#[allow(clippy::too_many_arguments)]
 pub fn race_panels(
     ui: &mut egui::Ui,
     panels: &mut RegattaUi,
@@ -49,6 +51,8 @@ pub fn race_panels(
     events: &[TimelineEvent],
     perf: Option<&PerfStats>,
     title: &str,
+    selection: &[usize],
+    races: Option<ui::RacesPanel<'_>>,
 ) -> UiResponse {
     let rows = ui::leaderboard_rows(race, panels.clock.time());
     panels.show(
@@ -58,6 +62,9 @@ pub fn race_panels(
             events,
             perf,
             title,
+            race: Some(race),
+            selection,
+            races,
         },
     )
 }
@@ -192,6 +199,10 @@ impl SceneChoice {
         }
     }
 }
+
+/// Points the phone's bar (and a one-line banner) takes at the top of the screen, kept free
+/// by the panels' column.
+pub const PHONE_BAR_HEIGHT: f32 = 90.0;
 
 /// What the phone's bar did this frame, and where its buttons are (points).
 #[derive(Clone, Copy, Debug, PartialEq)]

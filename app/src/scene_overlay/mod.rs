@@ -82,7 +82,7 @@ impl OverlaySet {
 /// Default length of the trails, seconds of race time.
 pub const DEFAULT_TRAIL_S: f64 = 120.0;
 /// How many boats "compare" holds.
-pub const MAX_SELECTED: usize = 2;
+pub use ui::MAX_SELECTED;
 
 /// What the user chose: overlays on, trail length, rhumb lines, selected boats.
 #[derive(Debug, Clone, PartialEq)]
@@ -121,16 +121,7 @@ impl OverlaySettings {
     pub fn click(&mut self, boat: Option<usize>) {
         match boat {
             None => self.selected.clear(),
-            Some(b) => {
-                if let Some(k) = self.selected.iter().position(|&s| s == b) {
-                    self.selected.remove(k);
-                } else {
-                    if self.selected.len() == MAX_SELECTED {
-                        self.selected.remove(0);
-                    }
-                    self.selected.push(b);
-                }
-            }
+            Some(b) => ui::toggle_selection(&mut self.selected, b),
         }
     }
 }

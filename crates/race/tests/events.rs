@@ -13,12 +13,12 @@ use race::{EventKind, Race, RaceEvent, race_events};
 fn leader_by_events(events: &[RaceEvent], t: f64) -> Option<usize> {
     events
         .iter()
+        .rev()
         .filter(|e| e.t <= t)
-        .filter_map(|e| match e.kind {
+        .find_map(|e| match e.kind {
             EventKind::LeadChange { boat, .. } => Some(boat),
             _ => None,
         })
-        .last()
 }
 
 /// The first rounding of each course mark (course index ≥ 1): (t, boat).

@@ -54,7 +54,7 @@ pub fn event_list_ui(ui: &mut Ui, events: &[TimelineEvent], clock: &mut RaceCloc
     let current = events.iter().rposition(|e| e.t <= now + 1e-3);
     let mut jumped = None;
     egui::ScrollArea::vertical()
-        .max_height(ui.available_height().clamp(120.0, 260.0))
+        .max_height(ui.available_height().max(120.0))
         .auto_shrink([false, true])
         .show(ui, |ui| {
             for (i, e) in events.iter().enumerate() {
@@ -62,9 +62,12 @@ pub fn event_list_ui(ui: &mut Ui, events: &[TimelineEvent], clock: &mut RaceCloc
                     let (rect, _) =
                         ui.allocate_exact_size(egui::vec2(8.0, 14.0), egui::Sense::hover());
                     ui.painter().rect_filled(rect, 2.0, e.color);
-                    let text = format!("{:>7}  {}", format_race_time(e.t), e.label);
+                    // The clock in a fixed-width column, the sentence in the proportional
+                    // font: a phone's width holds "ESP30782 takes the lead from ESP29375".
+                    let time = format!("{:>7}", format_race_time(e.t));
+                    ui.label(RichText::new(time).monospace().weak());
                     if ui
-                        .selectable_label(Some(i) == current, RichText::new(text).monospace())
+                        .selectable_label(Some(i) == current, e.label.as_str())
                         .clicked()
                     {
                         jumped = Some(e.t);

@@ -144,6 +144,19 @@ impl RegattaUi {
         self.set_panel_flags(flags);
     }
 
+    /// On a narrow screen at most one panel is open (the window may have been narrowed, or
+    /// started with several open): a column panel first, then the leaderboard, then Perf.
+    fn one_panel_only(&mut self) {
+        let flags = self.panel_flags();
+        if flags.iter().filter(|&&f| f).count() > 1
+            && let Some(i) = [1, 2, 3, 4, 0, 5].into_iter().find(|&i| flags[i])
+        {
+            let mut only = [false; 6];
+            only[i] = true;
+            self.set_panel_flags(only);
+        }
+    }
+
     fn panel_flags(&self) -> [bool; 6] {
         [
             self.show_leaderboard,
@@ -166,13 +179,25 @@ impl RegattaUi {
         ] = f;
     }
 
-    /// Lays out the panels over the scene (see the module docs). Translucent frames keep the
-    /// scene visible behind them.
+    /// Lays out the panels over the scene (see the module docs), inside the screen's safe area
+    /// (`Context::content_rect`: the screen minus the phone's status and navigation bars).
+    /// Translucent frames keep the scene visible behind them.
     pub fn show(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
+        let safe = ui.ctx().content_rect();
+        ui.scope_builder(egui::UiBuilder::new().max_rect(safe), |ui| {
+            self.show_inside(ui, frame)
+        })
+        .inner
+    }
+
+    fn show_inside(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
         let mut out = UiResponse::default();
         let ctx = ui.ctx().clone();
         let screen = ctx.content_rect();
         let narrow = screen.width() < NARROW_WIDTH;
+        if narrow {
+            self.one_panel_only();
+        }
         let glass = Frame::window(&ctx.global_style())
             .fill(Color32::from_black_alpha(170))
             .corner_radius(6.0);
@@ -203,11 +228,7 @@ impl RegattaUi {
             .collect();
         let mut column = 0.0;
         if !sides.is_empty() {
-            let width = if narrow {
-                screen.width()
-            } else {
-                COLUMN_WIDTH
-            };
+            let width = if narrow { screen.width() } else { COLUMN_WIDTH };
             column = width;
             egui::Panel::left("side-panels")
                 .exact_size(width)
@@ -287,12 +308,14 @@ impl RegattaUi {
         };
         ui.horizontal_wrapped(|ui| {
             for (i, b) in race.boats.iter().enumerate() {
+                // The boat's colour, white on the highlight when selected (colour on blue is
+                // hard to read).
+                let selected = frame.selection.contains(&i);
                 let colour = parse_hex_color(&b.color).unwrap_or(Color32::GRAY);
-                let text = RichText::new(&b.id).color(colour).strong();
-                if ui
-                    .selectable_label(frame.selection.contains(&i), text)
-                    .clicked()
-                {
+                let text = RichText::new(&b.id)
+                    .color(if selected { Color32::WHITE } else { colour })
+                    .strong();
+                if ui.selectable_label(selected, text).clicked() {
                     out.clicked_boat = Some(i);
                 }
             }

@@ -29,4 +29,4 @@ pub use settings::{SceneSettings, SettingChange, scene_settings_ui};
 pub use timeline::timeline_ui;
 
 mod layout;
-pub use layout::{RegattaUi, UiFrame, UiResponse, toggle_selection};
+pub use layout::{MAX_SELECTED, RegattaUi, UiFrame, UiResponse, toggle_selection};

@@ -107,9 +107,7 @@ pub fn races_ui(ui: &mut Ui, p: &RacesPanel<'_>) -> Option<OpenRequest> {
     let mut out = None;
     ui.label(RichText::new(format!("Showing: {}", p.current)).strong());
     if let Some(e) = p.error {
-        ui.add(
-            egui::Label::new(RichText::new(e).color(Color32::from_rgb(255, 170, 80))).wrap(),
-        );
+        ui.add(egui::Label::new(RichText::new(e).color(Color32::from_rgb(255, 170, 80))).wrap());
     }
     if p.dialog {
         ui.horizontal_wrapped(|ui| {
@@ -122,7 +120,11 @@ pub fn races_ui(ui: &mut Ui, p: &RacesPanel<'_>) -> Option<OpenRequest> {
     if let Some(folder) = p.folder {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(format!("Races in {folder}")).weak());
-            if ui.small_button("⟳").on_hover_text("Read the folder again").clicked() {
+            if ui
+                .small_button("⟳")
+                .on_hover_text("Read the folder again")
+                .clicked()
+            {
                 out = Some(OpenRequest::Rescan);
             }
         });

@@ -60,7 +60,16 @@ fn time_axis(plot: Plot<'_>) -> Plot<'_> {
         .allow_boxed_zoom(false)
         .allow_double_click_reset(false)
         .x_axis_formatter(|m, _| format_race_time(m.value))
-        .legend(Legend::default())
+        // Race clocks read in minutes: ticks every 1, 5 and 10 minutes (longer races: 10, 30,
+        // 60), never egui_plot's decimal 1000 s.
+        .x_grid_spacer(egui_plot::uniform_grid_spacer(|g| {
+            if g.bounds.1 - g.bounds.0 > 3.0 * 3600.0 {
+                [600.0, 1800.0, 3600.0]
+            } else {
+                [60.0, 300.0, 600.0]
+            }
+        }))
+        .legend(Legend::default().background_alpha(0.5))
 }
 
 /// Speed (knots) of each selected boat over race time, VMG dashed where the race states its
@@ -91,7 +100,7 @@ pub fn speed_plot_ui(ui: &mut Ui, race: &race::Race, cache: &PlotCache, t: f64) 
                 );
             }
         }
-        p.vline(VLine::new("now", t).color(Color32::WHITE));
+        p.vline(VLine::new("", t).color(Color32::WHITE));
         clicked_time(p)
     });
     r.inner
@@ -143,7 +152,7 @@ pub fn compare_ui(
                 .color(Color32::LIGHT_GRAY)
                 .style(egui_plot::LineStyle::dashed_loose()),
         );
-        p.vline(VLine::new("now", t).color(Color32::WHITE));
+        p.vline(VLine::new("", t).color(Color32::WHITE));
         clicked_time(p)
     });
     r.inner

@@ -17,8 +17,25 @@ pub const OVERLAYS: [(&str, &str); 5] = [
     ("wind", "Wind"),
 ];
 
-/// Water depth over the table, metres of the scene, that the slider spans.
-pub const DEPTH_RANGE_M: std::ops::RangeInclusive<f64> = 0.5..=20.0;
+/// What the water sliders span and start at, in real units (the app gives the renderer's own
+/// ranges: ui keeps no copy of them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaterRanges {
+    /// Depth of the water over the table, metres.
+    pub depth_m: std::ops::RangeInclusive<f64>,
+    /// Turbidity, NTU.
+    pub turbidity_ntu: std::ops::RangeInclusive<f64>,
+}
+
+impl Default for WaterRanges {
+    /// A stand-in for panels drawn without a renderer (tests): 1 mm to 10 cm, 0 to 100 NTU.
+    fn default() -> Self {
+        Self {
+            depth_m: 0.001..=0.1,
+            turbidity_ntu: 0.0..=100.0,
+        }
+    }
+}
 
 /// One thing the user changed this frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,9 +44,9 @@ pub enum SettingChange {
     Effect { key: String, enabled: bool },
     /// An overlay (`labels`, `trails`, `course`, `lines`, `wind`) on or off.
     Overlay { key: String, enabled: bool },
-    /// Water depth over the table, metres of the scene.
+    /// Water depth over the table, metres.
     WaterDepth(f64),
-    /// Turbidity, 0 (clear) … 1 (murky).
+    /// Turbidity, NTU.
     Turbidity(f64),
 }
 
@@ -38,15 +55,20 @@ pub enum SettingChange {
 pub struct SceneSettings {
     pub effects: Vec<EffectToggle>,
     pub overlays: Vec<EffectToggle>,
+    /// Depth of the water over the table, metres.
     pub water_depth_m: f64,
+    /// Turbidity, NTU.
     pub turbidity: f64,
+    /// What the water sliders span.
+    pub water_ranges: WaterRanges,
     /// Keys the app cannot apply in this build or scene (e.g. an overlay without its pass, or
     /// the water sliders without a table): shown disabled, with why on hover.
     pub unavailable: Vec<(String, String)>,
 }
 
 impl SceneSettings {
-    /// `effects` as the app offers them, every overlay on, 3 m of clear water.
+    /// `effects` as the app offers them, every overlay on, 1 cm of clear water (the app sets
+    /// the renderer's own defaults and ranges).
     pub fn new(effects: Vec<EffectToggle>) -> Self {
         Self {
             effects,
@@ -54,8 +76,9 @@ impl SceneSettings {
                 .iter()
                 .map(|(k, l)| EffectToggle::new(k, l, true))
                 .collect(),
-            water_depth_m: 3.0,
-            turbidity: 0.0,
+            water_depth_m: 0.01,
+            turbidity: 0.5,
+            water_ranges: WaterRanges::default(),
             unavailable: Vec::new(),
         }
     }
@@ -112,10 +135,11 @@ pub fn scene_settings_ui(ui: &mut Ui, s: &mut SceneSettings) -> Vec<SettingChang
     let depth = ui
         .add_enabled(
             depth_why.is_none(),
-            egui::Slider::new(&mut s.water_depth_m, DEPTH_RANGE_M)
+            egui::Slider::new(&mut s.water_depth_m, s.water_ranges.depth_m.clone())
+                .logarithmic(true)
                 .text("Depth")
-                .suffix(" m")
-                .max_decimals(1),
+                .custom_formatter(|m, _| format!("{:.1} cm", m * 100.0))
+                .custom_parser(|t| t.trim().trim_end_matches("cm").trim().parse::<f64>().ok().map(|cm| cm / 100.0)),
         )
         .on_disabled_hover_text(depth_why.unwrap_or_default());
     if depth.changed() {
@@ -124,9 +148,11 @@ pub fn scene_settings_ui(ui: &mut Ui, s: &mut SceneSettings) -> Vec<SettingChang
     let turbidity = ui
         .add_enabled(
             turbidity_why.is_none(),
-            egui::Slider::new(&mut s.turbidity, 0.0..=1.0)
+            egui::Slider::new(&mut s.turbidity, s.water_ranges.turbidity_ntu.clone())
+                .logarithmic(true)
                 .text("Turbidity")
-                .max_decimals(2),
+                .suffix(" NTU")
+                .max_decimals(1),
         )
         .on_disabled_hover_text(turbidity_why.unwrap_or_default());
     if turbidity.changed() {

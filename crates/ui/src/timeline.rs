@@ -60,13 +60,14 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
             .selected_text(speed_text(speed))
             .width(60.0)
             .show_ui(ui, |ui| {
+                ui.label("Speed (− plays back)");
                 for s in SPEEDS.into_iter().rev() {
                     ui.selectable_value(&mut speed, s, speed_text(s));
                 }
             });
         clock.set_speed(speed);
         if ui
-            .button("⇄")
+            .button("◀▶")
             .on_hover_text("Play the other way (R)")
             .clicked()
         {
@@ -74,15 +75,19 @@ pub fn timeline_ui(ui: &mut Ui, clock: &mut RaceClock, events: &[TimelineEvent])
         }
         ui.separator();
         let (_, end) = clock.span();
-        ui.label(
-            egui::RichText::new(format!(
-                "{} / {}",
-                format_race_time(clock.time()),
-                format_race_time(end)
-            ))
-            .monospace()
-            .size(18.0)
-            .strong(),
+        // One piece: on a narrow screen the clock moves to the next line whole.
+        ui.add(
+            egui::Label::new(
+                egui::RichText::new(format!(
+                    "{} / {}",
+                    format_race_time(clock.time()),
+                    format_race_time(end)
+                ))
+                .monospace()
+                .size(18.0)
+                .strong(),
+            )
+            .extend(),
         );
     };
     if ui.available_width() < NARROW_WIDTH {

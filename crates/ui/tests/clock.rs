@@ -5,16 +5,16 @@ use ui::{RaceClock, SPEEDS, format_race_time};
 #[test]
 fn playing_to_t_and_scrubbing_to_t_give_the_same_time() {
     for &speed in &SPEEDS {
+        // Backwards from the end, forwards from the start.
+        let from = if speed < 0.0 { 3600.0 } else { -60.0 };
         let mut played = RaceClock::new((-60.0, 3600.0));
+        played.scrub_to(from);
         played.set_speed(speed);
         played.play();
         // 90 frames of a 60 Hz display.
         for _ in 0..90 {
             played.advance(1.0 / 60.0);
         }
-        // Backwards from the end, forwards from the start.
-        let from = if speed < 0.0 { 3600.0 } else { -60.0 };
-        played.scrub_to(from);
         let expected = from + 1.5 * speed;
         assert!(
             (played.time() - expected).abs() < 1e-9,
@@ -94,7 +94,9 @@ fn speeds_snap_to_the_list_and_saturate() {
     assert_eq!(c.speed(), 8.0);
     assert_eq!(
         SPEEDS,
-        [-64.0, -32.0, -16.0, -8.0, -4.0, -2.0, -1.0, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0]
+        [
+            -64.0, -32.0, -16.0, -8.0, -4.0, -2.0, -1.0, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0
+        ]
     );
 }
 

@@ -40,12 +40,16 @@ fn a_race_without_marks_is_said_to_have_no_course_rank() {
 }
 
 #[test]
-fn timeline_events_are_the_roundings_after_the_start_in_order() {
+fn timeline_events_are_the_start_roundings_and_lead_changes_in_order() {
     let race = race::Race::sample();
     let ev = timeline_events(&race);
     let all = race.rounding_events();
-    assert_eq!(ev.len(), all.iter().filter(|e| e.course_index > 0).count());
-    assert!(!ev.is_empty(), "the sample race has mark roundings");
+    let roundings = all.iter().filter(|e| e.course_index > 0).count();
+    let lead_changes = race::events::lead_changes(&race).len();
+    assert_eq!(ev.len(), 1 + roundings + lead_changes);
+    assert_eq!(ev[0].label, "Start");
+    assert_eq!(ev[0].color, ui::events::START_COLOR);
+    assert!(lead_changes > 0, "the sample race's lead changes");
     assert!(ev.windows(2).all(|w| w[0].t <= w[1].t));
 }
 

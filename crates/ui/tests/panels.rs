@@ -6,35 +6,15 @@
 //! `REGATTA_REQUIRE_GPU=true`, where they fail (`render::gpu::test_gpu`).
 
 use egui::Vec2;
+use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use egui_kittest::{Harness, HarnessBuilder};
+
+mod common;
+use common::snapshot;
 use ui::{
     EffectToggle, LeaderboardRow, PassStat, PerfStats, RaceClock, RegattaUi, TimelineEvent,
     UiFrame, effects_ui, leaderboard_rows, leaderboard_ui, perf_ui, timeline_events, timeline_ui,
 };
-
-/// A harness builder that renders with the test GPU, or `None` (skip) without one.
-fn gpu_builder(size: Vec2) -> Option<HarnessBuilder<()>> {
-    let gpu = render::gpu::test_gpu()?;
-    let setup = egui_wgpu::WgpuSetup::Existing(egui_wgpu::WgpuSetupExisting {
-        instance: gpu.instance.clone(),
-        adapter: gpu.adapter.clone(),
-        device: gpu.device.clone(),
-        queue: gpu.queue.clone(),
-    });
-    Some(Harness::builder().with_size(size).wgpu_setup(setup))
-}
-
-/// Renders `app` at `size` with the test GPU and compares it with `tests/snapshots/<name>.png`;
-/// skips without a GPU (see [`gpu_builder`]).
-fn snapshot(name: &str, size: Vec2, app: impl FnMut(&mut egui::Ui) + 'static) {
-    let Some(b) = gpu_builder(size) else {
-        return;
-    };
-    let mut h = b.build_ui(app);
-    h.run();
-    h.snapshot(name);
-}
 
 /// A timeline harness over `span` (race seconds) whose state is the clock.
 fn timeline_harness(ev: &[TimelineEvent], span: (f64, f64)) -> Harness<'_, RaceClock> {
@@ -125,11 +105,11 @@ fn the_transport_row_wraps_on_a_narrow_screen() {
     let ev = events();
     let controls = [
         "⏮ Start",
-        "⏪ Mark",
+        "⏪ Event",
         "◀ Step",
         "▶ Play",
         "Step ▶",
-        "Mark ⏩",
+        "Event ⏩",
     ];
     for (width, one_line) in [(380.0, false), (900.0, true)] {
         let mut h = Harness::builder()
@@ -165,13 +145,13 @@ fn play_button_and_mark_jumps_drive_the_clock() {
     h.get_by_label("⏸ Pause").click();
     h.run();
     assert!(!h.state().is_playing());
-    h.get_by_label("Mark ⏩").click();
+    h.get_by_label("Event ⏩").click();
     h.run();
     assert_eq!(h.state().time(), 300.0);
-    h.get_by_label("Mark ⏩").click();
+    h.get_by_label("Event ⏩").click();
     h.run();
     assert_eq!(h.state().time(), 312.0);
-    h.get_by_label("⏪ Mark").click();
+    h.get_by_label("⏪ Event").click();
     h.run();
     assert_eq!(h.state().time(), 300.0);
     h.get_by_label("Step ▶").click();
@@ -237,7 +217,7 @@ fn snapshot_leaderboard() {
     let (t0, t1) = race.time_span();
     let rows: Vec<LeaderboardRow> = leaderboard_rows(&race, t0 + 0.5 * (t1 - t0));
     snapshot("leaderboard", Vec2::new(420.0, 280.0), move |ui| {
-        leaderboard_ui(ui, &rows)
+        leaderboard_ui(ui, &rows, &[1]);
     });
 }
 
@@ -268,9 +248,10 @@ fn snapshot_whole_layout() {
     let mut clock = RaceClock::new((t0, t1));
     clock.scrub_to(t);
     let mut app = RegattaUi::new(clock, toggles());
-    app.show_effects = true;
+    app.show_scene = true;
+    app.show_boats = true;
     let title = format!("{} · synthetic feed", race.name);
-    snapshot("layout", Vec2::new(1024.0, 576.0), move |ui| {
+    snapshot("layout", Vec2::new(1280.0, 800.0), move |ui| {
         // A table-coloured backdrop stands in for the scene.
         ui.painter()
             .rect_filled(ui.max_rect(), 0.0, egui::Color32::from_rgb(150, 110, 70));
@@ -281,6 +262,10 @@ fn snapshot_whole_layout() {
                 events: &ev,
                 perf: Some(&stats),
                 title: &title,
+                race: Some(&race),
+                // Eos and Gale, compared.
+                selection: &[4, 6],
+                ..Default::default()
             },
         );
     });

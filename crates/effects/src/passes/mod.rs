@@ -67,6 +67,22 @@ impl EffectsHandle {
         shared.cfg.table_depth = table_depth;
     }
 
+    /// Draw the next frames with `effects` only (the panel's switches, live): the planner reads
+    /// the set every frame, so the passes skip the others as "not requested"; the next frame
+    /// is drawn even if the scene stands still.
+    pub fn set_effects(&self, effects: EffectSet) {
+        let mut shared = self.shared.borrow_mut();
+        if shared.cfg.effects != effects {
+            shared.cfg.effects = effects;
+            shared.revision += 1;
+        }
+    }
+
+    /// The effects the passes draw now.
+    pub fn effects(&self) -> EffectSet {
+        self.shared.borrow().cfg.effects
+    }
+
     /// Size of the camera image now on the GPU, pixels.
     pub fn camera_image_size(&self) -> [u32; 2] {
         self.shared.borrow().camera_image.size

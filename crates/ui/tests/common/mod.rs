@@ -1,0 +1,28 @@
+//! Shared helpers of the ui tests: snapshot rendering on the test GPU (lavapipe in CI).
+#![allow(dead_code)]
+
+use egui::Vec2;
+use egui_kittest::{Harness, HarnessBuilder};
+
+/// A harness builder that renders with the test GPU, or `None` (skip) without one.
+pub fn gpu_builder<S>(size: Vec2) -> Option<HarnessBuilder<S>> {
+    let gpu = render::gpu::test_gpu()?;
+    let setup = egui_wgpu::WgpuSetup::Existing(egui_wgpu::WgpuSetupExisting {
+        instance: gpu.instance.clone(),
+        adapter: gpu.adapter.clone(),
+        device: gpu.device.clone(),
+        queue: gpu.queue.clone(),
+    });
+    Some(Harness::<S>::builder().with_size(size).wgpu_setup(setup))
+}
+
+/// Renders `app` at `size` with the test GPU and compares it with `tests/snapshots/<name>.png`;
+/// skips without a GPU (see [`gpu_builder`]).
+pub fn snapshot(name: &str, size: Vec2, app: impl FnMut(&mut egui::Ui) + 'static) {
+    let Some(b) = gpu_builder(size) else {
+        return;
+    };
+    let mut h = b.build_ui(app);
+    h.run();
+    h.snapshot(name);
+}
