@@ -9,8 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use glam::DVec3;
 use effects::{Effect, EffectSet, passes::EffectsHandle};
+use glam::DVec3;
 use ui::{EffectToggle, SceneSettings};
 
 /// What a person sees for each AR effect (`effects::Effect::name`).
@@ -40,7 +40,8 @@ pub fn effect_toggles(with_effect_passes: bool) -> Vec<EffectToggle> {
 }
 
 /// Why the water sliders are greyed out without a table.
-pub const NO_TABLE: &str = "the water's depth and turbidity are the table's: open a camera feed (--replay)";
+pub const NO_TABLE: &str =
+    "the water's depth and turbidity are the table's: open a camera feed (--replay)";
 
 /// Gives the Scene panel the renderer's water ranges and defaults, and greys the water sliders
 /// out where no table is shown (`has_table`: a camera feed or the synthetic table).

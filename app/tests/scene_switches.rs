@@ -6,9 +6,9 @@
 //!
 //! Needs a GPU (lavapipe in CI); skipped without one unless `REGATTA_REQUIRE_GPU=true`.
 
+use effects::{EffectSet, demo_table_scene, passes::add_scene_effects};
 use regatta::desktop::{race_scene, window_renderer};
 use regatta::panels::{SceneApplier, effect_toggles};
-use effects::{EffectSet, demo_table_scene, passes::add_scene_effects};
 use render::{OFFSCREEN_FORMAT, OrbitCamera, Renderer, Scene};
 use ui::SceneSettings;
 

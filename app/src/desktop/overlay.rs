@@ -144,7 +144,9 @@ impl Overlay {
         self.scene.apply(settings, renderer, effects);
         for (name, _) in ui::settings::OVERLAYS {
             // The names are the overlays' own: setting one cannot fail.
-            let _ = self.scene_overlays.set_overlay(name, settings.overlay(name));
+            let _ = self
+                .scene_overlays
+                .set_overlay(name, settings.overlay(name));
         }
     }
 
@@ -302,7 +304,10 @@ pub fn handle_event(o: &mut Overlay, window: &Window, event: &WindowEvent) -> bo
                     "r" | "R" => clock.reverse(),
                     "[" => clock.slower(),
                     "]" => clock.faster(),
-                    "f" | "F" => o.panels.follow = !o.panels.follow && !o.scene_overlays.selected().is_empty(),
+                    "f" | "F" => {
+                        o.panels.follow =
+                            !o.panels.follow && !o.scene_overlays.selected().is_empty()
+                    }
                     _ => return consumed,
                 },
                 _ => return consumed,

@@ -152,12 +152,7 @@ pub fn float_pose(
 
 /// Model matrix (local metres, relative to `origin`) of a body whose model space has the bow
 /// along −z, starboard +x, up +y.
-pub fn float_matrix(
-    position: DVec2,
-    heading: f64,
-    pose: &FloatPose,
-    origin: DVec2,
-) -> DMat4 {
+pub fn float_matrix(position: DVec2, heading: f64, pose: &FloatPose, origin: DVec2) -> DMat4 {
     let p = position - origin;
     DMat4::from_rotation_translation(
         DQuat::from_rotation_y(-heading)

@@ -139,7 +139,14 @@ pub fn scene_settings_ui(ui: &mut Ui, s: &mut SceneSettings) -> Vec<SettingChang
                 .logarithmic(true)
                 .text("Depth")
                 .custom_formatter(|m, _| format!("{:.1} cm", m * 100.0))
-                .custom_parser(|t| t.trim().trim_end_matches("cm").trim().parse::<f64>().ok().map(|cm| cm / 100.0)),
+                .custom_parser(|t| {
+                    t.trim()
+                        .trim_end_matches("cm")
+                        .trim()
+                        .parse::<f64>()
+                        .ok()
+                        .map(|cm| cm / 100.0)
+                }),
         )
         .on_disabled_hover_text(depth_why.unwrap_or_default());
     if depth.changed() {
