@@ -8,7 +8,7 @@
 //   const FX_MASK: u32            the effects this pipeline shades (FX_* bits);
 //   const FX_CHEAP_CAUSTICS: bool the overhead-sun caustics instead of the area-ratio map.
 //
-// One pipeline per set of effects (render::effects::passes::ArPipelines): the effects that do
+// One pipeline per set of effects (effects::passes::pipelines::ArPipelines): the effects that do
 // not run are constant-false branches, gone from the compiled shader (lavapipe runs both sides
 // of a uniform branch under execution masks, so a flag in the uniform saves nothing there).
 // Every function of the effect files has one exit: Mesa 22.3's lavapipe crashed drawing some

@@ -1,6 +1,6 @@
 // The AR caustic map pass: the area-ratio caustics of the actual wave surface at this frame's
 // race time, drawn on the GPU into the caustic map that caustics.wgsl samples (f64 reference:
-// crates/render/src/effects/caustics.rs, area_ratio, which this follows step by step).
+// crates/effects/src/caustics.rs, area_ratio, which this follows step by step).
 //
 // A grid over the map's region plus a margin: grid point v is rest point (v mod side,
 // v div side). Each point is displaced by the sea, the sunlight is refracted through its

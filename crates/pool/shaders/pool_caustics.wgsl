@@ -1,7 +1,7 @@
 // Pool caustics pass: the water surface grid's triangles, refracted to the box and drawn into
 // the caustics map (the box's unfolded net) with additive blending. Each triangle adds the
 // sunlight that crosses it, Φ = T · A⊥, spread over the area A_r it lands on: irradiance Φ/A_r
-// (the area ratio). f64 reference: crates/render/src/pool/caustics.rs.
+// (the area ratio). f64 reference: crates/pool/src/caustics.rs.
 //
 // Indexed grid, one refraction per vertex: vertex v is grid point (v mod (n + 1), v div (n + 1)),
 // drawn at its landing point in the net. Inside a triangle the surface position is an affine

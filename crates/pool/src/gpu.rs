@@ -32,9 +32,8 @@ use render::gpu::DEPTH_FORMAT;
 use render::gpu::{DepthBuffer, Gpu, GpuError, texture_2d};
 use render::shader;
 
-/// Spheres and ripple rings the shader holds (as `pool_common.wgsl`).
-pub const MAX_SPHERES: usize = 8;
-pub const MAX_RINGS: usize = 256;
+/// Spheres and ripple rings the shader holds (defined with the constants WGSL shares).
+pub use crate::wgsl::{MAX_RINGS, MAX_SPHERES};
 
 /// The pool's shared WGSL (structs, water, rays, shading): every pool pass file follows it.
 pub const POOL_COMMON: &str = include_str!("../shaders/pool_common.wgsl");

@@ -5,8 +5,12 @@
 use render::shader::{WgslValue, wgsl_consts};
 
 use crate::geometry::Face;
-use crate::gpu::{MAX_RINGS, MAX_SPHERES};
 use crate::trace::{AMBIENT, DIFFUSE, GROUT, SHININESS, SPECULAR, TILE, WATER_ABSORPTION};
+
+/// Spheres the pool uniform holds (`POOL_MAX_SPHERES` in WGSL).
+pub const MAX_SPHERES: usize = 8;
+/// Ripple rings the pool uniform holds (`POOL_MAX_RINGS` in WGSL).
+pub const MAX_RINGS: usize = 256;
 
 /// The faces of the box in their WGSL numbering (`Face as u32`); `FACE_NONE` follows them.
 const FACES: [(&str, Face); 5] = [

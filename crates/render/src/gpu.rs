@@ -255,8 +255,9 @@ impl Gpu {
         Ok(bytes)
     }
 
-    /// Run `pipeline` once per item of `items` (its WGSL workgroups hold 64 invocations) with
-    /// `groups` bound at 0, 1, …, then read `output` (it must have `COPY_SRC`) back as bytes.
+    /// Run `pipeline` once per item of `items` (its WGSL workgroups hold
+    /// `shader::WORKGROUP_SIZE` invocations) with `groups` bound at 0, 1, …, then read
+    /// `output` (it must have `COPY_SRC`) back as bytes.
     pub fn dispatch_and_read(
         &self,
         pipeline: &wgpu::ComputePipeline,
