@@ -3,10 +3,13 @@
 
 pub mod bench;
 pub mod cli;
+pub mod core;
 #[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
 pub mod overlay;
+#[cfg(not(target_os = "android"))]
+pub mod phone_sim;
 pub mod pool_play;
 pub mod wakes;
 

@@ -22,7 +22,8 @@ pub fn run(
     effects: Option<EffectSet>,
 ) -> CliResult {
     use crate::cli::inputs::{drawable_sea, load_race, load_sea};
-    use crate::cli::render::{middle_time, note_unmet_error, print_report, race_orbit, race_wake};
+    use crate::cli::render::{note_unmet_error, print_report};
+    use crate::core::scene::{RaceWorld, race_orbit};
     use render::{RenderOptions, Renderer};
 
     let mut feed = crate::desktop::feed::FeedView::open(dir)?;
@@ -38,10 +39,9 @@ pub fn run(
             feed.len() - 1
         )));
     }
-    let sea = drawable_sea(load_sea(a.sea.as_ref())?);
-    let race = load_race(&a.race)?;
-    let t = a.t.unwrap_or_else(|| middle_time(&race));
-    let mut scene = crate::desktop::race_scene(&race, &sea, t, &mut race_orbit());
+    let world = RaceWorld::new(load_race(&a.race)?, drawable_sea(load_sea(a.sea.as_ref())?));
+    let t = a.t.unwrap_or_else(|| world.middle_time());
+    let mut scene = world.orbit_scene(t, &mut race_orbit());
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     let options = RenderOptions {
@@ -53,7 +53,7 @@ pub fn run(
     let wake = if a.no_wakes {
         None
     } else {
-        Some(race_wake(&race)?)
+        Some(world.wake()?)
     };
     feed.prepare_frame(
         &gpu,

@@ -85,7 +85,7 @@ impl Overlay {
             perf: PerfStats::default(),
             last: Instant::now(),
             title,
-            wake: crate::cli::render::race_wake(race).ok(),
+            wake: crate::core::scene::race_wake(race).ok(),
             wakes_shown: true,
             format,
             exit_after: super::smoke::ExitAfter::from_env(),

@@ -698,7 +698,7 @@ pub const OFFSCREEN_REUSED: &str =
 #[derive(Debug, Clone, PartialEq)]
 struct OffscreenInputs {
     t: f64,
-    sea: ocean::WaveSet,
+    sea: std::sync::Arc<ocean::WaveSet>,
     boats: Vec<crate::Boat>,
     marks: Vec<crate::Mark>,
     play_area: [f64; 4],
