@@ -25,6 +25,11 @@ pub const AR_AS_IS: CoursePlacement = CoursePlacement {
     course_to_table: 1.0,
 };
 
+/// The sea stands this far above the table top, race metres (the effect passes' table).
+pub fn table_depth() -> f64 {
+    render::effects::passes::ArConfig::default().table_depth
+}
+
 /// The play area's centre at the table's depth below the sea: the race point that sits on the
 /// table's centre (or the tapped point).
 pub fn course_pivot(play_area: [f64; 4], table_depth: f64) -> DVec3 {

@@ -63,7 +63,7 @@ impl Feed {
 }
 
 /// Display rotation and view size, as the app last gave them.
-type Geometry = (i32, u32, u32);
+pub type Geometry = (i32, u32, u32);
 /// What a frame handed out showed: the feed index, the geometry, the tracking cue.
 type Shown = (usize, Geometry, Option<i32>);
 
@@ -78,7 +78,8 @@ pub struct SimState {
     feed: Feed,
     /// The feed index, geometry and cue last handed out (a frame is new when one changed).
     shown: Option<Shown>,
-    geometry: Geometry,
+    /// The display rotation and view size the app last gave.
+    pub geometry: Geometry,
     session: bool,
     running: bool,
     /// The last frame handed out, as the app got it.

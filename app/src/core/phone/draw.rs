@@ -14,11 +14,6 @@ use crate::core::gfx::{self, Acquired, LostFlag, Profile, Window};
 use crate::core::table;
 use crate::overlay::{EguiPainter, SceneChoice, phone_bar, race_panels};
 
-/// The sea stands this far above the table top, race metres (the effects' table).
-pub fn table_depth() -> f64 {
-    ArConfig::default().table_depth
-}
-
 /// The device, the window, and what draws into it.
 pub struct Graphics {
     pub gpu: Gpu,

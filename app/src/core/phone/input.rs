@@ -110,7 +110,7 @@ impl PhoneApp {
     /// Two fingers: scale by `pinch` and turn by `twist` what stands on the table, or zoom and
     /// turn the 3D view.
     pub fn two_fingers(&mut self, pinch: f64, twist: f64) {
-        let pivot = table::course_pivot(self.world.play_area, draw::table_depth());
+        let pivot = table::course_pivot(self.world.play_area, table::table_depth());
         match self.scene {
             SceneChoice::Race => match self.course.as_mut() {
                 Some(p) => p.apply_gesture_about(pivot, pinch, twist),
@@ -142,7 +142,7 @@ impl PhoneApp {
                     self.course,
                     point,
                     self.world.play_area,
-                    draw::table_depth(),
+                    table::table_depth(),
                 );
                 log::info!(
                     "regatta: course placed at {point:.3} (1:{:.0})",
@@ -157,8 +157,6 @@ impl PhoneApp {
         }
     }
 }
-
-use super::draw;
 
 fn zoom_and_turn(o: &mut OrbitCamera, pinch: f64, twist: f64, range: (f64, f64)) {
     o.distance = (o.distance / pinch).clamp(range.0, range.1);

@@ -297,6 +297,11 @@ impl PhoneApp {
             .and_then(|g| g.window.config().cloned())
     }
 
+    /// The egui context of the panels (tests find widgets in its last pass).
+    pub fn egui_context(&self) -> Option<egui::Context> {
+        self.graphics.as_ref().map(|g| g.egui.ctx.clone())
+    }
+
     /// The backend, for adapters that script it (the simulated ARCore).
     pub fn backend_mut(&mut self) -> &mut dyn ArBackend {
         self.backend.as_mut()
