@@ -18,7 +18,7 @@ use crate::core::clock::Ticker;
 use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
-use crate::overlay::touch::{Finger, Touch, TouchAction};
+use crate::overlay::touch::TouchAction;
 use crate::phone_sim::backend::{SimArCore, SimControl};
 
 /// The tallest window the host gives the phone, pixels (an 800-pixel-high screen keeps its
@@ -85,15 +85,8 @@ struct Shell {
 
 impl Shell {
     fn touch(&mut self, action: TouchAction, fingers: &[DVec2]) {
-        let fingers = fingers
-            .iter()
-            .enumerate()
-            .map(|(i, p)| Finger {
-                id: i as i32,
-                px: p.as_vec2().to_array(),
-            })
-            .collect();
-        self.app.on(PhoneEvent::Touch(Touch { action, fingers }));
+        let px: Vec<[f32; 2]> = fingers.iter().map(|p| p.as_vec2().to_array()).collect();
+        self.app.on(PhoneEvent::touch(action, &px));
     }
 
     /// Two fingers about `centre`, `spread` times apart and turned by `twist` radians.

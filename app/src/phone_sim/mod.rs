@@ -15,7 +15,7 @@ use glam::DVec2;
 
 use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
 use crate::core::scene::RaceWorld;
-use crate::overlay::touch::{Finger, Touch, TouchAction};
+use crate::overlay::touch::TouchAction;
 use backend::{Feed, SimArCore, SimControl};
 use script::{Line, Step};
 
@@ -95,15 +95,7 @@ impl PhoneSim {
     }
 
     fn touch(&mut self, action: TouchAction, fingers: &[[f32; 2]]) {
-        let fingers = fingers
-            .iter()
-            .enumerate()
-            .map(|(i, px)| Finger {
-                id: i as i32,
-                px: *px,
-            })
-            .collect();
-        self.app.on(PhoneEvent::Touch(Touch { action, fingers }));
+        self.app.on(PhoneEvent::touch(action, fingers));
     }
 
     /// A finger down at `p` (screen units), one frame, up.

@@ -53,6 +53,23 @@ pub enum PhoneEvent {
     RecordKey,
 }
 
+impl PhoneEvent {
+    /// A touch of fingers 0, 1, … at `px` (physical pixels).
+    pub fn touch(action: crate::overlay::touch::TouchAction, px: &[[f32; 2]]) -> PhoneEvent {
+        PhoneEvent::Touch(Touch {
+            action,
+            fingers: px
+                .iter()
+                .enumerate()
+                .map(|(i, px)| crate::overlay::touch::Finger {
+                    id: i as i32,
+                    px: *px,
+                })
+                .collect(),
+        })
+    }
+}
+
 /// What a session log shows of the app after a step.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct PhoneStatus {
