@@ -9,6 +9,7 @@
 
 use std::path::Path;
 
+use ar::arcore::ffi::DisplayCamera;
 use ar::arcore::{CoursePlacement, hit_test, tap_ray};
 use ar::replay::{FrameFileFormat, TablePlane};
 use ar::{CameraFrame, PlaneKind, Pose, ReplayWriter};
@@ -16,8 +17,6 @@ use glam::{DMat4, DQuat, DVec2, DVec3};
 use render::Camera;
 use render::effects::camera_frame::{CameraFrame as RenderCameraFrame, CameraImage};
 use render::optics::PinholeCamera;
-
-use super::frame::DisplayCamera;
 
 /// Length of a boat model on the table, AR metres (a real boat at table scale is a speck; the
 /// desktop feed draws the same 5 cm models).

@@ -6,8 +6,10 @@
 //! drawn and the race clock stops; the clock and the view survive pause, rotation and a new
 //! window because they live in [`App`], not in the surface.
 //!
-//! AR: [`arcore::ArCore`] loads `libarcore_sdk_c.so` with libloading and the pure session state
-//! machine (`ar::arcore::session`) decides what happens; where the library is missing (an APK
+//! AR: [`ArCore`] (`ar::arcore::ffi`, host-tested against `crates/arcore_sim`) loads
+//! `libarcore_sdk_c.so` with libloading and the pure session state machine
+//! (`ar::arcore::session`) decides what happens; the Java calls go through
+//! [`jni_calls::AndroidJni`]; where the library is missing (an APK
 //! built without `--arcore-aar`) the app says so and runs the 3D race view without the camera.
 //! Each frame `frame.rs` reads ARCore's frame into an `ar::CameraFrame`; once a tap has put the
 //! course on a detected plane, [`ar_view`] draws the race over the camera image with ARCore's
@@ -29,7 +31,8 @@ use std::time::{Duration, Instant};
 use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction, MotionEvent};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent};
 use ar::FrameSource;
-use ar::arcore::{Command, CoursePlacement, Event, SessionState, TwoFingerGesture};
+use ar::arcore::ffi::{ArCore, DisplayCamera};
+use ar::arcore::{CoursePlacement, Event, SessionState, TwoFingerGesture};
 use glam::{DVec2, DVec3};
 use render::effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use render::pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
@@ -43,8 +46,7 @@ use crate::overlay::{EguiPainter, SceneChoice, phone_bar, race_panels};
 use crate::pool_play::PoolPlay;
 
 mod ar_view;
-mod arcore;
-mod frame;
+mod jni_calls;
 
 // std's `_Unwind_*` come from the `unwinding` crate (see app/Cargo.toml); naming the crate links it.
 use unwinding as _;
@@ -55,7 +57,7 @@ fn android_main(app: AndroidApp) {
         android_logger::Config::default().with_max_level(log::LevelFilter::Info),
     );
     log::info!("regatta: android_main started");
-    let mut state = match App::new() {
+    let mut state = match App::new(&app) {
         Ok(s) => s,
         Err(e) => {
             log::error!("regatta: {e}");
@@ -173,7 +175,7 @@ struct App {
     pool_placement: Option<CoursePlacement>,
     graphics: Option<Graphics>,
     resumed: bool,
-    ar: arcore::ArCore,
+    ar: ArCore,
     session: SessionState,
     /// The last message the session asked to tell (the camera is busy).
     note: Option<&'static str>,
@@ -194,7 +196,7 @@ struct App {
 }
 
 impl App {
-    fn new() -> Result<Self, String> {
+    fn new(app: &AndroidApp) -> Result<Self, String> {
         let sea = crate::cli::inputs::load_sea(None).map_err(|e| e.to_string())?;
         let race = crate::cli::inputs::load_race(&[]).map_err(|e| e.to_string())?;
         let mut panels = RegattaUi::new(crate::overlay::initial_clock(&race), Vec::new());
@@ -218,7 +220,7 @@ impl App {
             pool_placement: None,
             graphics: None,
             resumed: false,
-            ar: arcore::ArCore::load(),
+            ar: ArCore::load(Box::new(jni_calls::AndroidJni::new(app))),
             session: SessionState::Start,
             note: None,
             touch: TouchInput::new(1.0),
@@ -249,7 +251,7 @@ impl App {
         match event {
             MainEvent::InitWindow { .. } => {
                 self.data_dir = app.internal_data_path();
-                self.rotation = arcore::display_rotation();
+                self.rotation = self.ar.display_rotation();
                 self.read_density(app);
                 self.attach_window(app);
             }
@@ -260,7 +262,7 @@ impl App {
                 }
             }
             MainEvent::WindowResized { .. } | MainEvent::ConfigChanged { .. } => {
-                self.rotation = arcore::display_rotation();
+                self.rotation = self.ar.display_rotation();
                 self.read_density(app);
                 if let (Some(g), Some(w)) = (self.graphics.as_mut(), app.native_window())
                     && let Some(s) = g.surface.as_mut()
@@ -294,29 +296,13 @@ impl App {
         false
     }
 
-    /// Steps the AR session and carries out what it asks for.
+    /// Steps the AR session and carries out what it asks for (a fall-back also closes the
+    /// session: paused, destroyed off this thread).
     fn session_event(&mut self, event: Event) {
-        let mut queue = vec![event];
-        while let Some(e) = queue.pop() {
-            let (next, commands) = self.session.on(e);
-            if next != self.session {
-                self.note = None;
-            }
-            self.session = next;
-            for c in commands {
-                match c {
-                    Command::FallBack(why) => log::warn!("regatta: {}", why.message()),
-                    Command::Tell(msg) => {
-                        log::warn!("regatta: {msg}");
-                        self.note = Some(msg);
-                    }
-                    other => {
-                        if let Some(answer) = self.ar.carry_out(other) {
-                            queue.push(answer);
-                        }
-                    }
-                }
-            }
+        let before = self.session;
+        let told = self.ar.drive(&mut self.session, event);
+        if self.session != before || told.note.is_some() {
+            self.note = told.note;
         }
     }
 
@@ -612,7 +598,7 @@ impl App {
     }
 
     /// ARCore's display camera in AR metres, with the latest frame, when both exist.
-    fn ar_frame(&self) -> Option<(&frame::DisplayCamera, &ar::CameraFrame)> {
+    fn ar_frame(&self) -> Option<(&DisplayCamera, &ar::CameraFrame)> {
         Some((self.ar.view.as_ref()?, self.ar_view.frame.as_ref()?))
     }
 
