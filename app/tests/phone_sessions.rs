@@ -296,7 +296,7 @@ fn rotation_turns_the_view_and_tells_arcore() {
     let drawn = sim.app.status().frames_drawn;
     sim.rotate(90);
     assert_eq!(sim.app.view_size(), [SIZE[1], SIZE[0]]);
-    assert_eq!(sim.control.lock().geometry, (1, SIZE[1], SIZE[0]));
+    assert_eq!(sim.scripted().lock().geometry, (1, SIZE[1], SIZE[0]));
     sim.frame(0.1);
     assert!(sim.app.status().frames_drawn > drawn);
     let img = sim.app.screenshot().unwrap().unwrap();
@@ -304,7 +304,7 @@ fn rotation_turns_the_view_and_tells_arcore() {
     // The course stays where it stood.
     assert!(sim.app.status().placed);
     sim.rotate(0);
-    assert_eq!(sim.control.lock().geometry, (0, SIZE[0], SIZE[1]));
+    assert_eq!(sim.scripted().lock().geometry, (0, SIZE[0], SIZE[1]));
 }
 
 #[test]

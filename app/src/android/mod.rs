@@ -4,13 +4,14 @@
 //! the AR session, touch, drawing) is the core's (`crate::core::phone`), run on the host by
 //! `regatta phone-sim` and `regatta run --phone`.
 //!
-//! AR: [`arcore::ArCore`] loads `libarcore_sdk_c.so` with libloading and is the core's
-//! [`crate::core::ar::ArBackend`] ([`backend`]); `frame.rs` reads ARCore's frame.
+//! AR: `ar::arcore::ffi::ArCore` loads `libarcore_sdk_c.so` with libloading and is the core's
+//! [`crate::core::ar::ArBackend`]; its Java calls go through [`jni_calls::AndroidJni`].
 
 use std::time::Duration;
 
 use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction, MotionEvent};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent};
+use ar::arcore::ffi::{ArCore, JavaObject, Jni};
 
 use crate::core::clock::Ticker;
 use crate::core::gfx::SurfaceMaker;
@@ -18,9 +19,7 @@ use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::overlay::touch::{Finger, Touch, TouchAction};
 
-mod arcore;
-mod backend;
-mod frame;
+mod jni_calls;
 
 // std's `_Unwind_*` come from the `unwinding` crate (see app/Cargo.toml); naming the crate links it.
 use unwinding as _;
@@ -33,8 +32,11 @@ fn android_main(app: AndroidApp) {
     log::info!("regatta: android_main started");
     let world = crate::cli::inputs::load_race(&[])
         .and_then(|race| Ok(RaceWorld::new(race, crate::cli::inputs::load_sea(None)?)));
+    // Two handles on the same Activity: ARCore's glue owns one, the rotation reads use the other.
+    let jni = jni_calls::AndroidJni::new(&app);
+    let ar_jni = Box::new(jni_calls::AndroidJni::new(&app));
     let mut phone = match world {
-        Ok(w) => PhoneApp::new(w, Box::new(arcore::ArCore::load())),
+        Ok(w) => PhoneApp::new(w, Box::new(ArCore::load(ar_jni))),
         Err(e) => return log::error!("regatta: {e}"),
     };
     phone.data_dir = app.internal_data_path();
@@ -45,7 +47,7 @@ fn android_main(app: AndroidApp) {
         app.poll_events(timeout, |event| {
             let PollEvent::Main(main) = event else { return };
             quit |= matches!(main, MainEvent::Destroy);
-            phone.on_all(translate(&app, &main));
+            phone.on_all(translate(&app, &jni, &main));
         });
         input_events(&app, &mut phone);
         phone.frame(ticker.tick());
@@ -54,10 +56,10 @@ fn android_main(app: AndroidApp) {
 }
 
 /// The core's events for one activity event.
-fn translate(app: &AndroidApp, event: &MainEvent<'_>) -> Vec<PhoneEvent> {
+fn translate(app: &AndroidApp, jni: &dyn Jni, event: &MainEvent<'_>) -> Vec<PhoneEvent> {
     match event {
         MainEvent::InitWindow { .. } => {
-            let mut events = configuration(app);
+            let mut events = configuration(app, jni);
             events.extend(app.native_window().map(|w| PhoneEvent::WindowCreated {
                 size: size_of(&w),
                 surface: Some(surface_maker(w)),
@@ -67,7 +69,7 @@ fn translate(app: &AndroidApp, event: &MainEvent<'_>) -> Vec<PhoneEvent> {
         // The core drops the surface while its window still exists (wgpu issue 2302).
         MainEvent::TerminateWindow { .. } => vec![PhoneEvent::WindowDestroyed],
         MainEvent::WindowResized { .. } | MainEvent::ConfigChanged { .. } => {
-            let mut events = configuration(app);
+            let mut events = configuration(app, jni);
             events.extend(
                 app.native_window()
                     .map(|w| PhoneEvent::Resized(size_of(&w))),
@@ -80,11 +82,17 @@ fn translate(app: &AndroidApp, event: &MainEvent<'_>) -> Vec<PhoneEvent> {
     }
 }
 
-/// Display rotation and density, as they are now.
-fn configuration(app: &AndroidApp) -> Vec<PhoneEvent> {
+/// Display rotation (read on the Activity) and density, as they are now.
+fn configuration(app: &AndroidApp, jni: &dyn Jni) -> Vec<PhoneEvent> {
     let dpi = app.config().density().unwrap_or(160);
+    let rotation = jni
+        .display_rotation(JavaObject::Activity)
+        .unwrap_or_else(|e| {
+            log::warn!("regatta: display rotation not read ({e}); assuming 0");
+            0
+        });
     vec![
-        PhoneEvent::Rotation(arcore::display_rotation()),
+        PhoneEvent::Rotation(rotation),
         // Physical pixels per egui point: the display's density over Android's 160 dpi.
         PhoneEvent::Density(dpi as f32 / 160.0),
     ]

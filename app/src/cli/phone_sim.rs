@@ -32,6 +32,10 @@ pub struct PhoneSimArgs {
     /// it (the layout in dp stays the phone's).
     #[arg(long, value_name = "WxH")]
     pub size: Option<String>,
+    /// The simulated ARCore library (crates/arcore_sim's cdylib, `cargo build -p arcore_sim`):
+    /// the phone's own ARCore glue runs against it. Without it, a scripted stand-in answers.
+    #[arg(long, value_name = "FILE")]
+    pub arcore_lib: Option<PathBuf>,
 }
 
 /// The simulated ARCore's feed: `--replay DIR`, or a small synthetic table.
@@ -64,15 +68,16 @@ pub fn run(a: PhoneSimArgs) -> CliResult {
         Some(s) => super::render::parse_size(s)?,
         None => a.device.host_size(),
     };
-    let feed = open_feed(a.replay.as_deref())?;
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::new(format!("{}: {e}", input::show_path(&a.out))))?;
-    let mut sim = PhoneSim::new(
-        feed,
-        size,
-        a.device.pixels_per_point(size),
-        Some(a.out.clone()),
-    );
+    let ppp = a.device.pixels_per_point(size);
+    let data = Some(a.out.clone());
+    let mut sim = match &a.arcore_lib {
+        Some(lib) => {
+            PhoneSim::with_ffi(lib, a.replay.as_deref(), size, ppp, data).map_err(CliError::new)?
+        }
+        None => PhoneSim::new(open_feed(a.replay.as_deref())?, size, ppp, data),
+    };
     let failed = run_script(&mut sim, &lines, &a.out).map_err(CliError::new)?;
     let summary = json!({
         "steps": lines.len(),

@@ -5,24 +5,13 @@
 
 use std::path::Path;
 
-use ar::arcore::session::status;
-use ar::arcore::{Command, CoursePlacement, Event, SessionState, hit_test, tap_ray};
+use ar::arcore::{Command, Event, SessionState, hit_test, tap_ray};
 use ar::replay::{FrameFileFormat, TablePlane};
 use ar::{CameraFrame, PlaneKind, Pose, ReplayWriter};
-use glam::{DMat4, DVec2, DVec3};
+use glam::{DVec2, DVec3};
 
 /// What the screen shows besides the camera image: the display-oriented AR camera and light.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DisplayCamera {
-    /// AR world → display-oriented camera (`ArCamera_getViewMatrix`).
-    pub view: DMat4,
-    /// OpenGL projection for the view (`ArCamera_getProjectionMatrix`).
-    pub projection_gl: DMat4,
-    /// What to tell the user while not tracking ("move the phone slowly"), else `None`.
-    pub hint: Option<&'static str>,
-    /// Unit vector towards the main light in AR world axes (Environmental HDR), when valid.
-    pub light_towards: Option<DVec3>,
-}
+pub use ar::arcore::ffi::DisplayCamera;
 
 /// An AR system the core drives: ARCore on the phone, the simulated ARCore on the host.
 pub trait ArBackend {
@@ -36,6 +25,33 @@ pub trait ArBackend {
     fn update(&mut self) -> Option<Event>;
     /// The newest camera frame and display camera, `None` when nothing is new.
     fn next_frame(&mut self) -> Result<Option<(CameraFrame, DisplayCamera)>, ar::ArError>;
+    /// Steps `state` with `event` and carries out every command, feeding immediate answers
+    /// back in; the note to show, if the session asked to tell one. A fall-back leaves
+    /// nothing of the AR system running.
+    fn drive(&mut self, state: &mut SessionState, event: Event) -> Option<&'static str> {
+        let mut note = None;
+        let mut queue = vec![event];
+        while let Some(e) = queue.pop() {
+            let (next, commands) = state.on(e);
+            if next != *state {
+                note = None;
+            }
+            *state = next;
+            for c in commands {
+                match c {
+                    Command::Tell(msg) => note = Some(msg),
+                    Command::FallBack(why) => {
+                        log::warn!("regatta: {}", why.message());
+                        self.carry_out(Command::Pause);
+                    }
+                    other => queue.extend(self.carry_out(other)),
+                }
+            }
+        }
+        note
+    }
+    /// Camera images are kept within `max_side` pixels (the GPU's largest texture).
+    fn limit_image_side(&mut self, _max_side: u32) {}
     /// The point (AR metres) of a detected upward plane under the screen point `screen`
     /// (0..1 from the top-left) of `frame`'s view.
     fn hit_test(&self, frame: &CameraFrame, screen: DVec2) -> Option<DVec3> {
@@ -86,31 +102,19 @@ impl Default for ArState {
 }
 
 impl ArState {
-    /// Steps the session machine with `event` and carries out what it asks, through `backend`.
+    /// Steps the session machine with `event` through `backend`.
     pub fn step(&mut self, backend: &mut dyn ArBackend, event: Event) {
-        let mut queue = vec![event];
-        while let Some(e) = queue.pop() {
-            let (next, commands) = self.session.on(e);
-            if next != self.session {
-                self.note = None;
-            }
-            self.session = next;
-            for c in commands {
-                match c {
-                    Command::FallBack(why) => {
-                        log::warn!("regatta: {}", why.message());
-                        // Leave nothing of ARCore running in the background.
-                        backend.carry_out(Command::Pause);
-                        self.frame = None;
-                        self.display = None;
-                    }
-                    Command::Tell(msg) => {
-                        log::warn!("regatta: {msg}");
-                        self.note = Some(msg.to_string());
-                    }
-                    other => queue.extend(backend.carry_out(other)),
-                }
-            }
+        let before = self.session;
+        let note = backend.drive(&mut self.session, event);
+        if let Some(n) = note {
+            log::warn!("regatta: {n}");
+        }
+        if self.session != before || note.is_some() {
+            self.note = note.map(str::to_string);
+        }
+        if matches!(self.session, SessionState::Unavailable(_)) {
+            self.frame = None;
+            self.display = None;
         }
     }
 
@@ -192,16 +196,6 @@ impl ArState {
         }
         None
     }
-}
-
-/// Whether a status is ARCore's success (for backends that answer with statuses).
-pub fn succeeded(st: i32) -> bool {
-    st == status::SUCCESS
-}
-
-/// The placement a backdrop without a course uses.
-pub fn as_is() -> CoursePlacement {
-    super::table::AR_AS_IS
 }
 
 /// A recording in the replay format (`crates/ar/src/replay.rs`): frames, poses, intrinsics and

@@ -7,7 +7,8 @@
 //! - [`camera_frame`]: one conversion of an AR camera frame into the effect passes' frame.
 //! - [`gfx`]: renderer setup, the window's target with its kept configuration, surface loss,
 //!   the OpenGL ES fallback.
-//! - [`ar`]: the AR backend trait (ARCore, simulated ARCore) and the session's state.
+//! - [`ar`]: the AR backend trait and the session's state; ARCore's C API implements it
+//!   (`ar_ffi`: Google's library on the phone, `crates/arcore_sim` on the host).
 //! - [`phone`]: the phone app, driven by events ([`phone::PhoneEvent`]).
 //!
 //! Invariant: nothing here names winit, android-activity, JNI or a clock of the OS; the
@@ -15,6 +16,7 @@
 //! into calls on this core and hold no decision of their own.
 
 pub mod ar;
+mod ar_ffi;
 pub mod camera_frame;
 pub mod clock;
 pub mod gfx;

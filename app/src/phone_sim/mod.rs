@@ -6,27 +6,44 @@
 
 pub mod backend;
 pub mod device;
+pub mod ffi;
 pub mod script;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use ar::arcore::ffi::ScriptedJni;
 
 use glam::DVec2;
 
 use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
 use crate::core::scene::RaceWorld;
 use crate::overlay::touch::TouchAction;
-use backend::{Feed, SimArCore, SimControl};
+use backend::{Availability, Feed, SimArCore, SimControl};
+use ffi::{FfiBackend, SimLibrary};
 use script::{Line, Step};
 
 /// Display frames per simulated second. Low, so lavapipe runs a minute of session in seconds;
 /// taps (down, one frame, up: 0.1 s) stay under the tap limit of 0.3 s.
 pub const SIM_FPS: f64 = 10.0;
 
+/// Where a script's cues go: the scripted stand-in, or the simulated ARCore behind the
+/// phone's own FFI with its scripted Java side.
+pub enum Cues {
+    Scripted(SimControl),
+    Ffi {
+        sim: SimLibrary,
+        jni: Arc<ScriptedJni>,
+        missing: Arc<AtomicBool>,
+    },
+}
+
 /// A phone session on the host: the app, the simulated ARCore's cues, the screen.
 pub struct PhoneSim {
     pub app: PhoneApp,
-    pub control: SimControl,
+    pub cues: Cues,
     /// The screen in its natural (portrait) orientation, pixels.
     portrait: [u32; 2],
     /// Display rotation, quarter turns counter-clockwise.
@@ -41,19 +58,90 @@ impl PhoneSim {
     /// frames from `feed`, not yet launched (cues may be set first). `data_dir` receives
     /// recordings.
     pub fn new(feed: Feed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
+        let (backend, control) = SimArCore::new(feed);
+        Self::with_backend(
+            Box::new(backend),
+            Cues::Scripted(control),
+            portrait,
+            ppp,
+            data_dir,
+        )
+    }
+
+    /// [`PhoneSim::new`] through the phone's own ARCore glue loading the simulator `library`
+    /// (`crates/arcore_sim`), playing `replay` or its synthetic table.
+    pub fn with_ffi(
+        library: &Path,
+        replay: Option<&Path>,
+        portrait: [u32; 2],
+        ppp: f32,
+        data_dir: Option<PathBuf>,
+    ) -> Result<Self, String> {
+        let sim = SimLibrary::open(library, replay, [320, 240, 32])?;
+        let jni = ffi::fresh_install();
+        let backend = FfiBackend::new(library, Arc::clone(&jni));
+        let missing = Arc::clone(&backend.missing);
+        let cues = Cues::Ffi { sim, jni, missing };
+        Ok(Self::with_backend(
+            Box::new(backend),
+            cues,
+            portrait,
+            ppp,
+            data_dir,
+        ))
+    }
+
+    fn with_backend(
+        backend: Box<dyn crate::core::ar::ArBackend>,
+        cues: Cues,
+        portrait: [u32; 2],
+        ppp: f32,
+        data_dir: Option<PathBuf>,
+    ) -> Self {
         let race = crate::cli::inputs::load_race(&[]).expect("the embedded race loads");
         let sea = crate::cli::inputs::load_sea(None).expect("the embedded sea loads");
-        let (backend, control) = SimArCore::new(feed);
-        let mut app = PhoneApp::new(RaceWorld::new(race, sea), Box::new(backend));
+        let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
         app.data_dir = data_dir;
         app.on(PhoneEvent::Density(ppp));
         PhoneSim {
             app,
-            control,
+            cues,
             portrait,
             rotation: 0,
             foreground: false,
             launched: false,
+        }
+    }
+
+    /// The scripted stand-in's state (tests of the scripted backend).
+    pub fn scripted(&self) -> &SimControl {
+        match &self.cues {
+            Cues::Scripted(c) => c,
+            Cues::Ffi { .. } => panic!("this session runs the FFI, not the scripted stand-in"),
+        }
+    }
+
+    fn set_permission(&self, granted: bool) {
+        match &self.cues {
+            Cues::Scripted(c) => c.lock().permission = granted,
+            Cues::Ffi { jni, .. } => jni.script(|s| s.dialog_answer = granted),
+        }
+    }
+
+    fn set_availability(&self, a: Availability) {
+        match &self.cues {
+            Cues::Scripted(c) => c.lock().availability = a,
+            Cues::Ffi { sim, missing, .. } => {
+                missing.store(a == Availability::Missing, Ordering::SeqCst);
+                sim.set_availability(a);
+            }
+        }
+    }
+
+    fn set_tracking(&self, lost: Option<i32>) {
+        match &self.cues {
+            Cues::Scripted(c) => c.lock().lost = lost,
+            Cues::Ffi { sim, .. } => sim.set_tracking(lost),
         }
     }
 
@@ -83,8 +171,14 @@ impl PhoneSim {
 
     /// One display frame `dt` seconds after the last.
     pub fn frame(&mut self, dt: f64) {
-        if self.foreground {
-            self.control.lock().t += dt;
+        match &self.cues {
+            Cues::Scripted(c) if self.foreground => c.lock().t += dt,
+            // Android pauses the activity for the permission dialog and resumes it after.
+            Cues::Ffi { jni, .. } if jni.take_dialog_shown() => {
+                self.app.on(PhoneEvent::Paused);
+                self.app.on(PhoneEvent::Resumed);
+            }
+            _ => {}
         }
         self.app.frame(dt);
     }
@@ -197,10 +291,10 @@ impl PhoneSim {
             Step::Pause => self.pause(),
             Step::Resume => self.resume(),
             Step::Rotate(d) => self.rotate(*d),
-            Step::Permission(g) => self.control.lock().permission = *g,
-            Step::ArCore(a) => self.control.lock().availability = *a,
+            Step::Permission(g) => self.set_permission(*g),
+            Step::ArCore(a) => self.set_availability(*a),
             Step::Tracking(lost) => {
-                self.control.lock().lost = *lost;
+                self.set_tracking(*lost);
                 if self.launched {
                     self.frame(1.0 / SIM_FPS);
                 }

@@ -76,7 +76,11 @@ impl PhoneApp {
             return;
         }
         match self.open_graphics(None, w, h) {
-            Ok(g) => self.graphics = Some(g),
+            Ok(g) => {
+                self.backend
+                    .limit_image_side(g.gpu.device.limits().max_texture_dimension_2d);
+                self.graphics = Some(g);
+            }
             Err(e) => log::error!("regatta: {e}"),
         }
     }
