@@ -51,6 +51,10 @@ pub struct RunArgs {
     /// Which phone `--phone` shows.
     #[arg(long, value_enum, default_value_t, requires = "phone")]
     pub device: crate::phone_sim::device::Device,
+    /// With `--phone`: the simulated ARCore library (crates/arcore_sim's cdylib) that the
+    /// phone's own ARCore glue loads; a scripted stand-in without it.
+    #[arg(long, value_name = "FILE", requires = "phone")]
+    pub arcore_lib: Option<PathBuf>,
 }
 
 impl RunArgs {

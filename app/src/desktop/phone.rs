@@ -1,6 +1,7 @@
 //! `regatta run --phone [--device pixel2xl|a54] [--replay DIR]`: the phone app of the app core
 //! in a portrait window of the phone's aspect and density, through the simulated ARCore (the
-//! synthetic table, or the recorded feed). The mouse is one finger; a right-drag is two fingers
+//! synthetic table, or the recorded feed; with `--arcore-lib`, the phone's own ARCore glue
+//! against `crates/arcore_sim`). The mouse is one finger; a right-drag is two fingers
 //! about the press (up/down pinches, left/right twists), and so is Ctrl+wheel (pinch).
 //! `REGATTA_EXIT_AFTER_FRAMES` and `REGATTA_SCREENSHOT` work as in the other scenes.
 
@@ -19,7 +20,8 @@ use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 use crate::overlay::touch::TouchAction;
-use crate::phone_sim::backend::{SimArCore, SimControl};
+use crate::phone_sim::Cues;
+use crate::phone_sim::backend::SimArCore;
 
 /// The tallest window the host gives the phone, pixels (an 800-pixel-high screen keeps its
 /// title bar).
@@ -33,11 +35,18 @@ pub fn run(a: RunArgs) -> CliResult {
             "--race, --sea and --scene have no meaning with --phone (the phone app has its race and a Race | Pool toggle)",
         ));
     }
-    let feed = crate::cli::phone_sim::open_feed(a.replay.as_deref())?;
+    let (backend, cues) = match &a.arcore_lib {
+        Some(lib) => Cues::ffi(lib, a.replay.as_deref()).map_err(CliError::new)?,
+        None => {
+            let feed = crate::cli::phone_sim::open_feed(a.replay.as_deref())?;
+            let (backend, control) = SimArCore::new(feed);
+            let backend: Box<dyn crate::core::ar::ArBackend> = Box::new(backend);
+            (backend, Cues::Scripted(control))
+        }
+    };
     let race = crate::cli::inputs::load_race(&[])?;
     let sea = crate::cli::inputs::load_sea(None)?;
-    let (backend, control) = SimArCore::new(feed);
-    let mut app = PhoneApp::new(RaceWorld::new(race, sea), Box::new(backend));
+    let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
     app.data_dir = std::env::current_dir().ok();
     let [w, h] = a.device.host_size();
     let size = if h > MAX_HEIGHT {
@@ -50,7 +59,7 @@ pub fn run(a: RunArgs) -> CliResult {
         .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
     let mut shell = Shell {
         app,
-        control,
+        cues,
         size,
         window: None,
         ticker: Ticker::default(),
@@ -70,7 +79,7 @@ pub fn run(a: RunArgs) -> CliResult {
 /// Translates winit's events into the phone app's.
 struct Shell {
     app: PhoneApp,
-    control: SimControl,
+    cues: Cues,
     size: [u32; 2],
     window: Option<Arc<Window>>,
     ticker: Ticker,
@@ -226,7 +235,7 @@ impl ApplicationHandler for Shell {
             }
             WindowEvent::RedrawRequested => {
                 let dt = self.ticker.tick();
-                self.control.lock().t += dt;
+                self.cues.before_frame(&mut self.app, dt, true);
                 self.app.frame(dt);
                 if self.exit_after.frame_done() {
                     if let Err(e) = self.screenshot() {

@@ -40,6 +40,35 @@ pub enum Cues {
     },
 }
 
+impl Cues {
+    /// The phone's own ARCore glue loading the simulator `library`, playing `replay` or its
+    /// synthetic table; its cues.
+    pub fn ffi(
+        library: &Path,
+        replay: Option<&Path>,
+    ) -> Result<(Box<dyn crate::core::ar::ArBackend>, Cues), String> {
+        let sim = SimLibrary::open(library, replay, [320, 240, 32])?;
+        let jni = ffi::fresh_install();
+        let backend = FfiBackend::new(library, Arc::clone(&jni));
+        let missing = Arc::clone(&backend.missing);
+        Ok((Box::new(backend), Cues::Ffi { sim, jni, missing }))
+    }
+
+    /// Before a display frame `dt` seconds after the last: the scripted feed's time moves on
+    /// (in the foreground); a permission dialog shown pauses and resumes the activity, as
+    /// Android does.
+    pub fn before_frame(&self, app: &mut PhoneApp, dt: f64, foreground: bool) {
+        match self {
+            Cues::Scripted(c) if foreground => c.lock().t += dt,
+            Cues::Ffi { jni, .. } if jni.take_dialog_shown() => {
+                app.on(PhoneEvent::Paused);
+                app.on(PhoneEvent::Resumed);
+            }
+            _ => {}
+        }
+    }
+}
+
 /// A phone session on the host: the app, the simulated ARCore's cues, the screen.
 pub struct PhoneSim {
     pub app: PhoneApp,
@@ -77,18 +106,8 @@ impl PhoneSim {
         ppp: f32,
         data_dir: Option<PathBuf>,
     ) -> Result<Self, String> {
-        let sim = SimLibrary::open(library, replay, [320, 240, 32])?;
-        let jni = ffi::fresh_install();
-        let backend = FfiBackend::new(library, Arc::clone(&jni));
-        let missing = Arc::clone(&backend.missing);
-        let cues = Cues::Ffi { sim, jni, missing };
-        Ok(Self::with_backend(
-            Box::new(backend),
-            cues,
-            portrait,
-            ppp,
-            data_dir,
-        ))
+        let (backend, cues) = Cues::ffi(library, replay)?;
+        Ok(Self::with_backend(backend, cues, portrait, ppp, data_dir))
     }
 
     fn with_backend(
@@ -171,15 +190,7 @@ impl PhoneSim {
 
     /// One display frame `dt` seconds after the last.
     pub fn frame(&mut self, dt: f64) {
-        match &self.cues {
-            Cues::Scripted(c) if self.foreground => c.lock().t += dt,
-            // Android pauses the activity for the permission dialog and resumes it after.
-            Cues::Ffi { jni, .. } if jni.take_dialog_shown() => {
-                self.app.on(PhoneEvent::Paused);
-                self.app.on(PhoneEvent::Resumed);
-            }
-            _ => {}
-        }
+        self.cues.before_frame(&mut self.app, dt, self.foreground);
         self.app.frame(dt);
     }
 
