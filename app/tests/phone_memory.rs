@@ -1,7 +1,10 @@
 //! 100 pause/resume cycles of the phone app (issue 19): on each pause the window's surface is
 //! dropped and on each resume a new one is made (wgpu issue 2302), and the resident memory of
 //! the process grows by less than 5 MB over the cycles. Alone in its test binary, so no other
-//! test's allocations count.
+//! test's allocations count; run in a child process with two lavapipe threads. The growth is
+//! the least of the last three samples (every 10 cycles) over the first: the allocator returns
+//! memory to the system in steps, which a single reading takes for growth, while a leak raises
+//! every later sample.
 
 use regatta::phone_sim::PhoneSim;
 use regatta::phone_sim::backend::Feed;
@@ -19,6 +22,26 @@ fn a_hundred_pause_resume_cycles_keep_memory_flat_and_the_surface_configuration(
     if render::gpu::test_gpu().is_none() {
         return;
     }
+    let inner = "pause_resume_cycles_in_a_quiet_process";
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args([
+            "--exact",
+            inner,
+            "--ignored",
+            "--nocapture",
+            "--test-threads=1",
+        ])
+        .env("LP_NUM_THREADS", "2")
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && text.contains("1 passed"), "{text}");
+}
+
+/// The cycles themselves (run by the test above in a child process).
+#[test]
+#[ignore = "run by a_hundred_pause_resume_cycles_keep_memory_flat_and_the_surface_configuration"]
+fn pause_resume_cycles_in_a_quiet_process() {
     let size = [120, 266];
     let feed = Feed::synth(ar::SynthConfig {
         frames: 4,
@@ -40,12 +63,16 @@ fn a_hundred_pause_resume_cycles_keep_memory_flat_and_the_surface_configuration(
     for _ in 0..10 {
         cycle(&mut sim);
     }
-    let before = resident_bytes();
     let drawn = sim.app.status().frames_drawn;
-    for _ in 0..100 {
-        cycle(&mut sim);
+    let mut samples = vec![resident_bytes()];
+    for _ in 0..10 {
+        for _ in 0..10 {
+            cycle(&mut sim);
+        }
+        samples.push(resident_bytes());
     }
-    let growth = resident_bytes().saturating_sub(before);
+    let retained = samples[8..].iter().min().unwrap();
+    let growth = retained.saturating_sub(samples[0]);
     assert_eq!(sim.app.status().frames_drawn, drawn + 200);
     assert!(
         growth < 5 << 20,
@@ -59,5 +86,5 @@ fn a_hundred_pause_resume_cycles_keep_memory_flat_and_the_surface_configuration(
         (first.format, &first.view_formats)
     );
     assert_eq!(sim.app.session(), ar::arcore::SessionState::Running);
-    eprintln!("resident growth over 100 cycles: {growth} bytes");
+    eprintln!("resident growth over 100 cycles: {growth} bytes (samples {samples:?})");
 }

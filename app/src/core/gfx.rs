@@ -316,6 +316,9 @@ impl Window {
             Frame::Surface(f) => gpu.queue.present(f),
             Frame::Offscreen(_) => {
                 gpu.queue.submit([]);
+                // No swapchain asks wgpu to free what was dropped (an old window's texture):
+                // the device is polled here, as presenting does for a surface.
+                let _ = gpu.device.poll(wgpu::PollType::Poll);
             }
         }
     }
