@@ -7,8 +7,9 @@
 #    the `unwinding` crate instead of the NDK's libunwind.a;
 # 2. packages, aligns and signs it with tools/apk (rust-apk), from the cargo-apk metadata in
 #    app/Cargo.toml, with a debug key generated on first use;
-# 3. with --arcore-aar, adds ARCore's libarcore_sdk_c.so (and its classes, dexed with d8 when d8 is
-#    installed); without it the APK runs the 3D view without AR, and this script says so.
+# 3. with --arcore-aar, adds ARCore's libarcore_sdk_c.so, merges the AAR's manifest entries into
+#    the app's (and its classes, dexed with d8 when d8 is installed: then hasCode="true");
+#    without it the APK runs the 3D view without AR, and this script says so.
 # Prints the packaging summary (JSON) on stdout; progress on stderr.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,7 +21,7 @@ while [ $# -gt 0 ]; do
     --profile) profile="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
     --key) key="$2"; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "build-apk.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -85,6 +86,10 @@ if [ -n "$aar" ]; then
   arcore_so="$work/extra/aar/jni/arm64-v8a/libarcore_sdk_c.so"
   [ -f "$arcore_so" ] || die "$aar: has no jni/arm64-v8a/libarcore_sdk_c.so"
   extra+=(--extra-lib "$arcore_so")
+  # The AAR's manifest entries (min_apk_version meta-data, InstallActivity, <queries>) are
+  # merged into the app's, as Gradle's manifest merger would: ARCore's client needs them.
+  [ -f "$work/extra/aar/AndroidManifest.xml" ] || die "$aar: has no AndroidManifest.xml"
+  extra+=(--merge-manifest "$work/extra/aar/AndroidManifest.xml")
   if command -v d8 >/dev/null && [ -f "$work/extra/aar/classes.jar" ]; then
     d8 --release --min-api "$min_sdk" --output "$work/extra/aar" "$work/extra/aar/classes.jar" >&2
     extra+=(--dex "$work/extra/aar/classes.dex")

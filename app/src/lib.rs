@@ -3,11 +3,14 @@
 
 pub mod bench;
 pub mod cli;
+pub mod core;
 #[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
 pub mod overlay;
 pub mod panels;
+#[cfg(not(target_os = "android"))]
+pub mod phone_sim;
 pub mod pool_play;
 pub mod scene_overlay;
 pub mod wakes;

@@ -7,9 +7,8 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
-use regatta::cli::render::FAR_M;
+use regatta::core::scene::{FAR_M, RaceWorld};
 use regatta::desktop::overlay::initial_clock;
-use regatta::desktop::race_scene;
 use render::OrbitCamera;
 
 fn orbit() -> OrbitCamera {
@@ -36,20 +35,21 @@ fn play(race: &race::Race, frames: usize, dt: f64) -> Vec<f64> {
 #[test]
 fn playing_to_t_and_scrubbing_to_t_give_the_same_scene() {
     let race = race::Race::sample();
-    let sea = ocean::WaveSet::default_sea();
+    let world = RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
     let times = play(&race, 240, 1.0 / 60.0);
     let t = *times.last().unwrap();
     // Playing: the scene of every frame in turn (the orbit's target follows the fleet).
     let mut played_orbit = orbit();
     let mut played = None;
     for &ti in &times {
-        played = Some(race_scene(&race, &sea, ti, &mut played_orbit));
+        played = Some(world.orbit_scene(ti, &mut played_orbit));
     }
     // Scrubbing: one jump from a fresh clock and a fresh orbit.
     let mut clock = initial_clock(&race);
     clock.pause();
     clock.scrub_to(t);
-    let scrubbed = race_scene(&race, &sea, clock.time(), &mut orbit());
+    let fresh = RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
+    let scrubbed = fresh.orbit_scene(clock.time(), &mut orbit());
     assert_eq!(clock.time(), t);
     // Debug prints every f64 in shortest round-trip form: equal strings are bit-equal scenes.
     assert_eq!(format!("{:?}", played.unwrap()), format!("{scrubbed:?}"));
@@ -203,7 +203,8 @@ fn the_feed_camera_registers_the_scene_with_the_image() {
     // A table point seen through the render camera (window aspect, wgpu clip space) lands on the
     // screen where the display transform shows the image pixel that the feed's intrinsics and
     // pose project it to: the race sits on the real table.
-    use regatta::desktop::feed::{TableMap, to_render};
+    use regatta::core::table::fit_on_table;
+    use regatta::desktop::feed::to_render;
     let cfg = ar::SynthConfig {
         frames: 4,
         width: 160,
@@ -215,20 +216,20 @@ fn the_feed_camera_registers_the_scene_with_the_image() {
     cfg.write(&dir, 90).unwrap();
     let feed = ar::ReplayFeed::open(&dir).unwrap();
     let frame = feed.frame(2).unwrap();
-    let map = TableMap::fit(
+    let map = fit_on_table(
         [-500.0, -300.0, 700.0, 500.0],
         DVec3::ZERO,
         glam::DVec2::new(1.2, 0.8),
         3.0,
     );
-    assert!((map.scale - 1000.0).abs() < 1e-9); // 1200 m over 1.2 m; 800 m over 0.8 m
+    assert!((1.0 / map.course_to_table - 1000.0).abs() < 1e-9); // 1200 m over 1.2 m; 800 m over 0.8 m
     for size in [[480u32, 270u32], [300, 400]] {
         let (camera, rf) = to_render(&frame, &map, size);
         let aspect = f64::from(size[0]) / f64::from(size[1]);
         let vp = camera.view_proj_local(glam::DVec2::ZERO, aspect);
         for m in ar::synth::MARKERS {
             let px = frame.project_world_point(m.center).unwrap();
-            let clip = vp * map.to_race(m.center).extend(1.0);
+            let clip = vp * map.ar_to_race().transform_point3(m.center).extend(1.0);
             let (u, v) = ((clip.x / clip.w + 1.0) / 2.0, (1.0 - clip.y / clip.w) / 2.0);
             let d = rf.display;
             let iu = d[0][0] * u + d[0][1] * v + d[0][2];

@@ -1,5 +1,5 @@
 //! Playing against scrubbing, through the app's real per-frame code: one renderer (the window's,
-//! `regatta::desktop::window_renderer`, or the pool mode's) draws frame after frame into one
+//! `regatta::core::gfx::race_renderer`, or the pool mode's) draws frame after frame into one
 //! surface-like texture while the timeline plays, pauses (the kept still frame re-presented),
 //! jumps back and plays on; a fresh renderer then draws only the last time into a fresh
 //! texture. The pixels must be equal: nothing drawn, kept or reused in one frame may leak into
@@ -8,9 +8,9 @@
 
 use effects::EffectSet;
 use glam::DVec3;
-use regatta::cli::render::FAR_M;
+use regatta::core::gfx::{Profile, race_renderer};
+use regatta::core::scene::{FAR_M, RaceWorld, race_wake};
 use regatta::desktop::pool::PoolMode;
-use regatta::desktop::{race_scene, window_renderer};
 use regatta::overlay::initial_clock;
 use render::gpu::Gpu;
 use render::{FRAME_REUSED, OFFSCREEN_FORMAT, OrbitCamera, Renderer};
@@ -25,6 +25,16 @@ fn orbit() -> OrbitCamera {
         pitch: 0.35,
         far: FAR_M,
     }
+}
+
+/// The scene the window draws at `t` (the app core's, from a world built once per call).
+fn race_scene(
+    race: &race::Race,
+    sea: &ocean::WaveSet,
+    t: f64,
+    o: &mut OrbitCamera,
+) -> render::Scene {
+    RaceWorld::new(race.clone(), sea.clone()).orbit_scene(t, o)
 }
 
 /// A texture like the window's surface on the desktop: drawn into and copied from and to (the
@@ -43,7 +53,12 @@ fn surface_like(gpu: &Gpu) -> wgpu::Texture {
 
 /// The window's race renderer, with `regatta render --effects`' scene effects when `effects`.
 fn app_renderer(gpu: &Gpu, race: &race::Race, sea: &ocean::WaveSet, effects: bool) -> Renderer {
-    let mut r = window_renderer(gpu, OFFSCREEN_FORMAT, race);
+    let mut r = race_renderer(
+        gpu,
+        OFFSCREEN_FORMAT,
+        race_wake(race).ok(),
+        Profile::Desktop,
+    );
     if effects {
         let scene = race_scene(race, sea, race.time_span().0, &mut orbit());
         effects::passes::add_scene_effects(&mut r, gpu, &scene, SIZE, EffectSet::ALL);

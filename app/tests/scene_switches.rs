@@ -7,7 +7,8 @@
 //! Needs a GPU (lavapipe in CI); skipped without one unless `REGATTA_REQUIRE_GPU=true`.
 
 use effects::{EffectSet, demo_table_scene, passes::add_scene_effects};
-use regatta::desktop::{race_scene, window_renderer};
+use regatta::core::gfx::{Profile, race_renderer};
+use regatta::core::scene::RaceWorld;
 use regatta::panels::{SceneApplier, effect_toggles};
 use render::{OFFSCREEN_FORMAT, OrbitCamera, Renderer, Scene};
 use ui::SceneSettings;
@@ -87,12 +88,13 @@ fn the_wakes_switch_changes_the_picture() {
         distance: 90.0,
         yaw: 2.4,
         pitch: 0.5,
-        far: regatta::cli::render::FAR_M,
+        far: regatta::core::scene::FAR_M,
     };
-    let scene = race_scene(&race, &sea, 300.0, &mut orbit);
-    let mut r = window_renderer(&gpu, OFFSCREEN_FORMAT, &race);
+    let world = RaceWorld::new(race.clone(), sea);
+    let scene = world.orbit_scene(300.0, &mut orbit);
+    let mut r = race_renderer(&gpu, OFFSCREEN_FORMAT, world.wake().ok(), Profile::Desktop);
     let mut settings = SceneSettings::new(effect_toggles(false));
-    let mut applier = SceneApplier::new(regatta::cli::render::race_wake(&race).ok());
+    let mut applier = SceneApplier::new(regatta::core::scene::race_wake(&race).ok());
     let (on, _) = draw(&gpu, &mut r, &scene);
     set(&mut settings, "wakes", false);
     applier.apply(&settings, &mut r, None);

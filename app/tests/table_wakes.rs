@@ -11,8 +11,8 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::cli::render::{middle_time, race_wake};
 use regatta::cli::render_replay::TableFrame;
+use regatta::core::scene::{middle_time, race_wake};
 use regatta::desktop::feed::{FeedView, SYNTH};
 use render::{Camera, RenderOptions, Renderer};
 
@@ -64,9 +64,9 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
     let race = race::Race::sample();
     let sea = regatta::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let t = middle_time(&race);
+    let world = regatta::core::scene::RaceWorld::new(race.clone(), sea.clone());
     let table = TableFrame {
-        race: &race,
-        sea: &sea,
+        world: &world,
         t,
         size: SIZE,
         frame: 0,

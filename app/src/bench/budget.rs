@@ -171,7 +171,7 @@ type PassTimes = Vec<(String, Option<f64>)>;
 /// Per-pass GPU milliseconds (median over `frames`) of the sample race at `size` with wakes
 /// and every effect, and the median wall milliseconds of a frame.
 fn pass_times(gpu: &render::Gpu, size: [u32; 2], frames: usize) -> CliResult<(PassTimes, f64)> {
-    use crate::cli::render::{race_wake, scene_at};
+    use crate::core::scene::{race_wake, scene_at};
     let race = race::Race::sample();
     let sea = ocean::WaveSet::default_sea();
     let t = 600.0;

@@ -7,6 +7,8 @@ use crate::error::{CliError, CliResult};
 pub mod bench;
 pub mod inputs;
 pub mod output;
+#[cfg(not(target_os = "android"))]
+pub mod phone_sim;
 pub mod probe;
 pub mod race;
 pub mod render;
@@ -36,9 +38,12 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Write a sea file from a JONSWAP sea state or an NDBC buoy spectrum (JSON on stdout).
     Sea(sea::SeaArgs),
-    /// Open the desktop window (also what `regatta` alone does).
+    /// Open the desktop window (also what `regatta` alone does); `--phone` for the phone app.
     #[cfg(not(target_os = "android"))]
     Run(crate::desktop::RunArgs),
+    /// The phone app headless, driven by a script: log.jsonl and screenshots in a folder.
+    #[cfg(not(target_os = "android"))]
+    PhoneSim(phone_sim::PhoneSimArgs),
 }
 
 impl Cli {
@@ -153,6 +158,8 @@ pub fn dispatch(cli: Cli) -> CliResult {
         Some(Command::Sea(a)) => sea::run(a),
         #[cfg(not(target_os = "android"))]
         Some(Command::Run(a)) => crate::desktop::run(a),
+        #[cfg(not(target_os = "android"))]
+        Some(Command::PhoneSim(a)) => phone_sim::run(a),
     }
 }
 

@@ -6,10 +6,11 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::{DVec2, DVec3};
-use render::{Boat, Camera, Mark, RenderOptions, Renderer, Scene};
+use render::{Camera, RenderOptions, Renderer};
 
 use crate::cli::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
 use crate::cli::output::{ImageOut, write_text};
+use crate::core::scene::{FAR_M, RaceWorld};
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
@@ -147,102 +148,6 @@ pub fn parse_camera(s: &str, far: f64) -> CliResult<Camera> {
     Ok(Camera::look_at(eye, target, far))
 }
 
-/// Linear RGB of `#rrggbb` (sRGB decoded); grey when the string is not a colour.
-pub fn linear_colour(hex: &str) -> [f32; 3] {
-    let h = hex.trim_start_matches('#');
-    let c = |i: usize| {
-        h.get(i..i + 2)
-            .and_then(|x| u8::from_str_radix(x, 16).ok())
-            .map(|b| {
-                let s = f32::from(b) / 255.0;
-                if s <= 0.04045 {
-                    s / 12.92
-                } else {
-                    ((s + 0.055) / 1.055).powf(2.4)
-                }
-            })
-    };
-    match (h.len(), c(0), c(2), c(4)) {
-        (6, Some(r), Some(g), Some(b)) => [r, g, b],
-        _ => [0.5, 0.5, 0.5],
-    }
-}
-
-/// Hull length drawn for every boat, metres (the tracks do not say).
-pub const BOAT_LENGTH_M: f64 = 10.0;
-/// Water reaches this far beyond every track and mark, metres.
-pub const PLAY_AREA_MARGIN_M: f64 = 1500.0;
-/// Far clip distance, metres.
-pub const FAR_M: f64 = 20_000.0;
-
-/// The orbit the race views open with, before the course is framed or dragged: 90 m from the
-/// course origin, from the north-west, 20° up.
-pub fn race_orbit() -> render::OrbitCamera {
-    render::OrbitCamera {
-        target: glam::DVec3::ZERO,
-        distance: 90.0,
-        yaw: 2.4,
-        pitch: 0.35,
-        far: FAR_M,
-    }
-}
-
-/// The scene of `race` on `sea` at time `t`: boats that have data at t (not inside a gap),
-/// the course marks, a play area around every track and mark, and `camera` (or one framing
-/// the fleet).
-pub fn scene_at(race: &race::Race, sea: &ocean::WaveSet, t: f64, camera: Option<Camera>) -> Scene {
-    let boats: Vec<Boat> = race
-        .boats
-        .iter()
-        .filter(|b| !b.fixes().is_empty())
-        .map(|b| (b, b.state_at(t)))
-        .filter(|(_, s)| !s.in_gap)
-        .map(|(b, s)| Boat {
-            position: DVec2::from(s.position),
-            heading: s.heading_deg.to_radians(),
-            colour: linear_colour(&b.color),
-            length: BOAT_LENGTH_M,
-        })
-        .collect();
-    // Every buoy once: single marks and both ends of gates and lines.
-    let marks: Vec<Mark> = race
-        .buoys()
-        .into_iter()
-        .map(|p| Mark {
-            position: DVec2::from(p),
-        })
-        .collect();
-    let track_points = race
-        .boats
-        .iter()
-        .flat_map(|b| b.fixes().iter().map(|f| DVec2::from(f.pos())));
-    let play_area = Scene::play_area_around(
-        track_points.chain(marks.iter().map(|m| m.position)),
-        PLAY_AREA_MARGIN_M,
-    );
-    let camera = camera.unwrap_or_else(|| Scene::framing_camera(&boats, &[], FAR_M));
-    Scene {
-        t,
-        sea: sea.clone(),
-        boats,
-        marks,
-        play_area,
-        sun: Scene::default_sun(),
-        camera,
-    }
-}
-
-/// The wakes of every boat of `race` (default wake parameters), for `Renderer::set_wake`.
-pub fn race_wake(race: &race::Race) -> CliResult<std::sync::Arc<ocean::wake::Wake>> {
-    crate::wakes::race_wake(race, ocean::wake::WakeParams::default()).map(std::sync::Arc::new)
-}
-
-/// The middle of the race's time span.
-pub fn middle_time(race: &race::Race) -> f64 {
-    let (a, b) = race.time_span();
-    (a + b) / 2.0
-}
-
 pub fn run(a: RenderArgs) -> CliResult {
     let size = parse_size(&a.size)?;
     let out = ImageOut::new(&a.out, "--out")?;
@@ -280,10 +185,9 @@ pub fn run(a: RenderArgs) -> CliResult {
         .as_deref()
         .map(|c| parse_camera(c, FAR_M))
         .transpose()?;
-    let sea = drawable_sea(load_sea(a.sea.as_ref())?);
-    let race = load_race(&a.race)?;
-    let t = a.t.unwrap_or_else(|| middle_time(&race));
-    let scene = scene_at(&race, &sea, t, camera);
+    let world = RaceWorld::new(load_race(&a.race)?, drawable_sea(load_sea(a.sea.as_ref())?));
+    let t = a.t.unwrap_or_else(|| world.middle_time());
+    let scene = world.scene_at(t, camera);
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     let mut renderer = Renderer::new(
@@ -296,7 +200,7 @@ pub fn run(a: RenderArgs) -> CliResult {
         },
     );
     if !a.no_wakes {
-        renderer.set_wake(Some(race_wake(&race)?));
+        renderer.set_wake(Some(world.wake()?));
     }
     let fx = effects::passes::ArConfig::default();
     let water = a.water.look(fx.water)?;
@@ -305,9 +209,15 @@ pub fn run(a: RenderArgs) -> CliResult {
         // The synthetic table stays where its image shows it; the water's optics are asked.
         h.set_water(water, fx.table_depth);
     }
-    let (img, report) =
-        crate::scene_overlay::render_headless(&gpu, &mut renderer, &race, &scene, size, &overlays)
-            .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    let (img, report) = crate::scene_overlay::render_headless(
+        &gpu,
+        &mut renderer,
+        &world.race,
+        &scene,
+        size,
+        &overlays,
+    )
+    .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     note_unmet_error(&report);
     print_report(&a, &report)
@@ -420,14 +330,5 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("--camera"), "{e}");
-    }
-
-    #[test]
-    fn colours_decode_srgb() {
-        assert_eq!(linear_colour("#ffffff"), [1.0, 1.0, 1.0]);
-        assert_eq!(linear_colour("#000000"), [0.0, 0.0, 0.0]);
-        // sRGB 0.5 (0x80) is 0.2158 linear.
-        assert!((linear_colour("#808080")[0] - 0.2158).abs() < 1e-3);
-        assert_eq!(linear_colour("oops"), [0.5, 0.5, 0.5]);
     }
 }

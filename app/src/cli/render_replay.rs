@@ -23,7 +23,8 @@ pub fn run(
     overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
     use crate::cli::inputs::{drawable_sea, load_race, load_sea};
-    use crate::cli::render::{middle_time, note_unmet_error, print_report, race_wake};
+    use crate::cli::render::{note_unmet_error, print_report};
+    use crate::core::scene::RaceWorld;
     use render::{RenderOptions, Renderer};
 
     let mut feed = crate::desktop::feed::FeedView::open(dir)?;
@@ -40,9 +41,8 @@ pub fn run(
             feed.len() - 1
         )));
     }
-    let sea = drawable_sea(load_sea(a.sea.as_ref())?);
-    let race = load_race(&a.race)?;
-    let t = a.t.unwrap_or_else(|| middle_time(&race));
+    let world = RaceWorld::new(load_race(&a.race)?, drawable_sea(load_sea(a.sea.as_ref())?));
+    let t = a.t.unwrap_or_else(|| world.middle_time());
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     let options = RenderOptions {
@@ -54,11 +54,10 @@ pub fn run(
     let wake = if a.no_wakes {
         None
     } else {
-        Some(race_wake(&race)?)
+        Some(world.wake()?)
     };
     let table = TableFrame {
-        race: &race,
-        sea: &sea,
+        world: &world,
         t,
         size,
         frame,
@@ -74,8 +73,7 @@ pub fn run(
 /// `frame`, `size` pixels.
 #[cfg(not(target_os = "android"))]
 pub struct TableFrame<'a> {
-    pub race: &'a race::Race,
-    pub sea: &'a ocean::WaveSet,
+    pub world: &'a crate::core::scene::RaceWorld,
     pub t: f64,
     pub size: [u32; 2],
     pub frame: usize,
@@ -97,8 +95,8 @@ impl TableFrame<'_> {
         wake: Option<std::sync::Arc<ocean::wake::Wake>>,
         edit: impl FnOnce(&mut render::Scene),
     ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
-        let mut orbit = crate::cli::render::race_orbit();
-        let mut scene = crate::desktop::race_scene(self.race, self.sea, self.t, &mut orbit);
+        let mut orbit = crate::core::scene::race_orbit();
+        let mut scene = self.world.orbit_scene(self.t, &mut orbit);
         feed.prepare_frame(
             gpu,
             renderer,
@@ -113,7 +111,12 @@ impl TableFrame<'_> {
         edit(&mut scene);
         match self.overlays {
             Some(overlays) => crate::scene_overlay::render_headless(
-                gpu, renderer, self.race, &scene, self.size, overlays,
+                gpu,
+                renderer,
+                &self.world.race,
+                &scene,
+                self.size,
+                overlays,
             ),
             None => render::render_image(gpu, renderer, &scene, self.size),
         }

@@ -1,11 +1,12 @@
 //! `regatta run --replay DIR`: a recorded camera feed (replay folder or TUM RGB-D, `crates/ar`)
 //! as the background, the race on its table.
 //!
-//! The table maps to the race uniformly: the race's play area (tracks and marks plus margin)
-//! is fitted onto the table's extent, so one AR metre is `scale` race metres, the table's centre
-//! is the play area's centre, and the table top lies `table_depth` race metres below the sea's
-//! rest level (the refraction effect's table). The feed's camera poses, mapped the same way,
-//! become the render camera; its image, through the window's crop, the background.
+//! The table maps to the race as on the phone (`core::table`): the race's play area (tracks and
+//! marks plus margin) is fitted onto the table's extent, the table's centre is the play area's
+//! centre, and the table top lies `table_depth` race metres below the sea's rest level (the
+//! refraction effect's table). The feed's camera poses, mapped the same way
+//! (`core::camera_frame`), become the render camera; its image, through the window's crop, the
+//! background.
 //!
 //! The first feed frame builds the renderer with the effect passes (`add_effect_passes`); each
 //! later frame, and a resized window, goes through the returned `EffectsHandle`
@@ -15,12 +16,15 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use ar::arcore::CoursePlacement;
 use ar::{CameraFrame, ReplayFeed, SynthConfig};
 use effects::camera_frame::CameraFrame as RenderCameraFrame;
 use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
-use glam::{DMat4, DVec2, DVec3};
-use render::optics::PinholeCamera;
+use glam::{DVec2, DVec3};
 use render::{Camera, RenderOptions, Renderer, Scene};
+
+use crate::core::camera_frame::{fill_view, physical_camera, render_frame};
+use crate::core::table::{boats_as_models, fit_on_table};
 
 use crate::error::{CliError, CliResult};
 
@@ -45,7 +49,7 @@ pub struct FeedView {
     effects: Option<EffectsHandle>,
     /// The current frame's render camera.
     camera: Option<Camera>,
-    map: Option<TableMap>,
+    map: Option<CoursePlacement>,
     /// The effects drawn over the feed (all of them in the window; `--effects` for
     /// `regatta render --replay`).
     config: ArConfig,
@@ -62,48 +66,6 @@ struct TableWake {
     given: Option<Arc<ocean::wake::Wake>>,
     scale: f64,
     drawn: Option<Arc<ocean::wake::Wake>>,
-}
-
-/// Length of a boat model on the table, AR metres: a real boat at table scale is a fraction of
-/// a millimetre, so the boats are drawn as 5 cm models (their positions stay exact).
-pub const MODEL_BOAT_M: f64 = 0.05;
-
-/// The length boats are drawn at on the table of `map`, race metres: [`MODEL_BOAT_M`] in race
-/// metres, or `None` where that is no longer than the full-size hull (a small course: boats
-/// and wakes at full size).
-pub fn model_length(map: &TableMap) -> Option<f64> {
-    let model = MODEL_BOAT_M * map.scale;
-    (model > crate::cli::render::BOAT_LENGTH_M).then_some(model)
-}
-
-/// How the table's AR metres map to race metres.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TableMap {
-    /// Race metres per AR metre.
-    pub scale: f64,
-    /// The table's centre (AR metres).
-    pub table_centre: DVec3,
-    /// Where the table's centre lands in the race world (y = −table depth).
-    pub race_centre: DVec3,
-}
-
-impl TableMap {
-    /// Fits the play area `[min x, min z, max x, max z]` (race metres) onto a table of `extent`
-    /// (AR metres, x and z) centred at `table_centre`, the table top `table_depth` below y = 0.
-    pub fn fit(play_area: [f64; 4], table_centre: DVec3, extent: DVec2, table_depth: f64) -> Self {
-        let [ax, az, bx, bz] = play_area;
-        let scale = ((bx - ax) / extent.x).max((bz - az) / extent.y).max(1e-9);
-        TableMap {
-            scale,
-            table_centre,
-            race_centre: DVec3::new(0.5 * (ax + bx), -table_depth, 0.5 * (az + bz)),
-        }
-    }
-
-    /// An AR point in race metres.
-    pub fn to_race(&self, p: DVec3) -> DVec3 {
-        self.race_centre + self.scale * (p - self.table_centre)
-    }
 }
 
 impl FeedView {
@@ -190,11 +152,7 @@ impl FeedView {
     pub fn apply(&self, scene: &mut Scene) {
         if let (Some(c), Some(m)) = (self.camera, self.map) {
             scene.camera = c;
-            if let Some(model) = model_length(&m) {
-                for b in &mut scene.boats {
-                    b.length = b.length.max(model);
-                }
-            }
+            boats_as_models(scene, &m);
         }
     }
 
@@ -203,26 +161,32 @@ impl FeedView {
     fn wake_for_table(
         &mut self,
         given: Option<Arc<ocean::wake::Wake>>,
-        map: &TableMap,
+        map: &CoursePlacement,
     ) -> (Option<Arc<ocean::wake::Wake>>, bool) {
+        // Race metres per table metre.
+        let scale = 1.0 / map.course_to_table;
         let same = |a: &Option<Arc<_>>, b: &Option<Arc<_>>| match (a, b) {
             (Some(a), Some(b)) => Arc::ptr_eq(a, b),
             (None, None) => true,
             _ => false,
         };
         if let Some(tw) = &self.table_wake
-            && tw.scale == map.scale
+            && tw.scale == scale
             && same(&tw.given, &given)
         {
             return (tw.drawn.clone(), false);
         }
-        let drawn = match (&given, model_length(map)) {
-            (Some(w), Some(model)) => Some(crate::wakes::table_wake(w, model, map.scale)),
+        // Boats are drawn as table models where a model is longer than the hull itself.
+        let model = crate::core::table::model_boat_length(map);
+        let drawn = match &given {
+            Some(w) if model > crate::core::scene::BOAT_LENGTH_M => {
+                Some(crate::wakes::table_wake(w, model, scale))
+            }
             _ => given.clone(),
         };
         self.table_wake = Some(TableWake {
             given,
-            scale: map.scale,
+            scale,
             drawn: drawn.clone(),
         });
         (drawn, true)
@@ -294,10 +258,10 @@ impl FeedView {
             None => (DVec2::ONE, DVec3::ZERO),
         };
         // The table lies the water's depth down, in race metres at the table's scale.
-        let scale = TableMap::fit(scene.play_area, centre, extent, 0.0).scale;
-        cfg.table_depth = self.water.depth_m * scale;
+        let course_to_table = fit_on_table(scene.play_area, centre, extent, 0.0).course_to_table;
+        cfg.table_depth = self.water.depth_m / course_to_table;
         cfg.water = self.water;
-        let map = TableMap::fit(scene.play_area, centre, extent, cfg.table_depth);
+        let map = fit_on_table(scene.play_area, centre, extent, cfg.table_depth);
         let (camera, view) = to_render(&frame, &map, size);
         let image = frame
             .image
@@ -332,60 +296,16 @@ impl FeedView {
 }
 
 /// The render camera and the effects' camera and display transform (the frame without its
-/// image) for an AR frame, for a window of `size`: the image fills the window and is cropped to
-/// its aspect (display transform), and the render camera's field of view is the crop's.
+/// image) for an AR frame on the table of `map`, for a window of `size`: the image fills the
+/// window and is cropped to its aspect, and the render camera's field of view is the crop's.
 pub fn to_render(
     frame: &CameraFrame,
-    map: &TableMap,
+    map: &CoursePlacement,
     size: [u32; 2],
 ) -> (Camera, RenderCameraFrame<()>) {
-    let k = frame.intrinsics;
-    let (iw, ih) = (f64::from(k.width), f64::from(k.height));
-    let a_img = iw / ih;
-    let a_win = f64::from(size[0].max(1)) / f64::from(size[1].max(1));
-    // Screen uv → image uv, rows of a 2×3 affine map.
-    let (display, fov_y) = if a_win >= a_img {
-        // Wider window: the full image width, a band of its height.
-        let f = a_img / a_win;
-        (
-            [[1.0, 0.0, 0.0], [0.0, f, 0.5 * (1.0 - f)]],
-            2.0 * (0.5 * ih * f / k.fy).atan(),
-        )
-    } else {
-        let f = a_win / a_img;
-        (
-            [[f, 0.0, 0.5 * (1.0 - f)], [0.0, 1.0, 0.0]],
-            2.0 * (0.5 * ih / k.fy).atan(),
-        )
-    };
-    let c2w = frame.camera_to_world.as_dmat4();
-    let (_, rot, pos) = c2w.to_scale_rotation_translation();
-    let eye = map.to_race(pos);
-    let forward = rot * DVec3::NEG_Z;
-    let pose = DMat4::from_rotation_translation(rot, eye);
-    let camera = Camera {
-        eye,
-        target: eye + forward,
-        up: rot * DVec3::Y,
-        fov_y,
-        near: (0.02 * map.scale).max(0.01),
-        far: crate::cli::render::FAR_M,
-    };
-    let pinhole = PinholeCamera {
-        fx: k.fx,
-        fy: k.fy,
-        cx: k.cx,
-        cy: k.cy,
-        width: iw,
-        height: ih,
-        pose,
-    };
+    let (display, fov_y) = fill_view(&frame.intrinsics, size);
     (
-        camera,
-        RenderCameraFrame {
-            image: (),
-            camera: pinhole,
-            display,
-        },
+        physical_camera(frame, map, fov_y),
+        render_frame(frame, map, display),
     )
 }

@@ -8,11 +8,9 @@
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
 
 use clap::Args;
-use glam::{DVec2, DVec3};
-use render::{OrbitCamera, RenderOptions, Renderer};
+use render::{OrbitCamera, Renderer};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
@@ -20,11 +18,15 @@ use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
 use crate::cli::inputs::{load_race, load_sea};
-use crate::cli::render::{SceneKind, scene_at};
+use crate::cli::render::SceneKind;
+use crate::core::clock::Ticker;
+use crate::core::gfx::{self, Acquired, Profile};
+use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 
 pub mod feed;
 pub mod overlay;
+pub mod phone;
 pub mod pool;
 pub mod smoke;
 
@@ -40,12 +42,24 @@ pub struct RunArgs {
     #[arg(long, value_enum, default_value_t)]
     pub scene: SceneKind,
     /// A recorded camera feed (replay folder or TUM RGB-D) as the background, the race on its
-    /// table; `synth` for the built-in synthetic table (what `regatta` alone opens).
+    /// table; `synth` for the built-in synthetic table (what `regatta` alone opens). With
+    /// `--phone`, the simulated ARCore's camera.
     #[arg(long, value_name = "DIR")]
     pub replay: Option<PathBuf>,
     /// The water's depth and turbidity on the table.
     #[command(flatten)]
     pub water: crate::water::WaterArgs,
+    /// The phone app in a portrait window of the phone's aspect and density, through the
+    /// simulated ARCore (mouse = one finger; right-drag or Ctrl+wheel = pinch and twist).
+    #[arg(long)]
+    pub phone: bool,
+    /// Which phone `--phone` shows.
+    #[arg(long, value_enum, default_value_t, requires = "phone")]
+    pub device: crate::phone_sim::device::Device,
+    /// With `--phone`: the simulated ARCore library (crates/arcore_sim's cdylib) that the
+    /// phone's own ARCore glue loads; a scripted stand-in without it.
+    #[arg(long, value_name = "FILE", requires = "phone")]
+    pub arcore_lib: Option<PathBuf>,
 }
 
 impl RunArgs {
@@ -61,6 +75,9 @@ impl RunArgs {
 
 /// Open the window and run until it is closed.
 pub fn run(a: RunArgs) -> CliResult {
+    if a.phone {
+        return phone::run(a);
+    }
     let sea = crate::cli::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
     let race = load_race(&a.race)?;
     // A bad feed is refused before a window opens (file and line named).
@@ -72,31 +89,29 @@ pub fn run(a: RunArgs) -> CliResult {
     }
     let event_loop = EventLoop::new()
         .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
-    let (t0, t1) = race.time_span();
     let pool = (a.scene == SceneKind::Pool)
         .then(|| pool::PoolMode::new(a.sea.is_some().then(|| sea.clone())));
+    // Without the panels (the pool), race time plays at real speed from the start and loops.
+    let mut clock = ui::RaceClock::new(race.time_span());
+    clock.looping = true;
+    clock.play();
     let mut app = App {
+        orbit: match pool {
+            Some(_) => pool::PoolMode::orbit(),
+            None => crate::core::scene::race_orbit(),
+        },
         pool,
         feed,
-        race,
-        sea,
-        span: (t0, t1.max(t0 + 1.0)),
+        world: RaceWorld::new(race, sea),
         state: None,
-        orbit: crate::cli::render::race_orbit(),
-        clock: Clock {
-            t: t0,
-            playing: true,
-            last: Instant::now(),
-        },
+        clock,
+        ticker: Ticker::default(),
         drag: None,
         press_at: None,
         cursor: (0.0, 0.0),
         error: None,
         dropped: Vec::new(),
     };
-    if app.pool.is_some() {
-        app.orbit = pool::PoolMode::orbit();
-    }
     event_loop
         .run_app(&mut app)
         .map_err(|e| CliError::new(format!("the window's event loop failed: {e}")))?;
@@ -106,58 +121,10 @@ pub fn run(a: RunArgs) -> CliResult {
     }
 }
 
-/// The scene the window draws at race time `t`: the race on the sea, the camera orbiting the
-/// fleet's centre (`orbit` keeps the user's angle and distance, its target follows the fleet).
-/// A function of `t` and the orbit alone, so playing to t and scrubbing to t draw the same frame.
-pub fn race_scene(
-    race: &race::Race,
-    sea: &ocean::WaveSet,
-    t: f64,
-    orbit: &mut OrbitCamera,
-) -> render::Scene {
-    let mut scene = scene_at(race, sea, t, None);
-    if !scene.boats.is_empty() {
-        let c = scene.boats.iter().map(|b| b.position).sum::<DVec2>() / scene.boats.len() as f64;
-        orbit.target = DVec3::new(c.x, 0.0, c.y);
-    }
-    scene.camera = orbit.camera();
-    scene
-}
-
-/// The window's race renderer: still frames kept (the timeline paused, the camera still), the
-/// race's wakes on. Tests that play frame by frame build theirs here too.
-pub fn window_renderer(
-    gpu: &render::Gpu,
-    format: wgpu::TextureFormat,
-    race: &race::Race,
-) -> Renderer {
-    let mut renderer = Renderer::new(
-        gpu,
-        format,
-        RenderOptions {
-            measure_gpu_time: false,
-            keep_still_frames: true,
-            ..Default::default()
-        },
-    );
-    match crate::cli::render::race_wake(race) {
-        Ok(w) => renderer.set_wake(Some(w)),
-        Err(e) => log::warn!("{e}; drawing no wakes"),
-    }
-    renderer
-}
-
-/// Race time: plays at real speed, pauses, loops over the race's span.
-struct Clock {
-    t: f64,
-    playing: bool,
-    last: Instant,
-}
-
 struct State {
     window: Arc<Window>,
     gpu: render::Gpu,
-    surface: render::gpu::SurfaceTarget,
+    target: gfx::Window,
     renderer: Renderer,
     /// The egui panels (timeline, leaderboard, overlay); `None` in the pool scene.
     overlay: Option<overlay::Overlay>,
@@ -168,12 +135,12 @@ struct App {
     pool: Option<pool::PoolMode>,
     /// `Some` with `--replay`: the feed's camera and image replace the orbit and the sky.
     feed: Option<feed::FeedView>,
-    race: race::Race,
-    sea: ocean::WaveSet,
-    span: (f64, f64),
+    world: RaceWorld,
     state: Option<State>,
     orbit: OrbitCamera,
-    clock: Clock,
+    /// Race time without the panels (with them, the timeline's clock).
+    clock: ui::RaceClock,
+    ticker: Ticker,
     drag: Option<(f64, f64)>,
     /// Where the left button went down (a release there is a click).
     press_at: Option<(f64, f64)>,
@@ -190,21 +157,15 @@ impl App {
         el.exit();
     }
 
-    fn tick(&mut self) {
-        // With the panels, race time is the timeline's (play, scrub, speed).
-        if let Some(o) = self.state.as_mut().and_then(|s| s.overlay.as_mut()) {
-            self.clock.t = o.tick();
-            self.clock.playing = o.panels.clock.is_playing();
-            return;
-        }
-        let now = Instant::now();
-        if self.clock.playing {
-            self.clock.t += now.duration_since(self.clock.last).as_secs_f64();
-        }
-        self.clock.last = now;
-        let (a, b) = self.span;
-        if self.clock.t > b || self.clock.t < a {
-            self.clock.t = a + (self.clock.t - a).rem_euclid(b - a);
+    /// Race time for this frame: the timeline's with the panels, else the app's clock.
+    fn tick(&mut self) -> f64 {
+        let dt = self.ticker.tick();
+        match self.state.as_mut().and_then(|s| s.overlay.as_mut()) {
+            Some(o) => o.tick(),
+            None => {
+                self.clock.advance(dt);
+                self.clock.time()
+            }
         }
     }
 
@@ -233,9 +194,7 @@ impl App {
             Ok(race) => {
                 log::info!("opened {}", race.name);
                 o.set_race(&race, &mut st.renderer);
-                let (t0, t1) = race.time_span();
-                self.span = (t0, t1.max(t0 + 1.0));
-                self.race = race;
+                self.world = RaceWorld::new(race, (*self.world.sea).clone());
             }
             Err(e) => {
                 log::warn!("{e}");
@@ -246,10 +205,10 @@ impl App {
 
     fn draw(&mut self, el: &ActiveEventLoop) {
         self.open_requested();
-        self.tick();
+        let t = self.tick();
         if let Some(p) = self.pool.as_mut() {
-            if let Some(st) = self.state.as_ref() {
-                match p.draw(st, self.clock.t, &self.orbit) {
+            if let Some(st) = self.state.as_mut() {
+                match p.draw(&st.gpu, &mut st.target, &st.window, t, &self.orbit) {
                     Ok(false) => {}
                     Ok(true) => el.exit(),
                     Err(e) => self.fail(el, e),
@@ -257,21 +216,21 @@ impl App {
             }
             return;
         }
-        let mut scene = race_scene(&self.race, &self.sea, self.clock.t, &mut self.orbit);
+        let mut scene = self.world.orbit_scene(t, &mut self.orbit);
         // "Follow": the orbit turns about the first selected boat instead of the fleet.
         if let Some(o) = self.state.as_ref().and_then(|s| s.overlay.as_ref())
             && o.panels.follow
             && let Some(target) =
-                crate::panels::follow_target(&self.race, o.scene_overlays.selected(), self.clock.t)
+                crate::panels::follow_target(&self.world.race, o.scene_overlays.selected(), t)
         {
             self.orbit.target = target;
             scene.camera = self.orbit.camera();
         }
         // With a feed, its camera (mapped onto the race) replaces the orbit.
         if let (Some(f), Some(st)) = (self.feed.as_mut(), self.state.as_mut()) {
-            let size = [st.surface.config.width, st.surface.config.height];
+            let size = st.target.size();
             let wake = st.overlay.as_ref().and_then(|o| o.wake());
-            let format = st.surface.config.format;
+            let format = st.target.format().unwrap_or(render::OFFSCREEN_FORMAT);
             if let Err(e) = f.prepare(&st.gpu, &mut st.renderer, format, wake, &scene, size) {
                 self.fail(el, e.to_string());
                 return;
@@ -281,25 +240,13 @@ impl App {
         let Some(st) = self.state.as_mut() else {
             return;
         };
-        let frame = match st.surface.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f)
-            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                let (w, h) = (st.surface.config.width, st.surface.config.height);
-                st.surface.resize(&st.gpu.device, w, h);
-                return;
-            }
-            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
-                return;
-            }
-            other => {
-                let msg = format!("the window surface failed: {other:?}");
-                self.fail(el, msg);
-                return;
-            }
+        let frame = match st.target.acquire(&st.gpu) {
+            Acquired::Frame(f) => f,
+            Acquired::Skip => return,
+            Acquired::Failed(e) => return self.fail(el, e),
         };
-        let view = frame.texture.create_view(&Default::default());
-        let size = [st.surface.config.width, st.surface.config.height];
+        let view = frame.texture().create_view(&Default::default());
+        let size = st.target.size();
         if let Some(o) = st.overlay.as_mut() {
             let handle = self.feed.as_ref().and_then(|f| f.effects_handle());
             o.apply_effects(&mut st.renderer, handle);
@@ -310,7 +257,7 @@ impl App {
                 }
             }
             let ppp = st.window.scale_factor();
-            let (race, r) = (&self.race, &mut st.renderer);
+            let (race, r) = (&self.world.race, &mut st.renderer);
             o.scene_overlays
                 .prepare(&st.gpu, r, race, &scene, size, ppp);
         }
@@ -319,6 +266,7 @@ impl App {
         if let Some(r) = &report {
             log::debug!("frame: {} triangles", r.triangles);
         }
+        let race = &self.world.race;
         if let Some(o) = st.overlay.as_mut() {
             if let Some(r) = &report {
                 o.record(r);
@@ -327,36 +275,33 @@ impl App {
                 &st.window,
                 &st.gpu.device,
                 &st.gpu.queue,
-                &frame.texture,
+                frame.texture(),
                 size,
-                &self.race,
+                race,
             );
         }
         st.window.pre_present_notify();
-        st.gpu.queue.present(frame);
+        st.target.present(&st.gpu, frame);
         if let Some(o) = st.overlay.as_mut()
             && o.frame_done()
         {
             // The smoke test's exit: save what the window showed, if asked (REGATTA_SCREENSHOT).
-            let saved = o.save_screenshot(
-                &st.window,
-                &st.gpu,
-                &mut st.renderer,
-                &scene,
-                size,
-                &self.race,
-            );
+            let saved =
+                o.save_screenshot(&st.window, &st.gpu, &mut st.renderer, &scene, size, race);
             if let Err(e) = saved {
                 self.fail(el, e);
             }
             el.exit();
             return;
         }
+        let playing = st
+            .overlay
+            .as_ref()
+            .map_or(self.clock.is_playing(), |o| o.panels.clock.is_playing());
         st.window.set_title(&format!(
-            "Regatta: {} at t = {:.0} s{}",
-            self.race.name,
-            self.clock.t,
-            if self.clock.playing { "" } else { " (paused)" }
+            "Regatta: {} at t = {t:.0} s{}",
+            race.name,
+            if playing { "" } else { " (paused)" }
         ));
     }
 }
@@ -376,17 +321,19 @@ impl ApplicationHandler for App {
         let size = window.inner_size();
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
-                let renderer = window_renderer(&gpu, surface.config.format, &self.race);
+                let wake = gfx::wake_or_none(&self.world);
+                let renderer =
+                    gfx::race_renderer(&gpu, surface.config.format, wake, Profile::Desktop);
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
-                    let title = self.race.name.clone();
+                    let race = &self.world.race;
                     let fx = self.feed.is_some();
                     let mut o = overlay::Overlay::new(
                         &window,
                         &gpu.device,
                         &mut surface,
-                        &self.race,
-                        title,
+                        race,
+                        race.name.clone(),
                         fx,
                     );
                     // The sliders start at the water the command line chose.
@@ -396,10 +343,12 @@ impl ApplicationHandler for App {
                     }
                     o
                 });
+                let mut target = gfx::Window::default();
+                target.first_surface(surface);
                 self.state = Some(State {
                     window,
                     gpu,
-                    surface,
+                    target,
                     renderer,
                     overlay,
                 });
@@ -420,7 +369,7 @@ impl ApplicationHandler for App {
             WindowEvent::DroppedFile(path) => self.dropped.push(path),
             WindowEvent::Resized(s) => {
                 if let Some(st) = self.state.as_mut() {
-                    st.surface.resize(&st.gpu.device, s.width, s.height);
+                    st.target.resize(&st.gpu, s.width, s.height);
                 }
             }
             WindowEvent::MouseInput {
@@ -440,16 +389,17 @@ impl ApplicationHandler for App {
                 }
                 self.press_at = pressed.then_some(self.cursor);
                 // In the pool, a press on a moving ball grabs the ball instead of the camera.
+                let t = self.clock.time();
                 let grabbed = self
                     .pool
                     .as_mut()
-                    .is_some_and(|p| p.press(pressed, self.cursor, self.clock.t));
+                    .is_some_and(|p| p.press(pressed, self.cursor, t));
                 self.drag = (pressed && !grabbed).then_some(self.cursor);
             }
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = (position.x, position.y);
                 if let Some(p) = self.pool.as_mut() {
-                    p.pointer_moved(self.cursor, self.clock.t);
+                    p.pointer_moved(self.cursor, self.clock.time());
                 }
                 if let Some((x, y)) = self.drag {
                     self.orbit.drag(position.x - x, position.y - y);
@@ -465,9 +415,13 @@ impl ApplicationHandler for App {
             }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
                 match event.logical_key {
-                    Key::Named(NamedKey::Space) => self.clock.playing = !self.clock.playing,
-                    Key::Named(NamedKey::ArrowRight) => self.clock.t += 10.0,
-                    Key::Named(NamedKey::ArrowLeft) => self.clock.t -= 10.0,
+                    Key::Named(NamedKey::Space) => self.clock.toggle(),
+                    Key::Named(NamedKey::ArrowRight) => {
+                        self.clock.scrub_to(self.clock.time() + 10.0);
+                    }
+                    Key::Named(NamedKey::ArrowLeft) => {
+                        self.clock.scrub_to(self.clock.time() - 10.0);
+                    }
                     Key::Named(NamedKey::Escape) => el.exit(),
                     _ => {}
                 }

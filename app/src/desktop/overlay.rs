@@ -94,7 +94,7 @@ impl Overlay {
             perf: PerfStats::default(),
             last: Instant::now(),
             title,
-            scene: crate::panels::SceneApplier::new(crate::cli::render::race_wake(race).ok()),
+            scene: crate::panels::SceneApplier::new(crate::core::scene::race_wake(race).ok()),
             load_error: None,
             open_request: None,
             format,
@@ -172,7 +172,7 @@ impl Overlay {
         self.load_error = None;
         self.title = race.name.clone();
         self.scene
-            .set_race_wake(crate::cli::render::race_wake(race).ok(), renderer);
+            .set_race_wake(crate::core::scene::race_wake(race).ok(), renderer);
     }
 
     /// Counts a drawn frame; true when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`).

@@ -5,7 +5,6 @@
 use pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 use render::OrbitCamera;
 
-use super::State;
 use crate::pool_play::PoolPlay;
 
 pub struct PoolMode {
@@ -33,28 +32,32 @@ impl PoolMode {
 
     /// Draws a frame; `Ok(true)` when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`, after
     /// writing `REGATTA_SCREENSHOT`), `Err` when the screenshot could not be written.
-    pub(super) fn draw(&mut self, st: &State, t: f64, orbit: &OrbitCamera) -> Result<bool, String> {
-        let frame_tex = match st.surface.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f)
-            | wgpu::CurrentSurfaceTexture::Suboptimal(f) => f,
+    pub(super) fn draw(
+        &mut self,
+        gpu: &render::Gpu,
+        target: &mut crate::core::gfx::Window,
+        window: &winit::window::Window,
+        t: f64,
+        orbit: &OrbitCamera,
+    ) -> Result<bool, String> {
+        let frame_tex = match target.acquire(gpu) {
+            crate::core::gfx::Acquired::Frame(f) => f,
             _ => return Ok(false),
         };
-        let size = [st.surface.config.width, st.surface.config.height];
-        let target = frame_tex.texture.create_view(&Default::default());
-        let format = st.surface.config.format;
-        let frame = self.render(&st.gpu, format, &target, size, t, orbit);
-        st.window.pre_present_notify();
-        st.gpu.queue.present(frame_tex);
-        st.window
-            .set_title(&format!("Regatta: the pool at t = {t:.1} s"));
+        let size = target.size();
+        let view = frame_tex.texture().create_view(&Default::default());
+        let format = target.format().unwrap_or(render::OFFSCREEN_FORMAT);
+        let frame = self.render(gpu, format, &view, size, t, orbit);
+        window.pre_present_notify();
+        target.present(gpu, frame_tex);
+        window.set_title(&format!("Regatta: the pool at t = {t:.1} s"));
         let exit = self.exit_after.frame_done();
         if exit
             && let Some(path) = super::smoke::screenshot_path()
             && let Some(renderer) = self.renderer.as_mut()
         {
-            let (img, _) = st
-                .gpu
-                .render_offscreen(size, format, |v| renderer.render(&st.gpu, v, &frame))
+            let (img, _) = gpu
+                .render_offscreen(size, format, |v| renderer.render(gpu, v, &frame))
                 .map_err(|e| format!("{}: {e}", input::show_path(&path)))?;
             super::smoke::write_screenshot(img, format, &path)?;
         }

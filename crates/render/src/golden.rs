@@ -19,7 +19,7 @@ use std::path::Path;
 pub fn test_scene(t: f64, boats: Vec<crate::Boat>) -> crate::Scene {
     crate::Scene {
         t,
-        sea: ocean::WaveSet::default_sea(),
+        sea: ocean::WaveSet::default_sea().into(),
         boats,
         marks: vec![crate::Mark {
             position: glam::DVec2::new(20.0, -25.0),

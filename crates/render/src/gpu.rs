@@ -116,6 +116,20 @@ impl Gpu {
         Self::with_surface(instance, surface, width, height)
     }
 
+    /// A device among `backends` that presents to the surface `make` creates on its instance
+    /// (the app core retries with `Backends::GL` where Vulkan cannot be had or was lost).
+    pub fn for_surface(
+        backends: Backends,
+        make: impl FnOnce(&wgpu::Instance) -> Result<wgpu::Surface<'static>, String>,
+        width: u32,
+        height: u32,
+    ) -> Result<(Gpu, SurfaceTarget), GpuError> {
+        let instance = instance(backends);
+        let surface = make(&instance)
+            .map_err(|e| GpuError(format!("could not create a window surface: {e}")))?;
+        Self::with_surface(instance, surface, width, height)
+    }
+
     /// A device that presents to a raw native window (the Android `ANativeWindow` of the
     /// native activity).
     ///

@@ -31,7 +31,8 @@ pub struct Mark {
 pub struct Scene {
     /// Race time, seconds since the start (f64; reduced on the CPU before any shader).
     pub t: f64,
-    pub sea: WaveSet,
+    /// Shared, not copied: a frame hands the same wave set to every pass.
+    pub sea: std::sync::Arc<WaveSet>,
     pub boats: Vec<Boat>,
     pub marks: Vec<Mark>,
     /// Water is drawn only inside this rectangle: min x, min z, max x, max z (world metres).

@@ -85,7 +85,7 @@ fn every_phase_a_frame_sends_is_reduced_to_zero_two_pi() {
     let sea = WaveSet::default_sea();
     for t in [0.0, 1e3, 1e6, 3.6e4 * 10.0, 9.9e6] {
         let mut s = scene(t);
-        s.sea = sea.clone();
+        s.sea = sea.clone().into();
         s.camera.eye += DVec3::new(9000.0, 0.0, -8000.0);
         s.camera.target += DVec3::new(9000.0, 0.0, -8000.0);
         s.play_area = [-1e5, -1e5, 1e5, 1e5];
@@ -124,7 +124,7 @@ fn wakes_draw_foam_behind_a_boat_and_are_recorded() {
         .collect();
     let wake = Wake::new(&[&track], WakeParams::default()).unwrap();
     let mut s = scene(60.0);
-    s.sea.waves.truncate(1);
+    std::sync::Arc::make_mut(&mut s.sea).waves.truncate(1);
     s.boats.truncate(1);
     s.boats[0].heading = std::f64::consts::FRAC_PI_2;
     s.marks.clear();

@@ -4,6 +4,8 @@
 //! generated on first use.
 
 #[cfg(not(target_os = "android"))]
+pub mod aar;
+#[cfg(not(target_os = "android"))]
 pub mod key;
 #[cfg(not(target_os = "android"))]
 pub mod metadata;

@@ -62,6 +62,10 @@ mod host {
         /// DEX files to package (e.g. ARCore's classes, dexed with d8).
         #[arg(long)]
         dex: Vec<PathBuf>,
+        /// Library manifests to merge into the app's (e.g. the AndroidManifest.xml of
+        /// ARCore's AAR: its meta-data, InstallActivity and queries).
+        #[arg(long = "merge-manifest")]
+        merge_manifests: Vec<PathBuf>,
         /// Signing key (PEM: private key and certificate); generated here when missing.
         #[arg(long)]
         key: PathBuf,
@@ -119,6 +123,7 @@ mod host {
             library: args.lib.clone(),
             extra_libraries: args.extra_libs.clone(),
             dex: args.dex.clone(),
+            library_manifests: args.merge_manifests.clone(),
         };
         let summary = write_apk(&inputs, &args.manifest, identity, &args.out)?;
         serde_json::to_string_pretty(&summary).map_err(|e| ApkError(e.to_string()))

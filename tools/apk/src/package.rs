@@ -20,6 +20,8 @@ pub struct ApkInputs {
     pub extra_libraries: Vec<PathBuf>,
     /// DEX files (ARCore's Java classes), packaged as `classes.dex`, `classes2.dex`, ...
     pub dex: Vec<PathBuf>,
+    /// Library manifests (ARCore's AAR's `AndroidManifest.xml`) merged into the app's.
+    pub library_manifests: Vec<PathBuf>,
 }
 
 /// What was written, for the JSON summary on stdout.
@@ -32,6 +34,8 @@ pub struct ApkSummary {
     pub permissions: Vec<String>,
     pub libraries: Vec<String>,
     pub dex_files: usize,
+    /// What the library manifests added (`tag android:name`).
+    pub merged: Vec<String>,
     pub schemes: Vec<String>,
     pub certificate_sha256: String,
 }
@@ -135,6 +139,7 @@ pub fn write_apk(
             .map_err(|e| ApkError(format!("{}: cannot read: {e}", dex.display())))?;
         b.dex(bytes);
     }
+    let merged = merge_libraries(&mut b, inputs)?;
     b.sign_with(Signer::new(identity));
     b.write(out).map_err(err(out.display()))?;
 
@@ -148,6 +153,7 @@ pub fn write_apk(
         permissions: a.uses_permission.iter().map(|p| p.name.clone()).collect(),
         libraries,
         dex_files: inputs.dex.len(),
+        merged,
         schemes: v.schemes.iter_schemes().map(|s| s.to_string()).collect(),
         certificate_sha256: v
             .certificate()
@@ -156,4 +162,29 @@ pub fn write_apk(
             .map(|b| format!("{b:02x}"))
             .collect(),
     })
+}
+
+/// Merges the library manifests (ARCore's) into the app's, with the `<queries>` entry ARCore
+/// needs; and, with DEX files, declares the code: `native_activity()` says `hasCode="false"`,
+/// which Android (and rust-apk) refuse beside a `classes.dex`.
+fn merge_libraries(b: &mut ApkBuilder, inputs: &ApkInputs) -> Result<Vec<String>, ApkError> {
+    let mut merged = Vec::new();
+    for path in &inputs.library_manifests {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| ApkError(format!("{}: cannot read: {e}", path.display())))?;
+        merged.extend(crate::aar::merge_library_manifest(
+            b.manifest_mut(),
+            &text,
+            path,
+        )?);
+    }
+    if !inputs.library_manifests.is_empty() && crate::aar::ensure_arcore_query(b.manifest_mut()) {
+        merged.push(format!("queries {}", crate::aar::ARCORE_PACKAGE));
+    }
+    if !inputs.dex.is_empty() {
+        b.manifest_mut()
+            .application_mut()
+            .set_attr(attr::HAS_CODE, true);
+    }
+    Ok(merged)
 }

@@ -2,48 +2,16 @@
 //! `app/Cargo.toml` metadata and reads the APK back: manifest, library path, signatures.
 #![cfg(not(target_os = "android"))]
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
+
+use std::path::Path;
+
+use common::{scratch, stub_library};
 
 use apk::Apk;
 use regatta_apk::key::debug_identity;
 use regatta_apk::metadata::CrateAndroid;
 use regatta_apk::package::{ApkInputs, write_apk};
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("regatta-apk-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// A 16 KiB-aligned arm64 library exporting the NativeActivity entry point, or `None` without
-/// clang and lld.
-fn stub_library(dir: &Path) -> Option<PathBuf> {
-    let src = dir.join("stub.c");
-    std::fs::write(
-        &src,
-        "void ANativeActivity_onCreate(void *a, void *s, unsigned long n) {}\n",
-    )
-    .unwrap();
-    let out = dir.join("libregatta.so");
-    let ok = Command::new("clang")
-        .args([
-            "--target=aarch64-linux-android24",
-            "-shared",
-            "-nostdlib",
-            "-fuse-ld=lld",
-        ])
-        .args([
-            "-Wl,-z,max-page-size=16384",
-            "-Wl,-soname,libregatta.so",
-            "-o",
-        ])
-        .arg(&out)
-        .arg(&src)
-        .status()
-        .is_ok_and(|s| s.success());
-    ok.then_some(out)
-}
 
 #[test]
 fn a_missing_library_is_named() {
@@ -57,6 +25,7 @@ fn a_missing_library_is_named() {
         library: lib.clone(),
         extra_libraries: vec![],
         dex: vec![],
+        library_manifests: vec![],
     };
     let e = write_apk(&inputs, &manifest, identity, &dir.join("x.apk")).unwrap_err();
     assert!(
@@ -82,6 +51,7 @@ fn the_apk_carries_the_metadata_and_verifies() {
         library: lib,
         extra_libraries: vec![],
         dex: vec![],
+        library_manifests: vec![],
     };
     let summary = write_apk(&inputs, &manifest, identity, &out).unwrap();
     assert_eq!(
@@ -127,6 +97,7 @@ fn a_library_that_is_not_elf_is_refused_with_its_name() {
         library: lib.clone(),
         extra_libraries: vec![],
         dex: vec![],
+        library_manifests: vec![],
     };
     let e = write_apk(&inputs, &manifest, identity, &out).unwrap_err();
     assert!(

@@ -1,10 +1,13 @@
 //! ARCore on Android, the parts that are pure and tested on the host: the camera image's YUV
 //! decoding ([`yuv`]), ARCore's pose and projection conventions and the course placement
 //! ([`pose`]), the display rotation transform ([`display`]), the tap hit test and two-finger
-//! gestures ([`hit`]), and the session state machine ([`session`]). The Android glue that calls
-//! the ARCore C API (loaded with libloading) lives in the app (`app/src/android`).
+//! gestures ([`hit`]), and the session state machine ([`session`]). With the `ffi` feature,
+//! [`ffi`] is the glue that calls the ARCore C API (loaded with libloading), on the phone and,
+//! against `crates/arcore_sim`, on the host.
 
 pub mod display;
+#[cfg(feature = "ffi")]
+pub mod ffi;
 pub mod hit;
 pub mod pose;
 pub mod session;

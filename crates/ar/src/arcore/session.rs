@@ -51,6 +51,9 @@ pub enum Unavailable {
     ArCoreTooOld,
     /// The app's ARCore SDK is older than the installed ARCore supports.
     AppTooOld,
+    /// Android older than API 27 (this API level): ARCore cannot hand the camera image over
+    /// as a hardware buffer, and without GL there is no other way (docs/phone-arcore.md).
+    AndroidTooOld(u32),
     /// Any other ARCore error, with its status.
     Failed(i32),
 }
@@ -73,6 +76,9 @@ impl Unavailable {
             Self::AppTooOld => {
                 format!("This Regatta build is too old for the installed ARCore: {tail}")
             }
+            Self::AndroidTooOld(api) => format!(
+                "AR needs Android 8.1 (API 27) or newer to pass the camera to Vulkan; this phone has API {api}: {tail}"
+            ),
             Self::Failed(code) => format!("ARCore failed (status {code}): {tail}"),
         }
     }
@@ -779,6 +785,7 @@ mod tests {
             Unavailable::DeviceNotSupported,
             Unavailable::ArCoreTooOld,
             Unavailable::AppTooOld,
+            Unavailable::AndroidTooOld(26),
             Unavailable::Failed(-2),
         ] {
             assert!(u.message().contains("3D without the camera"), "{u:?}");

@@ -83,7 +83,7 @@ pub const OFFSCREEN_REUSED: &str =
 #[derive(Debug, Clone, PartialEq)]
 struct OffscreenInputs {
     t: f64,
-    sea: ocean::WaveSet,
+    sea: std::sync::Arc<ocean::WaveSet>,
     boats: Vec<render::Boat>,
     marks: Vec<render::Mark>,
     play_area: [f64; 4],

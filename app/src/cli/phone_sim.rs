@@ -1,0 +1,101 @@
+//! `regatta phone-sim --script FILE --out DIR [--replay DIR] [--device pixel2xl|a54]
+//! [--size WxH]`: the phone app headless, driven by a script (docs/phone-sim.md). Writes
+//! `DIR/log.jsonl` (one line per step) and the screenshots; prints a summary (JSON) on stdout.
+//! A bad script line is one line on stderr naming the file and line, exit 2; a failed step,
+//! exit 1.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use serde_json::json;
+
+use crate::error::{CliError, CliResult};
+use crate::phone_sim::backend::Feed;
+use crate::phone_sim::device::Device;
+use crate::phone_sim::{PhoneSim, run_script, script};
+
+#[derive(Debug, Args)]
+pub struct PhoneSimArgs {
+    /// The session script: one step per line (docs/phone-sim.md).
+    #[arg(long, value_name = "FILE")]
+    pub script: PathBuf,
+    /// Folder for log.jsonl, the screenshots and the recordings (created).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// The camera feed the simulated ARCore shows (replay folder); the synthetic table without.
+    #[arg(long, value_name = "DIR")]
+    pub replay: Option<PathBuf>,
+    /// Which phone's screen and density.
+    #[arg(long, value_enum, default_value_t)]
+    pub device: Device,
+    /// The screen in portrait, WIDTHxHEIGHT pixels; half the phone's pixels per side without
+    /// it (the layout in dp stays the phone's).
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+    /// The simulated ARCore library (crates/arcore_sim's cdylib, `cargo build -p arcore_sim`):
+    /// the phone's own ARCore glue runs against it. Without it, a scripted stand-in answers.
+    #[arg(long, value_name = "FILE")]
+    pub arcore_lib: Option<PathBuf>,
+}
+
+/// The simulated ARCore's feed: `--replay DIR`, or a small synthetic table.
+pub fn open_feed(replay: Option<&std::path::Path>) -> CliResult<Feed> {
+    Ok(match replay {
+        Some(dir) => {
+            Feed::Replay(ar::ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?)
+        }
+        None => Feed::synth(ar::SynthConfig {
+            frames: 32,
+            width: 320,
+            height: 240,
+            supersample: 1,
+            ..ar::SynthConfig::default()
+        }),
+    })
+}
+
+pub fn run(a: PhoneSimArgs) -> CliResult {
+    let text = std::fs::read_to_string(&a.script)
+        .map_err(|e| CliError::new(format!("{}: {e}", input::show_path(&a.script))))?;
+    let lines = match script::parse(&a.script, &text) {
+        Ok(l) => l,
+        Err(e) => {
+            eprintln!("regatta: {e}");
+            std::process::exit(2);
+        }
+    };
+    let size = match &a.size {
+        Some(s) => super::render::parse_size(s)?,
+        None => a.device.host_size(),
+    };
+    std::fs::create_dir_all(&a.out)
+        .map_err(|e| CliError::new(format!("{}: {e}", input::show_path(&a.out))))?;
+    let ppp = a.device.pixels_per_point(size);
+    let data = Some(a.out.clone());
+    let mut sim = match &a.arcore_lib {
+        Some(lib) => {
+            PhoneSim::with_ffi(lib, a.replay.as_deref(), size, ppp, data).map_err(CliError::new)?
+        }
+        None => PhoneSim::new(open_feed(a.replay.as_deref())?, size, ppp, data),
+    };
+    let failed = run_script(&mut sim, &lines, &a.out).map_err(CliError::new)?;
+    let summary = json!({
+        "steps": lines.len(),
+        "failed": failed,
+        "log": a.out.join("log.jsonl"),
+        "gpu": sim.app.describe_gpu(),
+        "status": sim.app.status(),
+    });
+    super::print_stdout(
+        "the session summary",
+        &serde_json::to_string_pretty(&summary)?,
+    )?;
+    if failed > 0 {
+        return Err(CliError::new(format!(
+            "{failed} of {} steps failed (see {})",
+            lines.len(),
+            input::show_path(&a.out.join("log.jsonl"))
+        )));
+    }
+    Ok(())
+}

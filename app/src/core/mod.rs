@@ -1,0 +1,25 @@
+//! The app core: everything the desktop window, the phone and the headless phone sessions share,
+//! free of any platform (compiled and tested on the host).
+//!
+//! - [`scene`]: the race at time t ([`scene::RaceWorld`]: play area scanned once, sea shared).
+//! - [`clock`]: race time is the panels' `ui::RaceClock`; adapters feed wall seconds.
+//! - [`table`]: one mapping of the race onto the table (`ar::arcore::CoursePlacement`).
+//! - [`camera_frame`]: one conversion of an AR camera frame into the effect passes' frame.
+//! - [`gfx`]: renderer setup, the window's target with its kept configuration, surface loss,
+//!   the OpenGL ES fallback.
+//! - [`ar`]: the AR backend trait and the session's state; ARCore's C API implements it
+//!   (`ar_ffi`: Google's library on the phone, `crates/arcore_sim` on the host).
+//! - [`phone`]: the phone app, driven by events ([`phone::PhoneEvent`]).
+//!
+//! Invariant: nothing here names winit, android-activity, JNI or a clock of the OS; the
+//! adapters (`desktop`, `android`, `phone_sim`) translate their platform's events and wall time
+//! into calls on this core and hold no decision of their own.
+
+pub mod ar;
+mod ar_ffi;
+pub mod camera_frame;
+pub mod clock;
+pub mod gfx;
+pub mod phone;
+pub mod scene;
+pub mod table;

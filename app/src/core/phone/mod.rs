@@ -1,0 +1,346 @@
+//! The phone app: the race or the pool on the table through the AR backend, the race panels and
+//! the phone's bar over it, touch as the only input. Driven by [`PhoneEvent`]s and
+//! [`PhoneApp::frame`] (wall seconds since the last frame) from an adapter: the Android activity,
+//! the `regatta run --phone` window, or a `regatta phone-sim` script.
+//!
+//! Lifecycle (wgpu issue 2302): the device is made on the first window; each new window gets a
+//! surface configured as the first one was ([`super::gfx::Window`]); a destroyed window's
+//! surface is dropped before the event returns. In the background nothing is drawn and time
+//! stops. A lost device is rebuilt on OpenGL ES on the next frame.
+
+mod draw;
+mod input;
+
+use std::path::PathBuf;
+
+use ar::arcore::{CoursePlacement, Event, SessionState};
+use render::OrbitCamera;
+use ui::{RegattaUi, TimelineEvent};
+
+use super::ar::{ArBackend, ArState};
+use super::gfx::SurfaceMaker;
+use super::scene::RaceWorld;
+use crate::overlay::SceneChoice;
+use crate::overlay::banner::{ArStatus, Tone, banner};
+use crate::overlay::touch::{Touch, TouchInput};
+use crate::pool_play::PoolPlay;
+
+pub use draw::Graphics;
+pub use input::{TAP_MAX_PX, TAP_MAX_S};
+
+/// What happens to the phone app, in the platform's words translated.
+pub enum PhoneEvent {
+    /// A native window exists (Android `InitWindow`, winit `resumed`); `surface` makes its wgpu
+    /// surface, `None` for an offscreen window (headless sessions).
+    WindowCreated {
+        surface: Option<SurfaceMaker>,
+        size: [u32; 2],
+    },
+    /// The native window goes away (Android `TerminateWindow`): its surface is dropped now.
+    WindowDestroyed,
+    /// The window's size changed (rotation, split screen).
+    Resized([u32; 2]),
+    /// The app came to the foreground.
+    Resumed,
+    /// The app went to the background.
+    Paused,
+    Touch(Touch),
+    /// Display rotation, `Surface.ROTATION_*` (0..3).
+    Rotation(i32),
+    /// Physical pixels per egui point (density / 160 on Android).
+    Density(f32),
+    /// The hardware key that starts and stops a recording (volume up).
+    RecordKey,
+}
+
+impl PhoneEvent {
+    /// A touch of fingers 0, 1, … at `px` (physical pixels).
+    pub fn touch(action: crate::overlay::touch::TouchAction, px: &[[f32; 2]]) -> PhoneEvent {
+        PhoneEvent::Touch(Touch {
+            action,
+            fingers: px
+                .iter()
+                .enumerate()
+                .map(|(i, px)| crate::overlay::touch::Finger {
+                    id: i as i32,
+                    px: *px,
+                })
+                .collect(),
+        })
+    }
+}
+
+/// What a session log shows of the app after a step.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PhoneStatus {
+    pub session: String,
+    pub banner: Option<String>,
+    pub placed: bool,
+    pub frames_drawn: u64,
+    pub race_time: f64,
+    pub scene: &'static str,
+    pub recording: bool,
+}
+
+/// The phone app's state.
+pub struct PhoneApp {
+    world: RaceWorld,
+    /// The race panels (their clock owns race time) and the timeline's mark roundings.
+    pub panels: RegattaUi,
+    events: Vec<TimelineEvent>,
+    /// The pool's time, seconds.
+    pool_t: f64,
+    /// Seconds the app has run in the foreground (egui's and the tap's clock).
+    now: f64,
+    pub scene: SceneChoice,
+    orbit: OrbitCamera,
+    pool_orbit: OrbitCamera,
+    pool: PoolPlay,
+    course: Option<CoursePlacement>,
+    pool_placement: Option<CoursePlacement>,
+    resumed: bool,
+    /// The next frame is the first after a resume: its wall time was spent in the background.
+    back_from_background: bool,
+    pub ar: ArState,
+    backend: Box<dyn ArBackend>,
+    touch: TouchInput,
+    gesture: input::Gesture,
+    /// The root ui's rect left free by the panels in the last frame (egui points).
+    ui_free: egui::Rect,
+    rotation: i32,
+    /// Where recordings go (the app's storage).
+    pub data_dir: Option<PathBuf>,
+    /// The surface maker of the current window (kept to rebuild after a lost device).
+    maker: Option<SurfaceMaker>,
+    graphics: Option<Graphics>,
+    /// The last recording folder written.
+    pub last_recording: Option<PathBuf>,
+}
+
+impl PhoneApp {
+    /// The embedded race and sea, with `backend` for AR.
+    pub fn new(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
+        let mut panels = RegattaUi::new(crate::overlay::initial_clock(&world.race), Vec::new());
+        // The phone's screen is small: the timeline and the bar; the leaderboard behind its
+        // toggle in the timeline's header, no frame statistics.
+        panels.show_perf = false;
+        panels.show_leaderboard = false;
+        PhoneApp {
+            events: ui::timeline_events(&world.race),
+            panels,
+            world,
+            pool_t: 0.0,
+            now: 0.0,
+            scene: SceneChoice::Race,
+            orbit: super::scene::race_orbit(),
+            pool_orbit: PoolPlay::orbit(),
+            pool: PoolPlay::new(None),
+            course: None,
+            pool_placement: None,
+            resumed: false,
+            back_from_background: false,
+            ar: ArState::default(),
+            backend,
+            touch: TouchInput::new(1.0),
+            gesture: input::Gesture::default(),
+            ui_free: egui::Rect::EVERYTHING,
+            rotation: 0,
+            data_dir: None,
+            maker: None,
+            graphics: None,
+            last_recording: None,
+        }
+    }
+
+    /// Whether frames are drawn: in the foreground with a window.
+    pub fn visible(&self) -> bool {
+        self.resumed
+            && self
+                .graphics
+                .as_ref()
+                .is_some_and(|g| g.window.is_attached())
+    }
+
+    /// Every event of `events`, in order.
+    pub fn on_all(&mut self, events: impl IntoIterator<Item = PhoneEvent>) {
+        for e in events {
+            self.on(e);
+        }
+    }
+
+    pub fn on(&mut self, event: PhoneEvent) {
+        match event {
+            PhoneEvent::WindowCreated { surface, size } => {
+                self.maker = surface;
+                self.attach_window(size);
+            }
+            PhoneEvent::WindowDestroyed => {
+                if let Some(g) = self.graphics.as_mut() {
+                    g.window.detach();
+                }
+                self.maker = None;
+            }
+            PhoneEvent::Resized(size) => {
+                if let Some(g) = self.graphics.as_mut() {
+                    g.window.resize(&g.gpu, size[0], size[1]);
+                }
+            }
+            PhoneEvent::Resumed => {
+                self.resumed = true;
+                // Time in the background does not count.
+                self.back_from_background = true;
+                let loaded = self.backend.is_loaded();
+                self.session_event(Event::AppResumed {
+                    library_loaded: loaded,
+                });
+            }
+            PhoneEvent::Paused => {
+                self.resumed = false;
+                if self.ar.recorder.is_some() {
+                    self.toggle_recording();
+                }
+                self.session_event(Event::AppPaused);
+            }
+            PhoneEvent::Touch(t) => self.on_touch(&t),
+            PhoneEvent::Rotation(r) => self.rotation = r,
+            PhoneEvent::Density(ppp) => self.touch.pixels_per_point = ppp.max(0.5),
+            PhoneEvent::RecordKey => self.toggle_recording(),
+        }
+    }
+
+    /// Steps the AR session with `event` through the backend.
+    fn session_event(&mut self, event: Event) {
+        self.ar.step(self.backend.as_mut(), event);
+    }
+
+    /// One display frame, `dt` wall seconds after the last: time, AR, drawing (when visible).
+    pub fn frame(&mut self, dt: f64) {
+        if !self.visible() {
+            return;
+        }
+        let dt = if std::mem::take(&mut self.back_from_background) {
+            0.0
+        } else {
+            dt.max(0.0)
+        };
+        self.now += dt;
+        self.panels.clock.advance(dt);
+        self.pool_t += dt;
+        let size = self.view_size();
+        self.ar.update(self.backend.as_mut(), self.rotation, size);
+        self.draw();
+    }
+
+    pub fn race_time(&self) -> f64 {
+        self.panels.clock.time()
+    }
+
+    /// The window's size in pixels (1 × 1 without one).
+    pub fn view_size(&self) -> [u32; 2] {
+        self.graphics.as_ref().map_or([1, 1], |g| g.window.size())
+    }
+
+    fn placed(&self) -> Option<CoursePlacement> {
+        match self.scene {
+            SceneChoice::Race => self.course,
+            SceneChoice::Pool => self.pool_placement,
+        }
+    }
+
+    /// Where the course stands on the table, once placed.
+    pub fn course(&self) -> Option<CoursePlacement> {
+        self.course
+    }
+
+    pub fn pool_placement(&self) -> Option<CoursePlacement> {
+        self.pool_placement
+    }
+
+    /// The banner's text and tone now.
+    pub fn banner(&self) -> Option<(String, Tone)> {
+        let note = self
+            .ar
+            .note
+            .as_deref()
+            .or(self.graphics.as_ref().and_then(|g| g.note.as_deref()));
+        let message = banner(&ArStatus {
+            session: self.ar.session,
+            tracking_hint: self.ar.hint,
+            has_frame: self.ar.frame.is_some(),
+            placed: self.placed().is_some(),
+            what: self.scene.noun(),
+            note,
+        });
+        // The GPU's fallback is said even when the session has nothing to say.
+        match (message, self.graphics.as_ref().and_then(|g| g.note.clone())) {
+            (None, Some(n)) => Some((n, Tone::Warning)),
+            (m, _) => m,
+        }
+    }
+
+    pub fn session(&self) -> SessionState {
+        self.ar.session
+    }
+
+    /// What a session log records.
+    pub fn status(&self) -> PhoneStatus {
+        PhoneStatus {
+            session: format!("{:?}", self.ar.session),
+            banner: self.banner().map(|(t, _)| t),
+            placed: self.placed().is_some(),
+            frames_drawn: self.graphics.as_ref().map_or(0, |g| g.frames_drawn),
+            race_time: self.race_time(),
+            scene: self.scene.noun(),
+            recording: self.ar.recorder.is_some(),
+        }
+    }
+
+    /// The latest frame drawn, read back (offscreen windows only).
+    pub fn screenshot(&self) -> Option<Result<image::RgbaImage, String>> {
+        let g = self.graphics.as_ref()?;
+        let t = g.window.offscreen_texture()?;
+        Some(g.gpu.read_texture(t).map_err(|e| e.to_string()))
+    }
+
+    /// The device's adapter, for logs.
+    pub fn describe_gpu(&self) -> Option<String> {
+        self.graphics.as_ref().map(|g| g.gpu.describe())
+    }
+
+    /// The configuration the current window was given (tests of the kept configuration).
+    pub fn window_config(&self) -> Option<wgpu::SurfaceConfiguration> {
+        self.graphics
+            .as_ref()
+            .and_then(|g| g.window.config().cloned())
+    }
+
+    /// The egui context of the panels (tests find widgets in its last pass).
+    pub fn egui_context(&self) -> Option<egui::Context> {
+        self.graphics.as_ref().map(|g| g.egui.ctx.clone())
+    }
+
+    /// The backend, for adapters that script it (the simulated ARCore).
+    pub fn backend_mut(&mut self) -> &mut dyn ArBackend {
+        self.backend.as_mut()
+    }
+
+    fn toggle_recording(&mut self) {
+        let stamp = (self.now * 1000.0) as u64 + self.ar.frame_seq;
+        if let Some(dir) = self.ar.toggle_recording(self.data_dir.as_deref(), stamp) {
+            self.last_recording = Some(dir);
+        }
+    }
+
+    /// Switches the scene (the bar's toggle; `scene race|pool` in scripts).
+    pub fn choose_scene(&mut self, choice: SceneChoice) {
+        if choice != self.scene {
+            self.end_gesture();
+            self.scene = choice;
+        }
+    }
+
+    /// Starts or stops recording (the bar's button).
+    pub fn record_button(&mut self) {
+        self.toggle_recording();
+    }
+}

@@ -1,0 +1,379 @@
+//! The phone app on the host, headless: `regatta phone-sim --script FILE --out DIR`. The app
+//! core's phone app ([`crate::core::phone::PhoneApp`]) drawn into an offscreen window
+//! (lavapipe in CI), with the simulated ARCore ([`backend`]) as its AR backend, driven by a
+//! script ([`script`], docs/phone-sim.md): the events an Android activity would send, in order,
+//! with time stepped exactly (no wall clock).
+
+pub mod backend;
+pub mod device;
+pub mod ffi;
+pub mod script;
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use ar::arcore::ffi::ScriptedJni;
+
+use glam::DVec2;
+
+use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
+use crate::core::scene::RaceWorld;
+use crate::overlay::touch::TouchAction;
+use backend::{Availability, Feed, SimArCore, SimControl};
+use ffi::{FfiBackend, SimLibrary};
+use script::{Line, Step};
+
+/// Display frames per simulated second. Low, so lavapipe runs a minute of session in seconds;
+/// taps (down, one frame, up: 0.1 s) stay under the tap limit of 0.3 s.
+pub const SIM_FPS: f64 = 10.0;
+
+/// Where a script's cues go: the scripted stand-in, or the simulated ARCore behind the
+/// phone's own FFI with its scripted Java side.
+pub enum Cues {
+    Scripted(SimControl),
+    Ffi {
+        sim: SimLibrary,
+        jni: Arc<ScriptedJni>,
+        missing: Arc<AtomicBool>,
+    },
+}
+
+impl Cues {
+    /// The phone's own ARCore glue loading the simulator `library`, playing `replay` or its
+    /// synthetic table; its cues.
+    pub fn ffi(
+        library: &Path,
+        replay: Option<&Path>,
+    ) -> Result<(Box<dyn crate::core::ar::ArBackend>, Cues), String> {
+        let sim = SimLibrary::open(library, replay, [320, 240, 32])?;
+        let jni = ffi::fresh_install();
+        let backend = FfiBackend::new(library, Arc::clone(&jni));
+        let missing = Arc::clone(&backend.missing);
+        Ok((Box::new(backend), Cues::Ffi { sim, jni, missing }))
+    }
+
+    /// Before a display frame `dt` seconds after the last: the scripted feed's time moves on
+    /// (in the foreground); a permission dialog shown pauses and resumes the activity, as
+    /// Android does.
+    pub fn before_frame(&self, app: &mut PhoneApp, dt: f64, foreground: bool) {
+        match self {
+            Cues::Scripted(c) if foreground => c.lock().t += dt,
+            Cues::Ffi { jni, .. } if jni.take_dialog_shown() => {
+                app.on(PhoneEvent::Paused);
+                app.on(PhoneEvent::Resumed);
+            }
+            _ => {}
+        }
+    }
+}
+
+/// A phone session on the host: the app, the simulated ARCore's cues, the screen.
+pub struct PhoneSim {
+    pub app: PhoneApp,
+    pub cues: Cues,
+    /// The screen in its natural (portrait) orientation, pixels.
+    portrait: [u32; 2],
+    /// Display rotation, quarter turns counter-clockwise.
+    rotation: u32,
+    foreground: bool,
+    /// The app has been started (the first step that is not a cue starts it).
+    launched: bool,
+}
+
+impl PhoneSim {
+    /// The embedded race on a phone screen of `portrait` pixels at `ppp` pixels per point,
+    /// frames from `feed`, not yet launched (cues may be set first). `data_dir` receives
+    /// recordings.
+    pub fn new(feed: Feed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
+        let (backend, control) = SimArCore::new(feed);
+        Self::with_backend(
+            Box::new(backend),
+            Cues::Scripted(control),
+            portrait,
+            ppp,
+            data_dir,
+        )
+    }
+
+    /// [`PhoneSim::new`] through the phone's own ARCore glue loading the simulator `library`
+    /// (`crates/arcore_sim`), playing `replay` or its synthetic table.
+    pub fn with_ffi(
+        library: &Path,
+        replay: Option<&Path>,
+        portrait: [u32; 2],
+        ppp: f32,
+        data_dir: Option<PathBuf>,
+    ) -> Result<Self, String> {
+        let (backend, cues) = Cues::ffi(library, replay)?;
+        Ok(Self::with_backend(backend, cues, portrait, ppp, data_dir))
+    }
+
+    fn with_backend(
+        backend: Box<dyn crate::core::ar::ArBackend>,
+        cues: Cues,
+        portrait: [u32; 2],
+        ppp: f32,
+        data_dir: Option<PathBuf>,
+    ) -> Self {
+        let race = crate::cli::inputs::load_race(&[]).expect("the embedded race loads");
+        let sea = crate::cli::inputs::load_sea(None).expect("the embedded sea loads");
+        let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
+        app.data_dir = data_dir;
+        app.on(PhoneEvent::Density(ppp));
+        PhoneSim {
+            app,
+            cues,
+            portrait,
+            rotation: 0,
+            foreground: false,
+            launched: false,
+        }
+    }
+
+    /// The scripted stand-in's state (tests of the scripted backend).
+    pub fn scripted(&self) -> &SimControl {
+        match &self.cues {
+            Cues::Scripted(c) => c,
+            Cues::Ffi { .. } => panic!("this session runs the FFI, not the scripted stand-in"),
+        }
+    }
+
+    fn set_permission(&self, granted: bool) {
+        match &self.cues {
+            Cues::Scripted(c) => c.lock().permission = granted,
+            Cues::Ffi { jni, .. } => jni.script(|s| s.dialog_answer = granted),
+        }
+    }
+
+    fn set_availability(&self, a: Availability) {
+        match &self.cues {
+            Cues::Scripted(c) => c.lock().availability = a,
+            Cues::Ffi { sim, missing, .. } => {
+                missing.store(a == Availability::Missing, Ordering::SeqCst);
+                sim.set_availability(a);
+            }
+        }
+    }
+
+    fn set_tracking(&self, lost: Option<i32>) {
+        match &self.cues {
+            Cues::Scripted(c) => c.lock().lost = lost,
+            Cues::Ffi { sim, .. } => sim.set_tracking(lost),
+        }
+    }
+
+    /// [`PhoneSim::new`], launched: the app resumed with a window and one frame drawn.
+    pub fn launch(feed: Feed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
+        let mut sim = Self::new(feed, portrait, ppp, data_dir);
+        sim.resume();
+        sim
+    }
+
+    /// The screen as the display is turned now, pixels.
+    pub fn size(&self) -> [u32; 2] {
+        let [w, h] = self.portrait;
+        if self.rotation % 2 == 1 {
+            [h, w]
+        } else {
+            [w, h]
+        }
+    }
+
+    fn frames(&mut self, seconds: f64) {
+        let n = (seconds * SIM_FPS).ceil().max(1.0) as usize;
+        for _ in 0..n {
+            self.frame(seconds / n as f64);
+        }
+    }
+
+    /// One display frame `dt` seconds after the last.
+    pub fn frame(&mut self, dt: f64) {
+        self.cues.before_frame(&mut self.app, dt, self.foreground);
+        self.app.frame(dt);
+    }
+
+    fn px(&self, p: [f64; 2]) -> [f32; 2] {
+        let [w, h] = self.size();
+        [(p[0] * f64::from(w)) as f32, (p[1] * f64::from(h)) as f32]
+    }
+
+    fn touch(&mut self, action: TouchAction, fingers: &[[f32; 2]]) {
+        self.app.on(PhoneEvent::touch(action, fingers));
+    }
+
+    /// A finger down at `p` (screen units), one frame, up.
+    pub fn tap(&mut self, p: [f64; 2]) {
+        let px = self.px(p);
+        self.touch(TouchAction::Down(0), &[px]);
+        self.frame(1.0 / SIM_FPS);
+        self.touch(TouchAction::Up(0), &[px]);
+        self.frame(1.0 / SIM_FPS);
+    }
+
+    /// A finger down at `from`, moved to `to` over `seconds`, up.
+    pub fn drag(&mut self, from: [f64; 2], to: [f64; 2], seconds: f64) {
+        let n = (seconds * SIM_FPS).ceil().max(1.0) as usize;
+        self.touch(TouchAction::Down(0), &[self.px(from)]);
+        self.frame(1.0 / SIM_FPS);
+        for i in 1..=n {
+            let s = i as f64 / n as f64;
+            let p = [
+                from[0] + s * (to[0] - from[0]),
+                from[1] + s * (to[1] - from[1]),
+            ];
+            self.touch(TouchAction::Move, &[self.px(p)]);
+            self.frame(seconds / n as f64);
+        }
+        self.touch(TouchAction::Up(0), &[self.px(to)]);
+        self.frame(1.0 / SIM_FPS);
+    }
+
+    /// Two fingers about the centre, 0.2 screen widths apart, spread by `scale` and turned by
+    /// `twist_deg` (counter-clockwise on screen) over five frames.
+    pub fn pinch(&mut self, scale: f64, twist_deg: f64) {
+        let [w, h] = self.size();
+        let c = DVec2::new(f64::from(w), f64::from(h)) / 2.0;
+        let r0 = 0.1 * f64::from(w);
+        let at = |s: f64| -> [[f32; 2]; 2] {
+            let r = r0 * (1.0 + s * (scale - 1.0));
+            // Screen y points down: counter-clockwise on screen is a negative angle here.
+            let a = -(s * twist_deg).to_radians();
+            let d = DVec2::new(a.cos(), a.sin()) * r;
+            [(c - d).as_vec2().to_array(), (c + d).as_vec2().to_array()]
+        };
+        let start = at(0.0);
+        self.touch(TouchAction::Down(0), &start[..1]);
+        self.touch(TouchAction::PointerDown(1), &start);
+        self.frame(1.0 / SIM_FPS);
+        for i in 1..=5 {
+            self.touch(TouchAction::Move, &at(f64::from(i) / 5.0));
+            self.frame(1.0 / SIM_FPS);
+        }
+        let end = at(1.0);
+        self.touch(TouchAction::PointerUp(1), &end);
+        self.touch(TouchAction::Up(0), &end[..1]);
+        self.frame(1.0 / SIM_FPS);
+    }
+
+    /// To the background: paused, then the window destroyed (its surface dropped).
+    pub fn pause(&mut self) {
+        self.app.on(PhoneEvent::Paused);
+        self.app.on(PhoneEvent::WindowDestroyed);
+        self.foreground = false;
+    }
+
+    /// Back: resumed, a new window, one frame.
+    pub fn resume(&mut self) {
+        self.launched = true;
+        self.app.on(PhoneEvent::Resumed);
+        self.app.on(PhoneEvent::WindowCreated {
+            surface: None,
+            size: self.size(),
+        });
+        self.foreground = true;
+        self.frame(0.0);
+    }
+
+    /// The display turned to `degrees`: the new rotation and the window's new size.
+    pub fn rotate(&mut self, degrees: u32) {
+        self.rotation = degrees / 90 % 4;
+        self.app.on(PhoneEvent::Rotation(self.rotation as i32));
+        self.app.on(PhoneEvent::Resized(self.size()));
+        self.frame(1.0 / SIM_FPS);
+    }
+
+    /// Carries out one step; an error says why the step failed.
+    pub fn step(&mut self, step: &Step, out: &Path) -> Result<(), String> {
+        let cue = matches!(
+            step,
+            Step::Permission(_) | Step::ArCore(_) | Step::Tracking(_)
+        );
+        // The phone as the leading cues describe it, then the launch.
+        if !self.launched && !cue && *step != Step::Resume {
+            self.resume();
+        }
+        match step {
+            Step::Wait(s) => self.frames(*s),
+            Step::Tap(p) => self.tap(*p),
+            Step::Drag(a, b, s) => self.drag(*a, *b, *s),
+            Step::Pinch(s, d) => self.pinch(*s, *d),
+            Step::Pause => self.pause(),
+            Step::Resume => self.resume(),
+            Step::Rotate(d) => self.rotate(*d),
+            Step::Permission(g) => self.set_permission(*g),
+            Step::ArCore(a) => self.set_availability(*a),
+            Step::Tracking(lost) => {
+                self.set_tracking(*lost);
+                if self.launched {
+                    self.frame(1.0 / SIM_FPS);
+                }
+            }
+            Step::Screenshot(name) => {
+                let img = self
+                    .app
+                    .screenshot()
+                    .ok_or("no window to take a screenshot of (the app is in the background)")??;
+                let path = out.join(format!("{name}.png"));
+                img.save(&path)
+                    .map_err(|e| format!("{}: {e}", input::show_path(&path)))?;
+            }
+            Step::Record(start) => {
+                if self.app.status().recording != *start {
+                    self.app.record_button();
+                }
+                self.frame(1.0 / SIM_FPS);
+                if self.app.status().recording != *start {
+                    return Err(if *start {
+                        "the recording did not start (no camera frame yet?)".into()
+                    } else {
+                        "the recording did not stop".into()
+                    });
+                }
+            }
+            Step::Scene(s) => {
+                self.app.choose_scene(*s);
+                self.frame(1.0 / SIM_FPS);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One line of `log.jsonl`.
+#[derive(serde::Serialize)]
+struct LogLine<'a> {
+    line: usize,
+    step: &'a str,
+    ok: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    error: Option<String>,
+    #[serde(flatten)]
+    status: PhoneStatus,
+}
+
+/// Runs `lines` on `sim`, writing `log.jsonl` into `out`; the number of failed steps.
+pub fn run_script(sim: &mut PhoneSim, lines: &[Line], out: &Path) -> Result<usize, String> {
+    let log_path = out.join("log.jsonl");
+    let mut log = std::fs::File::create(&log_path)
+        .map(std::io::BufWriter::new)
+        .map_err(|e| format!("{}: {e}", input::show_path(&log_path)))?;
+    let mut failed = 0;
+    for l in lines {
+        let result = sim.step(&l.step, out);
+        failed += usize::from(result.is_err());
+        let line = LogLine {
+            line: l.number,
+            step: &l.text,
+            ok: result.is_ok(),
+            error: result.err().map(|e| input::one_line(&e)),
+            status: sim.app.status(),
+        };
+        let json = serde_json::to_string(&line).map_err(|e| e.to_string())?;
+        writeln!(log, "{json}").map_err(|e| format!("{}: {e}", input::show_path(&log_path)))?;
+    }
+    log.flush()
+        .map_err(|e| format!("{}: {e}", input::show_path(&log_path)))?;
+    Ok(failed)
+}

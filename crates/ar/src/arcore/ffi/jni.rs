@@ -1,0 +1,203 @@
+//! The few Java calls around ARCore, behind one narrow trait: [`Jni`]. On the phone the app
+//! implements it with the `jni` crate (`app/src/android/jni_calls.rs`); on the host
+//! [`ScriptedJni`] answers from a script and records which Java object each call went to
+//! (docs/phone-arcore.md says why a fake and not a JVM).
+//!
+//! The receiver is explicit in every call ([`JavaObject`]) because it is what goes wrong on a
+//! device: android-activity gives `ndk_context` the Application, while
+//! `ArCoreApk_requestInstall`, `requestPermissions` and `getWindowManager` need the Activity.
+
+use std::ffi::c_void;
+use std::sync::{Mutex, MutexGuard};
+
+/// The Java object a call goes to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JavaObject {
+    /// The current `android.app.Activity` (`AndroidApp::activity_as_ptr()`).
+    Activity,
+    /// The `android.app.Application` (`ndk_context::android_context().context()`).
+    Application,
+}
+
+/// `android.permission.CAMERA`.
+pub const CAMERA_PERMISSION: &str = "android.permission.CAMERA";
+/// The request code of the camera permission dialog.
+pub const CAMERA_REQUEST_CODE: i32 = 1;
+
+/// The Java side of the ARCore glue.
+pub trait Jni {
+    /// Runs `f` with this thread's `JNIEnv*` and the raw `jobject` of `on`, for the C calls
+    /// that take them (`ArCoreApk_requestInstall`, `ArSession_create`).
+    fn with_env(
+        &self,
+        on: JavaObject,
+        f: &mut dyn FnMut(*mut c_void, *mut c_void),
+    ) -> Result<(), String>;
+    /// `on.checkSelfPermission(permission) == PackageManager.PERMISSION_GRANTED`.
+    fn check_self_permission(&self, on: JavaObject, permission: &str) -> Result<bool, String>;
+    /// `on.requestPermissions(new String[] {permission}, request_code)`.
+    fn request_permissions(
+        &self,
+        on: JavaObject,
+        permission: &str,
+        request_code: i32,
+    ) -> Result<(), String>;
+    /// `on.getWindowManager().getDefaultDisplay().getRotation()` (`Surface.ROTATION_*`).
+    fn display_rotation(&self, on: JavaObject) -> Result<i32, String>;
+    /// `Build.VERSION.SDK_INT`.
+    fn sdk_int(&self) -> u32;
+}
+
+impl<T: Jni + ?Sized> Jni for std::sync::Arc<T> {
+    fn with_env(
+        &self,
+        on: JavaObject,
+        f: &mut dyn FnMut(*mut c_void, *mut c_void),
+    ) -> Result<(), String> {
+        (**self).with_env(on, f)
+    }
+    fn check_self_permission(&self, on: JavaObject, permission: &str) -> Result<bool, String> {
+        (**self).check_self_permission(on, permission)
+    }
+    fn request_permissions(&self, on: JavaObject, p: &str, code: i32) -> Result<(), String> {
+        (**self).request_permissions(on, p, code)
+    }
+    fn display_rotation(&self, on: JavaObject) -> Result<i32, String> {
+        (**self).display_rotation(on)
+    }
+    fn sdk_int(&self) -> u32 {
+        (**self).sdk_int()
+    }
+}
+
+/// One Java call the host fake saw: the method and its receiver.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct JavaCall {
+    pub method: &'static str,
+    pub on: JavaObject,
+}
+
+/// What the host fake answers.
+#[derive(Clone, Debug)]
+pub struct JavaScript {
+    pub permission_granted: bool,
+    /// The user's answer to the next permission dialog (applied when it is shown).
+    pub dialog_answer: bool,
+    /// `Surface.ROTATION_*` (0..=3).
+    pub rotation: i32,
+    pub sdk_int: u32,
+}
+
+impl Default for JavaScript {
+    fn default() -> Self {
+        Self {
+            permission_granted: false,
+            dialog_answer: true,
+            rotation: 0,
+            // The Pixel 2 XL's last Android (11).
+            sdk_int: 30,
+        }
+    }
+}
+
+/// The host's [`Jni`]: scripted answers, every call recorded with its receiver. It keeps
+/// Android's rule that `requestPermissions` and `getWindowManager` exist only on `Activity`
+/// (Android API reference: `android.app.Activity`; `Application` is a `ContextWrapper`
+/// without them): on the Application they fail as `NoSuchMethodError`, as on a device.
+#[derive(Debug, Default)]
+pub struct ScriptedJni {
+    state: Mutex<(JavaScript, Vec<JavaCall>, bool)>,
+}
+
+impl ScriptedJni {
+    /// The fake `jobject`s handed to C calls: distinct, recognisable, never dereferenced by
+    /// the simulator.
+    pub const ACTIVITY_HANDLE: usize = 0xAC71_0000;
+    pub const APPLICATION_HANDLE: usize = 0xA991_0000;
+    pub const ENV_HANDLE: usize = 0xE7F0_0000;
+
+    pub fn new(script: JavaScript) -> Self {
+        Self {
+            state: Mutex::new((script, Vec::new(), false)),
+        }
+    }
+
+    fn lock(&self) -> MutexGuard<'_, (JavaScript, Vec<JavaCall>, bool)> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Changes the script (rotation, the dialog's answer, the permission).
+    pub fn script(&self, f: impl FnOnce(&mut JavaScript)) {
+        f(&mut self.lock().0);
+    }
+
+    /// Every call so far, in order.
+    pub fn calls(&self) -> Vec<JavaCall> {
+        self.lock().1.clone()
+    }
+
+    /// Whether a permission dialog was shown since the last call (and takes the flag).
+    pub fn take_dialog_shown(&self) -> bool {
+        std::mem::take(&mut self.lock().2)
+    }
+
+    /// The raw handle of `on`, as C calls receive it.
+    pub fn handle(on: JavaObject) -> usize {
+        match on {
+            JavaObject::Activity => Self::ACTIVITY_HANDLE,
+            JavaObject::Application => Self::APPLICATION_HANDLE,
+        }
+    }
+
+    fn record(&self, method: &'static str, on: JavaObject) {
+        self.lock().1.push(JavaCall { method, on });
+    }
+
+    fn activity_only(method: &str, on: JavaObject) -> Result<(), String> {
+        match on {
+            JavaObject::Activity => Ok(()),
+            JavaObject::Application => Err(format!(
+                "java.lang.NoSuchMethodError: no method {method} on android.app.Application"
+            )),
+        }
+    }
+}
+
+impl Jni for ScriptedJni {
+    fn with_env(
+        &self,
+        on: JavaObject,
+        f: &mut dyn FnMut(*mut c_void, *mut c_void),
+    ) -> Result<(), String> {
+        self.record("<jobject passed to C>", on);
+        f(
+            Self::ENV_HANDLE as *mut c_void,
+            Self::handle(on) as *mut c_void,
+        );
+        Ok(())
+    }
+
+    fn check_self_permission(&self, on: JavaObject, permission: &str) -> Result<bool, String> {
+        self.record("checkSelfPermission", on);
+        Ok(permission == CAMERA_PERMISSION && self.lock().0.permission_granted)
+    }
+
+    fn request_permissions(&self, on: JavaObject, _: &str, _: i32) -> Result<(), String> {
+        self.record("requestPermissions", on);
+        Self::activity_only("requestPermissions", on)?;
+        let mut s = self.lock();
+        s.0.permission_granted = s.0.dialog_answer;
+        s.2 = true;
+        Ok(())
+    }
+
+    fn display_rotation(&self, on: JavaObject) -> Result<i32, String> {
+        self.record("getWindowManager", on);
+        Self::activity_only("getWindowManager", on)?;
+        Ok(self.lock().0.rotation)
+    }
+
+    fn sdk_int(&self) -> u32 {
+        self.lock().0.sdk_int
+    }
+}

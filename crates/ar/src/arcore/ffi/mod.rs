@@ -1,0 +1,20 @@
+//! The app's ARCore C API glue, built on every target (feature `ffi`): on Android it loads
+//! Google's `libarcore_sdk_c.so`; on the host the same code loads the simulator
+//! (`crates/arcore_sim`, path from [`LIBRARY_ENV`]) so that the phone's code paths run in tests.
+//!
+//! - [`api`]: the function tables (names and signatures of `arcore_c_api.h`), loaded with
+//!   libloading;
+//! - [`frame`]: one frame read into an [`crate::CameraFrame`] and a [`DisplayCamera`];
+//! - [`session`]: [`ArCore`], which carries out the session machine's commands;
+//! - [`jni`]: the Java calls behind one trait ([`Jni`]), with the host's scripted fake.
+//!
+//! `session` imports `frame` and `api`; `frame` imports only `api` (no module cycle).
+
+pub mod api;
+pub mod frame;
+pub mod jni;
+pub mod session;
+
+pub use frame::{DisplayCamera, FAR_M, NEAR_M};
+pub use jni::{JavaObject, JavaScript, Jni, ScriptedJni};
+pub use session::{ARCORE_LIBRARY, ArCore, LIBRARY_ENV, Told, library_path};
