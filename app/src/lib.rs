@@ -8,6 +8,8 @@ pub mod desktop;
 pub mod error;
 pub mod overlay;
 pub mod pool_play;
+pub mod tier_control;
+pub mod tier_render;
 pub mod wakes;
 
 #[cfg(target_os = "android")]

@@ -57,6 +57,10 @@ pub struct RenderArgs {
     /// Which frame of `--replay`, from 0.
     #[arg(long, value_name = "N", requires = "replay")]
     pub frame: Option<usize>,
+    /// A quality tier (low, medium, high, ultra; docs/quality.md): its render scale, clip-map
+    /// error target, AR effects and their sizes, wake spacing and budget.
+    #[arg(long, conflicts_with_all = ["effects", "error_px", "replay"])]
+    pub tier: Option<String>,
 }
 
 /// Finest clip-map error target `--error-px` accepts, pixels. Finer targets are invisible
@@ -250,10 +254,15 @@ pub fn run(a: RenderArgs) -> CliResult {
     {
         return Err(CliError::new("--t must be a finite number of seconds"));
     }
+    let tier = a
+        .tier
+        .as_deref()
+        .map(crate::tier_render::parse_tier)
+        .transpose()?;
     if a.scene == SceneKind::Pool {
-        if effects.is_some() || a.replay.is_some() {
+        if effects.is_some() || a.replay.is_some() || tier.is_some() {
             return Err(CliError::new(
-                "--effects and --replay have no meaning with --scene pool (the pool traces its own)",
+                "--effects, --tier and --replay have no meaning with --scene pool (the pool traces its own)",
             ));
         }
         return run_pool(&a, &out, size);
@@ -278,6 +287,12 @@ pub fn run(a: RenderArgs) -> CliResult {
     let scene = scene_at(&race, &sea, t, camera);
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    if let Some(tier) = tier {
+        let wakes = (!a.no_wakes).then_some(&race);
+        let tier = crate::tier_render::TierRender::of(tier);
+        let (mut renderer, _) = tier.renderer(&gpu, wakes, &scene, size)?;
+        return finish(&a, &out, &gpu, &mut renderer, &scene, size);
+    }
     let mut renderer = Renderer::new(
         &gpu,
         render::OFFSCREEN_FORMAT,
@@ -293,11 +308,23 @@ pub fn run(a: RenderArgs) -> CliResult {
     if let Some(effects) = effects {
         render::effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
     }
-    let (img, report) = render::render_image(&gpu, &mut renderer, &scene, size)
+    finish(&a, &out, &gpu, &mut renderer, &scene, size)
+}
+
+/// Draw the frame, save it and print its record.
+fn finish(
+    a: &RenderArgs,
+    out: &ImageOut,
+    gpu: &render::Gpu,
+    renderer: &mut Renderer,
+    scene: &Scene,
+    size: [u32; 2],
+) -> CliResult {
+    let (img, report) = render::render_image(gpu, renderer, scene, size)
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     note_unmet_error(&report);
-    print_report(&a, &report)
+    print_report(a, &report)
 }
 
 /// Print the frame record and write it to `--report`.

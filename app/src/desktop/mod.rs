@@ -41,6 +41,10 @@ pub struct RunArgs {
     /// table; `synth` for the built-in synthetic table (what `regatta` alone opens).
     #[arg(long, value_name = "DIR")]
     pub replay: Option<PathBuf>,
+    /// Pin a quality tier (low, medium, high, ultra); without it the governor chooses
+    /// (docs/quality.md).
+    #[arg(long)]
+    pub tier: Option<String>,
 }
 
 impl RunArgs {
@@ -60,6 +64,11 @@ pub fn run(a: RunArgs) -> CliResult {
     let race = load_race(&a.race)?;
     // A bad feed is refused before a window opens (file and line named).
     let feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
+    let pinned = a
+        .tier
+        .as_deref()
+        .map(crate::tier_render::parse_tier)
+        .transpose()?;
     let event_loop = EventLoop::new()
         .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
     let (t0, t1) = race.time_span();
@@ -81,6 +90,11 @@ pub fn run(a: RunArgs) -> CliResult {
         drag: None,
         cursor: (0.0, 0.0),
         error: None,
+        tiers: crate::tier_control::TierControl::new(
+            pinned.unwrap_or(quality::Tier::Ultra),
+            pinned.is_some(),
+        ),
+        started: Instant::now(),
     };
     if app.pool.is_some() {
         app.orbit = pool::PoolMode::orbit();
@@ -165,6 +179,9 @@ struct App {
     drag: Option<(f64, f64)>,
     cursor: (f64, f64),
     error: Option<CliError>,
+    /// The quality governor: frame times in, the tier's renderer settings out.
+    tiers: crate::tier_control::TierControl,
+    started: Instant,
 }
 
 impl App {
@@ -245,6 +262,16 @@ impl App {
         if let Some(r) = &report {
             log::debug!("frame: {} triangles", r.triangles);
         }
+        // The governor: GPU time where measured, else the present interval; no change while
+        // the user drags the view or a panel (the timeline's scrubber).
+        let scrubbing =
+            self.drag.is_some() || st.overlay.as_ref().is_some_and(|o| o.wants_pointer());
+        let now = self.started.elapsed().as_secs_f64();
+        let gpu_ms = report.as_ref().and_then(|r| r.gpu_ms);
+        if let Some(tier) = self.tiers.frame(now, gpu_ms, scrubbing) {
+            log::info!("quality tier {}", tier.tier);
+            tier.apply_to(&mut st.renderer);
+        }
         if let Some(o) = st.overlay.as_mut() {
             if let Some(r) = &report {
                 o.record(r);
@@ -279,10 +306,16 @@ impl App {
             return;
         }
         st.window.set_title(&format!(
-            "Regatta: {} at t = {:.0} s{}",
+            "Regatta: {} at t = {:.0} s{}, quality {} ({})",
             self.race.name,
             self.clock.t,
-            if self.clock.playing { "" } else { " (paused)" }
+            if self.clock.playing { "" } else { " (paused)" },
+            self.tiers.tier(),
+            if self.tiers.pinned().is_some() {
+                "pinned"
+            } else {
+                "auto"
+            }
         ));
     }
 }
@@ -302,7 +335,10 @@ impl ApplicationHandler for App {
         let size = window.inner_size();
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
-                let renderer = window_renderer(&gpu, surface.config.format, &self.race);
+                let mut renderer = window_renderer(&gpu, surface.config.format, &self.race);
+                if self.tiers.pinned().is_some() {
+                    crate::tier_render::TierRender::of(self.tiers.tier()).apply_to(&mut renderer);
+                }
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
                     let title = self.race.name.clone();

@@ -6,7 +6,8 @@ use std::sync::Arc;
 use glam::DVec2;
 
 use crate::frame::{
-    ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, Targets, WakeRecord,
+    ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, ShaderInvocations,
+    Targets, WakeRecord,
 };
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
@@ -50,7 +51,9 @@ impl Default for RenderOptions {
     }
 }
 
-/// Pipeline-statistics queries: primitives entering the clipper, one query per pass.
+/// Pipeline-statistics queries, one per pass: vertex shader invocations, primitives entering
+/// the clipper and fragment shader invocations, in that order (wgpu writes a query's counters
+/// in the order of their bits).
 struct Stats {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
@@ -60,6 +63,8 @@ struct Stats {
 
 /// Passes a frame can time.
 const TIMED_PASSES: u32 = 16;
+/// Counters each pipeline-statistics query writes ([`Stats`]).
+const STATS_PER_QUERY: u64 = 3;
 /// Timestamp slots of pass k: 4k.. begin and end of its render pass and its compute stage.
 /// The passes with offscreen work follow from OFFSCREEN_SLOTS, two each, in order: only
 /// written slots are resolved (a query never written has no defined value), and a resolve
@@ -193,6 +198,8 @@ pub struct Renderer {
     upscale: Option<Upscale>,
     /// Memory budget of a frame's wake buffers, bytes (within the device's limits).
     wake_budget: u64,
+    /// Most wake sources a frame draws (a quality tier's budget; default unlimited).
+    wake_sources: usize,
 }
 
 impl Renderer {
@@ -247,7 +254,7 @@ impl Renderer {
             .contains(wgpu::Features::PIPELINE_STATISTICS_QUERY)
             .then(|| {
                 let capacity = 16;
-                let size = u64::from(capacity) * 8;
+                let size = u64::from(capacity) * 8 * STATS_PER_QUERY;
                 let buffer = |label, usage| {
                     device.create_buffer(&wgpu::BufferDescriptor {
                         label: Some(label),
@@ -260,7 +267,9 @@ impl Renderer {
                     queries: device.create_query_set(&wgpu::QuerySetDescriptor {
                         label: Some("pass primitives"),
                         ty: wgpu::QueryType::PipelineStatistics(
-                            wgpu::PipelineStatisticsTypes::CLIPPER_INVOCATIONS,
+                            wgpu::PipelineStatisticsTypes::VERTEX_SHADER_INVOCATIONS
+                                | wgpu::PipelineStatisticsTypes::CLIPPER_INVOCATIONS
+                                | wgpu::PipelineStatisticsTypes::FRAGMENT_SHADER_INVOCATIONS,
                         ),
                         count: capacity,
                     }),
@@ -289,6 +298,7 @@ impl Renderer {
             still: None,
             upscale: None,
             wake_budget: crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
+            wake_sources: usize::MAX,
         }
     }
 
@@ -308,6 +318,13 @@ impl Renderer {
     /// [`crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES`]; the device's limits cap it too).
     pub fn set_wake_buffer_budget(&mut self, bytes: u64) {
         self.wake_budget = bytes;
+        self.invalidate();
+    }
+
+    /// The most wake sources a frame draws (a quality tier's budget): beyond it the least
+    /// visible are left out, with the error bound in the frame report (`wake_bins::fit`).
+    pub fn set_wake_source_budget(&mut self, sources: usize) {
+        self.wake_sources = sources;
         self.invalidate();
     }
 
@@ -477,7 +494,7 @@ impl Renderer {
             );
             let half = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
             let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), self.wake_budget);
-            (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap);
+            (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap, self.wake_sources);
             if frame.wake_drop.dropped > 0 {
                 // Every frame of a bunched fleet drops some: the frame report carries it, the
                 // log only at info (a warning per frame would flood the terminal).
@@ -605,7 +622,13 @@ impl Renderer {
         {
             let n = run.len() as u32;
             enc.resolve_query_set(&st.queries, 0..n, &st.resolve, 0);
-            enc.copy_buffer_to_buffer(&st.resolve, 0, &st.read, 0, u64::from(n) * 8);
+            enc.copy_buffer_to_buffer(
+                &st.resolve,
+                0,
+                &st.read,
+                0,
+                u64::from(n) * 8 * STATS_PER_QUERY,
+            );
         }
         if let Some(t) = timer
             && !run.is_empty()
@@ -647,14 +670,22 @@ impl Renderer {
             }
         }
         let mut triangles_source = "counted";
+        let mut shader_invocations = Vec::new();
         if let Some(st) = stats
             && !run.is_empty()
         {
             match gpu.read_buffer(&st.read) {
                 Ok(bytes) => {
-                    let prims: &[u64] = bytemuck::cast_slice(&bytes);
+                    let counts: &[u64] = bytemuck::cast_slice(&bytes);
                     for (k, &i) in run.iter().enumerate() {
-                        records[i].triangles = prims[k];
+                        let [vertex, prims, fragment] =
+                            std::array::from_fn(|c| counts[3 * k + c]);
+                        records[i].triangles = prims;
+                        shader_invocations.push(ShaderInvocations {
+                            pass: records[i].name.clone(),
+                            vertex,
+                            fragment,
+                        });
                     }
                     triangles_source = "pipeline_statistics";
                 }
@@ -672,6 +703,7 @@ impl Renderer {
             triangles: records.iter().map(|r| r.triangles).sum(),
             triangles_source: triangles_source.into(),
             passes: records,
+            shader_invocations,
             gpu_ms,
             clipmap: ClipMapRecord::of(&frame),
             wakes: self.wake.as_ref().map(|_| WakeRecord {

@@ -9,12 +9,14 @@ pub mod clock;
 pub mod effects;
 pub mod leaderboard;
 pub mod perf;
+pub mod tier;
 pub mod timeline;
 
 pub use clock::{RaceClock, SPEEDS, format_race_time};
 pub use effects::{EffectToggle, effects_ui};
 pub use leaderboard::{LeaderboardRow, leaderboard_rows, leaderboard_ui};
 pub use perf::{FpsMeter, PassStat, PerfStats, perf_ui};
+pub use tier::{TierPanel, tier_ui};
 pub use timeline::{TimelineEvent, timeline_ui};
 
 use egui::{Align2, Color32, Frame, Ui};
