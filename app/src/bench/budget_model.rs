@@ -74,16 +74,26 @@ pub struct PassWork {
     pub cost: Cost,
     /// Bytes written to render targets (colour and depth) and read as vertices.
     pub target_bytes: f64,
+    /// Invocations: vertex (or compute), fragment.
+    pub invocations: [f64; 2],
 }
 
 impl PassWork {
     /// Milliseconds on `phone` at the low (`hi = false`) or high end of its rates.
     pub fn ms(&self, phone: &PhoneGpu, hi: bool) -> f64 {
+        self.bound(phone, hi).1
+    }
+
+    /// What bounds the pass on `phone` ("ALU", "texture" or "memory") and its milliseconds.
+    pub fn bound(&self, phone: &PhoneGpu, hi: bool) -> (&'static str, f64) {
         let k = usize::from(hi);
         let alu = self.cost.alu / (phone.gflops[k] * 1e9);
         let tex = self.cost.tex / (phone.gtexels[k] * 1e9);
         let mem = (self.cost.storage_bytes + self.target_bytes) / (phone.gbytes[k] * 1e9);
-        alu.max(tex).max(mem) * 1e3
+        [("ALU", alu), ("texture", tex), ("memory", mem)]
+            .into_iter()
+            .map(|(what, s)| (what, s * 1e3))
+            .fold(("ALU", 0.0), |a, b| if b.1 > a.1 { b } else { a })
     }
 }
 
@@ -183,6 +193,7 @@ pub fn frame_work(inp: &FrameInputs) -> Result<(Vec<PassWork>, Vec<String>), Str
             pass: inv.pass.clone(),
             cost,
             target_bytes,
+            invocations: [v, f],
         });
     }
     let drawn = inp.report.size.map(f64::from);
@@ -194,6 +205,7 @@ pub fn frame_work(inp: &FrameInputs) -> Result<(Vec<PassWork>, Vec<String>), Str
             pass: "reflection texture".into(),
             cost: run(&src, "fs_main", px)?,
             target_bytes: px * FRAGMENT_BYTES,
+            invocations: [3.0, px],
         });
     }
     if let Some(cells) = inp.offscreen.caustic_map_cells {
@@ -209,6 +221,7 @@ pub fn frame_work(inp: &FrameInputs) -> Result<(Vec<PassWork>, Vec<String>), Str
             pass: "caustic map".into(),
             cost,
             target_bytes: cells * FRAGMENT_BYTES + grid * 16.0,
+            invocations: [3.0 * grid, cells],
         });
     }
     let screen = inp.screen.map(f64::from);
@@ -218,6 +231,7 @@ pub fn frame_work(inp: &FrameInputs) -> Result<(Vec<PassWork>, Vec<String>), Str
             pass: "upscale".into(),
             cost: run(shader::UPSCALE, "fs_main", px)?,
             target_bytes: px * 8.0,
+            invocations: [3.0, px],
         });
     }
     if let Some(([w, h], per_frame)) = inp.yuv {
@@ -231,6 +245,7 @@ pub fn frame_work(inp: &FrameInputs) -> Result<(Vec<PassWork>, Vec<String>), Str
             cost: run(&src, "fs_main", px)?,
             // Upload (1.5 B per pixel) and the RGBA write.
             target_bytes: px * (1.5 + 4.0),
+            invocations: [3.0, px],
         });
     }
     Ok((out, unmodelled))
@@ -240,4 +255,68 @@ pub fn frame_work(inp: &FrameInputs) -> Result<(Vec<PassWork>, Vec<String>), Str
 pub fn frame_ms(work: &[PassWork], phone: &PhoneGpu) -> (f64, f64) {
     let sum = |hi| work.iter().map(|p| p.ms(phone, hi)).sum::<f64>();
     (sum(true), sum(false))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tier_render::TierRender;
+    use quality::Tier;
+
+    /// The sample race's frame at 600 s for `tier` at 180×320 drawn by a fresh renderer: the
+    /// model's work per pass.
+    fn work_of(gpu: &render::Gpu, tier: Tier) -> Vec<PassWork> {
+        let race = race::Race::sample();
+        let scene =
+            crate::cli::render::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+        let t = TierRender::of(tier);
+        let size = [180, 320];
+        let (mut renderer, fx) = t.renderer(gpu, Some(&race), &scene, size).expect("renderer");
+        let view = crate::bench::offscreen(gpu, size);
+        let report = renderer.render(gpu, &view, size, &scene).expect("frame");
+        assert!(!report.shader_invocations.is_empty(), "no pipeline statistics");
+        let drawn = f64::from(report.size[0] * report.size[1]);
+        for inv in &report.shader_invocations {
+            // A pass shades each drawn pixel a few times at most: lavapipe counts a 2×2 quad's
+            // helper lanes too (as phone GPUs shade them), so the clip-map's far, pixel-sized
+            // triangles count about 4 per pixel.
+            assert!(inv.fragment as f64 <= 8.0 * drawn, "{inv:?}");
+        }
+        let inputs = FrameInputs {
+            report: &report,
+            offscreen: fx.offscreen_sizes(),
+            ar: &t.ar,
+            trips: Trips {
+                waves: scene.sea.waves.len() as f64,
+                wake_sources_per_bin: 4.0,
+                marks: scene.marks.len() as f64,
+            },
+            screen: size,
+            yuv: None,
+        };
+        let (work, unmodelled) = frame_work(&inputs).expect("model");
+        assert!(unmodelled.is_empty(), "{unmodelled:?}");
+        work
+    }
+
+    /// Same commit, same numbers: two renderers drawing the same frame give the same work to
+    /// the last bit, and the richer tier costs more on both phones.
+    #[test]
+    fn the_model_is_deterministic_and_ranks_the_tiers() {
+        let Some(gpu) = render::gpu::test_gpu() else {
+            return;
+        };
+        let a = work_of(&gpu, Tier::High);
+        let b = work_of(&gpu, Tier::High);
+        assert_eq!(a, b);
+        let water = a.iter().find(|w| w.pass == "ar_water").expect("the AR water");
+        assert!(water.invocations[1] > 0.0 && water.cost.alu > 0.0);
+        let low = work_of(&gpu, Tier::Low);
+        for phone in &PHONES {
+            let (hi, lo) = (frame_ms(&a, phone), frame_ms(&low, phone));
+            assert!(hi.0 > lo.0 && hi.1 > lo.1, "{}: {hi:?} vs {lo:?}", phone.phone);
+            // The slow end of the spec sheets is slower.
+            assert!(hi.1 >= hi.0);
+        }
+    }
 }
