@@ -179,7 +179,7 @@ impl Walker<'_> {
                 }
                 Statement::Store { value, pointer } => {
                     if self.in_storage(f, fi, *pointer) {
-                        c.storage_bytes += 4.0 * self.components(f, fi, *value);
+                        c.storage_bytes += self.bytes(fi, *value);
                     }
                 }
                 Statement::ImageStore { .. } => c.tex += 1.0,
@@ -196,6 +196,12 @@ impl Walker<'_> {
             TypeInner::Matrix { columns, rows, .. } => f64::from(*columns as u8 * *rows as u8),
             _ => 1.0,
         }
+    }
+
+    /// Bytes of the value of `h` (a struct loaded whole counts all its fields).
+    fn bytes(&self, fi: &FunctionInfo, h: Handle<Expression>) -> f64 {
+        let inner = fi[h].ty.inner_with(&self.module.types);
+        f64::from(inner.size(self.module.to_ctx()))
     }
 
     fn is_matrix(&self, fi: &FunctionInfo, h: Handle<Expression>) -> bool {
@@ -247,7 +253,7 @@ impl Walker<'_> {
             Expression::ImageSample { .. } | Expression::ImageLoad { .. } => c.tex = 1.0,
             Expression::Load { pointer } => {
                 if self.in_storage(f, fi, *pointer) {
-                    c.storage_bytes = 4.0 * n;
+                    c.storage_bytes = self.bytes(fi, h);
                 }
             }
             _ => {}
