@@ -53,7 +53,12 @@ impl TierControl {
     /// One presented frame at `now_s` (monotonic seconds): `gpu_ms` where the adapter measured
     /// it, else the present interval is the frame time. Returns the settings to apply when the
     /// governor changes tier (never while `scrubbing`).
-    pub fn frame(&mut self, now_s: f64, gpu_ms: Option<f64>, scrubbing: bool) -> Option<TierRender> {
+    pub fn frame(
+        &mut self,
+        now_s: f64,
+        gpu_ms: Option<f64>,
+        scrubbing: bool,
+    ) -> Option<TierRender> {
         let interval = self.last_present.map(|t| (now_s - t) * 1e3);
         self.last_present = Some(now_s);
         let frame_ms = gpu_ms.or(interval)?;
@@ -68,7 +73,13 @@ mod tests {
     use super::*;
 
     /// Present intervals of `ms` from 0 for `seconds`, fed with no GPU time; the changes.
-    fn run(c: &mut TierControl, ms: f64, from_s: f64, seconds: f64, scrubbing: bool) -> Vec<(f64, Tier)> {
+    fn run(
+        c: &mut TierControl,
+        ms: f64,
+        from_s: f64,
+        seconds: f64,
+        scrubbing: bool,
+    ) -> Vec<(f64, Tier)> {
         let mut out = Vec::new();
         let mut t = from_s;
         while t < from_s + seconds {

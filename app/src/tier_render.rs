@@ -46,12 +46,7 @@ impl TierRender {
     }
 
     /// `tier`'s settings over `options`, `ar` and `wake` (fields a tier does not set are kept).
-    pub fn over(
-        tier: Tier,
-        options: RenderOptions,
-        ar: ArConfig,
-        wake: WakeParams,
-    ) -> TierRender {
+    pub fn over(tier: Tier, options: RenderOptions, ar: ArConfig, wake: WakeParams) -> TierRender {
         let s: TierSettings = tier.settings();
         let effects = s
             .effects

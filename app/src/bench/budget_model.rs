@@ -287,10 +287,15 @@ mod tests {
             crate::cli::render::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
         let t = TierRender::of(tier);
         let size = [180, 320];
-        let (mut renderer, fx) = t.renderer(gpu, Some(&race), &scene, size).expect("renderer");
+        let (mut renderer, fx) = t
+            .renderer(gpu, Some(&race), &scene, size)
+            .expect("renderer");
         let view = crate::bench::offscreen(gpu, size);
         let report = renderer.render(gpu, &view, size, &scene).expect("frame");
-        assert!(!report.shader_invocations.is_empty(), "no pipeline statistics");
+        assert!(
+            !report.shader_invocations.is_empty(),
+            "no pipeline statistics"
+        );
         let drawn = f64::from(report.size[0] * report.size[1]);
         for inv in &report.shader_invocations {
             // A pass shades each drawn pixel a few times at most: lavapipe counts a 2×2 quad's
@@ -330,12 +335,19 @@ mod tests {
         let a = work_of(&gpu, Tier::High);
         let b = work_of(&gpu, Tier::High);
         assert_eq!(a, b);
-        let water = a.iter().find(|w| w.pass == "ar_water").expect("the AR water");
+        let water = a
+            .iter()
+            .find(|w| w.pass == "ar_water")
+            .expect("the AR water");
         assert!(water.invocations[1] > 0.0 && water.cost.alu > 0.0);
         let low = work_of(&gpu, Tier::Low);
         for phone in &PHONES {
             let (hi, lo) = (frame_ms(&a, phone), frame_ms(&low, phone));
-            assert!(hi.0 > lo.0 && hi.1 > lo.1, "{}: {hi:?} vs {lo:?}", phone.phone);
+            assert!(
+                hi.0 > lo.0 && hi.1 > lo.1,
+                "{}: {hi:?} vs {lo:?}",
+                phone.phone
+            );
             // The slow end of the spec sheets is slower.
             assert!(hi.1 >= hi.0);
         }

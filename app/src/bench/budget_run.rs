@@ -44,7 +44,12 @@ fn median_iqr(v: &[f64]) -> (f64, f64) {
 
 /// Trip counts of the frame's loops: the sea's waves, the marks, and the wake sources listed
 /// per non-empty bin of the frame's wake grid (binned as the renderer bins them).
-fn trips(scene: &render::Scene, tier: &TierRender, wake: &ocean::wake::Wake, drawn: [u32; 2]) -> Trips {
+fn trips(
+    scene: &render::Scene,
+    tier: &TierRender,
+    wake: &ocean::wake::Wake,
+    drawn: [u32; 2],
+) -> Trips {
     let frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
     let eye = [scene.camera.eye.x, scene.camera.eye.z];
     let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
@@ -88,7 +93,10 @@ fn measure(
     let scene = crate::cli::render::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
     let t = TierRender::of(tier);
     let size = phone.screen;
-    ctx.progress(format!("budget: {} {tier} at {}×{}", phone.phone, size[0], size[1]));
+    ctx.progress(format!(
+        "budget: {} {tier} at {}×{}",
+        phone.phone, size[0], size[1]
+    ));
     let (mut renderer, fx) = t.renderer(gpu, Some(&race), &scene, size)?;
     let view = crate::bench::offscreen(gpu, size);
     let failed = |e: render::GpuError| CliError(e.to_string());
@@ -104,7 +112,9 @@ fn measure(
             ..scene.clone()
         };
         let t0 = Instant::now();
-        let r = renderer.render(gpu, &view, size, &playing).map_err(failed)?;
+        let r = renderer
+            .render(gpu, &view, size, &playing)
+            .map_err(failed)?;
         gpu.wait();
         let here = r.gpu_ms.unwrap_or(t0.elapsed().as_secs_f64() * 1e3);
         let gflops = (before * kernel.gflops(iterations)).sqrt();
@@ -124,9 +134,16 @@ fn measure(
     // The range: fast spec with every occluded fragment removed, to slow spec shading all
     // the depth test lets through; the phone's own figure: slow spec, its architecture.
     let range = (frame_ms(&hsr, phone).0, frame_ms(&full, phone).1);
-    let work = if phone.hidden_surface_removal { hsr } else { full };
+    let work = if phone.hidden_surface_removal {
+        hsr
+    } else {
+        full
+    };
     if !unmodelled.is_empty() {
-        ctx.progress(format!("budget: passes not modelled: {}", unmodelled.join(", ")));
+        ctx.progress(format!(
+            "budget: passes not modelled: {}",
+            unmodelled.join(", ")
+        ));
     }
     if report.shader_invocations.is_empty() {
         return Err(CliError::new(
@@ -330,7 +347,10 @@ fn accuracy_table(ctx: &BenchContext, rows: &[Row]) -> CliResult<Table> {
         })
         .collect();
     for tier in Tier::ALL {
-        let of = |phone: &str| rows.iter().find(|r| r.tier == tier && r.phone.phone == phone);
+        let of = |phone: &str| {
+            rows.iter()
+                .find(|r| r.tier == tier && r.phone.phone == phone)
+        };
         let (Some(a54), Some(p2)) = (of("OPPO A54"), of("Pixel 2 XL")) else {
             continue;
         };
@@ -388,7 +408,10 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
     let wake = ultra.race_wake(&race)?;
     for phone in &PHONES {
         let size = phone.screen;
-        ctx.progress(format!("budget: {} water only and all effects", phone.phone));
+        ctx.progress(format!(
+            "budget: {} water only and all effects",
+            phone.phone
+        ));
         let view = crate::bench::offscreen(gpu, size);
         let failed = |e: render::GpuError| CliError(e.to_string());
         let mut water = render::Renderer::new(gpu, render::OFFSCREEN_FORMAT, ultra.options);
@@ -424,10 +447,21 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
         for (case, v) in [
             ("water only", base),
             ("all effects", ms(&all_report, fx_sizes, &ultra.ar, None)?),
-            ("all effects + YUV every frame", ms(&all_report, fx_sizes, &ultra.ar, cam)?),
-            ("all effects + YUV at 30 Hz, 60 fps", ms(&all_report, fx_sizes, &ultra.ar, half)?),
+            (
+                "all effects + YUV every frame",
+                ms(&all_report, fx_sizes, &ultra.ar, cam)?,
+            ),
+            (
+                "all effects + YUV at 30 Hz, 60 fps",
+                ms(&all_report, fx_sizes, &ultra.ar, half)?,
+            ),
         ] {
-            t.row(vec![json!(phone.phone), json!(case), json!(v), json!(v / base)]);
+            t.row(vec![
+                json!(phone.phone),
+                json!(case),
+                json!(v),
+                json!(v / base),
+            ]);
         }
     }
     t.note(

@@ -78,12 +78,8 @@ impl Trips {
 
 /// The per-invocation work of entry point `entry` of the WGSL `source`.
 pub fn entry_cost(source: &str, entry: &str, trips: &Trips) -> Result<Cost, String> {
-    let module = naga::front::wgsl::parse_str(source).map_err(|e| {
-        format!(
-            "{entry}: {}",
-            input::one_line(&e.emit_to_string(source))
-        )
-    })?;
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
     let info = Validator::new(ValidationFlags::all(), Capabilities::all())
         .validate(&module)
         .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
@@ -177,10 +173,8 @@ impl Walker<'_> {
                     }
                     c.add(self.function(callee, &self.info[*function], callee_name));
                 }
-                Statement::Store { value, pointer } => {
-                    if self.in_storage(f, fi, *pointer) {
-                        c.storage_bytes += self.bytes(fi, *value);
-                    }
+                Statement::Store { value, pointer } if self.in_storage(f, fi, *pointer) => {
+                    c.storage_bytes += self.bytes(fi, *value);
                 }
                 Statement::ImageStore { .. } => c.tex += 1.0,
                 Statement::Atomic { .. } => c.storage_bytes += 4.0,
@@ -212,7 +206,12 @@ impl Walker<'_> {
     }
 
     /// Does `pointer` point into a storage buffer?
-    fn in_storage(&self, f: &Function, _fi: &FunctionInfo, mut pointer: Handle<Expression>) -> bool {
+    fn in_storage(
+        &self,
+        f: &Function,
+        _fi: &FunctionInfo,
+        mut pointer: Handle<Expression>,
+    ) -> bool {
         loop {
             match f.expressions[pointer] {
                 Expression::Access { base, .. } | Expression::AccessIndex { base, .. } => {
@@ -251,10 +250,8 @@ impl Walker<'_> {
                 c.alu = math_cost(*fun, n, arg_n);
             }
             Expression::ImageSample { .. } | Expression::ImageLoad { .. } => c.tex = 1.0,
-            Expression::Load { pointer } => {
-                if self.in_storage(f, fi, *pointer) {
-                    c.storage_bytes = self.bytes(fi, h);
-                }
+            Expression::Load { pointer } if self.in_storage(f, fi, *pointer) => {
+                c.storage_bytes = self.bytes(fi, h);
             }
             _ => {}
         }
@@ -273,10 +270,12 @@ impl Walker<'_> {
         }
         match &f.expressions[h] {
             Expression::Literal(naga::Literal::Bool(b)) => Some(*b),
-            Expression::Constant(c) => match self.module.global_expressions[self.module.constants[*c].init] {
-                Expression::Literal(naga::Literal::Bool(b)) => Some(b),
-                _ => None,
-            },
+            Expression::Constant(c) => {
+                match self.module.global_expressions[self.module.constants[*c].init] {
+                    Expression::Literal(naga::Literal::Bool(b)) => Some(b),
+                    _ => None,
+                }
+            }
             Expression::Unary {
                 op: naga::UnaryOperator::LogicalNot,
                 expr,

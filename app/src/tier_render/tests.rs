@@ -12,7 +12,9 @@ fn frame_of(
     let gpu = render::gpu::test_gpu().expect("checked by the caller");
     let race = race::Race::sample();
     let scene = crate::cli::render::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
-    let (mut renderer, fx) = tier.renderer(&gpu, Some(&race), &scene, size).expect("renderer");
+    let (mut renderer, fx) = tier
+        .renderer(&gpu, Some(&race), &scene, size)
+        .expect("renderer");
     let view = crate::bench::offscreen(&gpu, size);
     let report = renderer.render(&gpu, &view, size, &scene).expect("frame");
     (report, fx.offscreen_sizes())
@@ -108,5 +110,8 @@ fn each_tier_setting_shows_in_the_frame() {
 fn a_tier_by_name() {
     assert_eq!(parse_tier("medium").unwrap(), Tier::Medium);
     let e = parse_tier("max\n").unwrap_err().to_string();
-    assert!(e.contains("low, medium, high, ultra") && !e.contains('\n'), "{e}");
+    assert!(
+        e.contains("low, medium, high, ultra") && !e.contains('\n'),
+        "{e}"
+    );
 }

@@ -494,7 +494,8 @@ impl Renderer {
             );
             let half = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
             let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), self.wake_budget);
-            (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap, self.wake_sources);
+            (frame.wake_bins, frame.wake_drop) =
+                crate::wake_bins::fit(&mut frame.wakes, half, cap, self.wake_sources);
             if frame.wake_drop.dropped > 0 {
                 // Every frame of a bunched fleet drops some: the frame report carries it, the
                 // log only at info (a warning per frame would flood the terminal).
@@ -678,8 +679,7 @@ impl Renderer {
                 Ok(bytes) => {
                     let counts: &[u64] = bytemuck::cast_slice(&bytes);
                     for (k, &i) in run.iter().enumerate() {
-                        let [vertex, prims, fragment] =
-                            std::array::from_fn(|c| counts[3 * k + c]);
+                        let [vertex, prims, fragment] = std::array::from_fn(|c| counts[3 * k + c]);
                         records[i].triangles = prims;
                         shader_invocations.push(ShaderInvocations {
                             pass: records[i].name.clone(),

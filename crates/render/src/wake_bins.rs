@@ -401,7 +401,11 @@ mod tests {
         let (_, drop) = fit(&mut frame, 2000.0, u64::MAX, 150);
         assert_eq!((frame.sources.len(), drop.dropped), (150, 450));
         // The weakest 450 went: the kept ones are sources 450..600.
-        let weakest_kept = frame.sources.iter().map(|s| s.strength).fold(f32::MAX, f32::min);
+        let weakest_kept = frame
+            .sources
+            .iter()
+            .map(|s| s.strength)
+            .fold(f32::MAX, f32::min);
         assert_eq!(weakest_kept, 1e-3 * 451.0);
         assert!(drop.height_bound_m > 0.0);
         // A budget above the count drops nothing.

@@ -23,7 +23,9 @@ pub fn tier_ui(ui: &mut Ui, panel: &mut TierPanel) -> bool {
     ui.label(format!("Quality tier: {} ({how})", panel.current));
     let mut changed = false;
     ui.horizontal_wrapped(|ui| {
-        changed |= ui.selectable_value(&mut panel.pinned, None, "auto").changed();
+        changed |= ui
+            .selectable_value(&mut panel.pinned, None, "auto")
+            .changed();
         for t in Tier::ALL {
             changed |= ui
                 .selectable_value(&mut panel.pinned, Some(t), t.name())
