@@ -80,7 +80,9 @@ pub const PHONES: [PhoneGpu; 2] = [
 pub struct PassWork {
     pub pass: String,
     pub cost: Cost,
-    /// Bytes written to render targets (colour and depth) and read as vertices.
+    /// Bytes to and from memory: render targets (colour and depth), vertices, and the
+    /// storage buffers once each (a wake source is read by every vertex of its bins, from the
+    /// cache: the shader's storage loads, `cost.storage_bytes`, are not memory traffic).
     pub target_bytes: f64,
     /// Invocations: vertex (or compute), fragment.
     pub invocations: [f64; 2],
@@ -97,7 +99,7 @@ impl PassWork {
         let k = usize::from(hi);
         let alu = self.cost.alu / (phone.gflops[k] * 1e9);
         let tex = self.cost.tex / (phone.gtexels[k] * 1e9);
-        let mem = (self.cost.storage_bytes + self.target_bytes) / (phone.gbytes[k] * 1e9);
+        let mem = self.target_bytes / (phone.gbytes[k] * 1e9);
         [("ALU", alu), ("texture", tex), ("memory", mem)]
             .into_iter()
             .map(|(what, s)| (what, s * 1e3))
@@ -111,6 +113,8 @@ pub struct FrameInputs<'a> {
     pub offscreen: fx::OffscreenSizes,
     pub ar: &'a fx::ArConfig,
     pub trips: Trips,
+    /// The frame's wake buffers (sources, bins, indices), bytes.
+    pub wake_buffer_bytes: f64,
     /// Target (screen) size, pixels; the drawn frame is `report.size`.
     pub screen: [u32; 2],
     /// A YUV camera image converted every frame: its size and the camera's rate over the
@@ -203,7 +207,7 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
             let vertices = triangles / 2.0;
             let cs = shader::source(&[shader::WAKE, shader::WATER_VERTICES]);
             cost.add(run(&cs, "cs_displace", vertices)?);
-            target_bytes += vertices * (16.0 + VERTEX_BYTES);
+            target_bytes += vertices * (16.0 + VERTEX_BYTES) + inp.wake_buffer_bytes;
         }
         out.push(PassWork {
             pass: inv.pass.clone(),
@@ -313,6 +317,7 @@ mod tests {
                 marks: scene.marks.len() as f64,
             },
             screen: size,
+            wake_buffer_bytes: 1e6,
             yuv: None,
         };
         let (work, unmodelled) = frame_work(&inputs, false).expect("model");

@@ -43,13 +43,14 @@ fn median_iqr(v: &[f64]) -> (f64, f64) {
 }
 
 /// Trip counts of the frame's loops: the sea's waves, the marks, and the wake sources listed
-/// per non-empty bin of the frame's wake grid (binned as the renderer bins them).
+/// per non-empty bin of the frame's wake grid (binned as the renderer bins them); and the
+/// bytes of the frame's wake buffers.
 fn trips(
     scene: &render::Scene,
     tier: &TierRender,
     wake: &ocean::wake::Wake,
     drawn: [u32; 2],
-) -> Trips {
+) -> (Trips, f64) {
     let frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
     let eye = [scene.camera.eye.x, scene.camera.eye.z];
     let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
@@ -72,11 +73,12 @@ fn trips(
         .filter(|b| b[1] > 0)
         .map(|b| f64::from(b[1]))
         .collect();
-    Trips {
+    let trips = Trips {
         waves: scene.sea.waves.len() as f64,
         wake_sources_per_bin: counts.iter().sum::<f64>() / counts.len().max(1) as f64,
         marks: scene.marks.len() as f64,
-    }
+    };
+    (trips, bins.bytes(wakes.sources.len()) as f64)
 }
 
 /// Draw `tier` on `phone`'s screen `reps` times alternating with the kernel; model its work.
@@ -121,11 +123,13 @@ fn measure(
         timed_ms.push(here * gflops / phone.gflops[1]);
     }
     let wake = t.race_wake(&race)?;
+    let (trips, wake_buffer_bytes) = trips(&scene, &t, &wake, report.size);
     let inputs = FrameInputs {
         report: &report,
         offscreen: fx.offscreen_sizes(),
         ar: &t.ar,
-        trips: trips(&scene, &t, &wake, report.size),
+        trips,
+        wake_buffer_bytes,
         screen: size,
         yuv: None,
     };
@@ -277,7 +281,8 @@ fn passes_table(rows: &[Row]) -> Table {
             "fragment invocations",
             "GFLOP",
             "Gtexel",
-            "MB",
+            "memory MB",
+            "storage loads MB (cache)",
             "model ms (slow spec)",
             "bound by",
             "timed here ms",
@@ -299,7 +304,8 @@ fn passes_table(rows: &[Row]) -> Table {
                 json!(w.invocations[1]),
                 json!(w.cost.alu * 1e-9),
                 json!(w.cost.tex * 1e-9),
-                json!((w.cost.storage_bytes + w.target_bytes) * 1e-6),
+                json!(w.target_bytes * 1e-6),
+                json!(w.cost.storage_bytes * 1e-6),
                 json!(w.ms(r.phone, false)),
                 json!(w.bound(r.phone, false).0),
                 json!(here),
@@ -313,8 +319,9 @@ fn passes_table(rows: &[Row]) -> Table {
          surface grid point, twice per grid cell and once per map cell; the upscale once per \
          screen pixel. Work per invocation: naga's IR of each entry point (app/src/bench/\
          shader_cost.rs), loops × trip counts known on the CPU (waves, marks, wake sources per \
-         bin). A pass takes the longest of ALU ÷ FP32 rate, texels ÷ texture rate and bytes ÷ \
-         bandwidth. Timed here: this adapter's GPU timestamps of the pass (its offscreen work \
+         bin). A pass takes the longest of ALU ÷ FP32 rate, texels ÷ texture rate and memory \
+         bytes ÷ bandwidth (render targets, vertices, the wake buffers once: the sources a bin \
+         lists are read by all its vertices from the cache). Timed here: this adapter's GPU timestamps of the pass (its offscreen work \
          apart), to compare rankings.",
     );
     t
@@ -419,7 +426,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
         let water_report = water.render(gpu, &view, size, &scene).map_err(failed)?;
         let (mut all, fx) = ultra.renderer(gpu, Some(&race), &scene, size)?;
         let all_report = all.render(gpu, &view, size, &scene).map_err(failed)?;
-        let trips = trips(&scene, &ultra, &wake, size);
+        let (trips, wake_buffer_bytes) = trips(&scene, &ultra, &wake, size);
         let none = render::effects::passes::ArConfig {
             effects: render::effects::EffectSet::NONE,
             ..ultra.ar.clone()
@@ -434,6 +441,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
                 offscreen,
                 ar,
                 trips,
+                wake_buffer_bytes,
                 screen: size,
                 yuv,
             };
