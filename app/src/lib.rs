@@ -13,6 +13,8 @@ pub mod panels;
 pub mod phone_sim;
 pub mod pool_play;
 pub mod scene_overlay;
+pub mod tier_control;
+pub mod tier_render;
 pub mod wakes;
 pub mod water;
 

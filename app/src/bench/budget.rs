@@ -1,54 +1,17 @@
-//! Bench section `budget`: the phones' frame budget on paper (issue: the APK).
+//! Bench section `budget`: the phones' frame budget per quality tier, two ways
+//! ([`super::budget_run`] runs it):
 //!
-//! No phone is reachable from these machines, so the budget is an estimate with its method in
-//! the open: the frame of the embedded race with wakes and every AR effect is drawn at the
-//! phones' screen sizes and at render scales of ¾ and ½ (what the phone's compositor would
-//! stretch to the screen) on the adapter at hand, each pass timed with GPU timestamps, and the
-//! times are scaled by the ratio of the adapter's *measured* FP32 throughput (an FMA-chain
-//! compute kernel, [`measure_gflops`]) to each phone GPU's spec-sheet FP32 peak. That assumes
-//! the passes are arithmetic-bound (Gerstner sums, wake sources, optics) and that a phone GPU
-//! reaches the same fraction of its peak as the kernel does here; neither is measured on a
-//! phone.
+//! - timed: the frame is drawn on the adapter at hand and timed (GPU timestamps), and the FP32
+//!   throughput of the adapter is measured with an FMA-chain kernel ([`FmaKernel`]) *in the
+//!   same run, alternating with the frame*: each repetition gives one ratio frame time ×
+//!   measured GFLOP/s ÷ the phone's FP32 peak, and the estimate is the median of the ratios, so
+//!   a load that slows the machine slows both and cancels;
+//! - modelled: the work of each pass counted in its shaders and invocations against the
+//!   phone's published rates ([`super::budget_model`]), machine-independent.
 
 use std::time::Instant;
 
-use effects::EffectSet;
-use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
-use serde_json::json;
 use wgpu::util::DeviceExt;
-
-use crate::bench::{BenchContext, Table};
-use crate::error::{CliError, CliResult};
-
-/// A phone the product targets: its GPU's FP32 peak and screen, and the frame rate goal.
-struct Phone {
-    name: &'static str,
-    gpu: &'static str,
-    /// Spec-sheet FP32 peak, GFLOP/s.
-    gflops: f64,
-    /// Screen, pixels (portrait).
-    screen: [u32; 2],
-    goal_fps: f64,
-}
-
-/// Adreno 540: 567 GFLOP/s FP32 at 710 MHz. PowerVR GE8320 (MediaTek Helio P35): 64 FP32
-/// FLOP per clock at 680 MHz = 43.5 GFLOP/s.
-const PHONES: [Phone; 2] = [
-    Phone {
-        name: "Pixel 2 XL",
-        gpu: "Adreno 540",
-        gflops: 567.0,
-        screen: [1440, 2880],
-        goal_fps: 60.0,
-    },
-    Phone {
-        name: "OPPO A54",
-        gpu: "PowerVR GE8320",
-        gflops: 43.5,
-        screen: [720, 1600],
-        goal_fps: 52.0,
-    },
-];
 
 /// Independent FMA chains per invocation, 4 lanes each: 32 FLOP per loop iteration.
 const FMA_KERNEL: &str = r#"
@@ -74,10 +37,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     out[id.x] = a + b + c + d;
 }
 "#;
-const FLOP_PER_ITERATION: f64 = 32.0;
+pub(crate) const FLOP_PER_ITERATION: f64 = 32.0;
 
 /// The FMA kernel compiled on an adapter, with its output buffer.
-struct FmaKernel<'a> {
+pub(crate) struct FmaKernel<'a> {
     gpu: &'a render::Gpu,
     pipeline: wgpu::ComputePipeline,
     out: wgpu::Buffer,
@@ -85,9 +48,9 @@ struct FmaKernel<'a> {
 
 impl<'a> FmaKernel<'a> {
     /// Invocations per dispatch.
-    const INVOCATIONS: u32 = 1 << 20;
+    pub(crate) const INVOCATIONS: u32 = 1 << 20;
 
-    fn new(gpu: &'a render::Gpu) -> Self {
+    pub(crate) fn new(gpu: &'a render::Gpu) -> Self {
         let device = &gpu.device;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("fma throughput"),
@@ -126,8 +89,25 @@ impl<'a> FmaKernel<'a> {
         )
     }
 
+    /// Loop turns for one dispatch of at least `min_s` seconds (doubled from 16; compiles
+    /// and warms up first).
+    pub(crate) fn calibrate(&self, min_s: f64) -> u32 {
+        self.time(1);
+        let mut iterations = 16u32;
+        while self.time(iterations) < min_s && iterations < 1 << 24 {
+            iterations *= 2;
+        }
+        iterations
+    }
+
+    /// GFLOP/s of one dispatch of `iterations` turns.
+    pub(crate) fn gflops(&self, iterations: u32) -> f64 {
+        let flop = f64::from(Self::INVOCATIONS) * f64::from(iterations) * FLOP_PER_ITERATION;
+        flop / self.time(iterations) / 1e9
+    }
+
     /// One dispatch of `iterations` loop turns: wall seconds until the GPU finished it.
-    fn time(&self, iterations: u32) -> f64 {
+    pub(crate) fn time(&self, iterations: u32) -> f64 {
         let group = self.group(iterations);
         let t0 = Instant::now();
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
@@ -147,11 +127,7 @@ impl<'a> FmaKernel<'a> {
 /// doubled until one dispatch takes ≥ `min_s` seconds, then the median of three.
 pub fn measure_gflops(gpu: &render::Gpu, min_s: f64) -> Result<f64, render::GpuError> {
     let kernel = FmaKernel::new(gpu);
-    kernel.time(1); // compile and warm up
-    let mut iterations = 16u32;
-    while kernel.time(iterations) < min_s && iterations < 1 << 24 {
-        iterations *= 2;
-    }
+    let iterations = kernel.calibrate(min_s);
     let mut times: Vec<f64> = (0..3).map(|_| kernel.time(iterations)).collect();
     times.sort_by(f64::total_cmp);
     let flop = f64::from(FmaKernel::INVOCATIONS) * f64::from(iterations) * FLOP_PER_ITERATION;
@@ -165,135 +141,7 @@ pub fn measure_gflops(gpu: &render::Gpu, min_s: f64) -> Result<f64, render::GpuE
     }
 }
 
-/// The passes that ran, each with its median GPU milliseconds where measured.
-type PassTimes = Vec<(String, Option<f64>)>;
-
-/// Per-pass GPU milliseconds (median over `frames`) of the sample race at `size` with wakes
-/// and every effect, and the median wall milliseconds of a frame.
-fn pass_times(gpu: &render::Gpu, size: [u32; 2], frames: usize) -> CliResult<(PassTimes, f64)> {
-    use crate::core::scene::{race_wake, scene_at};
-    let race = race::Race::sample();
-    let sea = ocean::WaveSet::default_sea();
-    let t = 600.0;
-    let scene = scene_at(&race, &sea, t, None);
-    let mut renderer = Renderer::new(gpu, OFFSCREEN_FORMAT, RenderOptions::default());
-    renderer.set_wake(Some(race_wake(&race)?));
-    effects::passes::add_scene_effects(&mut renderer, gpu, &scene, size, EffectSet::ALL);
-    let view = crate::bench::offscreen(gpu, size);
-    let failed = |e: render::GpuError| CliError(e.to_string());
-    renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up: pipelines, buffers
-    let mut runs = Vec::new();
-    let mut wall = Vec::new();
-    for _ in 0..frames {
-        let t0 = Instant::now();
-        let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?;
-        gpu.wait();
-        wall.push(t0.elapsed().as_secs_f64() * 1e3);
-        runs.push(report.passes);
-    }
-    let median = |mut v: Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v.get(v.len() / 2).copied()
-    };
-    let passes = runs[0]
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| p.ran)
-        .map(|(i, p)| {
-            let ms: Vec<f64> = runs.iter().filter_map(|r| r[i].total_gpu_ms()).collect();
-            (p.name.clone(), median(ms))
-        })
-        .collect();
-    Ok((passes, median(wall).unwrap_or(f64::NAN)))
-}
-
-/// Section `budget`.
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
-    let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("the budget bench needs a GPU adapter: {e}")))?;
-    ctx.progress("budget: measuring the adapter's FP32 throughput");
-    let gflops = measure_gflops(&gpu, if ctx.quick { 0.05 } else { 0.25 })
-        .map_err(|e| CliError::new(format!("budget: {e}")))?;
-    // Render scales: the frame drawn at a fraction of the screen per side, which the phone's
-    // compositor stretches to the screen (the clip-map's pixel error target follows the
-    // render size). Quick: the half scale only, so small machines finish in seconds.
-    let scales: &[f64] = if ctx.quick { &[0.5] } else { &[1.0, 0.75, 0.5] };
-    let frames = if ctx.quick { 2 } else { 5 };
-    let mut passes_table = Table::new(
-        "budget_passes",
-        "Frame of the sample race with wakes and every AR effect: GPU ms per pass on this adapter",
-        &["pass", "size", "GPU ms (median)"],
-    );
-    let mut phones = Table::new(
-        "budget_phones",
-        "Phone frame budget on paper: this adapter's times scaled by measured FP32 throughput to each phone's peak",
-        &[
-            "phone",
-            "GPU",
-            "FP32 peak GFLOP/s",
-            "screen",
-            "render scale",
-            "render size",
-            "measured here ms",
-            "estimated phone ms",
-            "estimated fps",
-            "goal fps",
-            "speed-up still needed",
-        ],
-    );
-    for (phone, &scale) in PHONES
-        .iter()
-        .flat_map(|p| scales.iter().map(move |s| (p, s)))
-    {
-        let size = phone
-            .screen
-            .map(|v| ((f64::from(v) * scale).round() as u32).max(1));
-        ctx.progress(format!(
-            "budget: {} frame at {}×{}",
-            phone.name, size[0], size[1]
-        ));
-        let (passes, wall_ms) = pass_times(&gpu, size, frames)?;
-        let gpu_total: Option<f64> = passes.iter().map(|(_, ms)| *ms).sum();
-        for (name, ms) in &passes {
-            passes_table.row(vec![
-                json!(name),
-                json!(format!("{}×{}", size[0], size[1])),
-                json!(ms),
-            ]);
-        }
-        // GPU timestamps where the adapter has them, else the frame's wall time.
-        let here = gpu_total.unwrap_or(wall_ms);
-        let est = here * gflops / phone.gflops;
-        let budget_ms = 1e3 / phone.goal_fps;
-        phones.row(vec![
-            json!(phone.name),
-            json!(phone.gpu),
-            json!(phone.gflops),
-            json!(format!("{}×{}", phone.screen[0], phone.screen[1])),
-            json!(scale),
-            json!(format!("{}×{}", size[0], size[1])),
-            json!(here),
-            json!(est),
-            json!(1e3 / est),
-            json!(phone.goal_fps),
-            json!((est / budget_ms).max(1.0)),
-        ]);
-    }
-    let adapter = gpu.describe();
-    passes_table.note(format!(
-        "{adapter}; race time 600 s, the default camera, {frames} frames after one warm-up, \
-         median GPU time per pass from timestamp queries (empty where the adapter has none)."
-    ));
-    phones.note(format!(
-        "This adapter's measured FP32 throughput: {gflops:.1} GFLOP/s (an FMA-chain compute \
-         kernel, 2^20 invocations). Estimated phone ms = measured ms at the render size × \
-         {gflops:.1} / the phone's FP32 peak. Assumes arithmetic-bound passes and the same \
-         fraction of peak on the phone as here (a big GPU that a phone-sized frame cannot fill \
-         makes the estimate pessimistic); bandwidth, tiling and thermal limits are not \
-         modelled, and no phone was measured."
-    ));
-    Ok(vec![phones, passes_table])
-}
+pub use super::budget_run::run;
 
 #[cfg(test)]
 mod tests {

@@ -13,12 +13,16 @@ use serde::Serialize;
 use crate::error::{CliError, CliResult};
 
 pub mod budget;
+pub mod budget_accuracy;
+pub mod budget_model;
+pub mod budget_run;
 pub mod effects;
 pub mod mesh;
 pub mod overlays;
 pub mod pool;
 pub mod race;
 pub mod race_import;
+pub mod shader_cost;
 pub mod wakes;
 pub mod waves;
 

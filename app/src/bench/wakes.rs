@@ -123,6 +123,25 @@ fn reps(ctx: &BenchContext) -> usize {
     if ctx.quick { 3 } else { 9 }
 }
 
+/// The Kelvin wake's RMS height error against the Havelock reference relative to the
+/// reference's RMS, for sources `fac` hull radii apart (the spacing table's measurement at
+/// 5 m/s with the default boat; the quality tiers' wake accuracy).
+pub(crate) fn spacing_relative_rms(ctx: &BenchContext, fac: f64) -> CliResult<f64> {
+    let boat = WakeParams::default();
+    let f = field(ctx, 5.0, &boat);
+    let spacing = fac * boat.hull_radius;
+    let prm = WakeParams {
+        spacing,
+        max_interval: 2.0 * spacing / f.u,
+        max_age: f.max_age,
+        ..boat
+    };
+    let wake = kelvin_wake(&f, prm)?;
+    let values: Vec<f64> = f.grid.iter().map(|&p| wake.height(p, T_END)).collect();
+    let (rms, _, rref) = errors(&f, &values);
+    Ok(rms / rref)
+}
+
 fn spacing_table(ctx: &BenchContext) -> CliResult<Table> {
     let boat = WakeParams::default();
     let f = field(ctx, 5.0, &boat);

@@ -65,6 +65,10 @@ pub struct RenderArgs {
     /// Which frame of `--replay`, from 0.
     #[arg(long, value_name = "N", requires = "replay")]
     pub frame: Option<usize>,
+    /// A quality tier (low, medium, high, ultra; docs/quality.md): its render scale, clip-map
+    /// error target, AR effects and their sizes, wake spacing and budget.
+    #[arg(long, conflicts_with_all = ["effects", "error_px", "replay"])]
+    pub tier: Option<String>,
 }
 
 /// Finest clip-map error target `--error-px` accepts, pixels. Finer targets are invisible
@@ -163,10 +167,20 @@ pub fn run(a: RenderArgs) -> CliResult {
         return Err(CliError::new("--t must be a finite number of seconds"));
     }
     let overlays = overlay_settings(&a)?;
+    let tier = a
+        .tier
+        .as_deref()
+        .map(crate::tier_render::parse_tier)
+        .transpose()?;
+    if tier.is_some() && effects.is_some() {
+        return Err(CliError::new(
+            "--tier chooses the effects itself: give --tier or --effects, not both",
+        ));
+    }
     if a.scene == SceneKind::Pool {
-        if effects.is_some() || a.replay.is_some() || a.overlays.is_some() {
+        if effects.is_some() || a.replay.is_some() || a.overlays.is_some() || tier.is_some() {
             return Err(CliError::new(
-                "--effects, --overlays and --replay have no meaning with --scene pool (the pool traces its own)",
+                "--effects, --overlays, --tier and --replay have no meaning with --scene pool (the pool traces its own)",
             ));
         }
         return run_pool(&a, &out, size);
@@ -190,6 +204,13 @@ pub fn run(a: RenderArgs) -> CliResult {
     let scene = world.scene_at(t, camera);
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    if let Some(tier) = tier {
+        let wakes = (!a.no_wakes).then_some(&world.race);
+        let tier = crate::tier_render::TierRender::of(tier);
+        let (mut renderer, _) = tier.renderer(&gpu, wakes, &scene, size)?;
+        let drawn = (&world.race, &scene);
+        return finish(&a, &out, &gpu, &mut renderer, drawn, size, &overlays);
+    }
     let mut renderer = Renderer::new(
         &gpu,
         render::OFFSCREEN_FORMAT,
@@ -209,18 +230,33 @@ pub fn run(a: RenderArgs) -> CliResult {
         // The synthetic table stays where its image shows it; the water's optics are asked.
         h.set_water(water, fx.table_depth);
     }
-    let (img, report) = crate::scene_overlay::render_headless(
+    finish(
+        &a,
+        &out,
         &gpu,
         &mut renderer,
-        &world.race,
-        &scene,
+        (&world.race, &scene),
         size,
         &overlays,
     )
-    .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+}
+
+/// Draw the frame of `race` (with its `overlays`), save it and print its record.
+fn finish(
+    a: &RenderArgs,
+    out: &ImageOut,
+    gpu: &render::Gpu,
+    renderer: &mut Renderer,
+    (race, scene): (&race::Race, &render::Scene),
+    size: [u32; 2],
+    overlays: &crate::scene_overlay::OverlaySettings,
+) -> CliResult {
+    let (img, report) =
+        crate::scene_overlay::render_headless(gpu, renderer, race, scene, size, overlays)
+            .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     note_unmet_error(&report);
-    print_report(&a, &report)
+    print_report(a, &report)
 }
 
 /// The overlays `--overlays` asks for (all without it).

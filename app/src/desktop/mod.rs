@@ -8,6 +8,7 @@
 
 use std::path::PathBuf;
 use std::sync::Arc;
+use std::time::Instant;
 
 use clap::Args;
 use render::{OrbitCamera, Renderer};
@@ -60,6 +61,10 @@ pub struct RunArgs {
     /// phone's own ARCore glue loads; a scripted stand-in without it.
     #[arg(long, value_name = "FILE", requires = "phone")]
     pub arcore_lib: Option<PathBuf>,
+    /// Pin a quality tier (low, medium, high, ultra); without it the governor chooses
+    /// (docs/quality.md).
+    #[arg(long)]
+    pub tier: Option<String>,
 }
 
 impl RunArgs {
@@ -87,6 +92,11 @@ pub fn run(a: RunArgs) -> CliResult {
     } else {
         a.water.look(render::water_look::WaterLook::default())?;
     }
+    let pinned = a
+        .tier
+        .as_deref()
+        .map(crate::tier_render::parse_tier)
+        .transpose()?;
     let event_loop = EventLoop::new()
         .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
     let pool = (a.scene == SceneKind::Pool)
@@ -111,6 +121,11 @@ pub fn run(a: RunArgs) -> CliResult {
         cursor: (0.0, 0.0),
         error: None,
         dropped: Vec::new(),
+        tiers: crate::tier_control::TierControl::new(
+            pinned.unwrap_or(quality::Tier::Ultra),
+            pinned.is_some(),
+        ),
+        started: Instant::now(),
     };
     event_loop
         .run_app(&mut app)
@@ -149,6 +164,9 @@ struct App {
     /// Files dropped on the window since the last frame (one drop of several files arrives as
     /// several events): loaded together as one race at the next frame.
     dropped: Vec<PathBuf>,
+    /// The quality governor: frame times in, the tier's renderer settings out.
+    tiers: crate::tier_control::TierControl,
+    started: Instant,
 }
 
 impl App {
@@ -266,6 +284,16 @@ impl App {
         if let Some(r) = &report {
             log::debug!("frame: {} triangles", r.triangles);
         }
+        // The governor: GPU time where measured, else the present interval; no change while
+        // the user drags the view or a panel (the timeline's scrubber).
+        let scrubbing =
+            self.drag.is_some() || st.overlay.as_ref().is_some_and(|o| o.wants_pointer());
+        let now = self.started.elapsed().as_secs_f64();
+        let gpu_ms = report.as_ref().and_then(|r| r.gpu_ms);
+        if let Some(tier) = self.tiers.frame(now, gpu_ms, scrubbing) {
+            log::info!("quality tier {}", tier.tier);
+            tier.apply_to(&mut st.renderer);
+        }
         let race = &self.world.race;
         if let Some(o) = st.overlay.as_mut() {
             if let Some(r) = &report {
@@ -299,9 +327,15 @@ impl App {
             .as_ref()
             .map_or(self.clock.is_playing(), |o| o.panels.clock.is_playing());
         st.window.set_title(&format!(
-            "Regatta: {} at t = {t:.0} s{}",
+            "Regatta: {} at t = {t:.0} s{}, quality {} ({})",
             race.name,
-            if playing { "" } else { " (paused)" }
+            if playing { "" } else { " (paused)" },
+            self.tiers.tier(),
+            if self.tiers.pinned().is_some() {
+                "pinned"
+            } else {
+                "auto"
+            }
         ));
     }
 }
@@ -322,8 +356,11 @@ impl ApplicationHandler for App {
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
                 let wake = gfx::wake_or_none(&self.world);
-                let renderer =
+                let mut renderer =
                     gfx::race_renderer(&gpu, surface.config.format, wake, Profile::Desktop);
+                if self.tiers.pinned().is_some() {
+                    crate::tier_render::TierRender::of(self.tiers.tier()).apply_to(&mut renderer);
+                }
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
                     let race = &self.world.race;

@@ -107,7 +107,7 @@ impl Tier {
                 cheap_caustics: true,
                 caustic_resolution: (32, 32),
                 wake_spacing_radii: 1.0,
-                wake_source_budget: 4_096,
+                wake_source_budget: 512,
                 overlay: OverlayDetail::Essential,
             },
             Tier::Medium => TierSettings {
@@ -118,7 +118,7 @@ impl Tier {
                 cheap_caustics: true,
                 caustic_resolution: (32, 48),
                 wake_spacing_radii: 0.75,
-                wake_source_budget: 8_192,
+                wake_source_budget: 1_024,
                 overlay: OverlayDetail::Standard,
             },
             Tier::High => TierSettings {
@@ -129,7 +129,7 @@ impl Tier {
                 cheap_caustics: false,
                 caustic_resolution: (48, 64),
                 wake_spacing_radii: 0.5,
-                wake_source_budget: 16_384,
+                wake_source_budget: 4_096,
                 overlay: OverlayDetail::Full,
             },
             Tier::Ultra => TierSettings {

@@ -348,6 +348,14 @@ impl PassRecord {
     }
 }
 
+/// A pass's shader invocations in one frame (pipeline-statistics queries).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct ShaderInvocations {
+    pub pass: String,
+    pub vertex: u64,
+    pub fragment: u64,
+}
+
 /// One clip-map level's line in the frame record.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LevelRecord {
@@ -366,6 +374,10 @@ pub struct FrameReport {
     pub size: [u32; 2],
     pub adapter: String,
     pub passes: Vec<PassRecord>,
+    /// Per pass that ran, its shader invocations from pipeline-statistics queries (its main
+    /// render pass, not its offscreen work); empty where the adapter does not count them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub shader_invocations: Vec<ShaderInvocations>,
     pub triangles: u64,
     /// "pipeline_statistics" where the adapter counts primitives, else "counted".
     pub triangles_source: String,
@@ -394,6 +406,7 @@ impl FrameReport {
             p.offscreen_gpu_ms = None;
         }
         r.triangles = 0;
+        r.shader_invocations.clear();
         r.gpu_ms = None;
         r.reused_last_frame = true;
         r

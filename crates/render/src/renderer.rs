@@ -6,7 +6,8 @@ use std::sync::Arc;
 use glam::DVec2;
 
 use crate::frame::{
-    ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, Targets, WakeRecord,
+    ClipMapRecord, FrameBindings, FrameContext, FrameReport, Pass, PassRecord, ShaderInvocations,
+    Targets, WakeRecord,
 };
 use crate::gpu::{Gpu, GpuError};
 use crate::passes::{boats::BoatsPass, sky::SkyPass, water::WaterPass};
@@ -19,7 +20,7 @@ pub use crate::gpu::DEPTH_FORMAT;
 /// Default screen-space error target of the clip-map, pixels.
 pub const DEFAULT_ERROR_PX: f64 = 1.0;
 /// Wake culling tolerance: height error allowed per left-out wake source, metres.
-pub(crate) const WAKE_EPSILON_M: f64 = 1e-4;
+pub const WAKE_EPSILON_M: f64 = 1e-4;
 
 /// Options of a [`Renderer`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -169,6 +170,8 @@ pub struct Renderer {
     upscale: Option<Upscale>,
     /// Memory budget of a frame's wake buffers, bytes (within the device's limits).
     wake_budget: u64,
+    /// Most wake sources a frame draws (a quality tier's budget; default unlimited).
+    wake_sources: usize,
 }
 
 impl Renderer {
@@ -206,6 +209,7 @@ impl Renderer {
             still: None,
             upscale: None,
             wake_budget: crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
+            wake_sources: usize::MAX,
         }
     }
 
@@ -225,6 +229,13 @@ impl Renderer {
     /// [`crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES`]; the device's limits cap it too).
     pub fn set_wake_buffer_budget(&mut self, bytes: u64) {
         self.wake_budget = bytes;
+        self.invalidate();
+    }
+
+    /// The most wake sources a frame draws (a quality tier's budget): beyond it the least
+    /// visible are left out, with the error bound in the frame report (`wake_bins::fit`).
+    pub fn set_wake_source_budget(&mut self, sources: usize) {
+        self.wake_sources = sources;
         self.invalidate();
     }
 
@@ -387,7 +398,7 @@ impl Renderer {
         let scene = raised.as_ref().map_or(scene, |(s, _)| s);
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
         if let Some(w) = &self.wake {
-            gather_wakes(gpu, w, self.wake_budget, &mut frame);
+            gather_wakes(gpu, w, (self.wake_budget, self.wake_sources), &mut frame);
         }
         self.bindings
             .upload(&gpu.queue, &frame.uniform, &frame.waves);
@@ -429,12 +440,13 @@ impl Renderer {
         }
         gpu.queue.submit([enc.finish()]);
         // Measure.
-        let triangles_source = measure_frame(gpu, timer, stats, &run, &offscreen, &mut records);
+        let (triangles_source, shader_invocations) =
+            measure_frame(gpu, timer, stats, &run, &offscreen, &mut records);
         self.report(
             gpu,
             &frame,
             records,
-            triangles_source,
+            (triangles_source, shader_invocations),
             raised.as_ref().map(|(_, m)| *m),
         )
     }
@@ -472,7 +484,7 @@ impl Renderer {
         gpu: &Gpu,
         frame: &FrameContext,
         records: Vec<PassRecord>,
-        triangles_source: &str,
+        (triangles_source, shader_invocations): (&str, Vec<ShaderInvocations>),
         camera_raised_m: Option<f64>,
     ) -> FrameReport {
         let gpu_ms = records
@@ -486,6 +498,7 @@ impl Renderer {
             triangles: records.iter().map(|r| r.triangles).sum(),
             triangles_source: triangles_source.into(),
             passes: records,
+            shader_invocations,
             gpu_ms,
             clipmap: ClipMapRecord::of(frame),
             wakes: self.wake.as_ref().map(|_| WakeRecord {
@@ -504,8 +517,13 @@ impl Renderer {
 }
 
 /// The wake sources of `wake` that can reach any water the clip-map draws, binned for the GPU
-/// within `budget` bytes, into `frame`.
-fn gather_wakes(gpu: &Gpu, wake: &ocean::wake::Wake, budget: u64, frame: &mut FrameContext) {
+/// within `budget` bytes and at most `max_sources` sources, into `frame`.
+fn gather_wakes(
+    gpu: &Gpu,
+    wake: &ocean::wake::Wake,
+    (budget, max_sources): (u64, usize),
+    frame: &mut FrameContext,
+) {
     let scene = frame.scene;
     let eye = DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
     let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
@@ -518,7 +536,8 @@ fn gather_wakes(gpu: &Gpu, wake: &ocean::wake::Wake, budget: u64, frame: &mut Fr
     );
     let half = frame.clipmap.half_extent(frame.clipmap.levels() - 1) as f32 * 2.0;
     let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), budget);
-    (frame.wake_bins, frame.wake_drop) = crate::wake_bins::fit(&mut frame.wakes, half, cap);
+    (frame.wake_bins, frame.wake_drop) =
+        crate::wake_bins::fit(&mut frame.wakes, half, cap, max_sources);
     if frame.wake_drop.dropped > 0 {
         // Every frame of a bunched fleet drops some: the frame report carries it, the
         // log only at info (a warning per frame would flood the terminal).
@@ -628,7 +647,7 @@ impl Recording<'_> {
 
 /// Read the submitted frame's measurements into the records of the passes that ran (`run`):
 /// GPU milliseconds and, with pipeline statistics, the primitives drawn. Returns where the
-/// triangle counts come from.
+/// triangle counts come from and each pass's shader invocations (with pipeline statistics).
 fn measure_frame(
     gpu: &Gpu,
     timer: Option<&GpuTimer>,
@@ -636,9 +655,10 @@ fn measure_frame(
     run: &[usize],
     offscreen: &[Option<u32>],
     records: &mut [PassRecord],
-) -> &'static str {
+) -> (&'static str, Vec<ShaderInvocations>) {
+    let mut shader_invocations = Vec::new();
     if run.is_empty() {
-        return "counted";
+        return ("counted", shader_invocations);
     }
     if let Some(t) = timer {
         match t.read(gpu, offscreen) {
@@ -654,16 +674,21 @@ fn measure_frame(
     let mut triangles_source = "counted";
     if let Some(st) = stats {
         match st.read(gpu, run.len()) {
-            Ok(prims) => {
-                for (&i, p) in run.iter().zip(prims) {
-                    records[i].triangles = p;
+            Ok(counts) => {
+                for (&i, [vertex, prims, fragment]) in run.iter().zip(counts) {
+                    records[i].triangles = prims;
+                    shader_invocations.push(ShaderInvocations {
+                        pass: records[i].name.clone(),
+                        vertex,
+                        fragment,
+                    });
                 }
                 triangles_source = "pipeline_statistics";
             }
             Err(e) => log::warn!("no pipeline statistics this frame: {e}"),
         }
     }
-    triangles_source
+    (triangles_source, shader_invocations)
 }
 
 /// Copy all of `from` into `to` (same size and format).

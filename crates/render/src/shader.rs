@@ -3,25 +3,25 @@
 //! file(s), concatenated here.
 
 /// Shared structs, bindings and functions (the frame uniform, waves, sky).
-pub(crate) const COMMON: &str = include_str!("../shaders/common.wgsl");
+pub const COMMON: &str = include_str!("../shaders/common.wgsl");
 /// Fresnel, Snell, reflection (the effects' optics, mirrored in f64 by `optics.rs`).
 pub const OPTICS: &str = include_str!("../shaders/optics.wgsl");
-pub(crate) const SKY: &str = include_str!("../shaders/sky.wgsl");
+pub const SKY: &str = include_str!("../shaders/sky.wgsl");
 /// The stretch of a frame drawn at a fraction of the screen (no shared files).
-pub(crate) const UPSCALE: &str = include_str!("../shaders/upscale.wgsl");
+pub const UPSCALE: &str = include_str!("../shaders/upscale.wgsl");
 pub const WATER: &str = include_str!("../shaders/water.wgsl");
 pub const BOATS: &str = include_str!("../shaders/boats.wgsl");
 /// The scene overlays: world segments as screen-space capsules (`passes::overlay`).
-pub(crate) const OVERLAY: &str = include_str!("../shaders/overlay.wgsl");
-pub(crate) const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
+pub const OVERLAY: &str = include_str!("../shaders/overlay.wgsl");
+pub const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
 /// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` (`ocean::wake::gpu` mirrors it in
 /// f32), included once, there.
-pub(crate) const WAKE: &str = ocean::wake::WAKE_WGSL;
+pub const WAKE: &str = ocean::wake::WAKE_WGSL;
 /// The water pass's compute stage (sea and wakes per vertex, bind group 1) and the vertex
 /// stages that draw its output, or displace by the sea alone without compute.
-pub(crate) const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
-pub(crate) const WATER_DISPLACED: &str = include_str!("../shaders/water_displaced.wgsl");
-pub(crate) const WATER_NO_WAKES: &str = include_str!("../shaders/water_no_wakes.wgsl");
+pub const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
+pub const WATER_DISPLACED: &str = include_str!("../shaders/water_displaced.wgsl");
+pub const WATER_NO_WAKES: &str = include_str!("../shaders/water_no_wakes.wgsl");
 
 /// Threads per workgroup of every compute shader (`WORKGROUP_SIZE` in WGSL): dispatches
 /// divide their items by it.

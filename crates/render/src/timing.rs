@@ -161,7 +161,12 @@ impl GpuTimer {
     }
 }
 
-/// Pipeline-statistics queries: primitives entering the clipper, one query per pass.
+/// Counters each pipeline-statistics query writes ([`PassStats`]).
+const STATS_PER_QUERY: u64 = 3;
+
+/// Pipeline-statistics queries, one per pass: vertex shader invocations, primitives entering
+/// the clipper and fragment shader invocations, in that order (wgpu writes a query's counters
+/// in the order of their bits).
 pub(crate) struct PassStats {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
@@ -179,12 +184,15 @@ impl PassStats {
             return None;
         }
         let capacity = 16;
-        let (resolve, read) = resolve_and_read(&gpu.device, "primitives", u64::from(capacity) * 8);
+        let size = u64::from(capacity) * 8 * STATS_PER_QUERY;
+        let (resolve, read) = resolve_and_read(&gpu.device, "primitives", size);
         Some(PassStats {
             queries: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("pass primitives"),
                 ty: wgpu::QueryType::PipelineStatistics(
-                    wgpu::PipelineStatisticsTypes::CLIPPER_INVOCATIONS,
+                    wgpu::PipelineStatisticsTypes::VERTEX_SHADER_INVOCATIONS
+                        | wgpu::PipelineStatisticsTypes::CLIPPER_INVOCATIONS
+                        | wgpu::PipelineStatisticsTypes::FRAGMENT_SHADER_INVOCATIONS,
                 ),
                 count: capacity,
             }),
@@ -212,14 +220,18 @@ impl PassStats {
     pub(crate) fn resolve(&self, enc: &mut wgpu::CommandEncoder, passes: usize) {
         let n = passes as u32;
         enc.resolve_query_set(&self.queries, 0..n, &self.resolve, 0);
-        enc.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, u64::from(n) * 8);
+        let bytes = u64::from(n) * 8 * STATS_PER_QUERY;
+        enc.copy_buffer_to_buffer(&self.resolve, 0, &self.read, 0, bytes);
     }
 
-    /// The submitted frame's primitives, per pass that ran.
-    pub(crate) fn read(&self, gpu: &Gpu, passes: usize) -> Result<Vec<u64>, GpuError> {
+    /// The submitted frame's counters, per pass that ran: vertex shader invocations,
+    /// primitives, fragment shader invocations.
+    pub(crate) fn read(&self, gpu: &Gpu, passes: usize) -> Result<Vec<[u64; 3]>, GpuError> {
         let bytes = gpu.read_buffer(&self.read)?;
-        let prims: &[u64] = bytemuck::cast_slice(&bytes);
-        Ok(prims[..passes].to_vec())
+        let counts: &[u64] = bytemuck::cast_slice(&bytes);
+        Ok((0..passes)
+            .map(|k| std::array::from_fn(|c| counts[3 * k + c]))
+            .collect())
     }
 }
 

@@ -219,10 +219,16 @@ impl WakeBins {
 }
 
 /// Bin `wakes.sources` over where they reach inside [−half, half]², the three buffers within
-/// `cap` bytes: when they would need more, the sources with the smallest peak height are
-/// removed from `wakes.sources` until the rest fit (module docs), and the record says how many
-/// and the error bound.
-pub fn fit(wakes: &mut GpuWakeFrame, half: f32, cap: u64) -> (WakeBins, WakeDrop) {
+/// `cap` bytes and at most `max_sources` sources (a quality tier's wake source budget): when
+/// they would need more, the sources with the smallest peak height are removed from
+/// `wakes.sources` until the rest fit (module docs), and the record says how many and the
+/// error bound.
+pub fn fit(
+    wakes: &mut GpuWakeFrame,
+    half: f32,
+    cap: u64,
+    max_sources: usize,
+) -> (WakeBins, WakeDrop) {
     let mut drop = WakeDrop {
         cap_bytes: cap,
         ..Default::default()
@@ -237,16 +243,18 @@ pub fn fit(wakes: &mut GpuWakeFrame, half: f32, cap: u64) -> (WakeBins, WakeDrop
     let mut bytes = SOURCE_BYTES * wakes.sources.len().max(1) as u64
         + BIN_BYTES * u64::from(layout.nx * layout.nz)
         + INDEX_BYTES * listed.iter().sum::<u64>().max(1);
-    if bytes > cap {
+    let mut kept = wakes.sources.len();
+    if bytes > cap || kept > max_sources {
         let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
         let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
         order.sort_by(|&a, &b| peak[a].total_cmp(&peak[b]).then(a.cmp(&b)));
         let mut keep = vec![true; wakes.sources.len()];
         for k in order {
-            if bytes <= cap {
+            if bytes <= cap && kept <= max_sources {
                 break;
             }
             keep[k] = false;
+            kept -= 1;
             bytes -= SOURCE_BYTES + INDEX_BYTES * listed[k];
             drop.dropped += 1;
             drop.height_bound_m += peak[k];
@@ -363,11 +371,9 @@ mod tests {
         assert!(none.indices.is_empty() && listed_at(&none, [0.0, 0.0]).is_empty());
     }
 
-    #[test]
-    fn a_fleet_over_the_cap_drops_its_least_visible_sources_and_states_the_bound() {
-        // 600 sources bunched in 100 m, of growing strength: far more (bin, source) pairs
-        // than a 256 KiB cap holds.
-        let sources: Vec<GpuWakeSource> = (0..600)
+    /// 600 sources bunched in 100 m, of growing strength (source k: 1e-3 × (k + 1)).
+    fn bunched_fleet() -> Vec<GpuWakeSource> {
+        (0..600)
             .map(|k| {
                 let f = k as f32;
                 GpuWakeSource {
@@ -382,12 +388,43 @@ mod tests {
                     _pad: [0.0; 2],
                 }
             })
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn a_source_budget_keeps_exactly_that_many_of_the_most_visible() {
+        // A quality tier's wake source budget: 150 of 600 kept, well within the byte cap.
+        let mut frame = GpuWakeFrame {
+            sources: bunched_fleet(),
+            ..Default::default()
+        };
+        let (_, drop) = fit(&mut frame, 2000.0, u64::MAX, 150);
+        assert_eq!((frame.sources.len(), drop.dropped), (150, 450));
+        // The weakest 450 went: the kept ones are sources 450..600.
+        let weakest_kept = frame
+            .sources
+            .iter()
+            .map(|s| s.strength)
+            .fold(f32::MAX, f32::min);
+        assert_eq!(weakest_kept, 1e-3 * 451.0);
+        assert!(drop.height_bound_m > 0.0);
+        // A budget above the count drops nothing.
+        let mut all = GpuWakeFrame {
+            sources: bunched_fleet(),
+            ..Default::default()
+        };
+        assert_eq!(fit(&mut all, 2000.0, u64::MAX, 600).1.dropped, 0);
+    }
+
+    #[test]
+    fn a_fleet_over_the_cap_drops_its_least_visible_sources_and_states_the_bound() {
+        // The bunched fleet: far more (bin, source) pairs than a 256 KiB cap holds.
+        let sources = bunched_fleet();
         let mut all = GpuWakeFrame {
             sources: sources.clone(),
             ..Default::default()
         };
-        let (bins, drop) = fit(&mut all, 2000.0, u64::MAX);
+        let (bins, drop) = fit(&mut all, 2000.0, u64::MAX, usize::MAX);
         assert_eq!((drop.dropped, all.sources.len()), (0, 600));
         let need = bins.bytes(600);
         let cap = 256 << 10;
@@ -396,7 +433,7 @@ mod tests {
             sources,
             ..Default::default()
         };
-        let (bins, drop) = fit(&mut frame, 2000.0, cap);
+        let (bins, drop) = fit(&mut frame, 2000.0, cap, usize::MAX);
         // Fits, and drops no more than it must (one more source would not fit).
         assert!(bins.bytes(frame.sources.len()) <= cap);
         assert!(drop.dropped > 0 && drop.dropped + frame.sources.len() == 600);

@@ -16,6 +16,7 @@ pub mod perf;
 pub mod plots;
 pub mod series;
 pub mod settings;
+pub mod tier;
 pub mod timeline;
 
 pub use clock::{RaceClock, SPEEDS, format_race_time};
@@ -26,6 +27,7 @@ pub use open::{OpenRequest, RaceEntry, RacesPanel, list_races, races_ui};
 pub use perf::{FpsMeter, PassStat, PerfStats, perf_ui};
 pub use plots::{PlotCache, compare_ui, speed_plot_ui};
 pub use settings::{SceneSettings, SettingChange, scene_settings_ui};
+pub use tier::{TierPanel, tier_ui};
 pub use timeline::timeline_ui;
 
 mod layout;

@@ -87,6 +87,29 @@ impl EffectsHandle {
     pub fn camera_image_size(&self) -> [u32; 2] {
         self.shared.borrow().camera_image.size
     }
+
+    /// The offscreen targets the passes draw into: the reflection texture's size (once a
+    /// frame has drawn one) and the area-ratio caustic map's cells per side (none with the
+    /// cheap caustics or without caustics). The budget bench and the tier tests read them.
+    pub fn offscreen_sizes(&self) -> OffscreenSizes {
+        let shared = self.shared.borrow();
+        let map =
+            shared.cfg.effects.contains(crate::Effect::Caustics) && !shared.cfg.cheap_caustics;
+        OffscreenSizes {
+            reflection_px: shared
+                .reflection
+                .as_ref()
+                .map(|(t, _)| [t.width(), t.height()]),
+            caustic_map_cells: map.then(|| shared.caustic_tex.width()),
+        }
+    }
+}
+
+/// [`EffectsHandle::offscreen_sizes`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OffscreenSizes {
+    pub reflection_px: Option<[u32; 2]>,
+    pub caustic_map_cells: Option<u32>,
 }
 
 /// Add the background pass for `cfg` over `camera`'s frame to `renderer` and put the AR
@@ -129,6 +152,18 @@ pub fn add_scene_effects(
         effects,
         ..ArConfig::default()
     };
+    add_scene_effects_with(renderer, gpu, scene, size, cfg)
+}
+
+/// [`add_scene_effects`] with a whole [`ArConfig`] (a quality tier's reflection size and
+/// caustic tier).
+pub fn add_scene_effects_with(
+    renderer: &mut Renderer,
+    gpu: &Gpu,
+    scene: &render::Scene,
+    size: [u32; 2],
+    cfg: ArConfig,
+) -> EffectsHandle {
     let [ax, az, bx, bz] = scene.play_area;
     let centre = DVec2::new(ax + bx, az + bz) / 2.0;
     let square = ((bx - ax).max(bz - az) / 24.0).max(1e-3);

@@ -1,0 +1,481 @@
+//! `regatta bench --only budget`: per phone and quality tier, the timed estimate (interleaved
+//! with the throughput kernel, [`super::budget`]) and the machine-independent one
+//! ([`super::budget_model`]), each tier's accuracy ([`super::budget_accuracy`]), the goals,
+//! the effects' cost with a YUV camera image on the model, and `budget.json`.
+
+use std::time::Instant;
+
+use quality::Tier;
+use serde_json::json;
+
+use super::budget::FmaKernel;
+use super::budget_model::{FrameInputs, PHONES, PassWork, PhoneGpu, frame_ms, frame_work};
+use super::shader_cost::Trips;
+use crate::bench::{Axes, BenchContext, Series, Table};
+use crate::error::{CliError, CliResult};
+use crate::tier_render::TierRender;
+
+/// Race time of the budget's frame, s: the sample race's busiest wakes.
+const T: f64 = 600.0;
+
+/// One phone and tier: both estimates and the frame behind them.
+struct Row {
+    phone: &'static PhoneGpu,
+    tier: Tier,
+    /// Phone ms per repetition (timed, interleaved).
+    timed_ms: Vec<f64>,
+    /// Model ms: at the spec sheets' high rates, and at their low rates with the phone's own
+    /// hidden surface removal (the phone's figure).
+    model_ms: (f64, f64),
+    /// Model ms range: fast spec with all occluded fragments removed, slow spec with none.
+    model_range: (f64, f64),
+    work: Vec<PassWork>,
+    report: render::FrameReport,
+}
+
+/// Median and relative interquartile range of `v`.
+fn median_iqr(v: &[f64]) -> (f64, f64) {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    let q = |p: f64| s[((s.len() - 1) as f64 * p).round() as usize];
+    let m = q(0.5);
+    (m, (q(0.75) - q(0.25)) / m)
+}
+
+/// Trip counts of the frame's loops: the sea's waves, the marks, and the wake sources listed
+/// per non-empty bin of the frame's wake grid (binned as the renderer bins them); and the
+/// bytes of the frame's wake buffers.
+fn trips(
+    scene: &render::Scene,
+    tier: &TierRender,
+    wake: &ocean::wake::Wake,
+    drawn: [u32; 2],
+) -> (Trips, f64) {
+    let frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
+    let eye = [scene.camera.eye.x, scene.camera.eye.z];
+    let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
+    let mut wakes = wake.gpu_sources(
+        scene.t,
+        [frame.origin.x, frame.origin.y],
+        &ocean::wake::WakeView::around(eye, reach),
+        render::renderer::WAKE_EPSILON_M,
+    );
+    let half = reach as f32 * 2.0;
+    let (bins, _) = render::wake_bins::fit(
+        &mut wakes,
+        half,
+        render::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
+        tier.wake_source_budget,
+    );
+    let counts: Vec<f64> = bins
+        .bins
+        .iter()
+        .filter(|b| b[1] > 0)
+        .map(|b| f64::from(b[1]))
+        .collect();
+    let trips = Trips {
+        waves: scene.sea.waves.len() as f64,
+        wake_sources_per_bin: counts.iter().sum::<f64>() / counts.len().max(1) as f64,
+        marks: scene.marks.len() as f64,
+    };
+    (trips, bins.bytes(wakes.sources.len()) as f64)
+}
+
+/// Draw `tier` on `phone`'s screen `reps` times alternating with the kernel; model its work.
+fn measure(
+    ctx: &BenchContext,
+    gpu: &render::Gpu,
+    kernel: &FmaKernel,
+    iterations: u32,
+    phone: &'static PhoneGpu,
+    tier: Tier,
+    reps: usize,
+) -> CliResult<Row> {
+    let race = race::Race::sample();
+    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+    let t = TierRender::of(tier);
+    let size = phone.screen;
+    ctx.progress(format!(
+        "budget: {} {tier} at {}×{}",
+        phone.phone, size[0], size[1]
+    ));
+    let (mut renderer, fx) = t.renderer(gpu, Some(&race), &scene, size)?;
+    let view = crate::bench::offscreen(gpu, size);
+    let failed = |e: render::GpuError| CliError(e.to_string());
+    let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up
+    let mut timed_ms = Vec::with_capacity(reps);
+    for k in 0..reps {
+        // The kernel before and after the frame: the load the frame saw lies between.
+        let before = kernel.gflops(iterations);
+        // The frame: GPU timestamps where the adapter has them, else its wall time. The
+        // frames of a 60 fps playback, so that no offscreen work is reused.
+        let playing = render::Scene {
+            t: T + (k + 1) as f64 / 60.0,
+            ..scene.clone()
+        };
+        let t0 = Instant::now();
+        let r = renderer
+            .render(gpu, &view, size, &playing)
+            .map_err(failed)?;
+        gpu.wait();
+        let here = r.gpu_ms.unwrap_or(t0.elapsed().as_secs_f64() * 1e3);
+        let gflops = (before * kernel.gflops(iterations)).sqrt();
+        timed_ms.push(here * gflops / phone.gflops[1]);
+    }
+    let wake = t.race_wake(&race)?;
+    let (trips, wake_buffer_bytes) = trips(&scene, &t, &wake, report.size);
+    let inputs = FrameInputs {
+        report: &report,
+        offscreen: fx.offscreen_sizes(),
+        ar: &t.ar,
+        trips,
+        wake_buffer_bytes,
+        screen: size,
+        yuv: None,
+    };
+    let (full, unmodelled) = frame_work(&inputs, false).map_err(CliError::new)?;
+    let (hsr, _) = frame_work(&inputs, true).map_err(CliError::new)?;
+    // The range: fast spec with every occluded fragment removed, to slow spec shading all
+    // the depth test lets through; the phone's own figure: slow spec, its architecture.
+    let range = (frame_ms(&hsr, phone).0, frame_ms(&full, phone).1);
+    let work = if phone.hidden_surface_removal {
+        hsr
+    } else {
+        full
+    };
+    if !unmodelled.is_empty() {
+        ctx.progress(format!(
+            "budget: passes not modelled: {}",
+            unmodelled.join(", ")
+        ));
+    }
+    if report.shader_invocations.is_empty() {
+        return Err(CliError::new(
+            "budget: the adapter counts no shader invocations (pipeline-statistics queries): \
+             the model needs them",
+        ));
+    }
+    Ok(Row {
+        phone,
+        tier,
+        timed_ms,
+        model_ms: (range.0, frame_ms(&work, phone).1),
+        model_range: range,
+        work,
+        report,
+    })
+}
+
+/// The goal a tier is held to on a phone, if any: (fps, what the goal asks).
+fn goal(phone: &PhoneGpu, tier: Tier) -> Option<(f64, &'static str)> {
+    match (phone.phone, tier) {
+        ("OPPO A54", Tier::Low) => Some((30.0, "≥ 30 fps, background + reflection + refraction")),
+        ("Pixel 2 XL", Tier::High) => Some((60.0, "≥ 60 fps, every effect, render scale ≥ ¾")),
+        _ => None,
+    }
+}
+
+/// Section `budget`.
+pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+    let gpu = render::Gpu::headless(wgpu::Backends::all())
+        .map_err(|e| CliError::new(format!("the budget bench needs a GPU adapter: {e}")))?;
+    let kernel = FmaKernel::new(&gpu);
+    // A dispatch of about a tenth of a second: long enough that a scheduling blip of the
+    // shared machine is a small part of it, like the frame's.
+    let iterations = kernel.calibrate(if ctx.quick { 0.03 } else { 0.1 });
+    let reps = if ctx.quick { 3 } else { 9 };
+    let mut rows = Vec::new();
+    for phone in &PHONES {
+        for tier in Tier::ALL {
+            rows.push(measure(ctx, &gpu, &kernel, iterations, phone, tier, reps)?);
+        }
+    }
+    let mut tiers = Table::new(
+        "budget_tiers",
+        "Phone frame budget per quality tier: timed (interleaved with the FP32 kernel) and modelled (shader work × invocations against published rates)",
+        &[
+            "phone",
+            "tier",
+            "effects",
+            "render scale",
+            "timed ms",
+            "timed fps",
+            "timed spread (IQR/median)",
+            "model ms (slow spec, the phone's HSR)",
+            "model ms range",
+            "model fps (slow spec, the phone's HSR)",
+            "goal",
+            "goal met on the model (slow spec)",
+        ],
+    );
+    let mut json_rows = Vec::new();
+    for r in &rows {
+        let s = r.tier.settings();
+        let (timed, spread) = median_iqr(&r.timed_ms);
+        let model_fps = 1e3 / r.model_ms.1;
+        let g = goal(r.phone, r.tier);
+        tiers.row(vec![
+            json!(r.phone.phone),
+            json!(r.tier.name()),
+            json!(s.effects.join(",")),
+            json!(s.render_scale),
+            json!(timed),
+            json!(1e3 / timed),
+            json!(spread),
+            json!(r.model_ms.1),
+            json!(format!("{:.1}–{:.1}", r.model_range.0, r.model_range.1)),
+            json!(model_fps),
+            json!(g.map(|(_, what)| what)),
+            json!(g.map(|(fps, _)| if model_fps >= fps {
+                "yes".to_string()
+            } else {
+                format!("no: needs {:.2}× less work", fps / model_fps)
+            })),
+        ]);
+        json_rows.push(json!({
+            "phone": r.phone.phone,
+            "tier": r.tier.name(),
+            "effects": s.effects,
+            "render_scale": s.render_scale,
+            "model_fps": model_fps,
+            "model_fps_range": [1e3 / r.model_range.1, 1e3 / r.model_range.0],
+            "timed_fps": 1e3 / timed,
+            "timed_spread": spread,
+        }));
+    }
+    tiers.note(format!(
+        "{}; the sample race at {T} s with wakes, the default camera, each phone's screen. \
+         Timed: {reps} repetitions, each the FMA kernel (2^20 invocations × {iterations} turns), \
+         the frame, the kernel again; phone ms = frame GPU ms × the geometric mean of the two \
+         kernels' GFLOP/s ÷ \
+         the phone's FP32 peak (Adreno 540: {}, GE8320: {} GFLOP/s); the median of the \
+         repetitions. Model: see budget_passes; the phone's figure at the slow end of the spec \
+         sheets with its own hidden surface removal (PowerVR: each pixel shaded once; Adreno: \
+         every fragment the depth test passes, as counted); the range from the fast end with \
+         each pixel shaded once to the slow end with every counted fragment.",
+        gpu.describe(),
+        PHONES[1].gflops[1],
+        PHONES[0].gflops[1],
+    ));
+    for p in &PHONES {
+        tiers.note(format!("{} ({}) rates: {}", p.phone, p.gpu, p.sources));
+    }
+    let path = ctx.out_dir.join("budget.json");
+    crate::cli::output::write_text(&path, &serde_json::to_string_pretty(&json_rows)?)?;
+    let passes = passes_table(&rows);
+    let accuracy = accuracy_table(ctx, &rows)?;
+    let yuv = yuv_table(ctx, &gpu)?;
+    Ok(vec![tiers, accuracy, passes, yuv])
+}
+
+/// Per pass of every row: the model's ms at the slow spec and what bounds it.
+fn passes_table(rows: &[Row]) -> Table {
+    let mut t = Table::new(
+        "budget_passes",
+        "Machine-independent model per pass: invocations × shader work against the phone's rates",
+        &[
+            "phone",
+            "tier",
+            "pass",
+            "vertex + compute invocations",
+            "fragment invocations",
+            "GFLOP",
+            "Gtexel",
+            "memory MB",
+            "storage loads MB (cache)",
+            "model ms (slow spec)",
+            "bound by",
+            "timed here ms",
+        ],
+    );
+    for r in rows {
+        for w in &r.work {
+            let here = r
+                .report
+                .passes
+                .iter()
+                .find(|p| p.name == w.pass)
+                .and_then(|p| p.gpu_ms);
+            t.row(vec![
+                json!(r.phone.phone),
+                json!(r.tier.name()),
+                json!(w.pass),
+                json!(w.invocations[0]),
+                json!(w.invocations[1]),
+                json!(w.cost.alu * 1e-9),
+                json!(w.cost.tex * 1e-9),
+                json!(w.target_bytes * 1e-6),
+                json!(w.cost.storage_bytes * 1e-6),
+                json!(w.ms(r.phone, false)),
+                json!(w.bound(r.phone, false).0),
+                json!(here),
+            ]);
+        }
+    }
+    t.note(
+        "Vertex and fragment invocations of the frame's passes from pipeline-statistics \
+         queries (this adapter's rasteriser); the water's compute stage once per clip-map vertex \
+         (half its triangles); the reflection texture once per texel; the caustic map once per \
+         surface grid point, twice per grid cell and once per map cell; the upscale once per \
+         screen pixel. Work per invocation: naga's IR of each entry point (app/src/bench/\
+         shader_cost.rs), loops × trip counts known on the CPU (waves, marks, wake sources per \
+         bin). A pass takes the longest of ALU ÷ FP32 rate, texels ÷ texture rate and memory \
+         bytes ÷ bandwidth (render targets, vertices, the wake buffers once: the sources a bin \
+         lists are read by all its vertices from the cache). Timed here: this adapter's GPU timestamps of the pass (its offscreen work \
+         apart), to compare rankings.",
+    );
+    t
+}
+
+/// Each tier's accuracy against its cost on both phones, and the plot.
+fn accuracy_table(ctx: &BenchContext, rows: &[Row]) -> CliResult<Table> {
+    let mut t = Table::new(
+        "budget_accuracy",
+        "Quality tiers: run time against error (f64 references)",
+        &[
+            "tier",
+            "mesh error px (screen)",
+            "wake RMS / reference RMS",
+            "wake budget drop bound m",
+            "caustic RMS error",
+            "OPPO A54 model ms",
+            "OPPO A54 timed ms",
+            "Pixel 2 XL model ms",
+            "Pixel 2 XL timed ms",
+        ],
+    );
+    let mut series: Vec<Series> = PHONES
+        .iter()
+        .flat_map(|p| {
+            ["model", "timed"].map(|k| Series {
+                label: format!("{} {k}", p.phone),
+                points: Vec::new(),
+            })
+        })
+        .collect();
+    for tier in Tier::ALL {
+        let of = |phone: &str| {
+            rows.iter()
+                .find(|r| r.tier == tier && r.phone.phone == phone)
+        };
+        let (Some(a54), Some(p2)) = (of("OPPO A54"), of("Pixel 2 XL")) else {
+            continue;
+        };
+        let acc = super::budget_accuracy::tier_accuracy(ctx, tier, &a54.report)?;
+        let timed = |r: &Row| median_iqr(&r.timed_ms).0;
+        for (k, r) in [a54, p2].iter().enumerate() {
+            series[2 * k].points.push((acc.mesh_px, r.model_ms.1));
+            series[2 * k + 1].points.push((acc.mesh_px, timed(r)));
+        }
+        t.row(vec![
+            json!(tier.name()),
+            json!(acc.mesh_px),
+            json!(acc.wake_rel_rms),
+            json!(acc.wake_drop_bound_m),
+            json!(acc.caustic_rms),
+            json!(a54.model_ms.1),
+            json!(timed(a54)),
+            json!(p2.model_ms.1),
+            json!(timed(p2)),
+        ]);
+    }
+    t.note(
+        "Mesh: the clip-map's worst level error bound (f64) in screen pixels. Wakes: RMS \
+         height error against the Havelock integral at the tier's source spacing (one boat at \
+         5 m/s), and the bound of the height error of the sources the tier's budget dropped in \
+         the OPPO A54 frame. Caustics: RMS error of the light on the demo table against the \
+         512² area-ratio reference (1 = flat water): the tier's map, the cheap overhead-sun \
+         formula, or flat light where caustics are off.",
+    );
+    t.plots.push(ctx.plot(
+        "tiers.svg",
+        &Axes {
+            title: "Quality tiers: frame ms against mesh error (low → ultra: right → left)",
+            x_label: "mesh error bound, screen px",
+            y_label: "frame ms",
+            log_x: true,
+            log_y: true,
+        },
+        &series,
+    )?);
+    Ok(t)
+}
+
+/// The AR effects' cost over water only on the model, with a 640×480 YUV camera image
+/// converted for every frame and at 30 Hz into a 60 fps frame.
+fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
+    let mut t = Table::new(
+        "budget_yuv",
+        "All effects with a YUV camera image against water only, on the machine-independent model",
+        &["phone", "case", "model ms (slow spec)", "× water only"],
+    );
+    let race = race::Race::sample();
+    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+    let ultra = TierRender::of(Tier::Ultra);
+    let wake = ultra.race_wake(&race)?;
+    for phone in &PHONES {
+        let size = phone.screen;
+        ctx.progress(format!(
+            "budget: {} water only and all effects",
+            phone.phone
+        ));
+        let view = crate::bench::offscreen(gpu, size);
+        let failed = |e: render::GpuError| CliError(e.to_string());
+        let mut water = render::Renderer::new(gpu, render::OFFSCREEN_FORMAT, ultra.options);
+        water.set_wake(Some(wake.clone()));
+        let water_report = water.render(gpu, &view, size, &scene).map_err(failed)?;
+        let (mut all, fx) = ultra.renderer(gpu, Some(&race), &scene, size)?;
+        let all_report = all.render(gpu, &view, size, &scene).map_err(failed)?;
+        let (trips, wake_buffer_bytes) = trips(&scene, &ultra, &wake, size);
+        let none = effects::passes::ArConfig {
+            effects: effects::EffectSet::NONE,
+            ..ultra.ar.clone()
+        };
+        let no_offscreen = effects::passes::OffscreenSizes {
+            reflection_px: None,
+            caustic_map_cells: None,
+        };
+        let ms = |report, offscreen, ar, yuv| -> CliResult<f64> {
+            let i = FrameInputs {
+                report,
+                offscreen,
+                ar,
+                trips,
+                wake_buffer_bytes,
+                screen: size,
+                yuv,
+            };
+            let work = frame_work(&i, phone.hidden_surface_removal).map_err(CliError::new)?;
+            Ok(frame_ms(&work.0, phone).1)
+        };
+        let fx_sizes = fx.offscreen_sizes();
+        let base = ms(&water_report, no_offscreen, &none, None)?;
+        let cam = Some(([640, 480], 1.0));
+        let half = Some(([640, 480], 0.5));
+        for (case, v) in [
+            ("water only", base),
+            ("all effects", ms(&all_report, fx_sizes, &ultra.ar, None)?),
+            (
+                "all effects + YUV every frame",
+                ms(&all_report, fx_sizes, &ultra.ar, cam)?,
+            ),
+            (
+                "all effects + YUV at 30 Hz, 60 fps",
+                ms(&all_report, fx_sizes, &ultra.ar, half)?,
+            ),
+        ] {
+            t.row(vec![
+                json!(phone.phone),
+                json!(case),
+                json!(v),
+                json!(v / base),
+            ]);
+        }
+    }
+    t.note(
+        "The ultra tier's frame (every effect, full screen) of the sample race with wakes. \
+         The camera image: 640×480 YUV 4:2:0 uploaded and converted to RGBA \
+         (shaders/camera_yuv.wgsl) once per camera frame. Goal: at most 1.6× water only.",
+    );
+    Ok(t)
+}
