@@ -356,6 +356,9 @@ impl App {
                             .map_err(|e| log::warn!("regatta: {e}; drawing no wakes"))
                             .ok();
                         log::info!("regatta: drawing on {}", gpu.describe());
+                        // Camera images above the GPU's largest texture are halved to fit.
+                        self.ar
+                            .set_max_image_side(gpu.device.limits().max_texture_dimension_2d);
                         let view_formats = gpu
                             .adapter
                             .get_downlevel_capabilities()
