@@ -31,6 +31,11 @@ impl ArBackend for ArCore {
         ArCore::update(self)
     }
 
+    /// Camera images above the GPU's largest texture are halved to fit (PowerVR GE8320).
+    fn limit_image_side(&mut self, max_side: u32) {
+        ArCore::set_max_image_side(self, max_side);
+    }
+
     fn next_frame(&mut self) -> Result<Option<(CameraFrame, DisplayCamera)>, ar::ArError> {
         let frame = FrameSource::next_frame(self)?;
         Ok(frame.zip(self.view))

@@ -114,6 +114,37 @@ impl FrameImage {
     }
 }
 
+impl FrameImage {
+    /// The image, halved until neither side exceeds `max_side` (a GPU's largest texture):
+    /// unchanged when it fits; YUV comes back normalised (tight luma, interleaved chroma).
+    pub fn fit_within(self, max_side: u32) -> Result<FrameImage, ArError> {
+        let (w, h) = self.size();
+        if w <= max_side && h <= max_side {
+            return Ok(self);
+        }
+        Ok(match self.to_camera_image()?.fit_within(max_side) {
+            CameraImage::Rgba(img) => FrameImage::Rgba8 {
+                width: img.width(),
+                height: img.height(),
+                data: img.into_raw(),
+            },
+            CameraImage::Yuv420(p) => {
+                let [cw, _] = Yuv420::chroma_size(p.width(), p.height());
+                FrameImage::Yuv420 {
+                    width: p.width(),
+                    height: p.height(),
+                    y: p.y().to_vec(),
+                    y_row_stride: p.width(),
+                    u: p.uv().to_vec(),
+                    v: p.uv()[1..].to_vec(),
+                    uv_row_stride: 2 * cw,
+                    uv_pixel_stride: 2,
+                }
+            }
+        })
+    }
+}
+
 /// Pinhole intrinsics in pixels for an image of `width` × `height` (same pixel convention as the
 /// module docs: `cx = width / 2` is the image centre).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]

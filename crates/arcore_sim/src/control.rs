@@ -57,6 +57,21 @@ pub unsafe extern "C" fn RegattaSim_openReplay(dir: *const c_char) -> i32 {
     }
 }
 
+/// Plays the synthetic table feed at `width` × `height` pixels, `frames` frames a loop (a
+/// phone camera's full-size image, e.g. 4032 × 3024, for the texture-limit tests).
+#[unsafe(no_mangle)]
+pub extern "C" fn RegattaSim_useSynth(width: u32, height: u32, frames: u32) {
+    let mut s = sim("RegattaSim_useSynth");
+    s.feed = Feed::Synth(ar::SynthConfig {
+        width: width.max(2),
+        height: height.max(2),
+        frames: frames.max(1) as usize,
+        ..crate::feed::default_synth()
+    });
+    s.updates = 0;
+    s.shown = None;
+}
+
 /// Copies the last error (UTF-8, NUL-terminated, truncated to `len`) into `buf`; returns its
 /// full length in bytes.
 #[unsafe(no_mangle)]

@@ -6,6 +6,7 @@
 
 use std::fmt;
 
+mod fit;
 pub mod yuv;
 
 pub use yuv::{YuvRange, YuvToRgb};

@@ -57,6 +57,11 @@ impl Sim {
         unsafe { self.sym::<unsafe extern "C" fn(i32, i32)>(name)(a, b) }
     }
 
+    pub fn set2_u32(&self, name: &str, a: u32, b: u32, c: u32) {
+        // SAFETY: a `void f(uint32_t, uint32_t, uint32_t)` export.
+        unsafe { self.sym::<unsafe extern "C" fn(u32, u32, u32)>(name)(a, b, c) }
+    }
+
     pub fn expect_activity(&self, handle: usize) {
         // SAFETY: `void RegattaSim_expectActivity(void *)`.
         unsafe {

@@ -204,18 +204,32 @@ impl FrameApi {
     }
 }
 
-/// Reads the frame of the last `ArSession_update`. `hdr`: the session is configured for
-/// Environmental HDR light estimation. `last_timestamp_ns`: the timestamp of the last frame
-/// read; when ARCore's is the same, the image, planes and intrinsics are not read again.
+/// What [`read_frame`] needs to know of the session and the app.
+pub(super) struct ReadOptions {
+    /// The session is configured for Environmental HDR light estimation.
+    pub hdr: bool,
+    /// The timestamp of the last frame read; when ARCore's is the same, the image, planes and
+    /// intrinsics are not read again.
+    pub last_timestamp_ns: Option<i64>,
+    /// The largest image side the GPU takes (`max_texture_dimension_2d`); a larger image is
+    /// halved until it fits, its intrinsics with it.
+    pub max_image_side: Option<u32>,
+}
+
+/// Reads the frame of the last `ArSession_update`.
 ///
 /// SAFETY (callers): live session `s` and frame `f` on which `ArSession_update` ran.
 pub(super) unsafe fn read_frame(
     api: &FrameApi,
     s: S,
     f: S,
-    hdr: bool,
-    last_timestamp_ns: Option<i64>,
+    options: &ReadOptions,
 ) -> Result<FrameRead, ArError> {
+    let ReadOptions {
+        hdr,
+        last_timestamp_ns,
+        max_image_side,
+    } = *options;
     let mut camera = std::ptr::null_mut();
     // SAFETY: per the function's contract; every ARCore object made here is released.
     unsafe {
@@ -275,8 +289,12 @@ pub(super) unsafe fn read_frame(
                 timestamp_ns: t_ns,
             });
         };
-        // The intrinsics are for the CPU image's size; should ARCore give another size,
-        // scale them to the image actually handed over.
+        let image = match max_image_side {
+            Some(max) => image.fit_within(max)?,
+            None => image,
+        };
+        // The intrinsics are for the CPU image's size; should ARCore give another size (or
+        // the image be halved to fit the GPU), scale them to the image actually handed over.
         let (iw, ih) = image.size();
         let sx = f64::from(iw) / f64::from(w.max(1));
         let sy = f64::from(ih) / f64::from(h.max(1));

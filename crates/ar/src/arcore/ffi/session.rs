@@ -6,7 +6,7 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 
 use super::api::{Apis, O, S, consts};
-use super::frame::{DisplayCamera, read_frame};
+use super::frame::{DisplayCamera, ReadOptions, read_frame};
 use super::jni::{CAMERA_PERMISSION, CAMERA_REQUEST_CODE, JavaObject, Jni};
 use crate::arcore::session::status;
 use crate::arcore::{Command, Event, LightMode, SessionState, Unavailable};
@@ -49,6 +49,8 @@ pub struct ArCore {
     resumed: bool,
     /// The timestamp of the last camera frame read (an unchanged one is not read again).
     last_timestamp_ns: Option<i64>,
+    /// The GPU's largest texture side: camera images are halved to fit it.
+    max_image_side: Option<u32>,
     /// What the last [`FrameSource::next_frame`] read besides the camera frame.
     pub view: Option<DisplayCamera>,
 }
@@ -80,8 +82,16 @@ impl ArCore {
             light: None,
             resumed: false,
             last_timestamp_ns: None,
+            max_image_side: None,
             view: None,
         }
+    }
+
+    /// Camera images wider or taller than `max_side` pixels (the device's
+    /// `max_texture_dimension_2d`) are halved until they fit, so no texture made from them is
+    /// above the GPU's limits (phone realities, issue 19).
+    pub fn set_max_image_side(&mut self, max_side: u32) {
+        self.max_image_side = Some(max_side.max(1));
     }
 
     pub fn is_loaded(&self) -> bool {
@@ -356,17 +366,13 @@ impl FrameSource for ArCore {
         let (Some(apis), Some(session)) = (self.apis.as_ref(), self.live_session()) else {
             return Ok(None);
         };
-        let hdr = self.light == Some(LightMode::EnvironmentalHdr);
+        let options = ReadOptions {
+            hdr: self.light == Some(LightMode::EnvironmentalHdr),
+            last_timestamp_ns: self.last_timestamp_ns,
+            max_image_side: self.max_image_side,
+        };
         // SAFETY: live session and frame (update ran).
-        let read = unsafe {
-            read_frame(
-                &apis.frame,
-                session as S,
-                self.frame as S,
-                hdr,
-                self.last_timestamp_ns,
-            )
-        }?;
+        let read = unsafe { read_frame(&apis.frame, session as S, self.frame as S, &options) }?;
         self.view = Some(read.display);
         if read.frame.is_some() {
             self.last_timestamp_ns = Some(read.timestamp_ns);
