@@ -11,7 +11,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::cli::render_replay::TableFrame;
+use regatta::cli::render::replay::TableFrame;
 use regatta::core::scene::{middle_time, race_wake};
 use regatta::desktop::feed::{FeedView, SYNTH};
 use render::{Camera, RenderOptions, Renderer};

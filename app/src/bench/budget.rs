@@ -141,8 +141,6 @@ pub fn measure_gflops(gpu: &render::Gpu, min_s: f64) -> Result<f64, render::GpuE
     }
 }
 
-pub use super::budget_run::run;
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -189,7 +189,7 @@ pub const SECTIONS: &[Section] = &[
     ("race", race::run),
     ("wakes", wakes::run),
     ("pool", pool::run),
-    ("budget", budget::run),
+    ("budget", budget_run::run),
     ("overlays", overlays::run),
 ];
 

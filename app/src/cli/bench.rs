@@ -31,7 +31,7 @@ pub fn run(a: BenchArgs) -> CliResult {
         tables.len(),
         a.out.join("report.md").display()
     );
-    super::print_stdout(
+    super::output::print_stdout(
         "the bench summary",
         &serde_json::json!({ "out": a.out, "tables": tables.len() }),
     )

@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand};
 
-use crate::error::{CliError, CliResult};
+use crate::error::CliResult;
 
 pub mod bench;
 pub mod inputs;
@@ -12,8 +12,8 @@ pub mod phone_sim;
 pub mod probe;
 pub mod race;
 pub mod render;
-pub mod render_replay;
 pub mod replay;
+pub mod scene_kind;
 pub mod sea;
 
 /// Regatta: a sailing race on a real table, with a living sea drawn over it.
@@ -163,13 +163,7 @@ pub fn dispatch(cli: Cli) -> CliResult {
     }
 }
 
-/// Print `what`'s JSON (or text) on stdout. A closed pipe (`regatta … | head`) is one clear
-/// error, not the panic `println!` makes of it.
-pub fn print_stdout(what: &str, text: &dyn std::fmt::Display) -> CliResult {
-    use std::io::Write;
-    writeln!(std::io::stdout().lock(), "{text}")
-        .map_err(|e| CliError::new(format!("could not write {what} to stdout: {e}")))
-}
+pub use output::print_stdout;
 
 #[cfg(test)]
 mod tests {

@@ -86,7 +86,7 @@ pub fn run(a: PhoneSimArgs) -> CliResult {
         "gpu": sim.app.describe_gpu(),
         "status": sim.app.status(),
     });
-    super::print_stdout(
+    super::output::print_stdout(
         "the session summary",
         &serde_json::to_string_pretty(&summary)?,
     )?;

@@ -138,7 +138,7 @@ pub fn run(a: ProbeArgs) -> CliResult {
         .iter()
         .map(|&at| probe_point(&sea, t, at, wake_at(at)))
         .collect::<CliResult<Vec<_>>>()?;
-    super::print_stdout("the probe JSON", &json!({ "t": t, "points": out }))
+    super::output::print_stdout("the probe JSON", &json!({ "t": t, "points": out }))
 }
 
 #[cfg(test)]

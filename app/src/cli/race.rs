@@ -77,7 +77,7 @@ pub fn run(a: RaceArgs) -> CliResult {
     } else {
         states_json(&race, a.t.unwrap_or(0.0))
     };
-    super::print_stdout("the race JSON", &out)
+    super::output::print_stdout("the race JSON", &out)
 }
 
 /// The DESIGN.md JSON of `regatta race --t T`.

@@ -125,5 +125,5 @@ fn print_summary(dir: &Path) -> CliResult {
                        "width": k.width, "height": k.height},
         "planes": planes,
     });
-    super::print_stdout("the replay summary", &out)
+    super::output::print_stdout("the replay summary", &out)
 }

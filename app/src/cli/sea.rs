@@ -226,5 +226,5 @@ pub fn run(a: SeaArgs) -> CliResult {
         g.unscaled_total_steepness,
         g.sea.total_steepness()
     );
-    super::print_stdout("the sea file", &g.sea.to_json_string())
+    super::output::print_stdout("the sea file", &g.sea.to_json_string())
 }

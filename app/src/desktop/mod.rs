@@ -19,7 +19,7 @@ use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
 use crate::cli::inputs::{load_race, load_sea};
-use crate::cli::render::SceneKind;
+use crate::cli::scene_kind::SceneKind;
 use crate::core::clock::Ticker;
 use crate::core::gfx::{self, Acquired, Profile};
 use crate::core::scene::RaceWorld;

@@ -30,7 +30,7 @@ const MAX_HEIGHT: u32 = 760;
 const TWO_FINGER_RADIUS: f64 = 60.0;
 
 pub fn run(a: RunArgs) -> CliResult {
-    if !a.race.is_empty() || a.sea.is_some() || a.scene != crate::cli::render::SceneKind::Race {
+    if !a.race.is_empty() || a.sea.is_some() || a.scene != crate::cli::scene_kind::SceneKind::Race {
         return Err(CliError::new(
             "--race, --sea and --scene have no meaning with --phone (the phone app has its race and a Race | Pool toggle)",
         ));

@@ -7,8 +7,7 @@ use race::{MarkKind, Standing};
 use render::passes::overlay::{Layer, MASTHEAD, Segment};
 use render::scene::{float_matrix, float_pose};
 
-use super::paint::SceneText;
-use super::{OverlaySettings, WindInfo};
+use super::{OverlaySettings, SceneText, WindInfo};
 
 /// One boat as the overlays see it.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -84,6 +84,15 @@ pub const DEFAULT_TRAIL_S: f64 = 120.0;
 /// How many boats "compare" holds.
 pub use ui::MAX_SELECTED;
 
+/// A text anchored at a world point (a gap, the wind): placed by `geometry`, painted by `paint`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneText {
+    pub at: glam::DVec3,
+    pub text: String,
+    /// Linear RGB.
+    pub colour: [f32; 3],
+}
+
 /// What the user chose: overlays on, trail length, rhumb lines, selected boats.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OverlaySettings {

@@ -3,20 +3,10 @@
 //! and the wind figure. The desktop window paints them in its egui pass; `regatta render`
 //! paints the same shapes into its offscreen frame with egui-wgpu ([`render_with_overlays`]).
 
-use glam::DVec3;
 
-use super::OverlayFrame;
 use super::labels::{self, BAR_PT, LABEL_TEXT_PT, PAD_PT, PlacedLabel};
+use super::OverlayFrame;
 use crate::overlay::EguiPainter;
-
-/// A text anchored at a world point.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SceneText {
-    pub at: DVec3,
-    pub text: String,
-    /// Linear RGB.
-    pub colour: [f32; 3],
-}
 
 /// A text at a framebuffer pixel.
 #[derive(Debug, Clone, PartialEq)]

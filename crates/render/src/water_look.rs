@@ -231,22 +231,20 @@ impl WaterLook {
     }
 }
 
-/// The constants `shaders/water_look.wgsl` reads, as WGSL (part of the generated prelude).
-pub fn wgsl_constants() -> String {
-    let f = |v: f64| format!("{:?}", v as f32);
-    let a = pure_water_absorption();
-    format!(
-        "const WATER_ABSORPTION: vec3<f32> = vec3<f32>({}, {}, {});\n\
-         const WATER_DIFFUSE_ENTRY: f32 = {};\n\
-         const WATER_INTERNAL_REFLECTANCE: f32 = {};\n\
-         const WATER_N2: f32 = {};\n",
-        f(a[0]),
-        f(a[1]),
-        f(a[2]),
-        f(diffuse_entry()),
-        f(diffuse_internal_reflectance()),
-        f((N_WATER / N_AIR).powi(2)),
-    )
+/// The water's constants as WGSL needs them (name, value), for the generated prelude
+/// (`crate::shader::shared_consts`): the band absorption, the diffuse entry share, the mean
+/// internal reflectance and n².
+pub fn wgsl_values() -> [(&'static str, [f64; 3]); 4] {
+    let n2 = (N_WATER / N_AIR).powi(2);
+    [
+        ("WATER_ABSORPTION", pure_water_absorption()),
+        ("WATER_DIFFUSE_ENTRY", [diffuse_entry(); 3]),
+        (
+            "WATER_INTERNAL_REFLECTANCE",
+            [diffuse_internal_reflectance(); 3],
+        ),
+        ("WATER_N2", [n2; 3]),
+    ]
 }
 
 /// The light that leaves the water from the table and the particles, before the view
@@ -360,39 +358,6 @@ mod tests {
             .check()
             .unwrap_err();
             assert!(e.contains("depth") || e.contains("turbidity"), "{e}");
-        }
-    }
-
-    #[test]
-    fn the_water_constants_reach_wgsl_only_through_the_prelude() {
-        let p = crate::shader::prelude();
-        let line = p
-            .lines()
-            .find(|l| l.starts_with("const WATER_ABSORPTION: vec3<f32> = vec3<f32>("))
-            .expect("the prelude defines WATER_ABSORPTION");
-        let inner = line
-            .split_once("vec3<f32>(")
-            .unwrap()
-            .1
-            .trim_end_matches(");");
-        let v: Vec<f32> = inner.split(", ").map(|x| x.parse().unwrap()).collect();
-        let a = pure_water_absorption();
-        assert_eq!(v, a.map(|x| x as f32).to_vec());
-        for name in [
-            "WATER_DIFFUSE_ENTRY",
-            "WATER_INTERNAL_REFLECTANCE",
-            "WATER_N2",
-        ] {
-            assert!(p.contains(&format!("const {name}: f32 = ")), "{name}");
-        }
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders");
-        for e in std::fs::read_dir(dir).unwrap().filter_map(Result::ok) {
-            let text = std::fs::read_to_string(e.path()).unwrap_or_default();
-            assert!(
-                !text.contains("const WATER_"),
-                "{:?} defines a water constant",
-                e.path()
-            );
         }
     }
 }

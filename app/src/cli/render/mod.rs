@@ -1,6 +1,6 @@
 //! `regatta render`: one frame, headless, to a PNG (or JPEG); the frame planner's record as
 //! JSON on stdout (and in `--report FILE.json`). With `--replay DIR [--frame N]`, the race on
-//! the table of a recorded feed, drawn over that frame ([`super::render_replay`]).
+//! the table of a recorded feed, drawn over that frame ([`replay`]).
 
 use std::path::PathBuf;
 
@@ -10,6 +10,8 @@ use render::{Camera, RenderOptions, Renderer};
 
 use crate::cli::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
 use crate::cli::output::{ImageOut, write_text};
+
+pub mod replay;
 use crate::core::scene::{FAR_M, RaceWorld};
 use crate::error::{CliError, CliResult};
 
@@ -107,13 +109,7 @@ pub fn note_unmet_error(report: &render::FrameReport) {
     }
 }
 
-/// The scenes `regatta render` and `regatta run` draw.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
-pub enum SceneKind {
-    #[default]
-    Race,
-    Pool,
-}
+pub use super::scene_kind::SceneKind;
 
 /// Parse `WIDTHxHEIGHT` (each 1..=8192).
 pub fn parse_size(s: &str) -> CliResult<[u32; 2]> {
@@ -192,7 +188,7 @@ pub fn run(a: RenderArgs) -> CliResult {
                 "--camera has no meaning with --replay: the feed's camera draws",
             ));
         }
-        return super::render_replay::run(&a, dir, &out, size, effects, &overlays);
+        return replay::run(&a, dir, &out, size, effects, &overlays);
     }
     let camera = a
         .camera
@@ -277,7 +273,7 @@ pub fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> CliResult
     if let Some(p) = &a.report {
         write_text(p, &json)?;
     }
-    super::print_stdout("the frame record", &json)
+    super::output::print_stdout("the frame record", &json)
 }
 
 /// `--scene pool`: the pool at `--t` (default [`pool::DEFAULT_T`]).
