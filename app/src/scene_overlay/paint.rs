@@ -3,9 +3,8 @@
 //! and the wind figure. The desktop window paints them in its egui pass; `regatta render`
 //! paints the same shapes into its offscreen frame with egui-wgpu ([`render_with_overlays`]).
 
-
-use super::labels::{self, BAR_PT, LABEL_TEXT_PT, PAD_PT, PlacedLabel};
 use super::OverlayFrame;
+use super::labels::{self, BAR_PT, LABEL_TEXT_PT, PAD_PT, PlacedLabel};
 use crate::overlay::EguiPainter;
 
 /// A text at a framebuffer pixel.

@@ -245,6 +245,9 @@ impl PhoneApp {
         let Some(p) = self.course else {
             // Not placed: the camera image where AR runs (to see the table), else 3D.
             if !self.draw_backdrop(g, target, size, format) {
+                let ppp = f64::from(self.touch.pixels_per_point);
+                self.overlays
+                    .prepare(&g.gpu, &mut g.race, &self.world.race, &scene, size, ppp);
                 let _ = g.race.render(&g.gpu, target, size, &scene);
             }
             return;
@@ -275,6 +278,10 @@ impl PhoneApp {
                 g.race_upload = Some(upload);
             }
         }
+        // The overlays, on the table as in the 3D view (labels at the phone's density).
+        let ppp = f64::from(self.touch.pixels_per_point);
+        self.overlays
+            .prepare(&g.gpu, &mut g.race, &self.world.race, &scene, size, ppp);
         let _ = g.race.render(&g.gpu, target, size, &scene);
     }
 
@@ -321,28 +328,35 @@ impl PhoneApp {
         let mut record = false;
         let mut free = self.ui_free;
         let (panels, world, events) = (&mut self.panels, &self.world, &self.events);
+        let overlays = &mut self.overlays;
+        let mut clicked = None;
         // The phone has no cursor or clipboard to update: the platform output is not needed.
         let _ = g
             .egui
             .paint(&g.gpu.device, &g.gpu.queue, texture, size, raw, |ui| {
                 if choice == SceneChoice::Race {
-                    // No boat selection or race list on the phone yet (docs/panels.md).
-                    race_panels(
+                    overlays.paint(ui.ctx(), size);
+                    // No race list on the phone yet (docs/panels.md).
+                    let r = race_panels(
                         ui,
                         panels,
                         &world.race,
                         events,
                         None,
                         &world.race.name,
-                        &[],
+                        &overlays.settings.selected,
                         None,
                     );
+                    clicked = r.clicked_boat;
                 }
                 let bar = phone_bar(ui.ctx(), &mut choice, recording, message.as_ref());
                 record |= bar.record_toggled;
                 free = ui.available_rect_before_wrap();
             });
         self.ui_free = free;
+        if let Some(b) = clicked {
+            ui::toggle_selection(&mut self.overlays.settings.selected, b);
+        }
         if record {
             self.record_button();
         }

@@ -115,6 +115,9 @@ pub struct PhoneApp {
     graphics: Option<Graphics>,
     /// The last recording folder written.
     pub last_recording: Option<PathBuf>,
+    /// The race overlays over the scene (labels, trails, course, lines, wind), as on the
+    /// desktop; boats are selected in the Boats panel.
+    pub overlays: crate::scene_overlay::live::LiveOverlays,
 }
 
 impl PhoneApp {
@@ -149,6 +152,7 @@ impl PhoneApp {
             maker: None,
             graphics: None,
             last_recording: None,
+            overlays: Default::default(),
         }
     }
 
