@@ -49,6 +49,9 @@ pub struct UiResponse {
     pub clear_selection: bool,
     /// The Races panel asked to open a race, show the file dialog or rescan.
     pub open: Option<OpenRequest>,
+    /// The part of the screen the panels left to the scene (egui points): a touch there is
+    /// the scene's (the phone's tap to place).
+    pub scene_rect: Option<egui::Rect>,
 }
 
 /// Per-frame inputs of [`RegattaUi::show`].
@@ -273,6 +276,7 @@ impl RegattaUi {
                 });
         }
         out.effects_changed = !out.settings.is_empty();
+        out.scene_rect = Some(ui.available_rect_before_wrap());
         out
     }
 

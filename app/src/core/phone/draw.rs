@@ -330,6 +330,7 @@ impl PhoneApp {
         let (panels, world, events) = (&mut self.panels, &self.world, &self.events);
         let overlays = &mut self.overlays;
         let mut clicked = None;
+        let mut scene_rect = None;
         // The phone has no cursor or clipboard to update: the platform output is not needed.
         let _ = g
             .egui
@@ -348,10 +349,12 @@ impl PhoneApp {
                         None,
                     );
                     clicked = r.clicked_boat;
+                    scene_rect = r.scene_rect;
                 }
                 let bar = phone_bar(ui.ctx(), &mut choice, recording, message.as_ref());
                 record |= bar.record_toggled;
-                free = ui.available_rect_before_wrap();
+                // The scene's part of the screen: what the panels left, else what the bar left.
+                free = scene_rect.unwrap_or_else(|| ui.available_rect_before_wrap());
             });
         self.ui_free = free;
         if let Some(b) = clicked {
