@@ -245,9 +245,6 @@ impl PhoneApp {
         let Some(p) = self.course else {
             // Not placed: the camera image where AR runs (to see the table), else 3D.
             if !self.draw_backdrop(g, target, size, format) {
-                let ppp = f64::from(self.touch.pixels_per_point);
-                self.overlays
-                    .prepare(&g.gpu, &mut g.race, &self.world.race, &scene, size, ppp);
                 let _ = g.race.render(&g.gpu, target, size, &scene);
             }
             return;
@@ -278,10 +275,6 @@ impl PhoneApp {
                 g.race_upload = Some(upload);
             }
         }
-        // The overlays, on the table as in the 3D view (labels at the phone's density).
-        let ppp = f64::from(self.touch.pixels_per_point);
-        self.overlays
-            .prepare(&g.gpu, &mut g.race, &self.world.race, &scene, size, ppp);
         let _ = g.race.render(&g.gpu, target, size, &scene);
     }
 
@@ -328,7 +321,7 @@ impl PhoneApp {
         let mut record = false;
         let mut free = self.ui_free;
         let (panels, world, events) = (&mut self.panels, &self.world, &self.events);
-        let overlays = &mut self.overlays;
+        let overlays = &self.overlays;
         let mut clicked = None;
         let mut scene_rect = None;
         // The phone has no cursor or clipboard to update: the platform output is not needed.
@@ -336,7 +329,6 @@ impl PhoneApp {
             .egui
             .paint(&g.gpu.device, &g.gpu.queue, texture, size, raw, |ui| {
                 if choice == SceneChoice::Race {
-                    overlays.paint(ui.ctx(), size);
                     // No race list on the phone yet (docs/panels.md).
                     let r = race_panels(
                         ui,
