@@ -123,16 +123,6 @@ pub struct FrameInputs<'a> {
 }
 
 /// The entry points a pass runs, by the pass's name in the frame record.
-/// An effects shader as the effects crate compiles it: the core's source with the effects'
-/// own prelude first (`effects::wgsl::module`).
-fn fx_source(parts: &[&str]) -> String {
-    let prelude = effects::wgsl::prelude();
-    let all: Vec<&str> = std::iter::once(prelude.as_str())
-        .chain(parts.iter().copied())
-        .collect();
-    shader::source(&all)
-}
-
 fn pass_shaders(name: &str, ar: &fx::ArConfig) -> Option<(String, &'static str, &'static str)> {
     let mask = ar.effects.iter().fold(0u32, |m, e| m | 1 << e as u32);
     Some(match name {
@@ -149,25 +139,20 @@ fn pass_shaders(name: &str, ar: &fx::ArConfig) -> Option<(String, &'static str, 
                 ar.cheap_caustics
             );
             (
-                fx_source(&[
-                    shader::WATER_DISPLACED,
-                    shader::WATER,
-                    fx::EFFECTS_COMMON,
-                    fx::REFLECTION,
-                    fx::REFRACTION,
-                    fx::CAUSTICS,
-                    fx::FLOWMAP,
-                    render::water_look::WATER_LOOK_WGSL,
-                    fx::AR_WATER,
-                    &constants,
-                ]),
+                {
+                    let parts: Vec<&str> = std::iter::once(shader::WATER_DISPLACED)
+                        .chain(fx::AR_WATER_PARTS)
+                        .chain(std::iter::once(constants.as_str()))
+                        .collect();
+                    effects::wgsl::source(&parts)
+                },
                 "vs_ar",
                 "fs_ar",
             )
         }
         "boats" => (shader::source(&[shader::BOATS]), "vs_main", "fs_main"),
         "background" => (
-            fx_source(&[fx::EFFECTS_COMMON, fx::BACKGROUND]),
+            effects::wgsl::source(&[fx::EFFECTS_COMMON, fx::BACKGROUND]),
             "vs_main",
             "fs_main",
         ),
@@ -231,7 +216,7 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
     if let Some([w, h]) = inp.offscreen.reflection_px {
         // The mirrored room over every texel (the boats' share is a few per cent: left out).
         let px = f64::from(w) * f64::from(h);
-        let src = fx_source(&[fx::EFFECTS_COMMON, fx::REFLECTION, fx::REFLECTION_ROOM]);
+        let src = effects::wgsl::source(&[fx::EFFECTS_COMMON, fx::REFLECTION, fx::REFLECTION_ROOM]);
         out.push(PassWork {
             pass: "reflection texture".into(),
             cost: run(&src, "fs_main", px)?,
@@ -244,7 +229,7 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
         // one resolve per map cell.
         let grid = (inp.ar.caustic_resolution.0 as f64).powi(2);
         let cells = f64::from(cells).powi(2);
-        let src = fx_source(&[
+        let src = effects::wgsl::source(&[
             effects::caustic_map::CAUSTIC_MAP,
             effects::caustic_map::CAUSTIC_SCATTER,
         ]);
@@ -270,7 +255,7 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
     }
     if let Some(([w, h], per_frame)) = inp.yuv {
         let px = f64::from(w) * f64::from(h) * per_frame;
-        let src = fx_source(&[
+        let src = effects::wgsl::source(&[
             effects::camera_upload::CAMERA_YUV,
             "const ENCODED_TARGET: bool = false;",
         ]);

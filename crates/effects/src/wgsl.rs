@@ -39,14 +39,23 @@ pub fn prelude() -> String {
     )
 }
 
-/// An effects shader module: the core's prelude and shared files, this crate's prelude, then
-/// `parts` ([`render::shader::module`]).
-pub fn module(device: &wgpu::Device, label: &str, parts: &[&str]) -> wgpu::ShaderModule {
+/// An effects shader's source: the core's prelude and shared files, this crate's prelude, then
+/// `parts` ([`render::shader::source`]).
+pub fn source(parts: &[&str]) -> String {
     let prelude = prelude();
     let all: Vec<&str> = std::iter::once(prelude.as_str())
         .chain(parts.iter().copied())
         .collect();
-    render::shader::module(device, label, &all)
+    render::shader::source(&all)
+}
+
+/// An effects shader module: [`source`] compiled (validation errors surface through wgpu's
+/// error handler).
+pub fn module(device: &wgpu::Device, label: &str, parts: &[&str]) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source(parts).into()),
+    })
 }
 
 #[cfg(test)]

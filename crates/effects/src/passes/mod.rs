@@ -35,7 +35,7 @@ use render::renderer::Renderer;
 
 pub use background::{BACKGROUND, BackgroundPass};
 pub use config::ArConfig;
-pub use pipelines::{AR_WATER, CAUSTICS, FLOWMAP, REFLECTION, REFRACTION};
+pub use pipelines::{AR_WATER, AR_WATER_PARTS, CAUSTICS, FLOWMAP, REFLECTION, REFRACTION};
 use shared::Shared;
 pub use shared::{EFFECTS_COMMON, EffectsUniform, caustic_region, effect_frame};
 pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};

@@ -15,6 +15,20 @@ pub const CAUSTICS: &str = include_str!("../../shaders/caustics.wgsl");
 pub const FLOWMAP: &str = include_str!("../../shaders/flowmap.wgsl");
 pub const AR_WATER: &str = include_str!("../../shaders/ar_water.wgsl");
 
+/// The AR water's shader after its vertex stage and before its pipeline's `FX_MASK` /
+/// `FX_CHEAP_CAUSTICS` constants: the water pass's shading, then every effect. One list for
+/// the pipelines and for the budget model, which counts the same shader's work.
+pub const AR_WATER_PARTS: [&str; 8] = [
+    shader::WATER,
+    EFFECTS_COMMON,
+    REFLECTION,
+    REFRACTION,
+    CAUSTICS,
+    FLOWMAP,
+    render::water_look::WATER_LOOK_WGSL,
+    AR_WATER,
+];
+
 /// How an effect pipeline draws: a full-screen triangle (the background) or the water mesh.
 pub(super) struct FxDraw<'a> {
     pub(super) buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
@@ -99,17 +113,10 @@ impl ArPipelines {
             mask & 0b1_1110 & !self.knockout,
             self.cheap_caustics,
         );
-        let effects = [
-            shader::WATER,
-            EFFECTS_COMMON,
-            REFLECTION,
-            REFRACTION,
-            CAUSTICS,
-            FLOWMAP,
-            render::water_look::WATER_LOOK_WGSL,
-            AR_WATER,
-            &constants,
-        ];
+        let effects: Vec<&str> = AR_WATER_PARTS
+            .into_iter()
+            .chain(std::iter::once(constants.as_str()))
+            .collect();
         let parts: Vec<&str> = std::iter::once(&stage).chain(&effects).copied().collect();
         self.made[key] = Some(fx_pipeline(
             gpu,
