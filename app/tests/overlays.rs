@@ -280,7 +280,7 @@ fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaI
             render::OFFSCREEN_FORMAT,
             options,
             None,
-            &scene,
+            regatta::core::scene::RaceWorld::new(race.clone(), sea()).race_bounds,
             GOLDEN_SIZE,
             0,
         )

@@ -26,7 +26,11 @@ pub struct RaceWorld {
     pub sea: Arc<ocean::WaveSet>,
     /// Every buoy once: single marks and both ends of gates and lines.
     pub marks: Vec<Mark>,
-    /// Min x, min z, max x, max z (race metres): every track and mark plus the margin.
+    /// Min x, min z, max x, max z (race metres): every track and mark, what the table
+    /// scenes fit onto the table (`core::table`).
+    pub race_bounds: [f64; 4],
+    /// The sea: the race's bounds plus [`PLAY_AREA_MARGIN_M`] on every side (the orbit view's
+    /// water; the table scenes cut it to the table).
     pub play_area: [f64; 4],
 }
 
@@ -43,15 +47,16 @@ impl RaceWorld {
             .boats
             .iter()
             .flat_map(|b| b.fixes().iter().map(|f| DVec2::from(f.pos())));
-        let play_area = Scene::play_area_around(
-            track_points.chain(marks.iter().map(|m| m.position)),
-            PLAY_AREA_MARGIN_M,
-        );
+        let race_bounds =
+            Scene::play_area_around(track_points.chain(marks.iter().map(|m| m.position)), 0.0);
+        let [ax, az, bx, bz] = race_bounds;
+        let m = PLAY_AREA_MARGIN_M;
         RaceWorld {
             race,
             sea: Arc::new(sea),
             marks,
-            play_area,
+            race_bounds,
+            play_area: [ax - m, az - m, bx + m, bz + m],
         }
     }
 
@@ -176,7 +181,7 @@ mod tests {
     }
 
     #[test]
-    fn the_play_area_covers_every_fix_and_mark_with_the_margin_and_the_sea_is_shared() {
+    fn the_race_bounds_and_the_play_area_cover_every_fix_and_mark_and_the_sea_is_shared() {
         let race = crate::cli::inputs::load_race(&[]).unwrap();
         let world = RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
         // Independent truth: the bounding box of every fix and buoy, scanned here.
@@ -195,13 +200,11 @@ mod tests {
             b = [b[0].min(x), b[1].min(z), b[2].max(x), b[3].max(z)];
         }
         let m = PLAY_AREA_MARGIN_M;
-        let want = [b[0] - m, b[1] - m, b[2] + m, b[3] + m];
-        for (got, want) in world.play_area.iter().zip(want) {
-            assert!(
-                (got - want).abs() < 1e-6,
-                "{:?} vs {want:?}",
-                world.play_area
-            );
+        let sea = [b[0] - m, b[1] - m, b[2] + m, b[3] + m];
+        for (got, want) in [(world.race_bounds, b), (world.play_area, sea)] {
+            for (g, w) in got.iter().zip(want) {
+                assert!((g - w).abs() < 1e-6, "{got:?} vs {want:?}");
+            }
         }
         let s1 = world.scene_at(world.middle_time(), None);
         let s2 = world.scene_at(world.middle_time() + 5.0, None);

@@ -1,10 +1,11 @@
 //! `regatta run --replay DIR`: a recorded camera feed (replay folder or TUM RGB-D, `crates/ar`)
 //! as the background, the race on its table.
 //!
-//! The table maps to the race as on the phone (`core::table`): the race's play area (tracks and
-//! marks plus margin) is fitted onto the table's extent, the table's centre is the play area's
-//! centre, and the table top lies `table_depth` race metres below the sea's rest level (the
-//! refraction effect's table). The feed's camera poses, mapped the same way
+//! The table maps to the race as on the phone (`core::table`): the race's bounds (its tracks
+//! and marks) are fitted onto the table's extent with a margin, the table's centre is the
+//! bounds' centre, and the table top lies `table_depth` race metres below the sea's rest level
+//! (the refraction effect's table). The water drawn is cut to the table (the scene's play area
+//! becomes the table's rectangle in race metres), so it covers the table to its edges. The feed's camera poses, mapped the same way
 //! (`core::camera_frame`), become the render camera; its image, through the window's crop, the
 //! background.
 //!
@@ -24,7 +25,7 @@ use glam::{DVec2, DVec3};
 use render::{Camera, RenderOptions, Renderer, Scene};
 
 use crate::core::camera_frame::{fill_view, physical_camera, render_frame};
-use crate::core::table::{boats_as_models, fit_on_table};
+use crate::core::table::{boats_as_models, fit_on_table, table_area};
 
 use crate::error::{CliError, CliResult};
 
@@ -50,6 +51,8 @@ pub struct FeedView {
     /// The current frame's render camera.
     camera: Option<Camera>,
     map: Option<CoursePlacement>,
+    /// The table's rectangle in race metres (`core::table::table_area`): the water drawn.
+    table_area: Option<[f64; 4]>,
     /// The effects drawn over the feed (all of them in the window; `--effects` for
     /// `regatta render --replay`).
     config: ArConfig,
@@ -91,6 +94,7 @@ impl FeedView {
             effects: None,
             camera: None,
             map: None,
+            table_area: None,
             config: ArConfig::default(),
             water: render::water_look::WaterLook::default(),
             table_wake: None,
@@ -147,12 +151,18 @@ impl FeedView {
         self.len() == 0
     }
 
-    /// Puts `scene` on the table: the feed's camera, boats drawn as table-sized models
-    /// (after [`FeedView::prepare`]).
+    /// Where the race stands on the table (race metres → AR metres), once a frame is prepared.
+    pub fn placement(&self) -> Option<CoursePlacement> {
+        self.map
+    }
+
+    /// Puts `scene` on the table: the feed's camera, boats drawn as table-sized models, the
+    /// water cut to the table (after [`FeedView::prepare`]).
     pub fn apply(&self, scene: &mut Scene) {
-        if let (Some(c), Some(m)) = (self.camera, self.map) {
+        if let (Some(c), Some(m), Some(area)) = (self.camera, self.map, self.table_area) {
             scene.camera = c;
             boats_as_models(scene, &m);
+            scene.play_area = area;
         }
     }
 
@@ -194,15 +204,15 @@ impl FeedView {
 
     /// Picks the feed frame for the wall clock; when it or the window's `size` changed, hands
     /// it to the effects. The first time, `renderer` is built anew (for `format`, with `wake`)
-    /// with the effect passes; later frames only go through their handle. `scene` gives the
-    /// play area.
+    /// with the effect passes; later frames only go through their handle. `race_bounds`
+    /// (`RaceWorld::race_bounds`) are what is fitted on the table.
     pub fn prepare(
         &mut self,
         gpu: &render::Gpu,
         renderer: &mut Renderer,
         format: wgpu::TextureFormat,
         wake: Option<Arc<ocean::wake::Wake>>,
-        scene: &Scene,
+        race_bounds: [f64; 4],
         size: [u32; 2],
     ) -> CliResult {
         let t = self.start.elapsed().as_secs_f64();
@@ -217,7 +227,7 @@ impl FeedView {
             keep_still_frames: true,
             ..Default::default()
         };
-        self.prepare_frame(gpu, renderer, format, options, wake, scene, size, i)
+        self.prepare_frame(gpu, renderer, format, options, wake, race_bounds, size, i)
     }
 
     /// [`FeedView::prepare`] for feed frame `i` (below [`FeedView::len`]), a renderer built
@@ -230,7 +240,7 @@ impl FeedView {
         format: wgpu::TextureFormat,
         options: RenderOptions,
         wake: Option<Arc<ocean::wake::Wake>>,
-        scene: &Scene,
+        race_bounds: [f64; 4],
         size: [u32; 2],
         i: usize,
     ) -> CliResult {
@@ -258,10 +268,10 @@ impl FeedView {
             None => (DVec2::ONE, DVec3::ZERO),
         };
         // The table lies the water's depth down, in race metres at the table's scale.
-        let course_to_table = fit_on_table(scene.play_area, centre, extent, 0.0).course_to_table;
+        let course_to_table = fit_on_table(race_bounds, centre, extent, 0.0).course_to_table;
         cfg.table_depth = self.water.depth_m / course_to_table;
         cfg.water = self.water;
-        let map = fit_on_table(scene.play_area, centre, extent, cfg.table_depth);
+        let map = fit_on_table(race_bounds, centre, extent, cfg.table_depth);
         let (camera, view) = to_render(&frame, &map, size);
         let image = frame
             .image
@@ -290,6 +300,7 @@ impl FeedView {
         );
         self.camera = Some(camera);
         self.map = Some(map);
+        self.table_area = Some(table_area(race_bounds, extent));
         self.shown = Some((i, size));
         Ok(())
     }

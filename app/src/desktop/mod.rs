@@ -249,7 +249,8 @@ impl App {
             let size = st.target.size();
             let wake = st.overlay.as_ref().and_then(|o| o.wake());
             let format = st.target.format().unwrap_or(render::OFFSCREEN_FORMAT);
-            if let Err(e) = f.prepare(&st.gpu, &mut st.renderer, format, wake, &scene, size) {
+            let bounds = self.world.race_bounds;
+            if let Err(e) = f.prepare(&st.gpu, &mut st.renderer, format, wake, bounds, size) {
                 self.fail(el, e.to_string());
                 return;
             }

@@ -103,7 +103,7 @@ impl TableFrame<'_> {
             render::OFFSCREEN_FORMAT,
             options,
             wake,
-            &scene,
+            self.world.race_bounds,
             self.size,
             self.frame,
         )?;

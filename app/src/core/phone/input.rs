@@ -110,7 +110,7 @@ impl PhoneApp {
     /// Two fingers: scale by `pinch` and turn by `twist` what stands on the table, or zoom and
     /// turn the 3D view.
     pub fn two_fingers(&mut self, pinch: f64, twist: f64) {
-        let pivot = table::course_pivot(self.world.play_area, table::table_depth());
+        let pivot = table::course_pivot(self.world.race_bounds, table::table_depth());
         match self.scene {
             SceneChoice::Race => match self.course.as_mut() {
                 Some(p) => p.apply_gesture_about(pivot, pinch, twist),
@@ -141,7 +141,7 @@ impl PhoneApp {
                 let p = table::place_course(
                     self.course,
                     point,
-                    self.world.play_area,
+                    self.world.race_bounds,
                     table::table_depth(),
                 );
                 log::info!(
