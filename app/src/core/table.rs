@@ -214,10 +214,10 @@ mod tests {
         // The table in race metres: the centre ± (0.75, 0.5) × 2222.2 m.
         let area = table_area(bounds, DVec2::new(1.5, 1.0));
         let want = [
-            -1166.666_666_7,
+            -1_166.666_666_7,
             -611.111_111_1,
-            2166.666_666_7,
-            1611.111_111_1,
+            2_166.666_666_7,
+            1_611.111_111_1,
         ];
         for (got, want) in area.iter().zip(want) {
             assert!((got - want).abs() < 1e-6, "{area:?}");
