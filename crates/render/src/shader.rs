@@ -14,9 +14,11 @@ pub const BOATS: &str = include_str!("../shaders/boats.wgsl");
 /// The scene overlays: world segments as screen-space capsules (`passes::overlay`).
 pub const OVERLAY: &str = include_str!("../shaders/overlay.wgsl");
 pub const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
-/// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` (`ocean::wake::gpu` mirrors it in
-/// f32), included once, there.
-pub const WAKE: &str = ocean::wake::WAKE_WGSL;
+/// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` after its generated constants
+/// (`ocean::wake::wake_wgsl`; `ocean::wake::gpu` mirrors it in f32), assembled once, there.
+pub fn wake() -> String {
+    ocean::wake::wake_wgsl()
+}
 /// The water pass's compute stage (sea and wakes per vertex, bind group 1) and the vertex
 /// stages that draw its output, or displace by the sea alone without compute.
 pub const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
@@ -255,4 +257,5 @@ mod tests {
         )];
         assert_eq!(mirrored_in(&shared_consts(), &old, &copy).len(), 3);
     }
+
 }
