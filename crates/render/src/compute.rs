@@ -199,7 +199,7 @@ pub fn gpu_water_transmitted(
     const ENTRY: &str = "
 @group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 3>>;
 @group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&input) { return; }
