@@ -3,8 +3,8 @@
 //! over a frame's source buffer at a grid of local points.
 
 use ocean::wake::{
-    TrackSample, WGSL_SIN_ERROR, Wake, WakeParams, WakeView, f32_height_error_bound,
-    wake_foam_f32, wake_height_f32, wake_height_grad_f32, wake_wgsl,
+    TrackSample, WGSL_SIN_ERROR, Wake, WakeParams, WakeView, f32_height_error_bound, wake_foam_f32,
+    wake_height_f32, wake_height_grad_f32, wake_wgsl,
 };
 use wgpu::util::DeviceExt;
 

@@ -69,7 +69,8 @@ pub fn refract_to_table(
         .and_then(|(_, p)| camera.project_uv(p))
         .or_else(|| camera.project_uv(surface));
     let straight_uv = clamp_uv(straight.unwrap_or(DVec2::splat(0.5)));
-    let refracted = refract(view, normal, N_AIR, N_WATER).and_then(|t| table.intersect_ray(surface, t));
+    let refracted =
+        refract(view, normal, N_AIR, N_WATER).and_then(|t| table.intersect_ray(surface, t));
     let table_point = refracted.map(|(_, p)| p);
     let path = refracted.or(straight_hit).map_or(0.0, |(s, _)| s);
     let Some(uv) = table_point.and_then(|p| camera.project_uv(p)) else {
@@ -134,7 +135,11 @@ mod tests {
             assert_eq!(s.weight, 1.0);
             assert_eq!(s.uv, cam.project_uv(p).unwrap());
             // The light crosses the depth at θt: a path of depth / cos θt.
-            assert!((s.path - depth / tt.cos()).abs() < 1e-12, "{deg}°: {}", s.path);
+            assert!(
+                (s.path - depth / tt.cos()).abs() < 1e-12,
+                "{deg}°: {}",
+                s.path
+            );
             assert_eq!(s.sampled_uv(), s.uv);
         }
         // Not "the same regardless of angle": the apparent shift grows with the angle.

@@ -155,7 +155,10 @@ fn the_wgsl_overhead_sun_is_the_f64_one() {
     let normals = sun_normals();
     let got = wgsl_overhead_sun(&gpu, &effects::wgsl::prelude(), &normals);
     let worst = worst_sun_error(&got, &normals);
-    eprintln!("overhead_sun: {} normals, worst |Δ| {worst:.2e}", normals.len());
+    eprintln!(
+        "overhead_sun: {} normals, worst |Δ| {worst:.2e}",
+        normals.len()
+    );
     // WGSL's acos is only as accurate as atan2 (4096 ulps: the spec's bound), a relative
     // error of 4096 · 2^-23 = 4.9e-4 of the angle a; e^{−x²} (x = a/ρ) then moves by at most
     // 2x² e^{−x²} ≤ 2/e of that: 3.6e-4. The refracted y (≈ 1, a few f32 roundings of 8 ulps,
@@ -172,7 +175,10 @@ fn a_broken_sun_radius_fails_the_overhead_sun_parity() {
     // tilt of the radius the sun differs by e^{−¼} − e^{−1} ≈ 0.41.
     let Some(gpu) = test_gpu() else { return };
     let prelude = effects::wgsl::prelude();
-    let line = format!("const CHEAP_SUN_RADIUS: f32 = {:?};", CHEAP_SUN_RADIUS as f32);
+    let line = format!(
+        "const CHEAP_SUN_RADIUS: f32 = {:?};",
+        CHEAP_SUN_RADIUS as f32
+    );
     assert!(prelude.contains(&line), "{prelude}");
     let doubled = format!(
         "const CHEAP_SUN_RADIUS: f32 = {:?};",
@@ -275,7 +281,18 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 /// from each: level, grazing (1e-4 rad up), steep, 1 mrad from vertical, vertical (no
 /// horizontal part: never meets the ring) and downwards.
 fn ring_cases() -> Vec<[[f32; 4]; 2]> {
-    let elevations = [0.0, 1e-4, 0.01, 0.3, 0.8, 1.2, 1.5, FRAC_PI_2 - 1e-3, FRAC_PI_2, -0.2];
+    let elevations = [
+        0.0,
+        1e-4,
+        0.01,
+        0.3,
+        0.8,
+        1.2,
+        1.5,
+        FRAC_PI_2 - 1e-3,
+        FRAC_PI_2,
+        -0.2,
+    ];
     let mut out = Vec::new();
     for (i, frac) in [0.0, 0.3, 0.6, 0.9, 0.999].iter().enumerate() {
         for k in 0..7 {
@@ -306,8 +323,7 @@ fn compare_ring_hits(got: &[[f32; 4]], cases: &[[[f32; 4]; 2]]) -> (f64, usize, 
             (Some(q), true) => {
                 hits += 1;
                 let o = DVec2::new(p.x, p.z) - RING.centre;
-                let scale = (o.length() + RING.radius) / DVec2::new(r.x, r.z).length()
-                    + p.length();
+                let scale = (o.length() + RING.radius) / DVec2::new(r.x, r.z).length() + p.length();
                 worst = worst.max((dvec(*g) - q).length() / scale);
             }
             (None, false) => {}
@@ -528,9 +544,8 @@ fn compare_refracted_table(got: &[[f32; 4]], view: &WaterView) -> TableErrors {
         let (p, n) = (dvec(*p), dvec(*n));
         let s = refract_to_table(eye, p, n, &table, &view.camera);
         let want = uv_image_at(s.sampled_uv());
-        e.uv = e
-            .uv
-            .max((DVec2::new(f64::from(g[0]), f64::from(g[1])) - want).length());
+        e.uv =
+            e.uv.max((DVec2::new(f64::from(g[0]), f64::from(g[1])) - want).length());
         let path_error = (f64::from(g[3]) - s.path).abs();
         e.path = e.path.max(match s.path {
             0.0 if path_error == 0.0 => 0.0,
@@ -567,7 +582,11 @@ fn the_wgsl_refracted_table_is_the_f64_one() {
         // The path: the unit direction's t.y carries a few roundings of terms near 1 (≤ 8 u),
         // moving the path by 8 u/|t.y| of it, and the division and the plane's distance a few
         // u more: 16 u of the path times its condition.
-        assert!(e.path < 16.0 * U, "worst |Δpath| {:e} of path × condition", e.path);
+        assert!(
+            e.path < 16.0 * U,
+            "worst |Δpath| {:e} of path × condition",
+            e.path
+        );
         // The table point, so found (≤ 16 u of the ≤ 30 m from the eye where the condition is
         // near 1), goes through the 4×4 view matrix and the intrinsics: ≤ 1e-5 m at ≥ 5 m
         // from the camera, times the focal length (≤ 1.04 image widths): 2e-6 of the image.
@@ -590,6 +609,12 @@ fn a_broken_table_depth_fails_the_refracted_table_parity() {
     for view in water_views() {
         let got = wgsl_refracted_table(&gpu, &view, view.depth * 1.01);
         let e = compare_refracted_table(&got, &view);
-        assert!(e.uv > 1e-4 && e.path > 1e-4, "{} m: {:e} {:e}", view.depth, e.uv, e.path);
+        assert!(
+            e.uv > 1e-4 && e.path > 1e-4,
+            "{} m: {:e} {:e}",
+            view.depth,
+            e.uv,
+            e.path
+        );
     }
 }

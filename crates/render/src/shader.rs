@@ -262,7 +262,10 @@ mod tests {
     /// that sizes its workgroup with a number instead of `WORKGROUP_SIZE`.
     fn literal_workgroup_sizes(roots: &[&str]) -> Vec<String> {
         fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
-            for e in std::fs::read_dir(dir).expect("readable").filter_map(Result::ok) {
+            for e in std::fs::read_dir(dir)
+                .expect("readable")
+                .filter_map(Result::ok)
+            {
                 let p = e.path();
                 if p.is_dir() {
                     walk(&p, out);

@@ -57,4 +57,3 @@ pub use reference::{SteadyPatch, kelvin_reference, kelvin_wave_height};
 pub use ring::{RingParams, RingWake};
 pub use track::{TrackSample, WakeError};
 pub use wgsl::wake_wgsl;
-
