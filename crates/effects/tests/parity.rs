@@ -4,7 +4,7 @@
 //! current around marks and the caustic map have theirs in the crate's `gpu_tests`.) Skipped
 //! without an adapter unless REGATTA_REQUIRE_GPU=true.
 
-use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_6};
 
 use effects::caustics::{CHEAP_SUN_RADIUS, overhead_sun};
 use effects::passes::EffectsUniform;
@@ -301,7 +301,7 @@ fn ring_cases() -> Vec<[[f32; 4]; 2]> {
             let p = DVec3::new(o.x, 0.05 * (a * 3.0).sin(), o.y);
             for e in elevations {
                 for m in 0..12 {
-                    let az = f64::from(m) * 0.5236 + 0.05 * f64::from(k);
+                    let az = f64::from(m) * FRAC_PI_6 + 0.05 * f64::from(k);
                     let r = DVec3::new(e.cos() * az.cos(), e.sin(), e.cos() * az.sin());
                     out.push([v4(p), v4(r)]);
                 }
@@ -554,7 +554,7 @@ fn compare_refracted_table(got: &[[f32; 4]], view: &WaterView) -> TableErrors {
         });
         let kind = match s.weight {
             _ if s.table_point.is_none() => 3,
-            w if w == 1.0 => 0,
+            1.0 => 0,
             w if w > 0.0 => 1,
             _ => 2,
         };

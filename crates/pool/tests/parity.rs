@@ -400,8 +400,10 @@ fn tile_points(b: &PoolBox) -> Vec<[f32; 4]> {
 /// reference is the same within `border` metres every way, and how many points lie within
 /// `border` of a tile, grout, band or lane edge (there either neighbour's colour is right).
 fn compare_albedos(got: &[[f32; 4]], points: &[[f32; 4]], border: f64) -> (usize, usize) {
-    let mut scene = PoolScene::default();
-    scene.pool = pool_box().1;
+    let scene = PoolScene {
+        pool: pool_box().1,
+        ..PoolScene::default()
+    };
     let (mut wrong, mut at_borders) = (0, 0);
     for (g, p) in got.iter().zip(points) {
         let face = FACES[p[3] as usize];
