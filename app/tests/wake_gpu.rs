@@ -3,8 +3,8 @@
 //! over a frame's source buffer at a grid of local points.
 
 use ocean::wake::{
-    TrackSample, WAKE_WGSL, WGSL_SIN_ERROR, Wake, WakeParams, WakeView, f32_height_error_bound,
-    wake_foam_f32, wake_height_f32, wake_height_grad_f32,
+    TrackSample, WGSL_SIN_ERROR, Wake, WakeParams, WakeView, f32_height_error_bound, wake_foam_f32,
+    wake_height_f32, wake_height_grad_f32, wake_wgsl,
 };
 use wgpu::util::DeviceExt;
 
@@ -13,7 +13,7 @@ const MAIN: &str = r#"
 @group(0) @binding(1) var<storage, read> points: array<vec2<f32>>;
 @group(0) @binding(2) var<storage, read_write> out: array<vec4<f32>>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if (i >= arrayLength(&points)) {
@@ -62,7 +62,10 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("wake test"),
-        source: wgpu::ShaderSource::Wgsl(format!("{WAKE_WGSL}\n{MAIN}").into()),
+        // The core's prelude for WORKGROUP_SIZE (the size dispatch_and_read divides by).
+        source: wgpu::ShaderSource::Wgsl(
+            format!("{}{}\n{MAIN}", render::shader::prelude(), wake_wgsl()).into(),
+        ),
     });
     let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("wake test"),

@@ -13,13 +13,14 @@ use std::time::Instant;
 
 use wgpu::util::DeviceExt;
 
-/// Independent FMA chains per invocation, 4 lanes each: 32 FLOP per loop iteration.
+/// Independent FMA chains per invocation, 4 lanes each: 32 FLOP per loop iteration. Sized by
+/// the core prelude's `WORKGROUP_SIZE` ([`FmaKernel::new`] prepends it).
 const FMA_KERNEL: &str = r#"
 struct Params { iterations: u32, pad0: u32, pad1: u32, pad2: u32 }
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read_write> out: array<vec4<f32>>;
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let s = f32(id.x) * 1e-7;
     var a = vec4<f32>(s, s + 0.1, s + 0.2, s + 0.3);
@@ -54,7 +55,9 @@ impl<'a> FmaKernel<'a> {
         let device = &gpu.device;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("fma throughput"),
-            source: wgpu::ShaderSource::Wgsl(FMA_KERNEL.into()),
+            source: wgpu::ShaderSource::Wgsl(
+                format!("{}{FMA_KERNEL}", render::shader::prelude()).into(),
+            ),
         });
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("fma throughput"),
@@ -115,7 +118,7 @@ impl<'a> FmaKernel<'a> {
             let mut pass = enc.begin_compute_pass(&Default::default());
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &group, &[]);
-            pass.dispatch_workgroups(Self::INVOCATIONS / 64, 1, 1);
+            pass.dispatch_workgroups(Self::INVOCATIONS / render::shader::WORKGROUP_SIZE, 1, 1);
         }
         self.gpu.queue.submit([enc.finish()]);
         self.gpu.wait();

@@ -201,7 +201,7 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
                 .find(|p| p.name == inv.pass)
                 .map_or(0, |p| p.triangles) as f64;
             let vertices = triangles / 2.0;
-            let cs = shader::source(&[shader::WAKE, shader::WATER_VERTICES]);
+            let cs = shader::source(&[&shader::wake(), shader::WATER_VERTICES]);
             cost.add(run(&cs, "cs_displace", vertices)?);
             target_bytes += vertices * (16.0 + VERTEX_BYTES) + inp.wake_buffer_bytes;
         }

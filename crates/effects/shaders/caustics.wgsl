@@ -4,12 +4,14 @@
 // the CPU by the area ratio (light conserved; 1 = flat water) and sampled at the table point.
 // Cheap tier (source 000 / GPU Gems): sun straight overhead; the vertical ray from the table
 // meets the surface above, is bent out by its normal and looks up a sun disc; the source's
-// alpha = clamp(r + g + b, 0, 1) makes the dark parts transparent.
+// alpha = clamp(r + g + b, 0, 1) makes the dark parts transparent. The sun disc's radius
+// CHEAP_SUN_RADIUS comes from the prelude (effects::caustics::CHEAP_SUN_RADIUS).
 
 fn overhead_sun(n: vec3<f32>) -> f32 {
     let up = refract_dir(vec3<f32>(0.0, 1.0, 0.0), n, N_WATER, N_AIR);
     let angle = acos(clamp(up.y, -1.0, 1.0));
-    return select(0.0, exp(-(angle / 0.1) * (angle / 0.1)), up.w > 0.0);
+    let x = angle / CHEAP_SUN_RADIUS;
+    return select(0.0, exp(-x * x), up.w > 0.0);
 }
 
 // Light on the table point q (local metres) relative to flat water; n is the surface normal

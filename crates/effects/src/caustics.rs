@@ -236,10 +236,16 @@ fn splat_triangle(
     }
 }
 
+/// Angular radius of the cheap tier's sun disc, radians (`CHEAP_SUN_RADIUS` in WGSL, which
+/// `caustics.wgsl`'s `overhead_sun` uses).
+pub const CHEAP_SUN_RADIUS: f64 = 0.1;
+
 /// The cheap tier's brightness at a table point under flat water lit from straight above
 /// (source 000 / GPU Gems): the vertical ray from the table meets the water plane directly
 /// above, is bent by the surface normal there, and looks up a sun map: here a Gaussian disc
-/// of angular radius `sun_radius` (radians) around the zenith, standing in for 000's texture.
+/// of angular radius `sun_radius` (radians; the shader's is [`CHEAP_SUN_RADIUS`]) around the
+/// zenith, standing in for 000's texture. Under total internal reflection (the normal tilted
+/// beyond the critical angle, 48.6°) no sun is seen: 0 up to e^{−(π/2)²/ρ²}.
 pub fn overhead_sun(normal: DVec3, sun_radius: f64) -> f64 {
     // Looking up from below the water: refract the upward ray out into the air.
     let up = refract(DVec3::Y, normal, N_WATER, N_AIR).unwrap_or(DVec3::ZERO);

@@ -36,6 +36,20 @@ pub struct TableSample {
     pub straight_uv: DVec2,
     /// Weight of the refracted sample; the unrefracted one gets 1 − weight.
     pub weight: f64,
+    /// Length of the light's path in the water, metres: from the surface point to the
+    /// refracted table point, or, when the refracted ray does not reach the table, along the
+    /// view to the table (0 when that misses it too). The water's absorption acts over it.
+    pub path: f64,
+}
+
+impl TableSample {
+    /// The one camera-image point the shader samples (`refracted_table`): `weight` of the way
+    /// from the unrefracted uv to the refracted one. Where the image is linear along that
+    /// segment, its colour there is the blend of the two samples; elsewhere the two differ in
+    /// the fade band only (see `shaders/refraction.wgsl`).
+    pub fn sampled_uv(&self) -> DVec2 {
+        self.straight_uv.lerp(self.uv, self.weight)
+    }
 }
 
 /// The camera-image sample that a water pixel shows: the view ray from `eye` to the surface
@@ -50,20 +64,22 @@ pub fn refract_to_table(
 ) -> TableSample {
     let view = (surface - eye).normalize();
     // Straight through the water; if even that misses the table, the water pixel itself.
-    let straight = table
-        .intersect_ray(surface, view)
+    let straight_hit = table.intersect_ray(surface, view);
+    let straight = straight_hit
         .and_then(|(_, p)| camera.project_uv(p))
         .or_else(|| camera.project_uv(surface));
     let straight_uv = clamp_uv(straight.unwrap_or(DVec2::splat(0.5)));
-    let table_point = refract(view, normal, N_AIR, N_WATER)
-        .and_then(|t| table.intersect_ray(surface, t))
-        .map(|(_, p)| p);
+    let refracted =
+        refract(view, normal, N_AIR, N_WATER).and_then(|t| table.intersect_ray(surface, t));
+    let table_point = refracted.map(|(_, p)| p);
+    let path = refracted.or(straight_hit).map_or(0.0, |(s, _)| s);
     let Some(uv) = table_point.and_then(|p| camera.project_uv(p)) else {
         return TableSample {
             table_point,
             uv: straight_uv,
             straight_uv,
             weight: 0.0,
+            path,
         };
     };
     TableSample {
@@ -71,6 +87,7 @@ pub fn refract_to_table(
         uv: clamp_uv(uv),
         straight_uv,
         weight: edge_weight(uv),
+        path,
     }
 }
 
@@ -117,6 +134,13 @@ mod tests {
             shifts.push(straight_x - p.x);
             assert_eq!(s.weight, 1.0);
             assert_eq!(s.uv, cam.project_uv(p).unwrap());
+            // The light crosses the depth at θt: a path of depth / cos θt.
+            assert!(
+                (s.path - depth / tt.cos()).abs() < 1e-12,
+                "{deg}°: {}",
+                s.path
+            );
+            assert_eq!(s.sampled_uv(), s.uv);
         }
         // Not "the same regardless of angle": the apparent shift grows with the angle.
         assert!(shifts[0].abs() < 1e-15);
@@ -190,5 +214,32 @@ mod tests {
             (s.uv - DVec2::splat(0.5)).length() < 1e-12,
             "the water pixel itself"
         );
+        // Nor does the view: no path in the water.
+        assert_eq!(s.path, 0.0);
+        assert_eq!(s.sampled_uv(), s.straight_uv);
+        // A grazing view (1 in 10) into the underside of an overhanging face is bent upwards
+        // and misses the table the view reaches: the path runs along the view down to it,
+        // 0.1 m below, 0.1 · √101 / 10 = √1.01 m.
+        let eye = DVec3::new(-1.0, 0.1, 0.0);
+        let n = DVec3::new(-0.6, -0.8, 0.0);
+        let up = refract((DVec3::ZERO - eye).normalize(), n, N_AIR, N_WATER).unwrap();
+        assert!(up.y > 0.0, "bent upwards: {up}");
+        let s = refract_to_table(eye, DVec3::ZERO, n, &Plane::horizontal(-0.1), &cam);
+        assert!(s.table_point.is_none() && s.weight == 0.0);
+        assert!((s.path - 1.01f64.sqrt()).abs() < 1e-12, "{}", s.path);
+    }
+
+    #[test]
+    fn the_shaders_one_sample_lies_the_weight_along_the_way_to_the_refracted_one() {
+        let s = TableSample {
+            table_point: None,
+            uv: DVec2::new(1.0, 0.4),
+            straight_uv: DVec2::new(0.6, 0.2),
+            weight: 0.25,
+            path: 0.0,
+        };
+        assert!((s.sampled_uv() - DVec2::new(0.7, 0.25)).length() < 1e-15);
+        assert_eq!(TableSample { weight: 0.0, ..s }.sampled_uv(), s.straight_uv);
+        assert_eq!(TableSample { weight: 1.0, ..s }.sampled_uv(), s.uv);
     }
 }

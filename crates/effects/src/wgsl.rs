@@ -16,7 +16,8 @@ pub fn bit(e: Effect) -> u32 {
     1 << e as u32
 }
 
-/// The effects' shared constants: each effect's bit, and the refraction's edge fade.
+/// The effects' shared constants: each effect's bit, the refraction's edge fade and the
+/// cheap caustics' sun radius.
 pub fn shared_consts() -> Vec<(String, WgslValue)> {
     let mut consts: Vec<(String, WgslValue)> = Effect::ALL
         .iter()
@@ -25,6 +26,10 @@ pub fn shared_consts() -> Vec<(String, WgslValue)> {
     consts.push((
         "EDGE_FADE".into(),
         WgslValue::F32(crate::refraction::EDGE_FADE),
+    ));
+    consts.push((
+        "CHEAP_SUN_RADIUS".into(),
+        WgslValue::F32(crate::caustics::CHEAP_SUN_RADIUS),
     ));
     consts
 }
@@ -68,14 +73,15 @@ mod tests {
         assert!(p.contains("const FX_BACKGROUND: u32 = 1u;"), "{p}");
         assert!(p.contains("const FX_FLOWMAP: u32 = 16u;"), "{p}");
         assert!(p.contains("const EDGE_FADE: f32 = 0.05;"), "{p}");
+        assert!(p.contains("const CHEAP_SUN_RADIUS: f32 = 0.1;"), "{p}");
         for e in Effect::ALL {
             assert!(crate::EffectSet::only(e).contains(e));
             assert_eq!(bit(e).count_ones(), 1);
         }
         let consts = shared_consts();
         let items: Vec<(&str, WgslValue)> = consts.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        // The literals the shaders wrote before: the bits and the fade.
-        let old = ["= 16u;", "= 0.05;"];
+        // The literals the shaders wrote before: the bits, the fade and the sun's radius.
+        let old = ["= 16u;", "= 0.05;", "/ 0.1)"];
         let files = render::shader::crate_shaders(env!("CARGO_MANIFEST_DIR"));
         assert!(files.len() >= 10, "{} files", files.len());
         let found = render::shader::mirrored_in(&items, &old, &files);

@@ -35,11 +35,9 @@ struct WakeSource {
     _pad: vec2<f32>,
 }
 
-// Below this squared distance (m²) the term is e^{−k²R²/4} ≈ 0: skip, never divide by zero.
-const WAKE_MIN_R2: f32 = 1e-6;
-// k²R²/4 beyond which the term is nothing (e^{−40}).
-const WAKE_GAUSS_CUTOFF: f32 = 40.0;
-const WAKE_TAU: f32 = 6.2831855;
+// From the generated prelude (ocean::wake::wgsl, the values of the f32 mirror): WAKE_MIN_R2,
+// the squared distance (m²) below which the term is e^{−k²R²/4} ≈ 0 (skip, never divide by
+// zero); WAKE_GAUSS_CUTOFF, the k²R²/4 beyond which the term is nothing (e^{−40}); WAKE_TAU, 2π.
 
 // The height one source adds at p, m:
 // −strength · (k²/r) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (r̂·ΔX), k = q/r², Φ = q/r.

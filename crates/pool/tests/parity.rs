@@ -1,11 +1,16 @@
 //! The pool's mirrored WGSL ray functions on the GPU (`render::compute::run_kernel`, lavapipe
-//! in CI) against the f64 references of `pool::geometry`, each shown to fail on a broken input
-//! fed through the same path. (The water trace and the caustics have theirs in the crate's
+//! in CI) against the f64 references of `pool::geometry` and `pool::trace` (`hit_sphere`,
+//! `box_inside`, `tile_albedo`), each shown to fail on a broken input fed through the same
+//! path. (The water trace and the caustics have theirs in the crate's
 //! `gpu_tests`.) Skipped without an adapter unless REGATTA_REQUIRE_GPU=true.
 
 use glam::DVec3;
-use pool::geometry::{Ray, Sphere};
+use pool::PoolScene;
+use pool::geometry::{Face, PoolBox, Ray, Sphere};
+use pool::gpu::PoolUniform;
+use pool::trace::{GROUT, TILE, tile_albedo};
 use render::gpu::{Gpu, test_gpu};
+use wgpu::util::DeviceExt;
 
 /// One ray against one sphere: origin, direction (unit), sphere centre and radius.
 #[repr(C)]
@@ -114,4 +119,348 @@ fn a_broken_sphere_fails_the_sphere_hit_parity() {
         worst > 5e-3 || disagree > 0,
         "worst {worst:e} m, {disagree} disagree"
     );
+}
+
+// ---- the box (box_inside, tile_albedo): the pool uniform's box bound as group 1 ----------------
+
+/// f32 unit roundoff.
+const U: f64 = f32::EPSILON as f64 / 2.0;
+
+/// The default pool's box as the GPU gets it (f32), and the same values as the reference's.
+fn pool_box() -> ([f32; 4], PoolBox) {
+    let b = PoolScene::default().pool;
+    let gpu = [b.half_x, b.half_z, b.floor_y, b.rim_y].map(|v| v as f32);
+    let [half_x, half_z, floor_y, rim_y] = gpu.map(f64::from);
+    let reference = PoolBox {
+        half_x,
+        half_z,
+        floor_y,
+        rim_y,
+    };
+    (gpu, reference)
+}
+
+/// Run `kernel` (after the pool's shared WGSL, with `prelude` as the pool's) on `input` with
+/// the pool uniform's box `box_` bound, `out` bytes per item.
+fn run_on_box<In: bytemuck::Pod>(
+    gpu: &Gpu,
+    prelude: &str,
+    kernel: &str,
+    box_: [f32; 4],
+    input: &[In],
+    out: usize,
+) -> Vec<u8> {
+    let mut pool: PoolUniform = bytemuck::Zeroable::zeroed();
+    pool.box_ = box_;
+    let uniform = gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("pool uniform"),
+            contents: bytemuck::bytes_of(&pool),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+    let group = [wgpu::BindGroupEntry {
+        binding: 0,
+        resource: uniform.as_entire_binding(),
+    }];
+    let src = render::shader::source(&[prelude, pool::gpu::POOL_COMMON, kernel]);
+    render::compute::run_kernel_with(gpu, "pool box parity", &src, input, out, &[&group])
+        .expect("the kernel runs")
+}
+
+/// `box_inside` for each (origin, unit direction): ((point, s), (normal, face)).
+fn wgsl_box_exits(gpu: &Gpu, box_: [f32; 4], rays: &[[[f32; 4]; 2]]) -> Vec<[[f32; 4]; 2]> {
+    let kernel = r#"
+@group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 2>>;
+@group(0) @binding(11) var<storage, read_write> output: array<array<vec4<f32>, 2>>;
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&input) {
+        let h = box_inside(input[id.x][0].xyz, input[id.x][1].xyz);
+        output[id.x] = array<vec4<f32>, 2>(vec4<f32>(h.point, h.s), vec4<f32>(h.normal, f32(h.face)));
+    }
+}
+"#;
+    let bytes = run_on_box(gpu, &pool::wgsl::prelude(), kernel, box_, rays, 32);
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+/// Origins on a 5 × 5 × 5 grid through the box (its walls, floor and rim included), each with
+/// 64 directions spread over the sphere (a Fibonacci lattice), the six axes and the level
+/// diagonals (no vertical part: neither the floor nor the top is a candidate).
+fn box_rays(b: &PoolBox) -> Vec<[[f32; 4]; 2]> {
+    let mut dirs: Vec<DVec3> = (0..64)
+        .map(|k| {
+            let y = 1.0 - (f64::from(k) + 0.5) / 32.0;
+            let a = 2.399_963 * f64::from(k);
+            let r = (1.0 - y * y).sqrt();
+            DVec3::new(r * a.cos(), y, r * a.sin())
+        })
+        .collect();
+    dirs.extend([
+        DVec3::X,
+        DVec3::NEG_X,
+        DVec3::Y,
+        DVec3::NEG_Y,
+        DVec3::Z,
+        DVec3::NEG_Z,
+    ]);
+    dirs.extend((0..4).map(|k| {
+        let a = 0.785 + 1.571 * f64::from(k);
+        DVec3::new(a.cos(), 0.0, a.sin())
+    }));
+    let lerp = |lo: f64, hi: f64, i: i32| lo + (hi - lo) * f64::from(i) / 4.0;
+    let mut out = Vec::new();
+    for k in 0..125 {
+        let o = DVec3::new(
+            lerp(-b.half_x, b.half_x, k % 5),
+            lerp(b.floor_y, b.rim_y, k / 5 % 5),
+            lerp(-b.half_z, b.half_z, k / 25),
+        );
+        let v = |d: DVec3| [d.x as f32, d.y as f32, d.z as f32, 0.0];
+        out.extend(dirs.iter().map(|d| [v(o), v(*d)]));
+    }
+    out
+}
+
+/// The face number `box_inside` gives the open top (`FACE_NONE` of the pool's prelude).
+fn face_none() -> f32 {
+    match pool::wgsl::shared_consts()
+        .iter()
+        .find(|(n, _)| *n == "FACE_NONE")
+    {
+        Some((_, render::shader::WgslValue::U32(v))) => *v as f32,
+        other => panic!("FACE_NONE: {other:?}"),
+    }
+}
+
+/// Against `PoolBox::hit_inside` at the same (f32) rays: the largest error of the exit point
+/// relative to the distances it comes from (|o| + s + the box's extent), the rays that leave
+/// through another face (allowed at an edge: the reference's exit lies within `edge` metres
+/// of the GPU's face too), and the rays the two disagree on away from any edge.
+fn compare_box_exits(
+    got: &[[[f32; 4]; 2]],
+    rays: &[[[f32; 4]; 2]],
+    b: &PoolBox,
+    edge: f64,
+) -> (f64, usize, usize) {
+    let dvec = |v: [f32; 4]| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]));
+    let extent = b.half_x + b.half_z + b.rim_y - b.floor_y;
+    // Which planes a point lies on (within `edge`): the faces in order, then the rim.
+    let on = |p: DVec3| {
+        [
+            (p.y - b.floor_y).abs(),
+            (p.x + b.half_x).abs(),
+            (p.x - b.half_x).abs(),
+            (p.z + b.half_z).abs(),
+            (p.z - b.half_z).abs(),
+            (p.y - b.rim_y).abs(),
+        ]
+        .map(|d| d < edge)
+    };
+    let (mut worst, mut at_edges, mut disagree) = (0.0f64, 0, 0);
+    let none = face_none();
+    for ([hit, normal], [o, d]) in got.iter().zip(rays) {
+        let (o, d) = (dvec(*o), dvec(*d));
+        let want = b.hit_inside(&Ray { origin: o, dir: d });
+        let (face, point) = (normal[3], dvec(*hit));
+        let want_face = want.map_or(none, |h| h.face as u32 as f32);
+        // The reference's exit point, through the rim when it has none.
+        let want_point = want.map_or_else(|| o + d * ((b.rim_y - o.y) / d.y), |h| h.point);
+        if face != want_face {
+            if on(want_point)[face as usize] {
+                at_edges += 1;
+            } else {
+                disagree += 1;
+            }
+            continue;
+        }
+        let Some(h) = want else { continue };
+        let want_normal = h.normal.as_vec3().to_array();
+        if normal[..3] != want_normal {
+            disagree += 1;
+        }
+        let scale = o.length() + h.s + extent;
+        worst = worst
+            .max((point - h.point).length() / scale)
+            .max((f64::from(hit[3]) - h.s).abs() / scale);
+    }
+    (worst, at_edges, disagree)
+}
+
+#[test]
+fn the_wgsl_box_exit_is_the_f64_one() {
+    let Some(gpu) = test_gpu() else { return };
+    let (box_, b) = pool_box();
+    let rays = box_rays(&b);
+    let got = wgsl_box_exits(&gpu, box_, &rays);
+    // The exit distance is a difference over a quotient, (bound − o)/d, and the comparisons
+    // pick the smallest: two exits closer than a few u of the box's extent (3.75 m) may go
+    // either way, so an exit within 1e-6 m of an edge may be the neighbouring face's.
+    let (worst, at_edges, disagree) = compare_box_exits(&got, &rays, &b, 1e-6);
+    let faces: Vec<usize> = (0..6)
+        .map(|f| got.iter().filter(|g| g[1][3] == f as f32).count())
+        .collect();
+    eprintln!(
+        "box_inside: {} rays (floor, west, east, north, south, top: {faces:?}), worst |Δ| {:.1} u \
+         of the distances, {at_edges} at an edge on another face",
+        rays.len(),
+        worst / U
+    );
+    assert_eq!(disagree, 0);
+    assert!(faces.iter().all(|&n| n > 100), "{faces:?}");
+    // s = (bound − o)/d: a subtraction and a division, each ≤ u of the distances involved,
+    // the point o + d·s two more: 8 u of |o| + s + the box's extent.
+    assert!(worst < 8.0 * U, "worst {worst:e}");
+}
+
+#[test]
+fn a_broken_box_fails_the_box_exit_parity() {
+    // The same kernel and check, the GPU's box 1 cm wider (x) than the reference's.
+    let Some(gpu) = test_gpu() else { return };
+    let (mut box_, b) = pool_box();
+    box_[0] += 0.01;
+    let rays = box_rays(&b);
+    let got = wgsl_box_exits(&gpu, box_, &rays);
+    let (worst, _, disagree) = compare_box_exits(&got, &rays, &b, 1e-6);
+    assert!(
+        worst > 1e-4 || disagree > 0,
+        "worst {worst:e}, {disagree} disagree"
+    );
+}
+
+/// `tile_albedo` for each (point, face as w), with `prelude` as the pool's.
+fn wgsl_albedos(gpu: &Gpu, prelude: &str, points: &[[f32; 4]]) -> Vec<[f32; 4]> {
+    let kernel = r#"
+@group(0) @binding(10) var<storage, read> input: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&input) {
+        let p = input[id.x];
+        output[id.x] = vec4<f32>(tile_albedo(u32(p.w), p.xyz), 0.0);
+    }
+}
+"#;
+    let bytes = run_on_box(gpu, prelude, kernel, pool_box().0, points, 16);
+    bytemuck::cast_slice(&bytes).to_vec()
+}
+
+const FACES: [Face; 5] = [
+    Face::Floor,
+    Face::West,
+    Face::East,
+    Face::North,
+    Face::South,
+];
+
+/// Points on each face: a 97 × 61 grid over it (a step that no tile divides), and lines along
+/// the tile borders (k·TILE), the grout's inner edges (k·TILE + GROUT), the band's lower edge
+/// (TILE·2 below the rim) and the floor's lane (|z| = TILE, |x| = half_x − TILE).
+fn tile_points(b: &PoolBox) -> Vec<[f32; 4]> {
+    let mut edges: Vec<f64> = (-12..=12).map(|k| f64::from(k) * TILE).collect();
+    edges.extend((-12..=12).map(|k| f64::from(k) * TILE + GROUT));
+    edges.extend([b.rim_y - 2.0 * TILE, b.half_x - TILE, TILE - b.half_x]);
+    let mut out = Vec::new();
+    for face in FACES {
+        // (u, v) over the face, and the point.
+        let (u_range, v_range) = match face {
+            Face::Floor => ((-b.half_x, b.half_x), (-b.half_z, b.half_z)),
+            Face::West | Face::East => ((-b.half_z, b.half_z), (b.floor_y, b.rim_y)),
+            Face::North | Face::South => ((-b.half_x, b.half_x), (b.floor_y, b.rim_y)),
+        };
+        let point = |u: f64, v: f64| match face {
+            Face::Floor => DVec3::new(u, b.floor_y, v),
+            Face::West => DVec3::new(-b.half_x, v, u),
+            Face::East => DVec3::new(b.half_x, v, u),
+            Face::North => DVec3::new(u, v, -b.half_z),
+            Face::South => DVec3::new(u, v, b.half_z),
+        };
+        let at = |r: (f64, f64), i: usize, n: usize| r.0 + (r.1 - r.0) * i as f64 / n as f64;
+        let mut uv: Vec<(f64, f64)> = (0..97 * 61)
+            .map(|k| (at(u_range, k % 97, 96), at(v_range, k / 97, 60)))
+            .collect();
+        for &e in &edges {
+            for i in 0..=40 {
+                uv.push((e, at(v_range, i, 40)));
+                uv.push((at(u_range, i, 40), e));
+            }
+        }
+        for (u, v) in uv {
+            let p = point(u, v);
+            if b.contains(p, 1e-9) {
+                out.push([p.x as f32, p.y as f32, p.z as f32, face as u32 as f32]);
+            }
+        }
+    }
+    out
+}
+
+/// Against `trace::tile_albedo` at the same (f32) points: how many colours differ where the
+/// reference is the same within `border` metres every way, and how many points lie within
+/// `border` of a tile, grout, band or lane edge (there either neighbour's colour is right).
+fn compare_albedos(got: &[[f32; 4]], points: &[[f32; 4]], border: f64) -> (usize, usize) {
+    let scene = PoolScene {
+        pool: pool_box().1,
+        ..PoolScene::default()
+    };
+    let (mut wrong, mut at_borders) = (0, 0);
+    for (g, p) in got.iter().zip(points) {
+        let face = FACES[p[3] as usize];
+        let q = DVec3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]));
+        let colour = |q: DVec3| tile_albedo(&scene, face, q).map(|c| c as f32);
+        let near: Vec<[f32; 3]> = (0..27)
+            .map(|k| {
+                let step = |i: i32| f64::from(i % 3 - 1) * border;
+                colour(q + DVec3::new(step(k), step(k / 3), step(k / 9)))
+            })
+            .collect();
+        let unique = near.iter().all(|c| *c == near[0]);
+        at_borders += usize::from(!unique);
+        if !near.contains(&[g[0], g[1], g[2]]) || (unique && [g[0], g[1], g[2]] != colour(q)) {
+            wrong += 1;
+        }
+    }
+    (wrong, at_borders)
+}
+
+#[test]
+fn the_wgsl_tile_albedo_is_the_f64_one() {
+    let Some(gpu) = test_gpu() else { return };
+    let points = tile_points(&pool_box().1);
+    let got = wgsl_albedos(&gpu, &pool::wgsl::prelude(), &points);
+    // An edge of |coordinate| ≤ 1.2 m moves by the f32 rounding of the point (≤ 0.5 ulp,
+    // 6e-8 m), of TILE and GROUT (≤ 12 tiles · 1.5e-9 m) and of uv/TILE − floor(uv/TILE)
+    // (≤ 2 ulps of 12, 1.9e-6 tiles, 1.9e-7 m): within 1e-6 m of an edge either colour is
+    // right, everywhere else the very colour.
+    let (wrong, at_borders) = compare_albedos(&got, &points, 1e-6);
+    let colours: std::collections::HashSet<[u32; 3]> = got
+        .iter()
+        .map(|g| [g[0], g[1], g[2]].map(f32::to_bits))
+        .collect();
+    eprintln!(
+        "tile_albedo: {} points, {at_borders} within 1e-6 m of an edge, {wrong} wrong",
+        points.len()
+    );
+    assert_eq!(wrong, 0);
+    // Tiles, grout, band and lane all appear; the border lines are in the set.
+    assert_eq!(colours.len(), 3);
+    assert!(at_borders > 1000, "{at_borders}");
+}
+
+#[test]
+fn a_broken_grout_fails_the_tile_albedo_parity() {
+    // The same kernel and check with the grout written as its own literal, doubled.
+    let Some(gpu) = test_gpu() else { return };
+    let prelude = pool::wgsl::prelude();
+    let line = format!("const GROUT: f32 = {:?};", GROUT as f32);
+    assert!(prelude.contains(&line), "{prelude}");
+    let broken = prelude.replace(
+        &line,
+        &format!("const GROUT: f32 = {:?};", 2.0 * GROUT as f32),
+    );
+    let points = tile_points(&pool_box().1);
+    let got = wgsl_albedos(&gpu, &broken, &points);
+    let (wrong, _) = compare_albedos(&got, &points, 1e-6);
+    assert!(wrong > 1000, "{wrong} wrong");
 }

@@ -144,6 +144,20 @@ pub fn run_kernel<In: bytemuck::Pod>(
     input: &[In],
     output_item_bytes: usize,
 ) -> Result<Vec<u8>, GpuError> {
+    run_kernel_with(gpu, label, source, input, output_item_bytes, &[])
+}
+
+/// [`run_kernel`] for a function that reads more than its input: `groups[i]` holds the
+/// entries of bind group `i + 1` (a uniform, a texture, a sampler, as the function's shared
+/// file declares them; empty for a group it does not use).
+pub fn run_kernel_with<In: bytemuck::Pod>(
+    gpu: &Gpu,
+    label: &str,
+    source: &str,
+    input: &[In],
+    output_item_bytes: usize,
+    groups: &[&[wgpu::BindGroupEntry]],
+) -> Result<Vec<u8>, GpuError> {
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
@@ -168,21 +182,29 @@ pub fn run_kernel<In: bytemuck::Pod>(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 10,
-                resource: input_buffer.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 11,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut bytes = gpu.dispatch_and_read(&pipeline, &[&group], input.len(), &output)?;
+    let io = [
+        wgpu::BindGroupEntry {
+            binding: 10,
+            resource: input_buffer.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 11,
+            resource: output.as_entire_binding(),
+        },
+    ];
+    let bound: Vec<wgpu::BindGroup> = std::iter::once(&io[..])
+        .chain(groups.iter().copied())
+        .enumerate()
+        .map(|(index, entries)| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &pipeline.get_bind_group_layout(index as u32),
+                entries,
+            })
+        })
+        .collect();
+    let bound: Vec<&wgpu::BindGroup> = bound.iter().collect();
+    let mut bytes = gpu.dispatch_and_read(&pipeline, &bound, input.len(), &output)?;
     bytes.truncate(input.len() * output_item_bytes);
     Ok(bytes)
 }
@@ -199,7 +221,7 @@ pub fn gpu_water_transmitted(
     const ENTRY: &str = "
 @group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 3>>;
 @group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;
-@compute @workgroup_size(64)
+@compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= arrayLength(&input) { return; }

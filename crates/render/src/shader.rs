@@ -14,9 +14,11 @@ pub const BOATS: &str = include_str!("../shaders/boats.wgsl");
 /// The scene overlays: world segments as screen-space capsules (`passes::overlay`).
 pub const OVERLAY: &str = include_str!("../shaders/overlay.wgsl");
 pub const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
-/// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` (`ocean::wake::gpu` mirrors it in
-/// f32), included once, there.
-pub const WAKE: &str = ocean::wake::WAKE_WGSL;
+/// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` after its generated constants
+/// (`ocean::wake::wake_wgsl`; `ocean::wake::gpu` mirrors it in f32), assembled once, there.
+pub fn wake() -> String {
+    ocean::wake::wake_wgsl()
+}
 /// The water pass's compute stage (sea and wakes per vertex, bind group 1) and the vertex
 /// stages that draw its output, or displace by the sea alone without compute.
 pub const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
@@ -254,5 +256,61 @@ mod tests {
             "const N_WATER: f32 = 1.333;\n@compute @workgroup_size(64)\n".to_string(),
         )];
         assert_eq!(mirrored_in(&shared_consts(), &old, &copy).len(), 3);
+    }
+
+    /// `file:line` of each kernel in the Rust sources under `roots` (relative to the workspace)
+    /// that sizes its workgroup with a number instead of `WORKGROUP_SIZE`.
+    fn literal_workgroup_sizes(roots: &[&str]) -> Vec<String> {
+        fn walk(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+            for e in std::fs::read_dir(dir)
+                .expect("readable")
+                .filter_map(Result::ok)
+            {
+                let p = e.path();
+                if p.is_dir() {
+                    walk(&p, out);
+                } else if p.extension().is_some_and(|x| x == "rs") {
+                    out.push(p);
+                }
+            }
+        }
+        let workspace = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+            .canonicalize()
+            .expect("the workspace");
+        let mut files = Vec::new();
+        for root in roots {
+            walk(&workspace.join(root), &mut files);
+        }
+        let attribute = "@workgroup_size(";
+        let mut found = Vec::new();
+        for file in files {
+            let text = std::fs::read_to_string(&file).expect("readable");
+            for (i, line) in text.lines().enumerate() {
+                if let Some(at) = line.find(attribute)
+                    && line[at + attribute.len()..].starts_with(|c: char| c.is_ascii_digit())
+                {
+                    found.push(format!("{}:{}", file.display(), i + 1));
+                }
+            }
+        }
+        found
+    }
+
+    #[test]
+    fn no_kernel_written_in_rust_sizes_its_workgroup_itself() {
+        // Kernels kept in Rust strings (tests, benches, compute helpers) take WORKGROUP_SIZE
+        // from the prelude as the shader files do: dispatches divide by the Rust value. This
+        // file is left out: its tests hold the literal as the example to look for.
+        let found: Vec<String> = literal_workgroup_sizes(&["crates", "app"])
+            .into_iter()
+            .filter(|f| !f.contains("render/src/shader.rs:"))
+            .collect();
+        assert!(found.is_empty(), "{found:#?}");
+        // The scan sees one: this file's own examples.
+        assert!(
+            literal_workgroup_sizes(&["crates/render/src"])
+                .iter()
+                .any(|f| f.contains("render/src/shader.rs:")),
+        );
     }
 }

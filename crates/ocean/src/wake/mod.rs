@@ -23,8 +23,9 @@
 //! ```text
 //! let frame = wake.gpu_sources(t, origin, &WakeView { min, max }, 1e-6);
 //! // upload frame.bytes() as a storage buffer of WakeSource
-//! // (shaders/wake.wgsl); the vertex shader adds wake_height(p) to y, the fragment shader
-//! // mixes wake_foam(p) into the sea foam, p = world (x, z) − origin, both f32.
+//! // (`wake_wgsl()`: shaders/wake.wgsl after its constants); the vertex shader adds
+//! // wake_height(p) to y, the fragment shader mixes wake_foam(p) into the sea foam,
+//! // p = world (x, z) − origin, both f32.
 //! ```
 //!
 //! The cost per point is the number of sources that reach the view, not the course size or a
@@ -40,6 +41,7 @@ pub mod measure;
 pub mod reference;
 pub mod ring;
 mod track;
+pub mod wgsl;
 
 #[cfg(test)]
 mod tests;
@@ -54,6 +56,4 @@ pub use kelvin::{KelvinSource, SEA_WATER_DENSITY, Wake, WakeParams};
 pub use reference::{SteadyPatch, kelvin_reference, kelvin_wave_height};
 pub use ring::{RingParams, RingWake};
 pub use track::{TrackSample, WakeError};
-
-/// The WGSL that evaluates the source buffer (`shaders/wake.wgsl`).
-pub const WAKE_WGSL: &str = include_str!("../../shaders/wake.wgsl");
+pub use wgsl::wake_wgsl;

@@ -420,7 +420,7 @@ fn bad_tracks_and_params_are_refused_with_the_sample_named() {
 
 #[test]
 fn wake_wgsl_validates_and_its_struct_matches_the_buffer() {
-    let module = naga::front::wgsl::parse_str(WAKE_WGSL).expect("wake.wgsl parses");
+    let module = naga::front::wgsl::parse_str(&wake_wgsl()).expect("wake.wgsl parses");
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::empty(),

@@ -88,7 +88,7 @@ impl WaterPass {
             let module = shader::module(
                 device,
                 "water vertices",
-                &[shader::WAKE, shader::WATER_VERTICES],
+                &[&shader::wake(), shader::WATER_VERTICES],
             );
             let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("water vertices"),
