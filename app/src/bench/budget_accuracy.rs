@@ -10,7 +10,7 @@
 //!   overhead-sun tier (source 000's formula as `shaders/caustics.wgsl` applies it), or flat
 //!   light where caustics are off.
 
-use effects::caustics::{CHEAP_SUN_RADIUS, MAX_INTENSITY, area_ratio, overhead_sun};
+use effects::caustics::{MAX_INTENSITY, area_ratio, cheap_caustic_light};
 use effects::demo_table_scene;
 use effects::passes::{ArConfig, caustic_region};
 
@@ -63,9 +63,7 @@ pub fn caustic_rms(tier: Tier) -> f64 {
                 let x = region.min[0] + (i as f64 + 0.5) * cell;
                 let z = region.min[1] + (j as f64 + 0.5) * cell;
                 let n = scene.sea.surface([x, z], scene.t).normal;
-                let sun = overhead_sun(glam::DVec3::from(n), CHEAP_SUN_RADIUS);
-                let alpha = (3.0 * sun).clamp(0.0, 1.0);
-                1.0 + 0.8 * alpha * sun
+                cheap_caustic_light(glam::DVec3::from(n))
             })
             .collect()
     } else {

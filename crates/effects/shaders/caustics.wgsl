@@ -5,7 +5,8 @@
 // Cheap tier (source 000 / GPU Gems): sun straight overhead; the vertical ray from the table
 // meets the surface above, is bent out by its normal and looks up a sun disc; the source's
 // alpha = clamp(r + g + b, 0, 1) makes the dark parts transparent. The sun disc's radius
-// CHEAP_SUN_RADIUS comes from the prelude (effects::caustics::CHEAP_SUN_RADIUS).
+// CHEAP_SUN_RADIUS and the blend CHEAP_SUN_GAIN come from the prelude (f64 reference:
+// effects::caustics::cheap_caustic_light).
 
 fn overhead_sun(n: vec3<f32>) -> f32 {
     let up = refract_dir(vec3<f32>(0.0, 1.0, 0.0), n, N_WATER, N_AIR);
@@ -20,7 +21,7 @@ fn caustic_light(q: vec3<f32>, n: vec3<f32>) -> f32 {
     if FX_CHEAP_CAUSTICS {
         let rgb = vec3<f32>(overhead_sun(n));
         let alpha = clamp(rgb.r + rgb.g + rgb.b, 0.0, 1.0);
-        return 1.0 + 0.8 * alpha * rgb.r;
+        return 1.0 + CHEAP_SUN_GAIN * alpha * rgb.r;
     }
     // Outside the map: the light of flat water. (The early return above is on a constant; the
     // map's test is a select: see camera_uv.)

@@ -259,6 +259,17 @@ pub fn caustic_alpha(rgb: [f64; 3]) -> f64 {
     (rgb[0] + rgb[1] + rgb[2]).clamp(0.0, 1.0)
 }
 
+/// How much the cheap tier's sun adds to flat water's light at full alpha (`CHEAP_SUN_GAIN` in
+/// WGSL, which `caustics.wgsl`'s `caustic_light` uses): source 000's blend strength.
+pub const CHEAP_SUN_GAIN: f64 = 0.8;
+
+/// The cheap tier's light on a table point relative to flat water, `normal` the surface normal
+/// above it: 1 + gain · alpha · sun, the grey sun map's alpha by [`caustic_alpha`].
+pub fn cheap_caustic_light(normal: DVec3) -> f64 {
+    let sun = overhead_sun(normal, CHEAP_SUN_RADIUS);
+    1.0 + CHEAP_SUN_GAIN * caustic_alpha([sun; 3]) * sun
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -442,5 +453,14 @@ mod tests {
         assert_eq!(caustic_alpha([0.0, 0.0, 0.0]), 0.0);
         assert!((caustic_alpha([0.1, 0.2, 0.3]) - 0.6).abs() < 1e-12);
         assert_eq!(caustic_alpha([0.5, 0.5, 0.5]), 1.0);
+        // The light: level water sees the whole sun at full alpha, 1 + gain; a facet tilted past
+        // the critical angle (48.6°) sees none, 1.
+        assert!((cheap_caustic_light(DVec3::Y) - (1.0 + CHEAP_SUN_GAIN)).abs() < 1e-12);
+        let steep = (DVec3::Y + DVec3::X * 60f64.to_radians().tan()).normalize();
+        assert!((cheap_caustic_light(steep) - 1.0).abs() < 1e-12);
+        // Between: alpha = 3·sun below a third.
+        let s = overhead_sun(tilted, CHEAP_SUN_RADIUS);
+        let want = 1.0 + CHEAP_SUN_GAIN * (3.0 * s).min(1.0) * s;
+        assert!((cheap_caustic_light(tilted) - want).abs() < 1e-12);
     }
 }

@@ -31,6 +31,10 @@ pub fn shared_consts() -> Vec<(String, WgslValue)> {
         "CHEAP_SUN_RADIUS".into(),
         WgslValue::F32(crate::caustics::CHEAP_SUN_RADIUS),
     ));
+    consts.push((
+        "CHEAP_SUN_GAIN".into(),
+        WgslValue::F32(crate::caustics::CHEAP_SUN_GAIN),
+    ));
     consts
 }
 
@@ -74,14 +78,15 @@ mod tests {
         assert!(p.contains("const FX_FLOWMAP: u32 = 16u;"), "{p}");
         assert!(p.contains("const EDGE_FADE: f32 = 0.05;"), "{p}");
         assert!(p.contains("const CHEAP_SUN_RADIUS: f32 = 0.1;"), "{p}");
+        assert!(p.contains("const CHEAP_SUN_GAIN: f32 = 0.8;"), "{p}");
         for e in Effect::ALL {
             assert!(crate::EffectSet::only(e).contains(e));
             assert_eq!(bit(e).count_ones(), 1);
         }
         let consts = shared_consts();
         let items: Vec<(&str, WgslValue)> = consts.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        // The literals the shaders wrote before: the bits, the fade and the sun's radius.
-        let old = ["= 16u;", "= 0.05;", "/ 0.1)"];
+        // The literals the shaders wrote before: the bits, the fade, the sun's radius and gain.
+        let old = ["= 16u;", "= 0.05;", "/ 0.1)", "1.0 + 0.8 *"];
         let files = render::shader::crate_shaders(env!("CARGO_MANIFEST_DIR"));
         assert!(files.len() >= 10, "{} files", files.len());
         let found = render::shader::mirrored_in(&items, &old, &files);
