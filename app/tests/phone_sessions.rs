@@ -375,3 +375,213 @@ fn the_scripted_tour_runs_every_step() {
     }
     assert!(out.join("recordings").read_dir().unwrap().count() == 1);
 }
+
+/// A races folder in the test's out folder `name`: the Valencia sample (a folder: its two
+/// boats' GPX and the metadata JSON) and a broken GPX file.
+fn races_folder(name: &str) -> PathBuf {
+    let races = out_dir(name).join("races");
+    let sample = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/races/valencia");
+    std::fs::create_dir_all(races.join("valencia")).unwrap();
+    for f in std::fs::read_dir(&sample).unwrap() {
+        let f = f.unwrap().path();
+        std::fs::copy(&f, races.join("valencia").join(f.file_name().unwrap())).unwrap();
+    }
+    std::fs::write(races.join("broken.gpx"), "<gpx><trk><trkseg><trkpt lat=\"x").unwrap();
+    races
+}
+
+/// The Valencia race of `races` as the importer reads its race files (the truth).
+fn valencia(races: &Path) -> race::Race {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(races.join("valencia"))
+        .unwrap()
+        .map(|f| f.unwrap().path())
+        .filter(|f| f.extension().is_some_and(|e| e == "gpx" || e == "json"))
+        .collect();
+    files.sort();
+    race::Race::load(&files).unwrap()
+}
+
+/// Whether pixel `p` (framebuffer) is inside label box `r` or a hull's pick circle.
+fn on_a_boat(sim: &PhoneSim, p: [f64; 2]) -> bool {
+    let o = &sim.app.overlays;
+    o.placed_labels().iter().any(|l| {
+        let r = l.rect;
+        (r[0]..=r[2]).contains(&p[0]) && (r[1]..=r[3]).contains(&p[1])
+    }) || o
+        .hulls()
+        .iter()
+        .any(|h| (h.centre[0] - p[0]).hypot(h.centre[1] - p[1]) <= h.radius)
+}
+
+#[test]
+fn the_overlays_are_drawn_on_the_phone_and_a_tap_on_a_boat_selects_it() {
+    if !gpu_present() {
+        return;
+    }
+    let mut sim = launch(still_feed(), None);
+    // The race stands still: the boats are where the last frame drew them.
+    sim.app.panels.clock.pause();
+    sim.frame(0.1);
+    sim.tap([0.5, 0.45]);
+    assert!(sim.app.course().is_some());
+    sim.frame(0.1);
+    // Drawn: the labels were painted, each with its team-colour bar at its left edge; the
+    // screenshot has that colour there (egui's sRGB of the team's linear colour).
+    let img = sim.app.screenshot().unwrap().unwrap();
+    let ppp = f64::from(Device::A54.pixels_per_point(SIZE));
+    let labels = sim.app.overlays.placed_labels().to_vec();
+    assert!(!labels.is_empty(), "no label painted on the phone");
+    let bars_seen = labels
+        .iter()
+        .filter(|l| {
+            let x = l.rect[0] + 0.5 * regatta::scene_overlay::labels::BAR_PT * ppp;
+            let y = 0.5 * (l.rect[1] + l.rect[3]);
+            let (x, y) = (x as u32, y as u32);
+            if x >= SIZE[0] || y >= SIZE[1] {
+                return false;
+            }
+            let want = regatta::scene_overlay::paint::colour32(l.colour, 255);
+            let got = img.get_pixel(x, y).0;
+            (0..3).all(|k| (i32::from(got[k]) - i32::from(want.to_array()[k])).abs() <= 12)
+        })
+        .count();
+    assert!(
+        bars_seen > 0,
+        "none of the {} labels' team bars is in the screenshot",
+        labels.len()
+    );
+    // A tap on a label selects its boat; a tap on a hull (off every label) selects the
+    // boat nearest to the finger: the one tapped.
+    let size = SIZE.map(f64::from);
+    let in_label = |p: [f64; 2]| {
+        labels.iter().any(|l| {
+            let r = l.rect;
+            (r[0]..=r[2]).contains(&p[0]) && (r[1]..=r[3]).contains(&p[1])
+        })
+    };
+    let label = &labels[0];
+    let course = sim.app.course();
+    let r = label.rect;
+    sim.tap([0.5 * (r[0] + r[2]) / size[0], 0.5 * (r[1] + r[3]) / size[1]]);
+    assert_eq!(sim.app.overlays.selected(), [label.boat]);
+    let hull = *sim
+        .app
+        .overlays
+        .hulls()
+        .iter()
+        .find(|h| h.boat != label.boat && !in_label(h.centre))
+        .expect("a hull off the labels");
+    sim.tap([hull.centre[0] / size[0], hull.centre[1] / size[1]]);
+    assert_eq!(sim.app.overlays.selected(), [label.boat, hull.boat]);
+    assert_eq!(
+        sim.app.course(),
+        course,
+        "a tap on a boat does not move the course"
+    );
+    // A tap on open table (off every boat and label) moves the course there; the selection
+    // stays.
+    let open = [6, 5, 4]
+        .into_iter()
+        .flat_map(|j| [5, 3, 7, 2, 8].map(|i| [f64::from(i) / 10.0, f64::from(j) / 10.0]))
+        .find(|s| !on_a_boat(&sim, [s[0] * size[0], s[1] * size[1]]))
+        .expect("open table somewhere");
+    sim.tap(open);
+    let want = table_hit_by_hand(&still_config(), touched(open));
+    let got = pivot_on_table(&sim);
+    assert!(
+        (got - want).length() < 1e-4,
+        "a tap at {open:?} put the course at {got}, not at the table hit {want}"
+    );
+    assert_eq!(sim.app.overlays.selected(), [label.boat, hull.boat]);
+}
+
+#[test]
+fn the_races_folder_is_listed_and_a_chosen_race_loads_or_says_why_in_one_sentence() {
+    if !gpu_present() {
+        return;
+    }
+    let races = races_folder("races_folder");
+    let mut sim = launch(still_feed(), None);
+    sim.app.set_races_dir(Some(races.clone()));
+    sim.app.panels.show_races = true;
+    sim.frame(0.1);
+    assert_eq!(sim.app.listed_races(), ["broken.gpx", "valencia"]);
+    let names = |sim: &PhoneSim| -> Vec<String> {
+        sim.app
+            .race()
+            .boats
+            .iter()
+            .map(|b| b.name.clone())
+            .collect()
+    };
+    let before = names(&sim);
+    // The broken file: one sentence naming it, the race stays.
+    let e = sim.app.choose_race("broken.gpx").unwrap_err();
+    sim.frame(0.1);
+    assert!(e.contains("broken.gpx") && !e.contains('\n'), "{e}");
+    assert_eq!(sim.app.race_error(), Some(e.as_str()));
+    assert_eq!(names(&sim), before);
+    // Valencia: its boats, as the importer reads the files (the truth), replace the sample's.
+    sim.app.choose_race("valencia").unwrap();
+    sim.frame(0.1);
+    let want: Vec<String> = valencia(&races)
+        .boats
+        .iter()
+        .map(|b| b.name.clone())
+        .collect();
+    assert_eq!(names(&sim), want);
+    assert_ne!(want, before);
+    assert_eq!(sim.app.race_error(), None);
+    // A file pushed while the app was away is listed after resume.
+    sim.pause();
+    std::fs::copy(races.join("broken.gpx"), races.join("later.gpx")).unwrap();
+    sim.resume();
+    assert_eq!(
+        sim.app.listed_races(),
+        ["broken.gpx", "later.gpx", "valencia"]
+    );
+}
+
+#[test]
+fn a_script_chooses_a_race_in_the_folder_regatta_races_dir_names() {
+    if !gpu_present() {
+        return;
+    }
+    let races = races_folder("races_script");
+    let out = races.parent().unwrap().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_regatta"))
+        .args([
+            "phone-sim",
+            "--device",
+            "a54",
+            "--size",
+            "180x400",
+            "--script",
+        ])
+        .arg(script("races.txt"))
+        .arg("--out")
+        .arg(&out)
+        .env("REGATTA_RACES_DIR", &races)
+        .output()
+        .unwrap();
+    assert!(
+        !o.status.success(),
+        "a step failed: the exit status says so"
+    );
+    let log = std::fs::read_to_string(out.join("log.jsonl")).unwrap();
+    let lines: Vec<Value> = log
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let sample = race::Race::sample().name;
+    assert_eq!(lines[0]["race"], sample.as_str());
+    assert_eq!(lines[1]["ok"], true, "{}", lines[1]);
+    assert_eq!(lines[1]["race"], valencia(&races).name.as_str());
+    assert_eq!(lines[2]["ok"], false);
+    let e = lines[2]["error"].as_str().unwrap();
+    assert!(e.contains("broken.gpx") && !e.contains('\n'), "{e}");
+    assert_eq!(
+        lines[2]["race"], lines[1]["race"],
+        "the race shown before stays"
+    );
+}

@@ -40,6 +40,8 @@ fn android_main(app: AndroidApp) {
         Err(e) => return log::error!("regatta: {e}"),
     };
     phone.data_dir = app.internal_data_path();
+    // Where `adb push` can put races without root (docs/panels.md).
+    phone.set_races_dir(app.external_data_path().map(|d| d.join("races")));
     let mut ticker = Ticker::default();
     let mut quit = false;
     while !quit {

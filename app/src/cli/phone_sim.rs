@@ -78,6 +78,9 @@ pub fn run(a: PhoneSimArgs) -> CliResult {
         }
         None => PhoneSim::new(open_feed(a.replay.as_deref())?, size, ppp, data),
     };
+    // The Races panel lists $REGATTA_RACES_DIR, else OUT/races.
+    sim.app
+        .set_races_dir(crate::core::phone::host_races_dir(Some(&a.out)));
     let failed = run_script(&mut sim, &lines, &a.out).map_err(CliError::new)?;
     let summary = json!({
         "steps": lines.len(),

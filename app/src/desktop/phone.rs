@@ -48,6 +48,8 @@ pub fn run(a: RunArgs) -> CliResult {
     let sea = crate::cli::inputs::load_sea(None)?;
     let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
     app.data_dir = std::env::current_dir().ok();
+    // The Races panel lists $REGATTA_RACES_DIR, else ./races.
+    app.set_races_dir(crate::core::phone::host_races_dir(app.data_dir.as_deref()));
     let [w, h] = a.device.host_size();
     let size = if h > MAX_HEIGHT {
         [w * MAX_HEIGHT / h, MAX_HEIGHT]

@@ -336,6 +336,14 @@ impl PhoneSim {
                 self.app.choose_scene(*s);
                 self.frame(1.0 / SIM_FPS);
             }
+            Step::Race(name) => {
+                // The Races panel opens (the folder is read again), then the race is chosen.
+                self.app.panels.show_races = true;
+                self.frame(1.0 / SIM_FPS);
+                let chosen = self.app.choose_race(name);
+                self.frame(1.0 / SIM_FPS);
+                chosen?;
+            }
         }
         Ok(())
     }

@@ -24,6 +24,8 @@ pub enum Step {
     Screenshot(String),
     Record(bool),
     Scene(SceneChoice),
+    /// Chooses the race of this name in the Races panel (one listed from the races folder).
+    Race(String),
 }
 
 /// A step and the line it came from (1-based), with the line's text.
@@ -154,6 +156,15 @@ fn parse_step(line: &str) -> Result<Step, String> {
             Some("stop") => Step::Record(false),
             _ => return Err("record takes start or stop".into()),
         },
+        "race" => {
+            let name = line["race".len()..].trim();
+            if name.is_empty() {
+                return Err("race takes the name of a race in the races folder".into());
+            }
+            // The name is the rest of the line (it may hold spaces).
+            w.by_ref().for_each(drop);
+            Step::Race(name.to_string())
+        }
         "scene" => match w.next() {
             Some("race") => Step::Scene(SceneChoice::Race),
             Some("pool") => Step::Scene(SceneChoice::Pool),
@@ -173,7 +184,7 @@ mod tests {
 
     #[test]
     fn every_step_parses_and_comments_are_skipped() {
-        let text = "# a session\nwait 1.5\ntap 0.5 0.25 # centre\ndrag 0 0 1 1 2\npinch 2\npinch 0.5 30\npause\nresume\nrotate 90\npermission deny\narcore unsupported\ntracking lost excessive_motion\ntracking ok\nscreenshot a-1\nrecord start\nscene pool\n";
+        let text = "# a session\nwait 1.5\ntap 0.5 0.25 # centre\ndrag 0 0 1 1 2\npinch 2\npinch 0.5 30\npause\nresume\nrotate 90\npermission deny\narcore unsupported\ntracking lost excessive_motion\ntracking ok\nscreenshot a-1\nrecord start\nscene pool\nrace valencia p02\n";
         let lines = parse(Path::new("s.txt"), text).unwrap();
         let steps: Vec<Step> = lines.iter().map(|l| l.step.clone()).collect();
         assert_eq!(
@@ -194,6 +205,7 @@ mod tests {
                 Step::Screenshot("a-1".into()),
                 Step::Record(true),
                 Step::Scene(SceneChoice::Pool),
+                Step::Race("valencia p02".into()),
             ]
         );
         assert_eq!(lines[1].number, 3);
@@ -207,6 +219,7 @@ mod tests {
             ("tap 0.5\n", 1, "missing"),
             ("rotate 45\n", 1, "90"),
             ("wait 1 2\n", 1, "too many"),
+            ("race\n", 1, "name of a race"),
             ("screenshot ../x\n", 1, "letters"),
             ("\n\ntap \u{1b}[31m 0\n", 3, "not a number"),
         ] {

@@ -57,8 +57,22 @@ impl LiveOverlays {
     /// A click or tap at framebuffer pixel `p` on the scene: selects the boat there (label or
     /// hull), or clears the selection on the water.
     pub fn click(&mut self, p: [f64; 2]) {
-        let hulls = self.frame.as_ref().map_or(&[][..], |f| &f.hulls[..]);
-        let boat = pick(&self.placed, hulls, p);
+        let boat = self.pick(p);
         self.settings.click(boat);
+    }
+
+    /// The boat at framebuffer pixel `p` in the frame last drawn (its label or hull).
+    pub fn pick(&self, p: [f64; 2]) -> Option<usize> {
+        pick(&self.placed, self.hulls(), p)
+    }
+
+    /// The boats on screen in the frame last drawn.
+    pub fn hulls(&self) -> &[super::labels::Hull] {
+        self.frame.as_ref().map_or(&[][..], |f| &f.hulls[..])
+    }
+
+    /// The labels as last painted.
+    pub fn placed_labels(&self) -> &[PlacedLabel] {
+        &self.placed
     }
 }

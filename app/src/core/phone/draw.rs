@@ -55,6 +55,14 @@ impl render::Pass for NoSea {
     }
 }
 
+impl Graphics {
+    /// The wakes of a newly opened race (and nothing kept of the last one's frames).
+    pub(super) fn set_race_wake(&mut self, wake: Option<std::sync::Arc<ocean::wake::Wake>>) {
+        self.race.set_wake(wake);
+        self.race_upload = None;
+    }
+}
+
 impl PhoneApp {
     /// A new window: the first makes the device (Vulkan, else OpenGL ES); later ones only a
     /// surface with the kept configuration.
@@ -245,6 +253,7 @@ impl PhoneApp {
         let Some(p) = self.course else {
             // Not placed: the camera image where AR runs (to see the table), else 3D.
             if !self.draw_backdrop(g, target, size, format) {
+                self.prepare_overlays(g, &scene, size);
                 let _ = g.race.render(&g.gpu, target, size, &scene);
             }
             return;
@@ -276,7 +285,16 @@ impl PhoneApp {
                 g.race_upload = Some(upload);
             }
         }
+        self.prepare_overlays(g, &scene, size);
         let _ = g.race.render(&g.gpu, target, size, &scene);
+    }
+
+    /// The overlays over the race as the desktop draws them (labels at the phone's density):
+    /// their layers into `g.race`'s overlay passes; the labels are painted in the egui pass.
+    fn prepare_overlays(&mut self, g: &mut Graphics, scene: &render::Scene, size: [u32; 2]) {
+        let ppp = f64::from(self.touch.pixels_per_point);
+        self.overlays
+            .prepare(&g.gpu, &mut g.race, &self.world.race, scene, size, ppp);
     }
 
     fn draw_pool(
@@ -322,7 +340,9 @@ impl PhoneApp {
         let mut record = false;
         let mut free = self.ui_free;
         let (panels, world, events) = (&mut self.panels, &self.world, &self.events);
-        let overlays = &self.overlays;
+        let overlays = &mut self.overlays;
+        let races = self.races.panel(&world.race.name);
+        let mut open = None;
         let mut clicked = None;
         let mut scene_rect = None;
         // The phone has no cursor or clipboard to update: the platform output is not needed.
@@ -330,7 +350,7 @@ impl PhoneApp {
             .egui
             .paint(&g.gpu.device, &g.gpu.queue, texture, size, raw, |ui| {
                 if choice == SceneChoice::Race {
-                    // No race list on the phone yet (docs/panels.md).
+                    overlays.paint(ui.ctx(), size);
                     let r = race_panels(
                         ui,
                         panels,
@@ -339,9 +359,10 @@ impl PhoneApp {
                         None,
                         &world.race.name,
                         &overlays.settings.selected,
-                        None,
+                        races,
                     );
                     clicked = r.clicked_boat;
+                    open = r.open;
                     scene_rect = r.scene_rect;
                 }
                 let bar = phone_bar(ui.ctx(), &mut choice, recording, message.as_ref());
@@ -356,6 +377,8 @@ impl PhoneApp {
         if record {
             self.record_button();
         }
+        self.races_panel_opened();
+        self.races_request(open);
         self.choose_scene(choice);
     }
 }

@@ -124,9 +124,19 @@ impl PhoneApp {
         }
     }
 
-    /// A tap on the scene at `px` (view pixels): stands the course (or the pool) on the table
-    /// under the finger, where the backend's hit test finds one.
+    /// A tap on the scene at `px` (view pixels). Once the course stands on the table, a tap
+    /// on a boat's label or within its pick radius (the hull's drawn size, at least a
+    /// fingertip: `scene_overlay::labels::MIN_PICK_RADIUS_PT`) selects or deselects that boat,
+    /// as the desktop's click does. Anywhere else it stands the course (or the pool) on the
+    /// table under the finger, where the backend's hit test finds one; the selection stays.
     fn tap(&mut self, px: DVec2) {
+        if self.scene == SceneChoice::Race
+            && self.course.is_some()
+            && let Some(boat) = self.overlays.pick(px.to_array())
+        {
+            ui::toggle_selection(&mut self.overlays.settings.selected, boat);
+            return;
+        }
         let [w, h] = self.view_size();
         let screen = px / DVec2::new(f64::from(w.max(1)), f64::from(h.max(1)));
         let Some(frame) = self.ar.frame.as_ref() else {

@@ -10,6 +10,7 @@
 
 mod draw;
 mod input;
+mod races;
 
 use std::path::PathBuf;
 
@@ -27,6 +28,7 @@ use crate::pool_play::PoolPlay;
 
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
+pub use races::{RACES_DIR_ENV, host_races_dir};
 
 /// What happens to the phone app, in the platform's words translated.
 pub enum PhoneEvent {
@@ -80,6 +82,8 @@ pub struct PhoneStatus {
     pub race_time: f64,
     pub scene: &'static str,
     pub recording: bool,
+    /// The race shown (its name).
+    pub race: String,
 }
 
 /// The phone app's state.
@@ -115,10 +119,11 @@ pub struct PhoneApp {
     graphics: Option<Graphics>,
     /// The last recording folder written.
     pub last_recording: Option<PathBuf>,
-    /// The race overlays' settings and the boat selection (made in the Boats panel). The
-    /// overlays are not drawn on the phone yet: with them, 100 pause/resume cycles grew
-    /// resident memory by 14 MB (app/tests/phone_memory.rs), cause not found.
+    /// The race overlays over the scene (labels, trails, course, lines, wind), as on the
+    /// desktop; boats are selected by a tap on them or in the Boats panel.
     pub overlays: crate::scene_overlay::live::LiveOverlays,
+    /// The Races panel's folder and list.
+    races: races::RaceList,
 }
 
 impl PhoneApp {
@@ -154,6 +159,7 @@ impl PhoneApp {
             graphics: None,
             last_recording: None,
             overlays: Default::default(),
+            races: Default::default(),
         }
     }
 
@@ -198,6 +204,8 @@ impl PhoneApp {
                 self.session_event(Event::AppResumed {
                     library_loaded: loaded,
                 });
+                // Files may have been pushed while the app was away.
+                self.rescan_races();
             }
             PhoneEvent::Paused => {
                 self.resumed = false;
@@ -297,6 +305,7 @@ impl PhoneApp {
             race_time: self.race_time(),
             scene: self.scene.noun(),
             recording: self.ar.recorder.is_some(),
+            race: self.world.race.name.clone(),
         }
     }
 

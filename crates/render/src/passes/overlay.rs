@@ -169,18 +169,25 @@ impl OverlayHandle {
 }
 
 /// Adds the five overlay passes after the renderer's passes (once: a renderer that has them
-/// keeps them) and returns the handle that feeds them.
+/// keeps them) and returns the handle that feeds them. The five draw alike (one shader, one
+/// vertex layout, one blend), so they share one pipeline: compiled once, not five times (on
+/// lavapipe each compilation is an LLVM JIT of its own).
 pub fn add_overlay_passes(renderer: &mut Renderer, gpu: &Gpu, handle: &OverlayHandle) {
+    let mut pipeline = None;
     for kind in OverlayKind::ALL {
         if !renderer.has_pass(kind.pass_name()) {
-            let pass = OverlayPass::new(
-                &gpu.device,
-                renderer.frame_layout(),
-                renderer.targets,
+            let pipeline = pipeline
+                .get_or_insert_with(|| {
+                    OverlayPass::pipeline(&gpu.device, renderer.frame_layout(), renderer.targets)
+                })
+                .clone();
+            renderer.add_pass(Box::new(OverlayPass {
                 kind,
-                handle.clone(),
-            );
-            renderer.add_pass(Box::new(pass));
+                handle: handle.clone(),
+                pipeline,
+                buffer: None,
+                count: 0,
+            }));
         }
     }
 }
@@ -204,20 +211,20 @@ pub struct OverlayPass {
 }
 
 impl OverlayPass {
-    pub fn new(
+    /// The overlay passes' pipeline: segments as instanced screen-space capsules,
+    /// depth-tested, alpha-blended.
+    fn pipeline(
         device: &wgpu::Device,
         frame_layout: &wgpu::BindGroupLayout,
         targets: Targets,
-        kind: OverlayKind,
-        handle: OverlayHandle,
-    ) -> Self {
+    ) -> wgpu::RenderPipeline {
         let module = shader::module(device, "overlay", &[shader::OVERLAY]);
         let attrs = wgpu::vertex_attr_array![
             0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4
         ];
-        let pipeline = crate::passes::render_pipeline(
+        crate::passes::render_pipeline(
             device,
-            kind.pass_name(),
+            "overlay",
             &module,
             &[Some(frame_layout)],
             targets,
@@ -234,14 +241,7 @@ impl OverlayPass {
                 cull: None,
                 blend: Some(wgpu::BlendState::ALPHA_BLENDING),
             },
-        );
-        OverlayPass {
-            kind,
-            handle,
-            pipeline,
-            buffer: None,
-            count: 0,
-        }
+        )
     }
 
     /// The segments of this frame that can show: a bounding sphere in the view frustum.
