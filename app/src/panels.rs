@@ -79,6 +79,16 @@ pub fn effect_set(settings: &SceneSettings) -> EffectSet {
         .fold(EffectSet::NONE, EffectSet::with)
 }
 
+/// Turns the AR effect switches to `effects` (a quality tier's), the others (wakes) as they
+/// were.
+pub fn set_effect_switches(settings: &mut SceneSettings, effects: EffectSet) {
+    for t in &mut settings.effects {
+        if let Some(e) = Effect::from_name(&t.key) {
+            t.enabled = effects.contains(e);
+        }
+    }
+}
+
 /// Applies the Scene panel's switches to the renderer, every frame (cheap when nothing
 /// changed): the AR effects through the effect passes' handle, the wakes by taking the race's
 /// wake out of the renderer and putting it back.
@@ -220,6 +230,11 @@ mod tests {
         }
         assert_eq!(effect_set(&s), EffectSet::only(Effect::Caustics));
         assert!(effect_toggles(false).iter().all(|t| t.key == "wakes"));
+        // A tier's effects turn the AR switches; the wakes' switch stays.
+        let low = EffectSet::only(Effect::Background).with(Effect::Reflection);
+        set_effect_switches(&mut s, low);
+        assert_eq!(effect_set(&s), low);
+        assert!(s.effect("wakes"));
     }
 
     /// A bad file is one sentence naming it, and nothing else is loaded.

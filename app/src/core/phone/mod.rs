@@ -10,6 +10,7 @@
 
 mod draw;
 mod input;
+mod tiers;
 
 use std::path::PathBuf;
 
@@ -27,6 +28,7 @@ use crate::pool_play::PoolPlay;
 
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
+pub use tiers::PHONE_START_TIER;
 
 /// What happens to the phone app, in the platform's words translated.
 pub enum PhoneEvent {
@@ -119,6 +121,8 @@ pub struct PhoneApp {
     /// overlays are not drawn on the phone yet: with them, 100 pause/resume cycles grew
     /// resident memory by 14 MB (app/tests/phone_memory.rs), cause not found.
     pub overlays: crate::scene_overlay::live::LiveOverlays,
+    /// The quality governor: frame times in, the tier drawn out (docs/quality.md).
+    pub tiers: crate::tier_control::TierControl,
 }
 
 impl PhoneApp {
@@ -154,6 +158,7 @@ impl PhoneApp {
             graphics: None,
             last_recording: None,
             overlays: Default::default(),
+            tiers: tiers::phone_tiers(),
         }
     }
 
@@ -234,6 +239,7 @@ impl PhoneApp {
         let size = self.view_size();
         self.ar.update(self.backend.as_mut(), self.rotation, size);
         self.draw();
+        self.govern();
     }
 
     pub fn race_time(&self) -> f64 {
