@@ -153,4 +153,21 @@ mod tests {
         assert!(p.pin(None).is_none());
         assert_eq!(p.tier(), Tier::Low);
     }
+
+    #[test]
+    fn the_panels_changes_pin_and_set_the_target() {
+        let mut c = TierControl::new(Tier::Ultra, false);
+        assert_eq!(c.panel(), ui::TierPanel::auto(Tier::Ultra));
+        let pinned = c.answer(ui::TierChange::Pin(Some(Tier::Medium)));
+        assert_eq!(pinned.map(|r| r.tier), Some(Tier::Medium));
+        assert!(c.answer(ui::TierChange::Target(Target::Fps60)).is_none());
+        assert_eq!(
+            c.panel(),
+            ui::TierPanel {
+                current: Tier::Medium,
+                pinned: Some(Tier::Medium),
+                target: Target::Fps60,
+            }
+        );
+    }
 }

@@ -28,7 +28,7 @@ fn slow_phone(tier: Tier, i: usize) -> f64 {
         Tier::High => 50.0,
         Tier::Ultra => 80.0,
     };
-    let jitter = if i % 2 == 0 { 1.0 } else { -1.0 };
+    let jitter = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
     (ms + jitter) / 1e3
 }
 
