@@ -125,6 +125,28 @@ impl SceneApplier {
         renderer.set_wake(self.current_wake());
     }
 
+    /// A quality tier on the running renderer, the window's way (docs/quality.md): the AR
+    /// effect switches of `settings` turned to the tier's effects (applied as a click would,
+    /// and the user may still turn one off after), the race's wakes emitted again at the tier's
+    /// spacing (kept behind the Wakes switch), the rest through `TierRender::apply_live`.
+    pub fn apply_tier(
+        &mut self,
+        settings: &mut SceneSettings,
+        tier: &crate::tier_render::TierRender,
+        gpu: &render::Gpu,
+        renderer: &mut render::Renderer,
+        effects: Option<&EffectsHandle>,
+        race: &race::Race,
+    ) -> crate::error::CliResult {
+        set_effect_switches(settings, tier.ar.effects);
+        if let Some(w) = tier.respaced_wake(race, self.wake.as_deref())? {
+            self.set_race_wake(Some(w), renderer);
+        }
+        tier.apply_live(gpu, renderer, effects, None)?;
+        self.apply(settings, renderer, effects);
+        Ok(())
+    }
+
     pub fn apply(
         &mut self,
         settings: &SceneSettings,

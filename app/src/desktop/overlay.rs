@@ -153,10 +153,8 @@ impl Overlay {
         }
     }
 
-    /// A quality tier on the running renderer, every setting (docs/quality.md): the effect
-    /// switches turned to the tier's effects (the switches then apply them, as a click would),
-    /// the race's wakes emitted again at the tier's spacing (kept behind the Wakes switch),
-    /// and the rest through [`TierRender::apply_live`].
+    /// A quality tier on the running renderer, every setting, through the Scene panel's
+    /// switches ([`crate::panels::SceneApplier::apply_tier`]).
     pub fn apply_tier(
         &mut self,
         tier: &crate::tier_render::TierRender,
@@ -165,13 +163,9 @@ impl Overlay {
         effects: Option<&effects::passes::EffectsHandle>,
         race: &race::Race,
     ) -> crate::error::CliResult {
-        crate::panels::set_effect_switches(&mut self.panels.settings, tier.ar.effects);
-        if let Some(w) = tier.respaced_wake(race, self.scene.wake.as_deref())? {
-            self.scene.set_race_wake(Some(w), renderer);
-        }
-        tier.apply_live(gpu, renderer, effects, None)?;
-        self.scene.apply(&self.panels.settings, renderer, effects);
-        Ok(())
+        let settings = &mut self.panels.settings;
+        self.scene
+            .apply_tier(settings, tier, gpu, renderer, effects, race)
     }
 
     /// The water the Scene panel asks for (the feed applies it on the table).

@@ -195,3 +195,45 @@ fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
         );
     }
 }
+
+/// The window's way: the Scene panel's switches and wakes (`SceneApplier`, applied every frame)
+/// over a renderer built at `ultra`; a change to `low` through them draws the frame of a
+/// renderer built at `low`, and the switches show `low`'s effects.
+#[test]
+fn a_tier_through_the_scene_panels_switches_draws_that_tiers_frame() {
+    let Some(gpu) = render::gpu::test_gpu() else {
+        return;
+    };
+    let size = [240, 160];
+    let race = race::Race::sample();
+    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+    let (mut live, fx) = TierRender::of(Tier::Ultra)
+        .renderer(&gpu, Some(&race), &scene, size)
+        .expect("renderer");
+    let mut settings = ui::SceneSettings::new(crate::panels::effect_toggles(true));
+    let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
+    applier.apply(&settings, &mut live, Some(&fx));
+    draw(&gpu, &mut live, &fx, &scene, size);
+    let low = TierRender::of(Tier::Low);
+    applier
+        .apply_tier(&mut settings, &low, &gpu, &mut live, Some(&fx), &race)
+        .expect("the tier applies");
+    // The next frame, as the window draws it: the switches applied first.
+    applier.apply(&settings, &mut live, Some(&fx));
+    let after = draw(&gpu, &mut live, &fx, &scene, size);
+    let (mut fresh, fresh_fx) = low
+        .renderer(&gpu, Some(&race), &scene, size)
+        .expect("renderer");
+    let want = draw(&gpu, &mut fresh, &fresh_fx, &scene, size);
+    assert_eq!(after.0, want.0);
+    assert_eq!(after.1, want.1);
+    assert_eq!(after.2.as_raw(), want.2.as_raw());
+    for e in effects::Effect::ALL {
+        assert_eq!(
+            settings.effect(e.name()),
+            Tier::Low.settings().effects.contains(&e.name()),
+            "{e}"
+        );
+    }
+    assert!(settings.effect("wakes"));
+}
