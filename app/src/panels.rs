@@ -79,6 +79,16 @@ pub fn effect_set(settings: &SceneSettings) -> EffectSet {
         .fold(EffectSet::NONE, EffectSet::with)
 }
 
+/// Turns the AR effect switches to `effects` (a quality tier's), the others (wakes) as they
+/// were.
+pub fn set_effect_switches(settings: &mut SceneSettings, effects: EffectSet) {
+    for t in &mut settings.effects {
+        if let Some(e) = Effect::from_name(&t.key) {
+            t.enabled = effects.contains(e);
+        }
+    }
+}
+
 /// Applies the Scene panel's switches to the renderer, every frame (cheap when nothing
 /// changed): the AR effects through the effect passes' handle, the wakes by taking the race's
 /// wake out of the renderer and putting it back.
@@ -113,6 +123,28 @@ impl SceneApplier {
     ) {
         self.wake = wake;
         renderer.set_wake(self.current_wake());
+    }
+
+    /// A quality tier on the running renderer, the window's way (docs/quality.md): the AR
+    /// effect switches of `settings` turned to the tier's effects (applied as a click would,
+    /// and the user may still turn one off after), the race's wakes emitted again at the tier's
+    /// spacing (kept behind the Wakes switch), the rest through `TierRender::apply_live`.
+    pub fn apply_tier(
+        &mut self,
+        settings: &mut SceneSettings,
+        tier: &crate::tier_render::TierRender,
+        gpu: &render::Gpu,
+        renderer: &mut render::Renderer,
+        effects: Option<&EffectsHandle>,
+        race: &race::Race,
+    ) -> crate::error::CliResult {
+        set_effect_switches(settings, tier.ar.effects);
+        if let Some(w) = tier.respaced_wake(race, self.wake.as_deref())? {
+            self.set_race_wake(Some(w), renderer);
+        }
+        tier.apply_live(gpu, renderer, effects, None)?;
+        self.apply(settings, renderer, effects);
+        Ok(())
     }
 
     pub fn apply(
@@ -220,6 +252,11 @@ mod tests {
         }
         assert_eq!(effect_set(&s), EffectSet::only(Effect::Caustics));
         assert!(effect_toggles(false).iter().all(|t| t.key == "wakes"));
+        // A tier's effects turn the AR switches; the wakes' switch stays.
+        let low = EffectSet::only(Effect::Background).with(Effect::Reflection);
+        set_effect_switches(&mut s, low);
+        assert_eq!(effect_set(&s), low);
+        assert!(s.effect("wakes"));
     }
 
     /// A bad file is one sentence naming it, and nothing else is loaded.

@@ -1,7 +1,9 @@
 //! The governor in a render loop: the app feeds each presented frame (its GPU time where
 //! timestamps exist, else the interval since the last present, and whether the user is
 //! scrubbing) and applies the [`TierRender`] it gets back when the tier changes. The desktop
-//! app and `regatta run --phone` use it; the panel reads [`TierControl::tier`] and pins one.
+//! app and the phone (`regatta run --phone`, `regatta phone-sim`, Android) use it; the Scene
+//! panel's tier control shows [`TierControl::panel`] and its changes go to
+//! [`TierControl::answer`].
 
 use quality::{Governor, Target, Tier};
 
@@ -48,6 +50,31 @@ impl TierControl {
     /// The frame-rate target (the panel's 30 / 60 / auto).
     pub fn set_target(&mut self, target: Target) {
         self.governor.set_target(target);
+    }
+
+    pub fn target(&self) -> Target {
+        self.governor.target()
+    }
+
+    /// What the panel's tier control shows: the tier drawn, the pin, the target.
+    pub fn panel(&self) -> ui::TierPanel {
+        ui::TierPanel {
+            current: self.tier(),
+            pinned: self.pinned(),
+            target: self.target(),
+        }
+    }
+
+    /// The panel's change: a pin ([`TierControl::pin`]) or a target. The settings to apply
+    /// when the tier drawn changes.
+    pub fn answer(&mut self, change: ui::TierChange) -> Option<TierRender> {
+        match change {
+            ui::TierChange::Pin(tier) => self.pin(tier),
+            ui::TierChange::Target(target) => {
+                self.set_target(target);
+                None
+            }
+        }
     }
 
     /// One presented frame at `now_s` (monotonic seconds): `gpu_ms` where the adapter measured
@@ -125,5 +152,22 @@ mod tests {
         assert_eq!(p.pin(Some(Tier::Low)).map(|r| r.tier), Some(Tier::Low));
         assert!(p.pin(None).is_none());
         assert_eq!(p.tier(), Tier::Low);
+    }
+
+    #[test]
+    fn the_panels_changes_pin_and_set_the_target() {
+        let mut c = TierControl::new(Tier::Ultra, false);
+        assert_eq!(c.panel(), ui::TierPanel::auto(Tier::Ultra));
+        let pinned = c.answer(ui::TierChange::Pin(Some(Tier::Medium)));
+        assert_eq!(pinned.map(|r| r.tier), Some(Tier::Medium));
+        assert!(c.answer(ui::TierChange::Target(Target::Fps60)).is_none());
+        assert_eq!(
+            c.panel(),
+            ui::TierPanel {
+                current: Tier::Medium,
+                pinned: Some(Tier::Medium),
+                target: Target::Fps60,
+            }
+        );
     }
 }

@@ -3,8 +3,9 @@
 //! effects' set-up ([`ArConfig`]: which effects run, reflection texture size, the caustic tier
 //! and map cells, the flow map as the `flowmap` effect) and the wakes ([`WakeParams`] source
 //! spacing, the renderer's per-frame wake source budget). `regatta render --tier`, the budget
-//! bench and the desktop app's governor all go through [`TierRender`], so a tier means the
-//! same frame everywhere.
+//! bench, the desktop app's and the phone's governor all go through [`TierRender`], so a tier
+//! means the same frame everywhere; a tier changed on a running renderer
+//! ([`TierRender::apply_live`]) draws the frame a renderer built at that tier draws.
 //!
 //! The overlay detail is carried for the race-overlay passes; they read
 //! [`TierRender::overlay`] when they land (nothing draws overlays through the renderer yet).
@@ -83,6 +84,52 @@ impl TierRender {
         renderer.options.error_px = self.options.error_px;
         renderer.set_wake_source_budget(self.wake_source_budget);
         renderer.invalidate();
+    }
+
+    /// A tier change on a running renderer, every setting as [`TierRender::renderer`] builds
+    /// it: the options and wake source budget ([`TierRender::apply_to`]), the AR effects'
+    /// set-up through their handle (which effects run, reflection size, caustic tier and map
+    /// cells: `EffectsHandle::set_quality`), and the renderer's wakes emitted again at the
+    /// tier's spacing ([`TierRender::respaced_wake`]) when `race` is given.
+    pub fn apply_live(
+        &self,
+        gpu: &render::Gpu,
+        renderer: &mut Renderer,
+        fx: Option<&EffectsHandle>,
+        race: Option<&race::Race>,
+    ) -> CliResult {
+        self.apply_to(renderer);
+        if let Some(fx) = fx {
+            fx.set_quality(gpu, &self.ar);
+        }
+        if let Some(race) = race
+            && let Some(w) = self.respaced_wake(race, renderer.wake().map(Arc::as_ref))?
+        {
+            renderer.set_wake(Some(w));
+        }
+        Ok(())
+    }
+
+    /// `race`'s wakes at this tier's source spacing in hull radii (the other parameters
+    /// `current`'s), when `current` was emitted at another spacing; `None` when it fits or
+    /// there is none.
+    pub fn respaced_wake(
+        &self,
+        race: &race::Race,
+        current: Option<&Wake>,
+    ) -> CliResult<Option<Arc<Wake>>> {
+        let Some(w) = current else {
+            return Ok(None);
+        };
+        let spacing = self.wake.spacing / self.wake.hull_radius * w.params.hull_radius;
+        if (w.params.spacing - spacing).abs() <= 1e-9 * spacing {
+            return Ok(None);
+        }
+        let params = WakeParams {
+            spacing,
+            ..w.params
+        };
+        crate::wakes::race_wake(race, params).map(|w| Some(Arc::new(w)))
     }
 
     /// A renderer for `scene` at `size` drawn at this tier: its options and wake source

@@ -125,6 +125,7 @@ pub fn run(a: RunArgs) -> CliResult {
             pinned.unwrap_or(quality::Tier::Ultra),
             pinned.is_some(),
         ),
+        tier_applied: None,
         started: Instant::now(),
     };
     event_loop
@@ -166,6 +167,9 @@ struct App {
     dropped: Vec<PathBuf>,
     /// The quality governor: frame times in, the tier's renderer settings out.
     tiers: crate::tier_control::TierControl,
+    /// The tier the renderer draws at and whether its effect passes were there then (a feed
+    /// builds them on its first frame): applied again when either changes.
+    tier_applied: Option<(quality::Tier, bool)>,
     started: Instant,
 }
 
@@ -213,6 +217,8 @@ impl App {
                 log::info!("opened {}", race.name);
                 o.set_race(&race, &mut st.renderer);
                 self.world = RaceWorld::new(race, (*self.world.sea).clone());
+                // Its wakes at the tier's spacing.
+                self.tier_applied = None;
             }
             Err(e) => {
                 log::warn!("{e}");
@@ -267,7 +273,8 @@ impl App {
         let view = frame.texture().create_view(&Default::default());
         let size = st.target.size();
         if let Some(o) = st.overlay.as_mut() {
-            let handle = self.feed.as_ref().and_then(|f| f.effects_handle());
+            let handle = self.feed.as_ref().and_then(|f| f.effects_handle()).cloned();
+            let handle = handle.as_ref();
             o.apply_effects(&mut st.renderer, handle);
             if let Some(feed) = self.feed.as_mut() {
                 let look = o.water_look();
@@ -279,6 +286,15 @@ impl App {
             let (race, r) = (&self.world.race, &mut st.renderer);
             o.scene_overlays
                 .prepare(&st.gpu, r, race, &scene, size, ppp);
+            // The tier drawn, every setting, live (the governor's or the panel's pin).
+            let applied = Some((self.tiers.tier(), handle.is_some()));
+            if self.tier_applied != applied {
+                let tier = crate::tier_render::TierRender::of(self.tiers.tier());
+                if let Err(e) = o.apply_tier(&tier, &st.gpu, &mut st.renderer, handle, race) {
+                    log::warn!("quality tier {}: {e}", tier.tier);
+                }
+                self.tier_applied = applied;
+            }
         }
         // A failed frame is logged by the renderer; the window shows the next one.
         let report = st.renderer.render(&st.gpu, &view, size, &scene).ok();
@@ -291,12 +307,16 @@ impl App {
             self.drag.is_some() || st.overlay.as_ref().is_some_and(|o| o.wants_pointer());
         let now = self.started.elapsed().as_secs_f64();
         let gpu_ms = report.as_ref().and_then(|r| r.gpu_ms);
+        // The change is applied before the next frame is drawn.
         if let Some(tier) = self.tiers.frame(now, gpu_ms, scrubbing) {
             log::info!("quality tier {}", tier.tier);
-            tier.apply_to(&mut st.renderer);
         }
         let race = &self.world.race;
         if let Some(o) = st.overlay.as_mut() {
+            if let Some(c) = o.tier_change.take() {
+                self.tiers.answer(c);
+            }
+            o.panels.settings.tier = Some(self.tiers.panel());
             if let Some(r) = &report {
                 o.record(r);
             }
@@ -357,11 +377,9 @@ impl ApplicationHandler for App {
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
                 let wake = gfx::wake_or_none(&self.world);
-                let mut renderer =
+                let renderer =
                     gfx::race_renderer(&gpu, surface.config.format, wake, Profile::Desktop);
-                if self.tiers.pinned().is_some() {
-                    crate::tier_render::TierRender::of(self.tiers.tier()).apply_to(&mut renderer);
-                }
+                // The tier is applied before the first frame is drawn (`draw`).
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
                     let race = &self.world.race;

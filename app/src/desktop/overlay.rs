@@ -32,6 +32,8 @@ pub struct Overlay {
     pub load_error: Option<String>,
     /// What the Races panel asked for this frame, for the app to do.
     pub open_request: Option<OpenRequest>,
+    /// What the tier control changed this frame, for the app's governor.
+    pub tier_change: Option<ui::TierChange>,
     /// When the app exits by itself (`REGATTA_EXIT_AFTER_FRAMES`, for the smoke test).
     exit_after: super::smoke::ExitAfter,
     /// The surface's colour format (the screenshot texture uses it too).
@@ -97,6 +99,7 @@ impl Overlay {
             scene: crate::panels::SceneApplier::new(crate::core::scene::race_wake(race).ok()),
             load_error: None,
             open_request: None,
+            tier_change: None,
             format,
             exit_after: super::smoke::ExitAfter::from_env(),
             scene_overlays,
@@ -148,6 +151,21 @@ impl Overlay {
                 .scene_overlays
                 .set_overlay(name, settings.overlay(name));
         }
+    }
+
+    /// A quality tier on the running renderer, every setting, through the Scene panel's
+    /// switches ([`crate::panels::SceneApplier::apply_tier`]).
+    pub fn apply_tier(
+        &mut self,
+        tier: &crate::tier_render::TierRender,
+        gpu: &render::Gpu,
+        renderer: &mut render::Renderer,
+        effects: Option<&effects::passes::EffectsHandle>,
+        race: &race::Race,
+    ) -> crate::error::CliResult {
+        let settings = &mut self.panels.settings;
+        self.scene
+            .apply_tier(settings, tier, gpu, renderer, effects, race)
     }
 
     /// The water the Scene panel asks for (the feed applies it on the table).
@@ -229,6 +247,9 @@ impl Overlay {
             }
             if r.open.is_some() {
                 self.open_request = r.open;
+            }
+            if r.tier.is_some() {
+                self.tier_change = r.tier;
             }
         }
     }

@@ -115,3 +115,125 @@ fn a_tier_by_name() {
         "{e}"
     );
 }
+
+/// A frame's record without what a run measures (GPU times, shader invocation counts).
+fn settled(mut r: render::FrameReport) -> render::FrameReport {
+    r.gpu_ms = None;
+    r.shader_invocations.clear();
+    for p in &mut r.passes {
+        p.gpu_ms = None;
+        p.offscreen_gpu_ms = None;
+    }
+    r
+}
+
+/// The sample race at 600 s drawn by `renderer` into a fresh texture: record, offscreen
+/// targets, pixels.
+fn draw(
+    gpu: &render::Gpu,
+    renderer: &mut Renderer,
+    fx: &EffectsHandle,
+    scene: &render::Scene,
+    size: [u32; 2],
+) -> (
+    render::FrameReport,
+    effects::passes::OffscreenSizes,
+    image::RgbaImage,
+) {
+    let texture = render::gpu::texture_2d(
+        &gpu.device,
+        "tier frame",
+        size,
+        render::OFFSCREEN_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+    );
+    let view = texture.create_view(&Default::default());
+    let report = renderer.render(gpu, &view, size, scene).expect("frame");
+    let img = gpu.read_texture(&texture).expect("read back");
+    (settled(report), fx.offscreen_sizes(), img)
+}
+
+#[test]
+fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
+    let Some(gpu) = render::gpu::test_gpu() else {
+        return;
+    };
+    let size = [240, 160];
+    let race = race::Race::sample();
+    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+    // Down across every setting, and back up (the caustic tier, map cells, reflection size,
+    // effects, spacing and budget all change both ways).
+    for (from, to) in [(Tier::Ultra, Tier::Low), (Tier::Low, Tier::High)] {
+        let (mut live, live_fx) = TierRender::of(from)
+            .renderer(&gpu, Some(&race), &scene, size)
+            .expect("renderer");
+        let before = draw(&gpu, &mut live, &live_fx, &scene, size);
+        TierRender::of(to)
+            .apply_live(&gpu, &mut live, Some(&live_fx), Some(&race))
+            .expect("the tier applies");
+        let after = draw(&gpu, &mut live, &live_fx, &scene, size);
+        let (mut fresh, fresh_fx) = TierRender::of(to)
+            .renderer(&gpu, Some(&race), &scene, size)
+            .expect("renderer");
+        let want = draw(&gpu, &mut fresh, &fresh_fx, &scene, size);
+        assert_ne!(before.0, want.0, "{from} → {to}: the tiers' frames differ");
+        // The record: size (render scale), clip-map error, every pass's decision with its
+        // reasons (which effects run), the wake sources drawn and dropped (spacing, budget).
+        assert_eq!(after.0, want.0, "{from} → {to}");
+        // The reflection texture's size and the caustic map's cells.
+        assert_eq!(after.1, want.1, "{from} → {to}");
+        // The pixels.
+        let differ = after
+            .2
+            .pixels()
+            .zip(want.2.pixels())
+            .filter(|(a, b)| a.0.iter().zip(b.0).any(|(x, y)| x.abs_diff(y) > 2))
+            .count();
+        assert_eq!(
+            differ, 0,
+            "{from} → {to}: pixels differ by more than 2 of 255"
+        );
+    }
+}
+
+/// The window's way: the Scene panel's switches and wakes (`SceneApplier`, applied every frame)
+/// over a renderer built at `ultra`; a change to `low` through them draws the frame of a
+/// renderer built at `low`, and the switches show `low`'s effects.
+#[test]
+fn a_tier_through_the_scene_panels_switches_draws_that_tiers_frame() {
+    let Some(gpu) = render::gpu::test_gpu() else {
+        return;
+    };
+    let size = [240, 160];
+    let race = race::Race::sample();
+    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+    let (mut live, fx) = TierRender::of(Tier::Ultra)
+        .renderer(&gpu, Some(&race), &scene, size)
+        .expect("renderer");
+    let mut settings = ui::SceneSettings::new(crate::panels::effect_toggles(true));
+    let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
+    applier.apply(&settings, &mut live, Some(&fx));
+    draw(&gpu, &mut live, &fx, &scene, size);
+    let low = TierRender::of(Tier::Low);
+    applier
+        .apply_tier(&mut settings, &low, &gpu, &mut live, Some(&fx), &race)
+        .expect("the tier applies");
+    // The next frame, as the window draws it: the switches applied first.
+    applier.apply(&settings, &mut live, Some(&fx));
+    let after = draw(&gpu, &mut live, &fx, &scene, size);
+    let (mut fresh, fresh_fx) = low
+        .renderer(&gpu, Some(&race), &scene, size)
+        .expect("renderer");
+    let want = draw(&gpu, &mut fresh, &fresh_fx, &scene, size);
+    assert_eq!(after.0, want.0);
+    assert_eq!(after.1, want.1);
+    assert_eq!(after.2.as_raw(), want.2.as_raw());
+    for e in effects::Effect::ALL {
+        assert_eq!(
+            settings.effect(e.name()),
+            Tier::Low.settings().effects.contains(&e.name()),
+            "{e}"
+        );
+    }
+    assert!(settings.effect("wakes"));
+}

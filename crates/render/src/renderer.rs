@@ -225,6 +225,11 @@ impl Renderer {
         self.invalidate();
     }
 
+    /// The wakes drawn now (a quality tier's spacing is read from them).
+    pub fn wake(&self) -> Option<&Arc<ocean::wake::Wake>> {
+        self.wake.as_ref()
+    }
+
     /// The memory budget of a frame's wake buffers, bytes (default
     /// [`crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES`]; the device's limits cap it too).
     pub fn set_wake_buffer_budget(&mut self, bytes: u64) {

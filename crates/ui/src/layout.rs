@@ -40,6 +40,9 @@ pub struct UiResponse {
     pub clock_changed: bool,
     /// Some effect, overlay or water setting changed (the list: `settings`).
     pub effects_changed: bool,
+    /// The tier control's change (also in `settings`): the app pins the tier or sets the
+    /// governor's target.
+    pub tier: Option<crate::tier::TierChange>,
     /// What the Scene panel changed, by name, for the app to map onto its renderer.
     pub settings: Vec<SettingChange>,
     /// A boat whose name was clicked: the app toggles it in its selection
@@ -275,7 +278,14 @@ impl RegattaUi {
                     glass.show(ui, |ui| perf_ui(ui, p));
                 });
         }
-        out.effects_changed = !out.settings.is_empty();
+        out.tier = out.settings.iter().find_map(|c| match c {
+            SettingChange::Tier(t) => Some(*t),
+            _ => None,
+        });
+        out.effects_changed = out
+            .settings
+            .iter()
+            .any(|c| !matches!(c, SettingChange::Tier(_)));
         out.scene_rect = Some(ui.available_rect_before_wrap());
         out
     }

@@ -1,8 +1,8 @@
 //! Regatta's egui panels: the race-timeline scrubber ([`RaceClock`] + [`timeline_ui`], reverse
 //! play, the race's events), the leaderboard, the Boats panel (follow, speed/VMG plot, compare
-//! two boats), the Events list, the Scene panel (effects, overlays, water), the Races panel
-//! (open a race), the performance overlay, and [`RegattaUi`] which lays them out over the scene,
-//! on a desktop window and on a phone held upright alike.
+//! two boats), the Events list, the Scene panel (effects and the quality tier, overlays,
+//! water), the Races panel (open a race), the performance overlay, and [`RegattaUi`] which lays
+//! them out over the scene, on a desktop window and on a phone held upright alike.
 //!
 //! Knows nothing of wgpu device setup or Android (ARCHITECTURE.md): the app hands it plain data
 //! ([`PerfStats`], [`EffectToggle`]s, the race) and paints its output.
@@ -27,7 +27,7 @@ pub use open::{OpenRequest, RaceEntry, RacesPanel, list_races, races_ui};
 pub use perf::{FpsMeter, PassStat, PerfStats, perf_ui};
 pub use plots::{PlotCache, compare_ui, speed_plot_ui};
 pub use settings::{SceneSettings, SettingChange, scene_settings_ui};
-pub use tier::{TierPanel, tier_ui};
+pub use tier::{TierChange, TierPanel, tier_ui};
 pub use timeline::timeline_ui;
 
 mod layout;

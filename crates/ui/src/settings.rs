@@ -1,4 +1,5 @@
-//! The "Scene" panel: one switch per renderer effect, one per scene overlay (`labels`,
+//! The "Scene" panel: one switch per renderer effect and the quality tier control
+//! ([`crate::tier::tier_ui`]), one switch per scene overlay (`labels`,
 //! `trails`, `course`, `lines`, `wind`: the names of `regatta render --overlays`), and the
 //! water (depth over the table, turbidity). ui knows none of the renderer's types: the panel
 //! returns what changed as [`SettingChange`]s named as on the command line, and the app maps
@@ -7,6 +8,7 @@
 use egui::{RichText, Ui};
 
 use crate::effects::{EffectToggle, effects_ui};
+use crate::tier::{TierChange, TierPanel, tier_ui};
 
 /// The scene overlays, as `--overlays` names them, with what a person sees.
 pub const OVERLAYS: [(&str, &str); 5] = [
@@ -48,6 +50,8 @@ pub enum SettingChange {
     WaterDepth(f64),
     /// Turbidity, NTU.
     Turbidity(f64),
+    /// The quality tier pinned (or auto) or the frame-rate target.
+    Tier(TierChange),
 }
 
 /// Everything the Scene panel shows.
@@ -64,6 +68,9 @@ pub struct SceneSettings {
     /// Keys the app cannot apply in this build or scene (e.g. an overlay without its pass, or
     /// the water sliders without a table): shown disabled, with why on hover.
     pub unavailable: Vec<(String, String)>,
+    /// The quality tier control under the effects (the app sets the tier drawn each frame);
+    /// `None`: not shown (no governor).
+    pub tier: Option<TierPanel>,
 }
 
 impl SceneSettings {
@@ -80,6 +87,7 @@ impl SceneSettings {
             turbidity: 0.5,
             water_ranges: WaterRanges::default(),
             unavailable: Vec::new(),
+            tier: None,
         }
     }
 
@@ -115,6 +123,11 @@ pub fn scene_settings_ui(ui: &mut Ui, s: &mut SceneSettings) -> Vec<SettingChang
                 enabled: a.enabled,
             });
         }
+    }
+    if let Some(panel) = s.tier.as_mut()
+        && let Some(change) = tier_ui(ui, panel)
+    {
+        out.push(SettingChange::Tier(change));
     }
     ui.separator();
     ui.label(RichText::new("Overlays").strong());

@@ -236,6 +236,7 @@ fn snapshot_scene_panel() {
     let mut s = SceneSettings::new(effects());
     s.unavailable
         .push(("wind".into(), "no wind in the race".into()));
+    s.tier = Some(ui::TierPanel::auto(quality::Tier::High));
     snapshot("scene_panel", Vec2::new(340.0, 420.0), move |ui| {
         scene_settings_ui(ui, &mut s);
     });

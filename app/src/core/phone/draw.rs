@@ -20,8 +20,8 @@ pub struct Graphics {
     pub window: Window,
     /// The race: plain 3D until the course stands on the table, then with the effect passes
     /// over the camera image (`race_effects`, built on the first such frame).
-    race: Renderer,
-    race_effects: Option<EffectsHandle>,
+    pub(super) race: Renderer,
+    pub(super) race_effects: Option<EffectsHandle>,
     /// The camera image alone (effect passes, the sea taken out): behind the pool, and before
     /// anything is placed.
     backdrop: Option<(Renderer, EffectsHandle)>,
@@ -34,6 +34,10 @@ pub struct Graphics {
     /// Said on the banner: the device came from OpenGL ES because Vulkan could not be had.
     pub note: Option<String>,
     pub frames_drawn: u64,
+    /// The race renderer's GPU time of the last frame, where measured; the quality tier it
+    /// draws at and whether its effect passes were there then (`tiers.rs`).
+    pub(super) gpu_ms: Option<f64>,
+    pub(super) tier: Option<(quality::Tier, bool)>,
 }
 
 /// Takes the sea's place in the backdrop renderer: only the camera image is drawn.
@@ -143,6 +147,8 @@ impl PhoneApp {
             lost: LostFlag::watch(&gpu),
             note,
             frames_drawn: 0,
+            gpu_ms: None,
+            tier: None,
             gpu,
             window,
         })
@@ -254,7 +260,11 @@ impl PhoneApp {
             // Not placed: the camera image where AR runs (to see the table), else 3D.
             if !self.draw_backdrop(g, target, size, format) {
                 self.prepare_overlays(g, &scene, size);
-                let _ = g.race.render(&g.gpu, target, size, &scene);
+                g.gpu_ms = g
+                    .race
+                    .render(&g.gpu, target, size, &scene)
+                    .ok()
+                    .and_then(|r| r.gpu_ms);
             }
             return;
         };
@@ -286,7 +296,11 @@ impl PhoneApp {
             }
         }
         self.prepare_overlays(g, &scene, size);
-        let _ = g.race.render(&g.gpu, target, size, &scene);
+        g.gpu_ms = g
+            .race
+            .render(&g.gpu, target, size, &scene)
+            .ok()
+            .and_then(|r| r.gpu_ms);
     }
 
     /// The overlays over the race as the desktop draws them (labels at the phone's density):

@@ -11,6 +11,7 @@
 mod draw;
 mod input;
 mod races;
+mod tiers;
 
 use std::path::PathBuf;
 
@@ -29,6 +30,7 @@ use crate::pool_play::PoolPlay;
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
 pub use races::{RACES_DIR_ENV, host_races_dir};
+pub use tiers::PHONE_START_TIER;
 
 /// What happens to the phone app, in the platform's words translated.
 pub enum PhoneEvent {
@@ -124,6 +126,8 @@ pub struct PhoneApp {
     pub overlays: crate::scene_overlay::live::LiveOverlays,
     /// The Races panel's folder and list.
     races: races::RaceList,
+    /// The quality governor: frame times in, the tier drawn out (docs/quality.md).
+    pub tiers: crate::tier_control::TierControl,
 }
 
 impl PhoneApp {
@@ -160,6 +164,7 @@ impl PhoneApp {
             last_recording: None,
             overlays: Default::default(),
             races: Default::default(),
+            tiers: tiers::phone_tiers(),
         }
     }
 
@@ -242,6 +247,7 @@ impl PhoneApp {
         let size = self.view_size();
         self.ar.update(self.backend.as_mut(), self.rotation, size);
         self.draw();
+        self.govern();
     }
 
     pub fn race_time(&self) -> f64 {

@@ -78,6 +78,38 @@ impl EffectsHandle {
         }
     }
 
+    /// A quality tier's set-up from the next frame on, live: `cfg`'s effects, reflection
+    /// texture fraction, caustic tier (cheap or the area-ratio map) and map cells; the rest
+    /// (camera image, water, current) kept. The caustic map is made anew at a new size, the AR
+    /// water pipelines anew when the caustic tier changes (a shader constant), and the next
+    /// frame draws its offscreen targets afresh, so the frame is the one passes built with
+    /// `cfg` draw.
+    pub fn set_quality(&self, gpu: &Gpu, cfg: &ArConfig) {
+        let mut shared = self.shared.borrow_mut();
+        let s = &mut *shared;
+        let key = |c: &ArConfig| {
+            (
+                c.effects,
+                c.reflection_fraction,
+                c.cheap_caustics,
+                c.caustic_resolution,
+            )
+        };
+        if key(&s.cfg) == key(cfg) {
+            return;
+        }
+        if s.cfg.caustic_resolution.1 != cfg.caustic_resolution.1 {
+            s.caustic_tex = shared::caustic_map_texture(&gpu.device, cfg.caustic_resolution.1);
+            s.group = None;
+        }
+        s.cfg.effects = cfg.effects;
+        s.cfg.reflection_fraction = cfg.reflection_fraction;
+        s.cfg.cheap_caustics = cfg.cheap_caustics;
+        s.cfg.caustic_resolution = cfg.caustic_resolution;
+        s.revision += 1;
+        s.quality += 1;
+    }
+
     /// The effects the passes draw now.
     pub fn effects(&self) -> EffectSet {
         self.shared.borrow().cfg.effects

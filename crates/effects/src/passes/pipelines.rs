@@ -83,7 +83,8 @@ pub(super) struct ArPipelines {
     pub(super) fx_layout: wgpu::BindGroupLayout,
     pub(super) targets: Targets,
     pub(super) wakes: bool,
-    /// The overhead-sun caustics instead of the area-ratio map (fixed for the pass's life).
+    /// The overhead-sun caustics instead of the area-ratio map (a new caustic tier makes the
+    /// pipelines anew).
     pub(super) cheap_caustics: bool,
     /// [`ArConfig::shader_knockout`].
     pub(super) knockout: u32,

@@ -105,8 +105,25 @@ pub(super) struct Shared {
     /// Camera frames set so far: the background pass's revision, so that the renderer draws
     /// a still scene again over a new image.
     pub(super) revision: u64,
+    /// Quality set-ups set so far ([`super::EffectsHandle::set_quality`]): the offscreen
+    /// targets of an earlier one are not reused.
+    pub(super) quality: u64,
     /// The uniform last written.
     pub(super) written: Option<EffectsUniform>,
+}
+
+/// The area-ratio caustic map's texture, `cells` per side.
+pub(super) fn caustic_map_texture(device: &wgpu::Device, cells: usize) -> wgpu::Texture {
+    let n = cells as u32;
+    render::gpu::texture_2d(
+        device,
+        "caustic map",
+        [n, n],
+        CAUSTIC_MAP_FORMAT,
+        wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC,
+    )
 }
 
 impl Shared {
@@ -144,16 +161,7 @@ impl Shared {
             size_of::<EffectsUniform>() as u64,
         );
         let yuv_conversion = YuvConversion::new(gpu);
-        let n = cfg.caustic_resolution.1 as u32;
-        let caustic_tex = render::gpu::texture_2d(
-            device,
-            "caustic map",
-            [n, n],
-            CAUSTIC_MAP_FORMAT,
-            wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC,
-        );
+        let caustic_tex = caustic_map_texture(device, cfg.caustic_resolution.1);
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("effects linear clamp"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -175,6 +183,7 @@ impl Shared {
             group: None,
             colour_format: targets.colour,
             revision: 0,
+            quality: 0,
             written: None,
         };
         shared.set_image(gpu, image);

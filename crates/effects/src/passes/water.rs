@@ -78,8 +78,8 @@ struct Offscreen {
 pub const OFFSCREEN_REUSED: &str =
     "timeline paused and camera still: reflection texture and caustic map of the last frame reused";
 
-/// Everything the reflection texture and the caustic map depend on (the camera image and the
-/// configuration are fixed for the pass's life).
+/// Everything the reflection texture and the caustic map depend on (the camera image is fixed
+/// for the pass's life; a new quality set-up counts in `quality`).
 #[derive(Debug, Clone, PartialEq)]
 struct OffscreenInputs {
     t: f64,
@@ -91,10 +91,12 @@ struct OffscreenInputs {
     camera: render::Camera,
     size: [u32; 2],
     mask: u32,
+    /// The quality set-up (reflection size, caustic tier and cells) they were drawn with.
+    quality: u64,
 }
 
 impl OffscreenInputs {
-    fn of(frame: &FrameContext, mask: u32) -> OffscreenInputs {
+    fn of(frame: &FrameContext, mask: u32, quality: u64) -> OffscreenInputs {
         let s = frame.scene;
         OffscreenInputs {
             t: s.t,
@@ -106,6 +108,7 @@ impl OffscreenInputs {
             camera: s.camera,
             size: frame.size,
             mask,
+            quality,
         }
     }
 }
@@ -292,7 +295,11 @@ impl Pass for ArWaterPass {
         match water {
             Ok(w)
                 if ds.iter().any(|d| d.run)
-                    && self.reuses(&OffscreenInputs::of(frame, mask_of(&ds))) =>
+                    && self.reuses(&OffscreenInputs::of(
+                        frame,
+                        mask_of(&ds),
+                        self.shared.borrow().quality,
+                    )) =>
             {
                 Ok(format!("{w}; {text}; {OFFSCREEN_REUSED}"))
             }
@@ -308,7 +315,16 @@ impl Pass for ArWaterPass {
         let mask = mask_of(&ds);
         // Paused timeline, still camera, same scene and effects: the reflection texture and
         // the caustic map on the GPU are this frame's already.
-        let inputs = OffscreenInputs::of(frame, mask);
+        let (quality, cheap) = {
+            let shared = self.shared.borrow();
+            (shared.quality, shared.cfg.cheap_caustics)
+        };
+        // The caustic tier is a shader constant: a new tier makes the pipelines anew.
+        if cheap != self.pipelines.cheap_caustics {
+            self.pipelines.cheap_caustics = cheap;
+            self.pipelines.made = Default::default();
+        }
+        let inputs = OffscreenInputs::of(frame, mask, quality);
         let reuse = self.reuses(&inputs);
         // The reflected room reads the uniform too.
         self.shared.borrow_mut().write_uniform(gpu, frame);

@@ -1,0 +1,70 @@
+//! The quality governor on the phone (docs/quality.md): each drawn frame feeds the phone's
+//! [`TierControl`] its GPU time where the renderer measured one, else the present interval on
+//! the phone's own clock (the time its events carry, so a `phone-sim` session replays to the
+//! same decisions); nothing changes while a finger is down (scrubbing the timeline, turning the
+//! view). The tier drawn is applied to the race renderer live, every setting
+//! ([`TierRender::apply_live`]), and again when the renderer or its effect passes are built
+//! anew. The Scene panel's tier control shows the tier; a pin or target set there is answered
+//! here.
+
+use quality::Tier;
+
+use super::PhoneApp;
+use crate::tier_control::TierControl;
+use crate::tier_render::TierRender;
+
+/// The tier the phone starts at before any frame is measured: the Pixel 2 XL's goal (every
+/// effect at ¾ size); a slower phone steps down within its first second or two.
+pub const PHONE_START_TIER: Tier = Tier::High;
+
+/// The phone's governor, auto, at [`PHONE_START_TIER`].
+pub(super) fn phone_tiers() -> TierControl {
+    TierControl::new(PHONE_START_TIER, false)
+}
+
+impl PhoneApp {
+    /// After a drawn frame: the panel's pin or target, the frame to the governor, the tier
+    /// applied, and the panel told the tier drawn.
+    pub(super) fn govern(&mut self) {
+        if let Some(panel) = self.panels.settings.tier {
+            let now = self.tiers.panel();
+            if panel.pinned != now.pinned {
+                self.tiers.answer(ui::TierChange::Pin(panel.pinned));
+            }
+            if panel.target != now.target {
+                self.tiers.answer(ui::TierChange::Target(panel.target));
+            }
+        }
+        let scrubbing = self.touch.owner().is_some();
+        let gpu_ms = self.graphics.as_ref().and_then(|g| g.gpu_ms);
+        if let Some(t) = self.tiers.frame(self.now, gpu_ms, scrubbing) {
+            log::info!("regatta: quality tier {}", t.tier);
+        }
+        self.apply_tier();
+        self.panels.settings.tier = Some(self.tiers.panel());
+    }
+
+    /// The governor's tier onto the race renderer, when it or the renderer's effect passes
+    /// changed since it was last applied.
+    fn apply_tier(&mut self) {
+        let Some(g) = self.graphics.as_mut() else {
+            return;
+        };
+        let key = Some((self.tiers.tier(), g.race_effects.is_some()));
+        if g.tier == key {
+            return;
+        }
+        let tier = TierRender::of(self.tiers.tier());
+        let fx = g.race_effects.clone();
+        let applied = tier.apply_live(&g.gpu, &mut g.race, fx.as_ref(), Some(&self.world.race));
+        if let Err(e) = applied {
+            log::warn!("regatta: quality tier {}: {e}", tier.tier);
+        }
+        g.tier = key;
+    }
+
+    /// The tier the race renderer draws at (`None` before the first frame).
+    pub fn tier_drawn(&self) -> Option<Tier> {
+        self.graphics.as_ref().and_then(|g| g.tier).map(|(t, _)| t)
+    }
+}
