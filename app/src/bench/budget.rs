@@ -9,9 +9,9 @@
 //! - modelled: the work of each pass counted in its shaders and invocations against the
 //!   phone's published rates ([`super::budget_model`]), machine-independent.
 
-use std::time::Instant;
-
 use wgpu::util::DeviceExt;
+
+use super::work_clock::WorkClock;
 
 /// Independent FMA chains per invocation, 4 lanes each: 32 FLOP per loop iteration. Sized by
 /// the core prelude's `WORKGROUP_SIZE` ([`FmaKernel::new`] prepends it).
@@ -45,6 +45,8 @@ pub(crate) struct FmaKernel<'a> {
     gpu: &'a render::Gpu,
     pipeline: wgpu::ComputePipeline,
     out: wgpu::Buffer,
+    /// How its dispatches are timed: the adapter's [`WorkClock`], as the frames they pace.
+    pub(crate) clock: WorkClock,
 }
 
 impl<'a> FmaKernel<'a> {
@@ -73,7 +75,12 @@ impl<'a> FmaKernel<'a> {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        FmaKernel { gpu, pipeline, out }
+        FmaKernel {
+            gpu,
+            pipeline,
+            out,
+            clock: WorkClock::for_adapter(&gpu.adapter.get_info()),
+        }
     }
 
     /// The kernel's parameters and output bound for `iterations` loop turns.
@@ -109,10 +116,11 @@ impl<'a> FmaKernel<'a> {
         flop / self.time(iterations) / 1e9
     }
 
-    /// One dispatch of `iterations` loop turns: wall seconds until the GPU finished it.
+    /// One dispatch of `iterations` loop turns: seconds of work until the GPU finished it, on
+    /// the kernel's [`WorkClock`].
     pub(crate) fn time(&self, iterations: u32) -> f64 {
         let group = self.group(iterations);
-        let t0 = Instant::now();
+        let t0 = self.clock.now();
         let mut enc = self.gpu.device.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());
@@ -122,7 +130,7 @@ impl<'a> FmaKernel<'a> {
         }
         self.gpu.queue.submit([enc.finish()]);
         self.gpu.wait();
-        t0.elapsed().as_secs_f64()
+        self.clock.since(t0)
     }
 }
 

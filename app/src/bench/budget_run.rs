@@ -3,12 +3,12 @@
 //! ([`super::budget_model`]), each tier's accuracy ([`super::budget_accuracy`]), the goals,
 //! the effects' cost with a YUV camera image on the model, and `budget.json`.
 
-use std::time::Instant;
 
 use quality::Tier;
 use serde_json::json;
 
 use super::budget::FmaKernel;
+use super::work_clock::WorkClock;
 use super::budget_model::{FrameInputs, PHONES, PassWork, PhoneGpu, frame_ms, frame_work};
 use super::shader_cost::Trips;
 use crate::bench::{Axes, BenchContext, Series, Table};
@@ -107,18 +107,23 @@ fn measure(
     for k in 0..reps {
         // The kernel before and after the frame: the load the frame saw lies between.
         let before = kernel.gflops(iterations);
-        // The frame: GPU timestamps where the adapter has them, else its wall time. The
-        // frames of a 60 fps playback, so that no offscreen work is reused.
+        // The frame: GPU timestamps on a GPU that has them, else the kernel's clock (on a CPU
+        // adapter the driver threads' CPU time). The frames of a 60 fps playback, so that no
+        // offscreen work is reused.
         let playing = render::Scene {
             t: T + (k + 1) as f64 / 60.0,
             ..scene.clone()
         };
-        let t0 = Instant::now();
+        let clock = kernel.clock;
+        let t0 = clock.now();
         let r = renderer
             .render(gpu, &view, size, &playing)
             .map_err(failed)?;
         gpu.wait();
-        let here = r.gpu_ms.unwrap_or(t0.elapsed().as_secs_f64() * 1e3);
+        let here = match (clock, r.gpu_ms) {
+            (WorkClock::Wall, Some(gpu_ms)) => gpu_ms,
+            _ => clock.since(t0) * 1e3,
+        };
         let gflops = (before * kernel.gflops(iterations)).sqrt();
         timed_ms.push(here * gflops / phone.gflops[1]);
     }
@@ -245,15 +250,16 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     }
     tiers.note(format!(
         "{}; the sample race at {T} s with wakes, the default camera, each phone's screen. \
-         Timed: {reps} repetitions, each the FMA kernel (2^20 invocations × {iterations} turns), \
-         the frame, the kernel again; phone ms = frame GPU ms × the geometric mean of the two \
-         kernels' GFLOP/s ÷ \
+         Timed on {}: {reps} repetitions, each the FMA kernel (2^20 invocations × \
+         {iterations} turns), the frame, the kernel again; phone ms = frame ms × the geometric \
+         mean of the two kernels' GFLOP/s ÷ \
          the phone's FP32 peak (Adreno 540: {}, GE8320: {} GFLOP/s); the median of the \
          repetitions. Model: see budget_passes; the phone's figure at the slow end of the spec \
          sheets with its own hidden surface removal (PowerVR: each pixel shaded once; Adreno: \
          every fragment the depth test passes, as counted); the range from the fast end with \
          each pixel shaded once to the slow end with every counted fragment.",
         gpu.describe(),
+        kernel.clock.describe(),
         PHONES[1].gflops[1],
         PHONES[0].gflops[1],
     ));

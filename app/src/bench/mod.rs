@@ -25,6 +25,7 @@ pub mod race_import;
 pub mod shader_cost;
 pub mod wakes;
 pub mod waves;
+pub mod work_clock;
 
 /// What every section gets.
 pub struct BenchContext {
