@@ -49,6 +49,7 @@
 
 use glam::DVec2;
 
+mod coverage;
 mod displacement;
 mod mesh;
 mod morph;
@@ -57,6 +58,7 @@ mod plan;
 mod tests;
 mod tiles;
 
+pub use coverage::ScreenCoverage;
 #[cfg(test)]
 pub(crate) use displacement::vertex_displacement;
 pub use mesh::{ClipMesh, ClipVertex};
