@@ -168,7 +168,8 @@ const VERTEX_BYTES: f64 = 32.0;
 /// Every pass's work in the frame. Passes the model has no shaders for are listed in the
 /// second value (none in the frames the budget draws). With `hsr` (hidden surface removal) a
 /// pass shades each drawn pixel at most once: its fragment invocations are capped at the drawn
-/// frame's pixels (lavapipe shades the clip-map about 4 fragments per pixel in draw order).
+/// frame's pixels. (The budget gives the water's fragments as a phone shades them, 2×2 quads:
+/// lavapipe counts 16 per 4×4 block a triangle touches, before the depth test.)
 pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<String>), String> {
     let drawn_px = f64::from(inp.report.size[0]) * f64::from(inp.report.size[1]);
     let trips = &inp.trips;
@@ -301,9 +302,9 @@ mod tests {
         );
         let drawn = f64::from(report.size[0] * report.size[1]);
         for inv in &report.shader_invocations {
-            // A pass shades each drawn pixel a few times at most: lavapipe counts a 2×2 quad's
-            // helper lanes too (as phone GPUs shade them), so the clip-map's far, pixel-sized
-            // triangles count about 4 per pixel.
+            // A pass shades each drawn pixel a few times at most: lavapipe counts 16 lanes per
+            // 4×4 block a triangle touches, so the clip-map's far, few-pixel triangles count
+            // about 4 per pixel (docs/quality.md, "Goals").
             assert!(inv.fragment as f64 <= 8.0 * drawn, "{inv:?}");
         }
         let inputs = FrameInputs {

@@ -3,14 +3,13 @@
 //! ([`super::budget_model`]), each tier's accuracy ([`super::budget_accuracy`]), the goals,
 //! the effects' cost with a YUV camera image on the model, and `budget.json`.
 
-
 use quality::Tier;
 use serde_json::json;
 
 use super::budget::FmaKernel;
-use super::work_clock::WorkClock;
 use super::budget_model::{FrameInputs, PHONES, PassWork, PhoneGpu, frame_ms, frame_work};
 use super::shader_cost::Trips;
+use super::work_clock::WorkClock;
 use crate::bench::{Axes, BenchContext, Series, Table};
 use crate::error::{CliError, CliResult};
 use crate::tier_render::TierRender;
@@ -81,6 +80,20 @@ fn trips(
     (trips, bins.bytes(wakes.sources.len()) as f64)
 }
 
+/// The fragments a GPU shading 2×2 quads runs for the frame's clip-map at `drawn` pixels:
+/// 4 per quad each triangle covers a pixel of (`render::clipmap::ScreenCoverage`).
+fn water_quad_fragments(scene: &render::Scene, tier: &TierRender, drawn: [u32; 2]) -> u64 {
+    let frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
+    let (o, sea, t) = (frame.origin, &scene.sea, scene.t);
+    frame
+        .mesh
+        .screen_coverage(frame.view_proj, drawn, |p| {
+            let d = sea.displace([p[0] + o.x, p[1] + o.y], t);
+            [d[0] - o.x, d[1], d[2] - o.y]
+        })
+        .quad_fragments
+}
+
 /// Draw `tier` on `phone`'s screen `reps` times alternating with the kernel; model its work.
 fn measure(
     ctx: &BenchContext,
@@ -129,8 +142,17 @@ fn measure(
     }
     let wake = t.race_wake(&race)?;
     let (trips, wake_buffer_bytes) = trips(&scene, &t, &wake, report.size);
+    // The water's fragments as a phone GPU shades them, 4 per 2×2 quad each clip-map
+    // triangle covers: lavapipe counts 16 per 4×4 block (docs/quality.md, "Goals").
+    let quads = water_quad_fragments(&scene, &t, report.size);
+    let mut shaded = report.clone();
+    for inv in &mut shaded.shader_invocations {
+        if inv.pass == "water" || inv.pass == "ar_water" {
+            inv.fragment = quads;
+        }
+    }
     let inputs = FrameInputs {
-        report: &report,
+        report: &shaded,
         offscreen: fx.offscreen_sizes(),
         ar: &t.ar,
         trips,
