@@ -259,12 +259,7 @@ impl PhoneApp {
         let Some(p) = self.course else {
             // Not placed: the camera image where AR runs (to see the table), else 3D.
             if !self.draw_backdrop(g, target, size, format) {
-                self.prepare_overlays(g, &scene, size);
-                g.gpu_ms = g
-                    .race
-                    .render(&g.gpu, target, size, &scene)
-                    .ok()
-                    .and_then(|r| r.gpu_ms);
+                self.render_race(g, target, size, &scene);
             }
             return;
         };
@@ -295,10 +290,21 @@ impl PhoneApp {
                 g.race_upload = Some(upload);
             }
         }
-        self.prepare_overlays(g, &scene, size);
+        self.render_race(g, target, size, &scene);
+    }
+
+    /// The race with its overlays into `target`; the frame's GPU time kept for the governor.
+    fn render_race(
+        &mut self,
+        g: &mut Graphics,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        scene: &render::Scene,
+    ) {
+        self.prepare_overlays(g, scene, size);
         g.gpu_ms = g
             .race
-            .render(&g.gpu, target, size, &scene)
+            .render(&g.gpu, target, size, scene)
             .ok()
             .and_then(|r| r.gpu_ms);
     }
