@@ -92,7 +92,7 @@ fn cpu_clocks() -> Option<(f64, f64)> {
         };
         // SAFETY: `ts` is a valid, writable timespec; the clock ids are the POSIX constants.
         let rc = unsafe { libc::clock_gettime(clock, &mut ts) };
-        (rc == 0).then(|| ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+        (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
     }
     Some((
         read(libc::CLOCK_PROCESS_CPUTIME_ID)?,
