@@ -502,6 +502,9 @@ fn the_races_folder_is_listed_and_a_chosen_race_loads_or_says_why_in_one_sentenc
     }
     let races = races_folder("races_folder");
     let mut sim = launch(still_feed(), None);
+    // The course placed on the table (before the panel covers it): a new race stands where it
+    // stood, fitted anew.
+    sim.tap([0.5, 0.6]);
     sim.app.set_races_dir(Some(races.clone()));
     sim.app.panels.show_races = true;
     sim.frame(0.1);
@@ -515,6 +518,16 @@ fn the_races_folder_is_listed_and_a_chosen_race_loads_or_says_why_in_one_sentenc
             .collect()
     };
     let before = names(&sim);
+    let placed = sim.app.course().expect("the course placed");
+    let pivot = |p: &ar::arcore::CoursePlacement, bounds| {
+        p.race_to_ar()
+            .transform_point3(course_pivot(bounds, table_depth()))
+    };
+    let sample_pivot = pivot(
+        &placed,
+        regatta::core::scene::RaceWorld::new(race::Race::sample(), ocean::WaveSet::default_sea())
+            .race_bounds,
+    );
     // The broken file: one sentence naming it, the race stays.
     let e = sim.app.choose_race("broken.gpx").unwrap_err();
     sim.frame(0.1);
@@ -532,6 +545,33 @@ fn the_races_folder_is_listed_and_a_chosen_race_loads_or_says_why_in_one_sentenc
     assert_eq!(names(&sim), want);
     assert_ne!(want, before);
     assert_eq!(sim.app.race_error(), None);
+    // Valencia's own bounds (every fix and mark, read here from the importer's race) fill
+    // 90 % of the 1 m first table along the longer side, pivot on the same table point.
+    let truth = valencia(&races);
+    let points = truth
+        .boats
+        .iter()
+        .flat_map(|b| b.fixes().iter().map(|f| f.pos()))
+        .chain(truth.buoys());
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for [x, z] in points {
+        b = [b[0].min(x), b[1].min(z), b[2].max(x), b[3].max(z)];
+    }
+    let course = sim.app.course().expect("still placed");
+    let side = (b[2] - b[0]).max(b[3] - b[1]);
+    let want_scale =
+        (1.0 - regatta::core::table::RACE_MARGIN) * regatta::core::table::FIRST_TABLE_M / side;
+    assert!(
+        (course.course_to_table / want_scale - 1.0).abs() < 1e-9,
+        "{} vs {want_scale}",
+        course.course_to_table
+    );
+    assert!((pivot(&course, b) - sample_pivot).length() < 1e-9);
     // A file pushed while the app was away is listed after resume.
     sim.pause();
     std::fs::copy(races.join("broken.gpx"), races.join("later.gpx")).unwrap();

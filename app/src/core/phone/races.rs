@@ -125,7 +125,7 @@ impl PhoneApp {
         let depth = table::table_depth();
         let pivot_on_table = self.course.map(|p| {
             p.race_to_ar()
-                .transform_point3(table::course_pivot(self.world.play_area, depth))
+                .transform_point3(table::course_pivot(self.world.race_bounds, depth))
         });
         self.world = RaceWorld::new(race, (*self.world.sea).clone());
         self.panels.clock = crate::overlay::initial_clock(&self.world.race);
@@ -134,7 +134,7 @@ impl PhoneApp {
         self.events = ui::timeline_events(&self.world.race);
         self.overlays.settings.selected.clear();
         self.course =
-            pivot_on_table.map(|at| table::place_course(None, at, self.world.play_area, depth));
+            pivot_on_table.map(|at| table::place_course(None, at, self.world.race_bounds, depth));
         if let Some(g) = self.graphics.as_mut() {
             g.set_race_wake(crate::core::gfx::wake_or_none(&self.world));
         }
