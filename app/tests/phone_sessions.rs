@@ -546,7 +546,8 @@ fn the_races_folder_is_listed_and_a_chosen_race_loads_or_says_why_in_one_sentenc
     assert_ne!(want, before);
     assert_eq!(sim.app.race_error(), None);
     // Valencia's own bounds (every fix and mark, read here from the importer's race) fill
-    // 90 % of the 1 m first table along the longer side, pivot on the same table point.
+    // 90 % of the room on the tapped table along the side that binds (the race turned a
+    // quarter where that draws it larger), pivot on the same table point.
     let truth = valencia(&races);
     let points = truth
         .boats
@@ -563,9 +564,16 @@ fn the_races_folder_is_listed_and_a_chosen_race_loads_or_says_why_in_one_sentenc
         b = [b[0].min(x), b[1].min(z), b[2].max(x), b[3].max(z)];
     }
     let course = sim.app.course().expect("still placed");
-    let side = (b[2] - b[0]).max(b[3] - b[1]);
-    let want_scale =
-        (1.0 - regatta::core::table::RACE_MARGIN) * regatta::core::table::FIRST_TABLE_M / side;
+    let (w, h) = (b[2] - b[0], b[3] - b[1]);
+    let room = sim.app.table_room().extent;
+    assert!(
+        room.min_element() < regatta::core::table::FIRST_TABLE_M,
+        "{room}"
+    );
+    let race_per_table = (w / room.x)
+        .max(h / room.y)
+        .min((w / room.y).max(h / room.x));
+    let want_scale = (1.0 - regatta::core::table::RACE_MARGIN) / race_per_table;
     assert!(
         (course.course_to_table / want_scale - 1.0).abs() < 1e-9,
         "{} vs {want_scale}",

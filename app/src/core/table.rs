@@ -104,11 +104,62 @@ pub fn table_area(race_bounds: [f64; 4], extent: DVec2) -> [f64; 4] {
     [c.x - half.x, c.y - half.y, c.x + half.x, c.y + half.y]
 }
 
-/// The phone's water: [`table_area`] of the [`FIRST_TABLE_M`] square the course is first
-/// fitted to. In race metres, so it scales and turns with the course.
-pub fn first_table_area(race_bounds: [f64; 4]) -> [f64; 4] {
-    table_area(race_bounds, DVec2::splat(FIRST_TABLE_M))
+/// The phone's table under the course: the room on the tapped plane, a rectangle centred on
+/// the tapped point along the plane's own axes, so the water drawn on it stays on the table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableRoom {
+    /// Size along the plane's x and z axes, AR metres (at most [`FIRST_TABLE_M`] a side).
+    pub extent: DVec2,
+    /// The plane's turn about the vertical (its x axis against AR +x), radians, as
+    /// [`CoursePlacement::yaw`] counts it.
+    pub yaw: f64,
 }
+
+impl TableRoom {
+    /// No plane known: the [`FIRST_TABLE_M`] square along the AR axes.
+    pub const FIRST: TableRoom = TableRoom {
+        extent: DVec2::splat(FIRST_TABLE_M),
+        yaw: 0.0,
+    };
+
+    /// The room around `point` on `plane`: on each of the plane's axes twice the distance to
+    /// the nearer edge of its extent rectangle (ARCore's `ArPlane_getExtentX/Z`; the boundary
+    /// polygon is not used), at most [`FIRST_TABLE_M`] and at least [`MIN_ROOM_M`] (a tap
+    /// at the very edge still gets a course). `None` when `point` is not on the plane.
+    pub fn on_plane(point: DVec3, plane: &ar::DetectedPlane) -> Option<TableRoom> {
+        let pose = plane.center_pose.as_dmat4();
+        let local = pose.inverse().transform_point3(point);
+        let half = 0.5 * plane.extent.as_dvec2();
+        let inside = local.y.abs() < 1e-3 && local.x.abs() <= half.x && local.z.abs() <= half.y;
+        if !inside {
+            return None;
+        }
+        let room = |h: f64, at: f64| (2.0 * (h - at.abs())).clamp(MIN_ROOM_M, FIRST_TABLE_M);
+        let x_axis = pose.transform_vector3(DVec3::X);
+        Some(TableRoom {
+            extent: DVec2::new(room(half.x, local.x), room(half.y, local.z)),
+            yaw: (-x_axis.z).atan2(x_axis.x),
+        })
+    }
+
+    /// The room under the tapped `point` on the first of `planes` that holds it, else
+    /// [`TableRoom::FIRST`].
+    pub fn under(point: DVec3, planes: &[ar::DetectedPlane]) -> TableRoom {
+        planes
+            .iter()
+            .find_map(|p| TableRoom::on_plane(point, p))
+            .unwrap_or(TableRoom::FIRST)
+    }
+
+    /// The water on this room once `race_bounds` are fitted on it: [`table_area`], in race
+    /// metres, so it scales and turns with the course.
+    pub fn area(&self, race_bounds: [f64; 4]) -> [f64; 4] {
+        table_area(race_bounds, self.extent)
+    }
+}
+
+/// The smallest side of a [`TableRoom`], AR metres: 10 cm, two model boats.
+pub const MIN_ROOM_M: f64 = 0.1;
 
 /// The race's bounds `[min x, min z, max x, max z]` (race metres: every track and mark)
 /// fitted onto a table of `extent` (AR metres, x and z) whose centre is `table_centre`: the
@@ -132,20 +183,24 @@ pub fn fit_on_table(
 }
 
 /// The course with its pivot on `point` (AR metres): the turn and scale of `current` once
-/// placed, else its bounds fitted to a [`FIRST_TABLE_M`] table.
+/// placed, else its bounds fitted to `room`, turned with the plane.
 pub fn place_course(
     current: Option<CoursePlacement>,
     point: DVec3,
     race_bounds: [f64; 4],
     table_depth: f64,
+    room: TableRoom,
 ) -> CoursePlacement {
-    match current {
-        Some(mut p) => {
-            p.put(course_pivot(race_bounds, table_depth), point);
+    let mut p = match current {
+        Some(p) => p,
+        None => {
+            let mut p = fit_on_table(race_bounds, point, room.extent, table_depth);
+            p.yaw += room.yaw;
             p
         }
-        None => fit_on_table(race_bounds, point, DVec2::splat(FIRST_TABLE_M), table_depth),
-    }
+    };
+    p.put(course_pivot(race_bounds, table_depth), point);
+    p
 }
 
 /// The pool with its centre on `point` (AR metres), keeping the turn and scale of `current`.
@@ -283,10 +338,10 @@ mod tests {
         // A 1 km square on the 1 m first table: 1000 m on 0.9 m.
         let bounds = [-500.0, -500.0, 500.0, 500.0];
         let point = DVec3::new(0.1, 0.0, 0.2);
-        let first = place_course(None, point, bounds, 1.0);
+        let first = place_course(None, point, bounds, 1.0, TableRoom::FIRST);
         assert!((first.course_to_table - 0.9e-3).abs() < 1e-15);
         // Its water is the 1 m square around the tapped point.
-        let [ax, az, bx, bz] = first_table_area(bounds);
+        let [ax, az, bx, bz] = TableRoom::FIRST.area(bounds);
         let lo = on_table(&first, ax, az, 1.0);
         let hi = on_table(&first, bx, bz, 1.0);
         assert!((lo - DVec3::new(-0.4, 0.0, -0.3)).length() < 1e-12, "{lo}");
@@ -296,10 +351,22 @@ mod tests {
     #[test]
     fn a_new_tap_moves_the_course_keeping_turn_and_scale() {
         let bounds = [-500.0, -500.0, 500.0, 500.0];
-        let first = place_course(None, DVec3::new(0.1, 0.0, 0.2), bounds, 1.0);
+        let first = place_course(
+            None,
+            DVec3::new(0.1, 0.0, 0.2),
+            bounds,
+            1.0,
+            TableRoom::FIRST,
+        );
         let mut turned = first;
         turned.apply_gesture(2.0, 0.5);
-        let moved = place_course(Some(turned), DVec3::new(-0.3, 0.1, 0.0), bounds, 1.0);
+        let moved = place_course(
+            Some(turned),
+            DVec3::new(-0.3, 0.1, 0.0),
+            bounds,
+            1.0,
+            TableRoom::FIRST,
+        );
         assert_eq!(
             (moved.yaw, moved.course_to_table),
             (turned.yaw, turned.course_to_table)
@@ -311,5 +378,58 @@ mod tests {
             (pivot - DVec3::new(-0.3, 0.1, 0.0)).length() < 1e-12,
             "{pivot}"
         );
+    }
+
+    /// A 0.6 m × 0.4 m table turned 30° about the vertical, tapped 10 cm along its x axis and
+    /// 5 cm along its z from its centre: the room is 0.4 m × 0.3 m (twice the distance to the
+    /// nearer edges), the course is turned with the table, and its water's corners land on the
+    /// room's corners, inside the table.
+    #[test]
+    fn the_phone_fits_the_race_to_the_room_on_the_tapped_plane() {
+        let turn = 30f64.to_radians();
+        let centre = DVec3::new(0.2, 0.75, -0.1);
+        let pose = glam::DMat4::from_rotation_translation(DQuat::from_rotation_y(turn), centre);
+        let plane = ar::DetectedPlane {
+            center_pose: pose.as_mat4(),
+            extent: glam::Vec2::new(0.6, 0.4),
+            polygon: Vec::new(),
+            kind: ar::PlaneKind::HorizontalUp,
+        };
+        let tap = pose.transform_point3(DVec3::new(0.1, 0.0, 0.05));
+        let room = TableRoom::under(tap, std::slice::from_ref(&plane));
+        assert!(
+            (room.extent - DVec2::new(0.4, 0.3)).length() < 1e-6,
+            "{room:?}"
+        );
+        assert!((room.yaw - turn).abs() < 1e-6, "{}", room.yaw);
+        // Off the plane: the first-table square.
+        let off = pose.transform_point3(DVec3::new(0.5, 0.0, 0.0));
+        assert_eq!(
+            TableRoom::under(off, std::slice::from_ref(&plane)),
+            TableRoom::FIRST
+        );
+        // A 1 km × 500 m race: its longer side along the room's longer (x), filling 90 % of it.
+        let bounds = [-500.0, -250.0, 500.0, 250.0];
+        let p = place_course(None, tap, bounds, 1.0, room);
+        assert!((p.course_to_table - 0.9 * 0.4 / 1000.0).abs() < 1e-9);
+        let to_plane = |x: f64, z: f64| pose.inverse().transform_point3(on_table(&p, x, z, 1.0));
+        let [ax, az, bx, bz] = room.area(bounds);
+        for (x, z) in [(ax, az), (ax, bz), (bx, az), (bx, bz)] {
+            let q = to_plane(x, z);
+            // A corner of the room: 0.1 ± 0.2 along x, 0.05 ± 0.15 along z, the table's top 1 m
+            // of race water below the sea (1 race m = 0.36 mm here).
+            assert!(((q.x - 0.1).abs() - 0.2).abs() < 1e-6, "{q}");
+            assert!(((q.z - 0.05).abs() - 0.15).abs() < 1e-6, "{q}");
+            // Inside the table (to the f32 precision of ARCore's plane pose).
+            assert!(q.x.abs() <= 0.3 + 1e-6 && q.z.abs() <= 0.2 + 1e-6, "{q}");
+        }
+        // The race's own corners lie inside the room with the margin.
+        for (x, z) in [(-500.0, -250.0), (500.0, 250.0)] {
+            let q = to_plane(x, z);
+            assert!(
+                (q.x - 0.1).abs() <= 0.9 * 0.2 + 1e-6 && (q.z - 0.05).abs() <= 0.15,
+                "{q}"
+            );
+        }
     }
 }

@@ -270,7 +270,7 @@ impl PhoneApp {
                 scene.sun = table::sun(&p, l);
             }
             table::boats_as_models(&mut scene, &p);
-            scene.play_area = table::first_table_area(self.world.race_bounds);
+            scene.play_area = self.table_room.area(self.world.race_bounds);
             let upload = (self.ar.frame_seq, p);
             if g.race_upload != Some(upload) {
                 match render_frame_with_image(frame, &p, display_of(frame)) {

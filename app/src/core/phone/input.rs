@@ -148,11 +148,16 @@ impl PhoneApp {
         };
         match self.scene {
             SceneChoice::Race => {
+                if self.course.is_none() {
+                    // The first placement fits the race to the room on the tapped plane.
+                    self.table_room = table::TableRoom::under(point, &frame.planes);
+                }
                 let p = table::place_course(
                     self.course,
                     point,
                     self.world.race_bounds,
                     table::table_depth(),
+                    self.table_room,
                 );
                 log::info!(
                     "regatta: course placed at {point:.3} (1:{:.0})",

@@ -22,6 +22,7 @@ use ui::{RegattaUi, TimelineEvent};
 use super::ar::{ArBackend, ArState};
 use super::gfx::SurfaceMaker;
 use super::scene::RaceWorld;
+use super::table;
 use crate::overlay::SceneChoice;
 use crate::overlay::banner::{ArStatus, Tone, banner};
 use crate::overlay::touch::{Touch, TouchInput};
@@ -124,6 +125,9 @@ pub struct PhoneApp {
     /// The race overlays over the scene (labels, trails, course, lines, wind), as on the
     /// desktop; boats are selected by a tap on them or in the Boats panel.
     pub overlays: crate::scene_overlay::live::LiveOverlays,
+    /// The room on the table the course was first fitted to (the tapped plane's), where its
+    /// water is drawn.
+    table_room: table::TableRoom,
     /// The Races panel's folder and list.
     races: races::RaceList,
     /// The quality governor: frame times in, the tier drawn out (docs/quality.md).
@@ -163,6 +167,7 @@ impl PhoneApp {
             graphics: None,
             last_recording: None,
             overlays: Default::default(),
+            table_room: table::TableRoom::FIRST,
             races: Default::default(),
             tiers: tiers::phone_tiers(),
         }
@@ -264,6 +269,11 @@ impl PhoneApp {
             SceneChoice::Race => self.course,
             SceneChoice::Pool => self.pool_placement,
         }
+    }
+
+    /// The room on the table the course was first fitted to (the tapped plane's).
+    pub fn table_room(&self) -> table::TableRoom {
+        self.table_room
     }
 
     /// Where the course stands on the table, once placed.

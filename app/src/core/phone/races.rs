@@ -133,8 +133,9 @@ impl PhoneApp {
         self.panels.follow = false;
         self.events = ui::timeline_events(&self.world.race);
         self.overlays.settings.selected.clear();
-        self.course =
-            pivot_on_table.map(|at| table::place_course(None, at, self.world.race_bounds, depth));
+        self.course = pivot_on_table.map(|at| {
+            table::place_course(None, at, self.world.race_bounds, depth, self.table_room)
+        });
         if let Some(g) = self.graphics.as_mut() {
             g.set_race_wake(crate::core::gfx::wake_or_none(&self.world));
         }
