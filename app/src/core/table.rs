@@ -2,7 +2,7 @@
 //! (race metres → AR metres: scale, turn about the vertical, anchor), for the desktop feed and
 //! the phone alike. Both fit the race's own bounds (every track and mark, [`RACE_MARGIN`] of
 //! the table left free around them) onto a table: the desktop onto a recorded table, the phone
-//! onto a [`FIRST_TABLE_M`] square on the tapped point. The sea stays larger than the race, but
+//! onto the room on the tapped plane about the tapped point ([`TableRoom`]). The sea stays larger than the race, but
 //! only its part over the table is drawn ([`table_area`]: the scene's play area on the table).
 //! Both keep the sea `table_depth` above the table top.
 

@@ -181,12 +181,12 @@ impl Overlay {
     /// Shows `race` from now on: a fresh timeline, events, selection and plots; its wakes in
     /// `renderer`. The title names it.
     pub fn set_race(&mut self, race: &race::Race, renderer: &mut render::Renderer) {
-        // The panels that were open stay open, the switches as they were.
-        self.panels.clock = initial_clock(race);
-        self.panels.plots.clear();
-        self.panels.follow = false;
-        self.events = ui::timeline_events(race);
-        self.scene_overlays.settings.selected.clear();
+        crate::overlay::panels_for_new_race(
+            race,
+            &mut self.panels,
+            &mut self.events,
+            &mut self.scene_overlays.settings.selected,
+        );
         self.load_error = None;
         self.title = race.name.clone();
         self.scene

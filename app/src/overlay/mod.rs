@@ -20,6 +20,22 @@ pub fn initial_clock(race: &race::Race) -> RaceClock {
     clock
 }
 
+/// The panels for a newly shown race, on the desktop and the phone alike: a fresh clock, no
+/// plots, no following, the race's timeline events and no boat selected (the panels that were
+/// open stay open, the switches as they were).
+pub fn panels_for_new_race(
+    race: &race::Race,
+    panels: &mut RegattaUi,
+    events: &mut Vec<TimelineEvent>,
+    selected: &mut Vec<usize>,
+) {
+    panels.clock = initial_clock(race);
+    panels.plots.clear();
+    panels.follow = false;
+    *events = ui::timeline_events(race);
+    selected.clear();
+}
+
 /// The overlay's numbers from the renderer's frame record and the app's frame meter.
 pub fn perf_stats(report: &FrameReport, fps: &FpsMeter) -> PerfStats {
     PerfStats {

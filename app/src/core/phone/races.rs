@@ -128,11 +128,12 @@ impl PhoneApp {
                 .transform_point3(table::course_pivot(self.world.race_bounds, depth))
         });
         self.world = RaceWorld::new(race, (*self.world.sea).clone());
-        self.panels.clock = crate::overlay::initial_clock(&self.world.race);
-        self.panels.plots.clear();
-        self.panels.follow = false;
-        self.events = ui::timeline_events(&self.world.race);
-        self.overlays.settings.selected.clear();
+        crate::overlay::panels_for_new_race(
+            &self.world.race,
+            &mut self.panels,
+            &mut self.events,
+            &mut self.overlays.settings.selected,
+        );
         self.course = pivot_on_table.map(|at| {
             table::place_course(None, at, self.world.race_bounds, depth, self.table_room)
         });
