@@ -1,4 +1,4 @@
-//! crates/ocean/shaders/wake.wgsl on a real GPU (lavapipe in CI) against its CPU mirror and the f64 terms:
+//! shaders/ocean/wake.wgsl on a real GPU (lavapipe in CI) against its CPU mirror and the f64 terms:
 //! a compute pass sums `wake_source_height`, `wake_source_height_grad` and `wake_source_foam`
 //! over a frame's source buffer at a grid of local points.
 

@@ -440,7 +440,7 @@ fn caustic_resolution_table(ctx: &BenchContext, size: [u32; 2]) -> Table {
          in from outside). Error: |map light − reference| per output cell (1 = flat water; \
          each triangle's light capped at {MAX_INTENSITY} as in the shader). ms per map is the \
          f64 reference on one CPU core; the renderer draws the same triangles on the GPU \
-         (crates/effects/shaders/caustic_map.wgsl) into a half-float map every frame the race time moves.",
+         (shaders/effects/caustic_map.wgsl) into a half-float map every frame the race time moves.",
         scene.t, region.size,
     ));
     t

@@ -212,7 +212,7 @@ fn spacing_table(ctx: &BenchContext) -> CliResult<Table> {
          behind (λ = {:.1} m), reference = the Havelock integral (f64, converged). Sources \
          per boat = sources alive at the evaluated time (wake reach {:.0} s). The f32 column \
          evaluates the GPU buffer (culled to the grid's rectangle, ε = 1e-6 m) with the CPU \
-         mirror of crates/ocean/shaders/wake.wgsl.",
+         mirror of shaders/ocean/wake.wgsl.",
         boat.hull_radius,
         boat.force,
         f.grid.len(),

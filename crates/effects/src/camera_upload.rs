@@ -12,7 +12,7 @@
 use super::camera_frame::CameraImage;
 use render::gpu::Gpu;
 
-pub const CAMERA_YUV: &str = include_str!("../shaders/camera_yuv.wgsl");
+pub const CAMERA_YUV: &str = include_str!("../../../shaders/effects/camera_yuv.wgsl");
 
 /// The camera image's texture (`texture`, RGBA to sample) and, for YUV images, its planes.
 pub struct CameraTextures {

@@ -13,9 +13,9 @@ use render::frame::{FrameContext, OffscreenTimestamps};
 use render::gpu::Gpu;
 
 /// The caustic map's surface grid, landed on the table (both methods).
-pub const CAUSTIC_MAP: &str = include_str!("../shaders/caustic_map.wgsl");
+pub const CAUSTIC_MAP: &str = include_str!("../../../shaders/effects/caustic_map.wgsl");
 /// The compute method's scatter and resolve (with [`CAUSTIC_MAP`]).
-pub const CAUSTIC_SCATTER: &str = include_str!("../shaders/caustic_scatter.wgsl");
+pub const CAUSTIC_SCATTER: &str = include_str!("../../../shaders/effects/caustic_scatter.wgsl");
 /// The caustic map's texel format: additive, filterable, values well above 1.
 pub const CAUSTIC_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 

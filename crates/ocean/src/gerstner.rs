@@ -84,7 +84,7 @@ pub fn foam_from_jacobian(jacobian: f64) -> f64 {
 
 /// Two foam coverages in [0, 1] on the same water (the sea's and a wake's) combined as
 /// independent coverages: 1 − (1 − a)(1 − b). The one rule `regatta probe` reports and the
-/// water shaders draw (`foam_coverage` in `render/shaders/common.wgsl`, its constants generated
+/// water shaders draw (`foam_coverage` in shaders/render/common.wgsl`, its constants generated
 /// from these by `render::shader::prelude`).
 pub fn foam_coverage(a: f64, b: f64) -> f64 {
     1.0 - (1.0 - a.clamp(0.0, 1.0)) * (1.0 - b.clamp(0.0, 1.0))

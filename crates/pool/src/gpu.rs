@@ -36,10 +36,10 @@ use render::shader;
 pub use crate::wgsl::{MAX_RINGS, MAX_SPHERES};
 
 /// The pool's shared WGSL (structs, water, rays, shading): every pool pass file follows it.
-pub const POOL_COMMON: &str = include_str!("../shaders/pool_common.wgsl");
-const POOL_CAUSTICS: &str = include_str!("../shaders/pool_caustics.wgsl");
-const POOL_SCENE: &str = include_str!("../shaders/pool_scene.wgsl");
-const POOL_WATER: &str = include_str!("../shaders/pool_water.wgsl");
+pub const POOL_COMMON: &str = include_str!("../../../shaders/pool/pool_common.wgsl");
+const POOL_CAUSTICS: &str = include_str!("../../../shaders/pool/pool_caustics.wgsl");
+const POOL_SCENE: &str = include_str!("../../../shaders/pool/pool_scene.wgsl");
+const POOL_WATER: &str = include_str!("../../../shaders/pool/pool_water.wgsl");
 
 /// The caustics map's format: blendable and filterable everywhere (WebGPU core).
 pub const CAUSTIC_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;

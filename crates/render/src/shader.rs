@@ -3,17 +3,17 @@
 //! file(s), concatenated here.
 
 /// Shared structs, bindings and functions (the frame uniform, waves, sky).
-pub const COMMON: &str = include_str!("../shaders/common.wgsl");
+pub const COMMON: &str = include_str!("../../../shaders/render/common.wgsl");
 /// Fresnel, Snell, reflection (the effects' optics, mirrored in f64 by `optics.rs`).
-pub const OPTICS: &str = include_str!("../shaders/optics.wgsl");
-pub const SKY: &str = include_str!("../shaders/sky.wgsl");
+pub const OPTICS: &str = include_str!("../../../shaders/render/optics.wgsl");
+pub const SKY: &str = include_str!("../../../shaders/render/sky.wgsl");
 /// The stretch of a frame drawn at a fraction of the screen (no shared files).
-pub const UPSCALE: &str = include_str!("../shaders/upscale.wgsl");
-pub const WATER: &str = include_str!("../shaders/water.wgsl");
-pub const BOATS: &str = include_str!("../shaders/boats.wgsl");
+pub const UPSCALE: &str = include_str!("../../../shaders/render/upscale.wgsl");
+pub const WATER: &str = include_str!("../../../shaders/render/water.wgsl");
+pub const BOATS: &str = include_str!("../../../shaders/render/boats.wgsl");
 /// The scene overlays: world segments as screen-space capsules (`passes::overlay`).
-pub const OVERLAY: &str = include_str!("../shaders/overlay.wgsl");
-pub const WAVE_HEIGHTS: &str = include_str!("../shaders/wave_heights.wgsl");
+pub const OVERLAY: &str = include_str!("../../../shaders/render/overlay.wgsl");
+pub const WAVE_HEIGHTS: &str = include_str!("../../../shaders/render/wave_heights.wgsl");
 /// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` after its generated constants
 /// (`ocean::wake::wake_wgsl`; `ocean::wake::gpu` mirrors it in f32), assembled once, there.
 pub fn wake() -> String {
@@ -21,9 +21,9 @@ pub fn wake() -> String {
 }
 /// The water pass's compute stage (sea and wakes per vertex, bind group 1) and the vertex
 /// stages that draw its output, or displace by the sea alone without compute.
-pub const WATER_VERTICES: &str = include_str!("../shaders/water_vertices.wgsl");
-pub const WATER_DISPLACED: &str = include_str!("../shaders/water_displaced.wgsl");
-pub const WATER_NO_WAKES: &str = include_str!("../shaders/water_no_wakes.wgsl");
+pub const WATER_VERTICES: &str = include_str!("../../../shaders/render/water_vertices.wgsl");
+pub const WATER_DISPLACED: &str = include_str!("../../../shaders/render/water_displaced.wgsl");
+pub const WATER_NO_WAKES: &str = include_str!("../../../shaders/render/water_no_wakes.wgsl");
 
 /// Threads per workgroup of every compute shader (`WORKGROUP_SIZE` in WGSL): dispatches
 /// divide their items by it.
@@ -133,10 +133,13 @@ pub fn mirrored_in(
     found
 }
 
-/// The WGSL files of a crate's `shaders/` folder (name, text), sorted: for the test that its
-/// shared constants have one source.
+/// The WGSL files a crate owns, in the workspace's `shaders/<crate>/` folder (name, text),
+/// sorted: for the test that its shared constants have one source. `manifest_dir` is the
+/// crate's own folder (`crates/<crate>`).
 pub fn crate_shaders(manifest_dir: &str) -> Vec<(String, String)> {
-    let dir = std::path::Path::new(manifest_dir).join("shaders");
+    let manifest = std::path::Path::new(manifest_dir);
+    let krate = manifest.file_name().expect("a crate folder");
+    let dir = manifest.join("../../shaders").join(krate);
     let mut files: Vec<(String, String)> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .filter_map(Result::ok)
@@ -176,16 +179,16 @@ pub fn module(device: &wgpu::Device, label: &str, parts: &[&str]) -> wgpu::Shade
 mod tests {
     use super::*;
 
-    /// Every WGSL file of the workspace (`crates/*/shaders/*.wgsl`: the core's, the effects',
+    /// Every WGSL file of the workspace (`shaders/<crate>/*.wgsl`: the core's, the effects',
     /// the pool's and `ocean`'s wake), named `crate/shaders/file.wgsl`.
     pub(crate) fn shader_files() -> Vec<(String, String)> {
-        let crates = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        let shaders = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shaders");
         let mut files = Vec::new();
-        for krate in std::fs::read_dir(crates)
-            .expect("crates/")
+        for krate in std::fs::read_dir(shaders)
+            .expect("shaders/")
             .filter_map(Result::ok)
         {
-            let Ok(dir) = std::fs::read_dir(krate.path().join("shaders")) else {
+            let Ok(dir) = std::fs::read_dir(krate.path()) else {
                 continue;
             };
             for e in dir.filter_map(Result::ok) {

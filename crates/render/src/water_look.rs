@@ -30,7 +30,7 @@ use std::f64::consts::FRAC_PI_2;
 use crate::optics::{N_AIR, N_WATER, fresnel};
 
 /// The WGSL of the transmitted light (the AR water pass appends it).
-pub const WATER_LOOK_WGSL: &str = include_str!("../shaders/water_look.wgsl");
+pub const WATER_LOOK_WGSL: &str = include_str!("../../../shaders/render/water_look.wgsl");
 
 /// Pure-water absorption coefficient, 1/m, every 10 nm from 380 to 700 nm: Pope & Fry
 /// (1997), "Absorption spectrum (380–700 nm) of pure water. II. Integrating cavity

@@ -11,7 +11,7 @@ use super::shared::{EFFECTS_COMMON, Shared, effect_frame};
 use crate::Effect;
 use crate::planner::{EffectDecision, decide};
 
-pub const BACKGROUND: &str = include_str!("../../shaders/background.wgsl");
+pub const BACKGROUND: &str = include_str!("../../../../shaders/effects/background.wgsl");
 
 /// The camera frame behind everything.
 pub struct BackgroundPass {

@@ -9,11 +9,11 @@ use render::shader;
 use super::shared::EFFECTS_COMMON;
 
 /// The effects in the AR water's fragment shader (`ar_water.wgsl` and what it calls).
-pub const REFLECTION: &str = include_str!("../../shaders/reflection.wgsl");
-pub const REFRACTION: &str = include_str!("../../shaders/refraction.wgsl");
-pub const CAUSTICS: &str = include_str!("../../shaders/caustics.wgsl");
-pub const FLOWMAP: &str = include_str!("../../shaders/flowmap.wgsl");
-pub const AR_WATER: &str = include_str!("../../shaders/ar_water.wgsl");
+pub const REFLECTION: &str = include_str!("../../../../shaders/effects/reflection.wgsl");
+pub const REFRACTION: &str = include_str!("../../../../shaders/effects/refraction.wgsl");
+pub const CAUSTICS: &str = include_str!("../../../../shaders/effects/caustics.wgsl");
+pub const FLOWMAP: &str = include_str!("../../../../shaders/effects/flowmap.wgsl");
+pub const AR_WATER: &str = include_str!("../../../../shaders/effects/ar_water.wgsl");
 
 /// The AR water's shader after its vertex stage and before its pipeline's `FX_MASK` /
 /// `FX_CHEAP_CAUSTICS` constants: the water pass's shading, then every effect. One list for

@@ -16,7 +16,7 @@ use render::gpu::DEPTH_FORMAT;
 use render::gpu::Gpu;
 
 /// Bind group 2 of both effect passes and the effects' shared WGSL (the `Effects` uniform).
-pub const EFFECTS_COMMON: &str = include_str!("../../shaders/effects_common.wgsl");
+pub const EFFECTS_COMMON: &str = include_str!("../../../../shaders/effects/effects_common.wgsl");
 
 /// The per-frame uniform of the effects, `Effects` in `shaders/effects_common.wgsl`.
 #[repr(C)]

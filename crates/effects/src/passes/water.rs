@@ -23,7 +23,7 @@ use crate::caustic_map::CausticMapPass;
 use crate::planner::{EffectDecision, decide};
 
 /// The room and sky drawn into the reflection texture.
-pub const REFLECTION_ROOM: &str = include_str!("../../shaders/reflection_room.wgsl");
+pub const REFLECTION_ROOM: &str = include_str!("../../../../shaders/effects/reflection_room.wgsl");
 
 /// The water over the table with reflection, refraction, caustics and flow map.
 pub struct ArWaterPass {
@@ -55,7 +55,7 @@ pub struct ArWaterPass {
     scissor: Option<Scissor>,
 }
 
-/// The sky's colour at the horizon (`sky_colour_rough` in `render/shaders/common.wgsl`): the reflection
+/// The sky's colour at the horizon (`sky_colour_rough` in shaders/render/common.wgsl`): the reflection
 /// texture's clear colour, shown where nothing is mirrored.
 const HORIZON_HAZE: wgpu::Color = wgpu::Color {
     r: 0.62,

@@ -8,7 +8,7 @@ use super::gpu::MIN_R2;
 use super::kelvin::GAUSS_CUTOFF;
 
 /// The functions that evaluate the source buffer, without their constants.
-const WAKE_FUNCTIONS: &str = include_str!("../../shaders/wake.wgsl");
+const WAKE_FUNCTIONS: &str = include_str!("../../../../shaders/ocean/wake.wgsl");
 
 /// The constants the wake shader shares with its f32 mirror, as WGSL names them: the squared
 /// distance below which a source is skipped, the exponent beyond which its term is nothing,

@@ -1,5 +1,5 @@
 //! The water pass (`shaders/water.wgsl`): the clip-map displaced by the analytic sea and the
-//! boats' wakes (`ocean/shaders/wake.wgsl`, sources from `ocean::wake`), with Fresnel-mixed sky
+//! boats' wakes (shaders/ocean/wake.wgsl`, sources from `ocean::wake`), with Fresnel-mixed sky
 //! reflection, water-body light, Jacobian foam and wake foam.
 //!
 //! Where the adapter has compute shaders, a compute stage (`shaders/water_vertices.wgsl`)

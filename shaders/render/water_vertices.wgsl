@@ -1,5 +1,5 @@
 // Compute stage of the water pass: displaces every clip-map vertex by the sea and the boats'
-// wakes (ocean/shaders/wake.wgsl, bind group 1) once per frame into the vertex buffer the water's
+// wakes (shaders/ocean/wake.wgsl, bind group 1) once per frame into the vertex buffer the water's
 // vertex shader (water_displaced.wgsl) draws. The CPU bins the wake sources on a grid over
 // where they reach (render::passes::water::WakeBins): a point sums only the sources listed for
 // its bin, which holds every source whose cull circle, grown by the grid's margin, reaches the
