@@ -1,4 +1,4 @@
-//! `regatta`: the desktop app and the command line of ../shared/DESIGN.md.
+//! `regatta`: the desktop app and the command line (docs/command-line.md).
 //!
 //! Every subcommand lives in its own module under `cli/`. Output that a program reads is JSON
 //! on stdout; messages for people go to stderr. A bad input exits non-zero with one sentence.

@@ -8,7 +8,7 @@
 //! ([`TierRender::apply_live`]) draws the frame a renderer built at that tier draws.
 //!
 //! The overlay detail is carried for the race-overlay passes; they read
-//! [`TierRender::overlay`] when they land (nothing draws overlays through the renderer yet).
+//! [`TierRender::overlay`] when they land (not yet read: every tier draws the overlays the user chose).
 
 use std::sync::Arc;
 

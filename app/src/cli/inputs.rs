@@ -1,5 +1,5 @@
-//! Inputs shared by several subcommands: the sea (`--sea`). Races (`--race`) join here when the
-//! race crate lands.
+//! Inputs shared by several subcommands: the sea (`--sea`), sizes, and the checks of numeric
+//! options, and the race of `--race` (every format `race::load` reads, combined into one race).
 
 use std::ops::RangeInclusive;
 use std::path::PathBuf;

@@ -1,4 +1,4 @@
-//! The command line contract of ../shared/DESIGN.md. One module per subcommand.
+//! The command line contract (docs/command-line.md). One module per subcommand.
 
 use clap::{Parser, Subcommand};
 

@@ -33,7 +33,8 @@ pub mod smoke;
 
 #[derive(Debug, Args, Default)]
 pub struct RunArgs {
-    /// Race files (native JSON, GPX, CSV); the embedded sample race without it.
+    /// Race files (native JSON, GPX, CSV logs, NMEA 0183, Expedition, race XML; several combine
+    /// into one race); the embedded sample race without it.
     #[arg(long, num_args = 1..)]
     pub race: Vec<PathBuf>,
     /// Sea file (JSON); the embedded default sea without it.

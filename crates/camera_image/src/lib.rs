@@ -1,8 +1,8 @@
 //! The camera image as the frame sources hand it over and the renderer uploads it: RGBA, or
 //! YUV 4:2:0 planes normalised from the strided layout ARCore's CPU image (`AImage`) gives,
-//! and their BT.601 colour ([`yuv`]). `crates/ar` makes these images, `crates/render` draws
-//! them (the Y and chroma planes as textures, converted in the shader with the same
-//! [`YuvToRgb`]); this crate sits below both so that neither knows the other.
+//! and their BT.601 colour ([`yuv`]). `crates/ar` makes these images, `crates/effects` draws
+//! them (its camera upload: the Y and chroma planes as textures, converted in a shader with the
+//! same [`YuvToRgb`]); this crate sits below both so that neither knows the other.
 
 use std::fmt;
 

@@ -20,7 +20,8 @@ pub struct RenderArgs {
     /// Image file to write: .png or .jpg (written whole or not at all).
     #[arg(long)]
     pub out: PathBuf,
-    /// Race files (native JSON, GPX, CSV); the embedded sample race without it.
+    /// Race files (native JSON, GPX, CSV logs, NMEA 0183, Expedition, race XML; several combine
+    /// into one race); the embedded sample race without it.
     #[arg(long, num_args = 1..)]
     pub race: Vec<PathBuf>,
     /// Sea file (JSON); the embedded default sea without it.
