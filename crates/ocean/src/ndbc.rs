@@ -212,6 +212,130 @@ fn parse_value(tok: &str) -> Option<Option<f64>> {
     Some(if missing(v) { None } else { Some(v) })
 }
 
+/// What a spectral file's header says about its rows.
+struct Layout {
+    /// A realtime file: "value (frequency)" pairs after the date; else one value per header
+    /// frequency.
+    realtime: bool,
+    /// A realtime row starts with the separation frequency before its pairs.
+    with_sep_freq: bool,
+    /// Date columns ("#YY MM DD hh mm" or "YYYY MM DD hh"); a realtime header always has 5.
+    date_cols: usize,
+    /// A historical header's frequencies (Hz).
+    header_freqs: Vec<f64>,
+}
+
+impl Layout {
+    /// The layout of `header` (the first non-blank line), or why it is no spectral header.
+    fn of(header: &str) -> Result<Layout, String> {
+        let tokens: Vec<&str> = header.split_whitespace().collect();
+        let realtime = header.contains('(') || header.contains('<');
+        let with_sep_freq = header.contains("Sep_Freq");
+        if realtime {
+            return Ok(Layout {
+                realtime,
+                with_sep_freq,
+                date_cols: 5,
+                header_freqs: Vec::new(),
+            });
+        }
+        // Date columns: header tokens that are not frequencies.
+        let date_cols = tokens
+            .iter()
+            .take_while(|t| t.trim_start_matches('#').parse::<f64>().is_err())
+            .count();
+        let freqs: Result<Vec<f64>, _> = tokens[date_cols..].iter().map(|t| t.parse()).collect();
+        match freqs {
+            Ok(f) if (4..=5).contains(&date_cols) && !f.is_empty() => Ok(Layout {
+                realtime,
+                with_sep_freq,
+                date_cols,
+                header_freqs: f,
+            }),
+            _ => {
+                Err("the header is neither a realtime nor a historical NDBC spectral header".into())
+            }
+        }
+    }
+
+    /// The time of a row from its date fields (two-digit years are 1950–2049).
+    fn time(&self, tok: &[&str]) -> Result<NdbcTime, String> {
+        let date_cols = self.date_cols;
+        if tok.len() < date_cols {
+            return Err(format!("expected {date_cols} date fields"));
+        }
+        let mut d = [0u32; 5];
+        for (j, t) in tok[..date_cols].iter().enumerate() {
+            d[j] = t.parse().map_err(|_| {
+                format!("date field {} is {}, not a number", j + 1, input::quote(t))
+            })?;
+        }
+        if d[0] < 100 {
+            d[0] += if d[0] < 50 { 2000 } else { 1900 };
+        }
+        let time = NdbcTime {
+            year: d[0],
+            month: d[1],
+            day: d[2],
+            hour: d[3],
+            minute: if date_cols == 5 { d[4] } else { 0 },
+        };
+        match time.invalid_because() {
+            Some(why) => Err(format!("the date {time} is not a real date: {why}")),
+            None => Ok(time),
+        }
+    }
+
+    /// A row's frequencies (Hz, increasing) and values (`None` where missing), from the
+    /// tokens after its date.
+    fn spectrum(&self, rest: &[&str]) -> Result<(Vec<f64>, Vec<Option<f64>>), String> {
+        let not_a_number = |t: &str| format!("{} is not a number", input::quote(t));
+        let (frequencies, values) = if self.realtime {
+            let rest = if self.with_sep_freq && !rest.is_empty() {
+                &rest[1..]
+            } else {
+                rest
+            };
+            if rest.is_empty() || rest.len() % 2 != 0 {
+                return Err("expected pairs of \"value (frequency)\" after the date".into());
+            }
+            let mut f = Vec::with_capacity(rest.len() / 2);
+            let mut v = Vec::with_capacity(rest.len() / 2);
+            for p in rest.chunks(2) {
+                let val = parse_value(p[0]).ok_or_else(|| not_a_number(p[0]))?;
+                let fr = p[1]
+                    .strip_prefix('(')
+                    .and_then(|s| s.strip_suffix(')'))
+                    .and_then(|s| s.parse::<f64>().ok())
+                    .filter(|f| f.is_finite() && *f > 0.0)
+                    .ok_or_else(|| {
+                        format!("{} is not a frequency in parentheses", input::quote(p[1]))
+                    })?;
+                f.push(fr);
+                v.push(val);
+            }
+            (f, v)
+        } else {
+            if rest.len() != self.header_freqs.len() {
+                return Err(format!(
+                    "expected {} values (one per header frequency), found {}",
+                    self.header_freqs.len(),
+                    rest.len()
+                ));
+            }
+            let v: Result<Vec<_>, _> = rest
+                .iter()
+                .map(|t| parse_value(t).ok_or_else(|| not_a_number(t)))
+                .collect();
+            (self.header_freqs.clone(), v?)
+        };
+        if frequencies.windows(2).any(|w| w[1] <= w[0]) {
+            return Err("the frequencies are not increasing".into());
+        }
+        Ok((frequencies, values))
+    }
+}
+
 impl NdbcTable {
     /// Parse the text of a realtime or historical spectral file. `source` names it in errors
     /// (and, for a historical file, says its kind by its name).
@@ -228,124 +352,21 @@ impl NdbcTable {
         };
         // A byte-order mark is text, not part of the first column's name.
         let header = header.strip_prefix('\u{feff}').unwrap_or(header);
-        let header_tokens: Vec<&str> = header.split_whitespace().collect();
-        let realtime = header.contains('(') || header.contains('<');
-        let with_sep_freq = header.contains("Sep_Freq");
-        // Date columns: header tokens that are not frequencies ("#YY MM DD hh mm" or
-        // "YYYY MM DD hh"). The realtime header always has 5.
-        let (date_cols, header_freqs) = if realtime {
-            (5, Vec::new())
-        } else {
-            let date_cols = header_tokens
-                .iter()
-                .take_while(|t| t.trim_start_matches('#').parse::<f64>().is_err())
-                .count();
-            let freqs: Result<Vec<f64>, _> = header_tokens[date_cols..]
-                .iter()
-                .map(|t| t.parse::<f64>())
-                .collect();
-            match freqs {
-                Ok(f) if (4..=5).contains(&date_cols) && !f.is_empty() => (date_cols, f),
-                _ => {
-                    return Err(err(
-                        1,
-                        "the header is neither a realtime nor a historical NDBC spectral header"
-                            .into(),
-                    ));
-                }
-            }
-        };
-        let mut rows = Vec::new();
+        let layout = Layout::of(header).map_err(|m| err(1, m))?;
+        let mut rows: Vec<NdbcRow> = Vec::new();
         for (i, line) in lines {
             let n = i + 1;
             let tok: Vec<&str> = line.split_whitespace().collect();
             if tok.first().is_some_and(|t| t.starts_with('#')) {
                 continue; // a second header line (units)
             }
-            if tok.len() < date_cols {
-                return Err(err(n, format!("expected {date_cols} date fields")));
-            }
-            let mut d = [0u32; 5];
-            for (j, t) in tok[..date_cols].iter().enumerate() {
-                d[j] = t.parse().map_err(|_| {
-                    err(
-                        n,
-                        format!("date field {} is {}, not a number", j + 1, input::quote(t)),
-                    )
-                })?;
-            }
-            if d[0] < 100 {
-                d[0] += if d[0] < 50 { 2000 } else { 1900 };
-            }
-            let time = NdbcTime {
-                year: d[0],
-                month: d[1],
-                day: d[2],
-                hour: d[3],
-                minute: if date_cols == 5 { d[4] } else { 0 },
-            };
-            if let Some(why) = time.invalid_because() {
-                return Err(err(n, format!("the date {time} is not a real date: {why}")));
-            }
-            let rest = &tok[date_cols..];
-            let (frequencies, values) = if realtime {
-                let rest = if with_sep_freq && !rest.is_empty() {
-                    &rest[1..]
-                } else {
-                    rest
-                };
-                if rest.is_empty() || rest.len() % 2 != 0 {
-                    return Err(err(
-                        n,
-                        "expected pairs of \"value (frequency)\" after the date".into(),
-                    ));
-                }
-                let mut f = Vec::with_capacity(rest.len() / 2);
-                let mut v = Vec::with_capacity(rest.len() / 2);
-                for p in rest.chunks(2) {
-                    let val = parse_value(p[0])
-                        .ok_or_else(|| err(n, format!("{} is not a number", input::quote(p[0]))))?;
-                    let fr = p[1]
-                        .strip_prefix('(')
-                        .and_then(|s| s.strip_suffix(')'))
-                        .and_then(|s| s.parse::<f64>().ok())
-                        .filter(|f| f.is_finite() && *f > 0.0)
-                        .ok_or_else(|| {
-                            err(
-                                n,
-                                format!("{} is not a frequency in parentheses", input::quote(p[1])),
-                            )
-                        })?;
-                    f.push(fr);
-                    v.push(val);
-                }
-                (f, v)
-            } else {
-                if rest.len() != header_freqs.len() {
-                    return Err(err(
-                        n,
-                        format!(
-                            "expected {} values (one per header frequency), found {}",
-                            header_freqs.len(),
-                            rest.len()
-                        ),
-                    ));
-                }
-                let v: Result<Vec<_>, _> = rest
-                    .iter()
-                    .map(|t| {
-                        parse_value(t)
-                            .ok_or_else(|| err(n, format!("{} is not a number", input::quote(t))))
-                    })
-                    .collect();
-                (header_freqs.clone(), v?)
-            };
-            if frequencies.windows(2).any(|w| w[1] <= w[0]) {
-                return Err(err(n, "the frequencies are not increasing".into()));
-            }
+            let time = layout.time(&tok).map_err(|m| err(n, m))?;
+            let (frequencies, values) = layout
+                .spectrum(&tok[layout.date_cols..])
+                .map_err(|m| err(n, m))?;
             // Realtime rows carry their own frequencies; a station keeps one set, so a row with
             // fewer is a record cut short (a truncated download's last line), not a new set.
-            if let Some(first) = rows.first().map(|r: &NdbcRow| r.frequencies.len())
+            if let Some(first) = rows.first().map(|r| r.frequencies.len())
                 && frequencies.len() != first
             {
                 return Err(err(
@@ -368,6 +389,7 @@ impl NdbcTable {
             )));
         }
         let file_name = source.rsplit('/').next().unwrap_or(source);
+        let realtime = layout.realtime;
         Ok(NdbcTable {
             format: if realtime {
                 NdbcFormat::Realtime
