@@ -16,6 +16,7 @@ pub mod scene_overlay;
 pub mod tier_control;
 pub mod tier_render;
 pub mod wakes;
+pub mod wall_clock;
 pub mod water;
 
 #[cfg(target_os = "android")]

@@ -2,7 +2,8 @@
 //! free of any platform (compiled and tested on the host).
 //!
 //! - [`scene`]: the race at time t ([`scene::RaceWorld`]: play area scanned once, sea shared).
-//! - [`clock`]: race time is the panels' `ui::RaceClock`; adapters feed wall seconds.
+//! - time: race time is the panels' `ui::RaceClock`; the shells feed wall seconds
+//!   (`crate::wall_clock::Ticker`, outside the core).
 //! - [`table`]: one mapping of the race onto the table (`ar::arcore::CoursePlacement`).
 //! - [`camera_frame`]: one conversion of an AR camera frame into the effect passes' frame.
 //! - [`gfx`]: renderer setup, the window's target with its kept configuration, surface loss,
@@ -18,7 +19,6 @@
 pub mod ar;
 mod ar_ffi;
 pub mod camera_frame;
-pub mod clock;
 pub mod gfx;
 pub mod phone;
 pub mod scene;

@@ -20,7 +20,7 @@ use winit::window::{Window, WindowId};
 
 use crate::cli::inputs::{load_race, load_sea};
 use crate::cli::scene_kind::SceneKind;
-use crate::core::clock::Ticker;
+use crate::wall_clock::Ticker;
 use crate::core::gfx::{self, Acquired, Profile};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};

@@ -15,7 +15,7 @@ use winit::keyboard::ModifiersState;
 use winit::window::{Window, WindowId};
 
 use super::RunArgs;
-use crate::core::clock::Ticker;
+use crate::wall_clock::Ticker;
 use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};

@@ -1,7 +1,8 @@
-//! Time for the apps: race time is the race panels' `ui::RaceClock` everywhere (play, pause,
-//! speed, scrub, loop); the pool's time runs with the wall clock. The platform adapters measure
-//! wall time with a [`Ticker`] and hand the app core seconds, so scripted sessions step time
-//! exactly and time in the background never counts.
+//! The shells' wall clock. Race time is the race panels' `ui::RaceClock` everywhere (play,
+//! pause, speed, scrub, loop); the pool's time runs with the wall clock. Only the shells (the
+//! desktop window, the Android activity) read the OS clock: they measure wall time with a
+//! [`Ticker`] and hand the app core seconds, so the core names no OS clock, scripted sessions
+//! (phone-sim) step time exactly, and time in the background never counts.
 
 use std::time::Instant;
 
