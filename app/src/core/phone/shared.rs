@@ -1,6 +1,7 @@
 //! Races opened the Android way: a race file from "Open with" or "Share" (the intent's
 //! `content://` URI read through the ContentResolver, [`read_intent`]) is loaded and fitted to
-//! the table, and kept in the races folder so that the Races panel lists it next time. A file
+//! the table, and kept in the races folder so that the Races panel lists it next time (a file
+//! kept before is not kept twice: its race folder opens). A file
 //! of the same race as the one shown (their time spans and areas overlap: another boat's
 //! track of the same race) joins it, asking nothing: the race's sub-folder gets the file and
 //! the race is read again with one more boat. Any other file opens as its own race, in a
@@ -292,6 +293,14 @@ impl PhoneApp {
             .file_stem()
             .and_then(|s| s.to_str())
             .unwrap_or("shared");
+        // The same file kept before (shared again another day): its race folder, all boats.
+        let before = dir.join(stem);
+        if std::fs::read(before.join(&file.name)).is_ok_and(|b| b == file.bytes)
+            && let Ok(race) = crate::panels::load_race_files(&race_files(&before))
+        {
+            self.remember_shown(&dir, &before);
+            return Ok((Opened::Race, race));
+        }
         let folder = unused(&dir, stem, None);
         let (kept, _) = write_into(&folder, file)?;
         self.remember_shown(&dir, &folder);
