@@ -8,8 +8,10 @@
 # 2. packages, aligns and signs it with tools/apk (rust-apk), from the cargo-apk metadata in
 #    app/Cargo.toml, with a debug key generated on first use;
 # 3. with --arcore-aar, adds ARCore's libarcore_sdk_c.so, merges the AAR's manifest entries into
-#    the app's (and its classes, dexed with d8 when d8 is installed: then hasCode="true");
-#    without it the APK runs the 3D view without AR, and this script says so.
+#    the app's, and packs the AAR's classes.jar dexed with d8 as classes.dex (hasCode="true"):
+#    d8 from PATH, $ANDROID_HOME/build-tools/*/d8, or R8_JAR=r8.jar with java. Without a dexer
+#    it stops (ARCore's library without its Java classes cannot start AR); without
+#    --arcore-aar the APK runs the 3D view without AR, and this script says so.
 # Prints the packaging summary (JSON) on stdout; progress on stderr.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,13 +23,31 @@ while [ $# -gt 0 ]; do
     --profile) profile="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
     --key) key="$2"; shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
     *) echo "build-apk.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 say() { printf 'build-apk: %s\n' "$*" >&2; }
+# The dexer, as a command line: d8 on PATH, else the newest of the SDK's build-tools, else
+# Google's r8.jar (R8_JAR) run with java (r8.jar's D8 is the same program).
+find_d8() {
+  if command -v d8 >/dev/null; then echo d8; return; fi
+  local sdk="${ANDROID_HOME:-${ANDROID_SDK_ROOT:-}}" d
+  if [ -n "$sdk" ]; then
+    d=$(ls -d "$sdk"/build-tools/*/d8 2>/dev/null | sort -V | tail -1 || true)
+    [ -n "$d" ] && [ -x "$d" ] && { echo "$d"; return; }
+  fi
+  if [ -n "${R8_JAR:-}" ] && [ -f "$R8_JAR" ] && command -v java >/dev/null; then
+    echo "java -cp $R8_JAR com.android.tools.r8.D8"; return
+  fi
+  return 1
+}
 die() { printf 'build-apk: %s\n' "$*" >&2; exit 1; }
 [ -z "$aar" ] || [ -f "$aar" ] || die "$aar: no such ARCore AAR"
+# Before the long native build: ARCore without a dexer is refused now, not after it.
+if [ -n "$aar" ]; then
+  dexer=$(find_d8) || die "--arcore-aar needs d8 to pack ARCore's Java classes (without them AR cannot start on the phone): install the Android SDK build-tools (sdkmanager \"build-tools;35.0.0\") and put d8 on PATH or set ANDROID_HOME, or set R8_JAR to Google's r8.jar (run with java); Debian has no dexer. Leave out --arcore-aar to build without AR."
+fi
 for tool in clang ld.lld llvm-ar; do
   command -v "$tool" >/dev/null || die "needs $tool (apt-get install clang lld llvm)"
 done
@@ -90,12 +110,16 @@ if [ -n "$aar" ]; then
   # merged into the app's, as Gradle's manifest merger would: ARCore's client needs them.
   [ -f "$work/extra/aar/AndroidManifest.xml" ] || die "$aar: has no AndroidManifest.xml"
   extra+=(--merge-manifest "$work/extra/aar/AndroidManifest.xml")
-  if command -v d8 >/dev/null && [ -f "$work/extra/aar/classes.jar" ]; then
-    d8 --release --min-api "$min_sdk" --output "$work/extra/aar" "$work/extra/aar/classes.jar" >&2
-    extra+=(--dex "$work/extra/aar/classes.dex")
-  else
-    say "d8 not found: ARCore's Java classes are not packaged; ArCoreApk_requestInstall will fail on the phone and the app falls back to the 3D view"
-  fi
+  # ARCore's native library loads its Java half through JNI (SessionCreateJniHelper, the
+  # install activity): without the AAR's classes as DEX, AR cannot start. No dexer, no ARCore.
+  [ -f "$work/extra/aar/classes.jar" ] || die "$aar: has no classes.jar (ARCore's Java classes)"
+  lib_jar=$(ls -d "${ANDROID_HOME:-${ANDROID_SDK_ROOT:-/nonexistent}}"/platforms/android-*/android.jar 2>/dev/null | sort -V | tail -1 || true)
+  say "dexing ARCore's classes.jar with $dexer${lib_jar:+ (--lib $lib_jar)}"
+  rm -f "$work/extra/aar/classes.dex"
+  $dexer --release --min-api "$min_sdk" ${lib_jar:+--lib "$lib_jar"} --output "$work/extra/aar" \
+    "$work/extra/aar/classes.jar" >&2 || die "d8 failed on $aar's classes.jar (above)"
+  [ -f "$work/extra/aar/classes.dex" ] || die "d8 wrote no classes.dex from $aar's classes.jar"
+  extra+=(--dex "$work/extra/aar/classes.dex")
   say "ARCore: packaging $arcore_so"
 else
   say "no --arcore-aar given: building WITHOUT AR (the app runs the 3D race view without camera)"

@@ -31,7 +31,8 @@ impl AndroidJni {
         }
     }
 
-    fn attached<T>(
+    /// `f` on this thread attached to the VM, with `on`'s object (also `intents.rs`'s calls).
+    pub(super) fn attached<T>(
         &self,
         on: JavaObject,
         f: impl FnOnce(&mut jni::Env<'_>, JObject<'_>) -> jni::errors::Result<T>,

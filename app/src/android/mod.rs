@@ -19,6 +19,7 @@ use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::overlay::touch::{Finger, Touch, TouchAction};
 
+mod intents;
 mod jni_calls;
 
 // std's `_Unwind_*` come from the `unwinding` crate (see app/Cargo.toml); naming the crate links it.
@@ -42,6 +43,11 @@ fn android_main(app: AndroidApp) {
     phone.data_dir = app.internal_data_path();
     // Where `adb push` can put races without root (docs/panels.md).
     phone.set_races_dir(app.external_data_path().map(|d| d.join("races")));
+    // A race file from "Open with" or "Share": each such intent starts a new Activity (a
+    // NativeActivity never sees onNewIntent), so it is read once, here.
+    if let Some(Err(e)) = phone.open_intent(&jni) {
+        log::warn!("regatta: the shared file was not opened: {e}");
+    }
     let mut ticker = Ticker::default();
     let mut quit = false;
     while !quit {

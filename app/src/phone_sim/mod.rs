@@ -80,6 +80,9 @@ pub struct PhoneSim {
     foreground: bool,
     /// The app has been started (the first step that is not a cue starts it).
     launched: bool,
+    /// The Java side that delivers shared files (`open FILE`): the FFI's scripted JNI, or one
+    /// of its own beside the scripted stand-in.
+    intents: Arc<ScriptedJni>,
 }
 
 impl PhoneSim {
@@ -122,7 +125,12 @@ impl PhoneSim {
         let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
         app.data_dir = data_dir;
         app.on(PhoneEvent::Density(ppp));
+        let intents = match &cues {
+            Cues::Ffi { jni, .. } => Arc::clone(jni),
+            Cues::Scripted(_) => Arc::new(ScriptedJni::default()),
+        };
         PhoneSim {
+            intents,
             app,
             cues,
             portrait,
@@ -284,6 +292,38 @@ impl PhoneSim {
         self.frame(1.0 / SIM_FPS);
     }
 
+    /// Shares the host file `path` with the app as a chat app does ("Share": `ACTION_SEND`
+    /// with a `content://` URI showing the file's name), and the app reads it through the
+    /// ContentResolver as on Android; one frame.
+    pub fn open(&mut self, path: &Path) -> Result<crate::core::phone::Opened, String> {
+        let bytes = std::fs::read(path)
+            .map_err(|e| format!("{} could not be read ({e})", input::show_path(path)))?;
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let mime = crate::core::phone::EXTENSION_OF_MIME
+            .iter()
+            .find(|(_, e)| Some(*e) == ext.as_deref())
+            .map_or("application/octet-stream", |(m, _)| m);
+        self.intents.share(name.as_deref(), bytes, Some(mime));
+        let opened = self
+            .open_intent()
+            .unwrap_or_else(|| Err("the share carried no file".into()));
+        self.frame(1.0 / SIM_FPS);
+        opened
+    }
+
+    /// The app reads the intent the scripted Java side holds now (as at an Activity's start).
+    pub fn open_intent(&mut self) -> Option<Result<crate::core::phone::Opened, String>> {
+        self.app.open_intent(&*self.intents)
+    }
+
+    /// The scripted Java side that delivers shared files (tests script its provider).
+    pub fn intents(&self) -> &ScriptedJni {
+        &self.intents
+    }
+
     /// Carries out one step; an error says why the step failed.
     pub fn step(&mut self, step: &Step, out: &Path) -> Result<(), String> {
         let cue = matches!(
@@ -343,6 +383,9 @@ impl PhoneSim {
                 let chosen = self.app.choose_race(name);
                 self.frame(1.0 / SIM_FPS);
                 chosen?;
+            }
+            Step::Open(path) => {
+                self.open(path)?;
             }
         }
         Ok(())

@@ -1,7 +1,7 @@
 //! The phone-session script (docs/phone-sim.md): one step per line, `#` starts a comment.
 //! Coordinates are 0–1 screen units from the top-left corner.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::backend::{Availability, FAILURE_REASONS};
 use crate::overlay::SceneChoice;
@@ -26,6 +26,9 @@ pub enum Step {
     Scene(SceneChoice),
     /// Chooses the race of this name in the Races panel (one listed from the races folder).
     Race(String),
+    /// Shares this file with the app, as Android's "Share" delivers it (a `content://` URI
+    /// read through the ContentResolver); relative paths are from the script's folder.
+    Open(PathBuf),
 }
 
 /// A step and the line it came from (1-based), with the line's text.
@@ -44,7 +47,7 @@ pub fn parse(path: &Path, text: &str) -> Result<Vec<Line>, String> {
         if content.is_empty() {
             continue;
         }
-        let step = parse_step(content).map_err(|e| {
+        let step = parse_step(content, path).map_err(|e| {
             input::one_line(&format!(
                 "{}:{}: {e} in \"{}\" (see docs/phone-sim.md)",
                 input::show_path(path),
@@ -86,7 +89,7 @@ fn point(w: &mut std::str::SplitWhitespace<'_>, what: &str) -> Result<[f64; 2], 
     ])
 }
 
-fn parse_step(line: &str) -> Result<Step, String> {
+fn parse_step(line: &str, script: &Path) -> Result<Step, String> {
     let mut w = line.split_whitespace();
     let verb = w.next().unwrap_or("");
     let step = match verb {
@@ -165,6 +168,16 @@ fn parse_step(line: &str) -> Result<Step, String> {
             w.by_ref().for_each(drop);
             Step::Race(name.to_string())
         }
+        "open" => {
+            let file = line["open".len()..].trim();
+            if file.is_empty() {
+                return Err("open takes the path of a race file to share".into());
+            }
+            // The path is the rest of the line (it may hold spaces).
+            w.by_ref().for_each(drop);
+            let dir = script.parent().unwrap_or(Path::new(""));
+            Step::Open(dir.join(file))
+        }
         "scene" => match w.next() {
             Some("race") => Step::Scene(SceneChoice::Race),
             Some("pool") => Step::Scene(SceneChoice::Pool),
@@ -184,8 +197,8 @@ mod tests {
 
     #[test]
     fn every_step_parses_and_comments_are_skipped() {
-        let text = "# a session\nwait 1.5\ntap 0.5 0.25 # centre\ndrag 0 0 1 1 2\npinch 2\npinch 0.5 30\npause\nresume\nrotate 90\npermission deny\narcore unsupported\ntracking lost excessive_motion\ntracking ok\nscreenshot a-1\nrecord start\nscene pool\nrace valencia p02\n";
-        let lines = parse(Path::new("s.txt"), text).unwrap();
+        let text = "# a session\nwait 1.5\ntap 0.5 0.25 # centre\ndrag 0 0 1 1 2\npinch 2\npinch 0.5 30\npause\nresume\nrotate 90\npermission deny\narcore unsupported\ntracking lost excessive_motion\ntracking ok\nscreenshot a-1\nrecord start\nscene pool\nrace valencia p02\nopen ../races/my boat.gpx\n";
+        let lines = parse(Path::new("tests/s.txt"), text).unwrap();
         let steps: Vec<Step> = lines.iter().map(|l| l.step.clone()).collect();
         assert_eq!(
             steps,
@@ -206,6 +219,7 @@ mod tests {
                 Step::Record(true),
                 Step::Scene(SceneChoice::Pool),
                 Step::Race("valencia p02".into()),
+                Step::Open(PathBuf::from("tests/../races/my boat.gpx")),
             ]
         );
         assert_eq!(lines[1].number, 3);
@@ -220,6 +234,7 @@ mod tests {
             ("rotate 45\n", 1, "90"),
             ("wait 1 2\n", 1, "too many"),
             ("race\n", 1, "name of a race"),
+            ("open  \n", 1, "path of a race file"),
             ("screenshot ../x\n", 1, "letters"),
             ("\n\ntap \u{1b}[31m 0\n", 3, "not a number"),
         ] {

@@ -33,6 +33,16 @@ mod host {
         /// Check the library's undefined dynamic symbols against Android's symbol maps at the
         /// manifest's minSdk.
         CheckSymbols(SymbolArgs),
+        /// Read a built APK back: refuse ARCore's library without ARCore's classes (DEX) and
+        /// code declared but absent; print its libraries, DEX files and intent filters.
+        Check(CheckArgs),
+    }
+
+    #[derive(clap::Args, Debug)]
+    struct CheckArgs {
+        /// The APK to check.
+        #[arg(long)]
+        apk: PathBuf,
     }
 
     #[derive(clap::Args, Debug)]
@@ -78,6 +88,9 @@ mod host {
         let result = match Cli::parse() {
             Cli::Package(args) => run(&args),
             Cli::CheckSymbols(args) => check_symbols(&args),
+            Cli::Check(args) => regatta_apk::check::check_apk(&args.apk).and_then(|report| {
+                serde_json::to_string_pretty(&report).map_err(|e| ApkError(e.to_string()))
+            }),
         };
         match result {
             Ok(json) => {

@@ -64,6 +64,37 @@ pub struct Activity {
     /// `android:screenOrientation` symbol, e.g. `fullSensor`.
     #[serde(default)]
     pub orientation: Option<String>,
+    /// The activity's `<intent-filter>`s besides the launcher's (cargo-apk's
+    /// `[[package.metadata.android.application.activity.intent_filter]]`): the files the app
+    /// opens from "Open with" and "Share".
+    #[serde(default)]
+    pub intent_filter: Vec<IntentFilter>,
+}
+
+/// One `<intent-filter>`: its `<action>`s, `<category>`s and `<data>` elements.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+pub struct IntentFilter {
+    #[serde(default)]
+    pub actions: Vec<String>,
+    #[serde(default)]
+    pub categories: Vec<String>,
+    #[serde(default)]
+    pub data: Vec<IntentData>,
+}
+
+/// One `<data>` element of an intent filter (the attributes Regatta uses, in cargo-apk's
+/// names).
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IntentData {
+    #[serde(default)]
+    pub scheme: Option<String>,
+    #[serde(default)]
+    pub host: Option<String>,
+    #[serde(default)]
+    pub mime_type: Option<String>,
+    #[serde(default)]
+    pub path_pattern: Option<String>,
 }
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]

@@ -8,7 +8,7 @@ use apk::prelude::*;
 use apk::xml::Element;
 
 use crate::ApkError;
-use crate::metadata::CrateAndroid;
+use crate::metadata::{CrateAndroid, IntentFilter};
 
 /// Everything that goes into one APK.
 #[derive(Clone, Debug)]
@@ -93,6 +93,21 @@ pub fn builder(app: &CrateAndroid, manifest_file: &Path) -> Result<ApkBuilder, A
     for md in &a.application.meta_data {
         application.push_child(manifest::meta_data(&md.name, md.value.as_str()));
     }
+    let filters = a
+        .application
+        .activity
+        .intent_filter
+        .iter()
+        .map(intent_filter)
+        .collect::<Vec<_>>();
+    if !filters.is_empty() {
+        let activity = application
+            .element_mut("activity")
+            .expect("native_activity adds the activity");
+        for f in filters {
+            activity.push_child(f);
+        }
+    }
     if let Some(orientation) = &a.application.activity.orientation {
         let value = attr::SCREEN_ORIENTATION.parse(orientation).map_err(|e| {
             ApkError(format!(
@@ -108,6 +123,27 @@ pub fn builder(app: &CrateAndroid, manifest_file: &Path) -> Result<ApkBuilder, A
     Ok(b)
 }
 
+/// `<intent-filter>` with its actions, categories and data, as cargo-apk writes them.
+fn intent_filter(f: &IntentFilter) -> Element {
+    let mut e = Element::new("intent-filter");
+    for action in &f.actions {
+        e.push_child(Element::new("action").with_attr(attr::NAME, action.as_str()));
+    }
+    for category in &f.categories {
+        e.push_child(Element::new("category").with_attr(attr::NAME, category.as_str()));
+    }
+    for d in &f.data {
+        e.push_child(
+            Element::new("data")
+                .with_opt_attr(attr::SCHEME, d.scheme.as_deref())
+                .with_opt_attr(attr::HOST, d.host.as_deref())
+                .with_opt_attr(attr::MIME_TYPE, d.mime_type.as_deref())
+                .with_opt_attr(attr::PATH_PATTERN, d.path_pattern.as_deref()),
+        );
+    }
+    e
+}
+
 /// Writes the signed APK to `out` and verifies its signatures.
 pub fn write_apk(
     inputs: &ApkInputs,
@@ -115,6 +151,14 @@ pub fn write_apk(
     identity: SigningIdentity,
     out: &Path,
 ) -> Result<ApkSummary, ApkError> {
+    crate::check::arcore_has_its_classes(
+        inputs
+            .extra_libraries
+            .iter()
+            .filter_map(|l| l.file_name()?.to_str()),
+        inputs.dex.len(),
+    )
+    .map_err(|e| ApkError(format!("{}: {e}", out.display())))?;
     let mut b = builder(&inputs.app, manifest_file)?;
     let mut libraries = Vec::new();
     for lib in std::iter::once(&inputs.library).chain(&inputs.extra_libraries) {

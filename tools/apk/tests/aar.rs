@@ -9,7 +9,7 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use common::{scratch, stub_library, stub_library_named};
+use common::{scratch, stand_in_dex, stub_library, stub_library_named};
 use regatta_apk::key::debug_identity;
 use regatta_apk::metadata::CrateAndroid;
 use regatta_apk::package::{ApkInputs, write_apk};
@@ -34,15 +34,6 @@ const ARCORE_AAR_MANIFEST: &str = r#"<?xml version="1.0" encoding="utf-8"?>
     </application>
 </manifest>
 "#;
-
-/// A DEX header (`dex\n035\0`, then zeros): packaging does not look inside.
-fn stand_in_dex(dir: &Path) -> std::path::PathBuf {
-    let mut bytes = b"dex\n035\0".to_vec();
-    bytes.resize(112, 0);
-    let path = dir.join("classes.dex");
-    std::fs::write(&path, bytes).unwrap();
-    path
-}
 
 fn aapt_xmltree(apk: &Path) -> Option<String> {
     let out = Command::new("aapt")

@@ -11,6 +11,7 @@
 mod draw;
 mod input;
 mod races;
+mod shared;
 mod tiers;
 
 use std::path::PathBuf;
@@ -31,6 +32,7 @@ use crate::pool_play::PoolPlay;
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
 pub use races::{RACES_DIR_ENV, host_races_dir};
+pub use shared::{EXTENSION_OF_MIME, Opened, SHARED_MAX_BYTES, SharedFile, kept_name, read_intent};
 pub use tiers::PHONE_START_TIER;
 
 /// What happens to the phone app, in the platform's words translated.
@@ -87,6 +89,8 @@ pub struct PhoneStatus {
     pub recording: bool,
     /// The race shown (its name).
     pub race: String,
+    /// How many boats it has.
+    pub boats: usize,
 }
 
 /// The phone app's state.
@@ -132,6 +136,9 @@ pub struct PhoneApp {
     races: races::RaceList,
     /// The quality governor: frame times in, the tier drawn out (docs/quality.md).
     pub tiers: crate::tier_control::TierControl,
+    /// What the last shared file did (opened, boats added, or why not), shown on the banner
+    /// until the app time given (`shared.rs`).
+    notice: Option<(String, Tone, f64)>,
 }
 
 impl PhoneApp {
@@ -170,6 +177,7 @@ impl PhoneApp {
             table_room: table::TableRoom::FIRST,
             races: Default::default(),
             tiers: tiers::phone_tiers(),
+            notice: None,
         }
     }
 
@@ -287,6 +295,12 @@ impl PhoneApp {
 
     /// The banner's text and tone now.
     pub fn banner(&self) -> Option<(String, Tone)> {
+        // A shared file's outcome, for a few seconds, before the session's message.
+        if let Some((text, tone, until)) = &self.notice
+            && self.now < *until
+        {
+            return Some((text.clone(), *tone));
+        }
         let note = self
             .ar
             .note
@@ -322,6 +336,7 @@ impl PhoneApp {
             scene: self.scene.noun(),
             recording: self.ar.recorder.is_some(),
             race: self.world.race.name.clone(),
+            boats: self.world.race.boats.len(),
         }
     }
 

@@ -26,11 +26,14 @@ pub fn host_races_dir(data_dir: Option<&Path>) -> Option<PathBuf> {
 #[derive(Default)]
 pub(super) struct RaceList {
     /// The folder, where the platform has one.
-    dir: Option<PathBuf>,
+    pub(super) dir: Option<PathBuf>,
     /// The folder's races as last read.
     entries: Vec<ui::RaceEntry>,
     /// The last listing or loading error, one sentence.
-    error: Option<String>,
+    pub(super) error: Option<String>,
+    /// The folder's entry (file or sub-folder name) of the race shown; `None` for the embedded
+    /// race (see `shared.rs`).
+    pub(super) shown: Option<String>,
     /// The folder as the panel names it.
     folder: String,
     /// The panel was open in the last frame (opening it reads the folder again).
@@ -107,6 +110,18 @@ impl PhoneApp {
         match crate::panels::load_race_files(files) {
             Ok(race) => {
                 log::info!("regatta: opened {}", race.name);
+                self.races.shown = None;
+                // The folder's entry these files are (the file itself, or its sub-folder).
+                if let (Some(dir), Some(first)) = (self.races.dir.clone(), files.first()) {
+                    let entry = match first.parent() {
+                        Some(p) if p == dir.as_path() => Some(first.clone()),
+                        Some(p) if p.parent() == Some(dir.as_path()) => Some(p.to_path_buf()),
+                        _ => None,
+                    };
+                    if let Some(entry) = entry {
+                        self.remember_shown(&dir, &entry);
+                    }
+                }
                 self.set_race(race);
                 self.races.error = None;
                 Ok(())
@@ -121,7 +136,7 @@ impl PhoneApp {
 
     /// A new race on the same sea: fresh timeline, events and selection, its wakes; where the
     /// course stood on the table the new one stands, fitted to the table anew.
-    fn set_race(&mut self, race: race::Race) {
+    pub(super) fn set_race(&mut self, race: race::Race) {
         let depth = table::table_depth();
         let pivot_on_table = self.course.map(|p| {
             p.race_to_ar()

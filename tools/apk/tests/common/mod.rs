@@ -42,3 +42,13 @@ pub fn stub_library_named(dir: &Path, file: &str, symbol: &str) -> Option<PathBu
 pub fn stub_library(dir: &Path) -> Option<PathBuf> {
     stub_library_named(dir, "libregatta.so", "ANativeActivity_onCreate")
 }
+
+/// A DEX header (`dex\n035\0`, then zeros) standing in for ARCore's classes: packaging and the
+/// APK check do not look inside.
+pub fn stand_in_dex(dir: &Path) -> PathBuf {
+    let mut bytes = b"dex\n035\0".to_vec();
+    bytes.resize(112, 0);
+    let path = dir.join("classes.dex");
+    std::fs::write(&path, bytes).unwrap();
+    path
+}

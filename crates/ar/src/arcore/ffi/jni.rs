@@ -107,6 +107,8 @@ impl Default for JavaScript {
 #[derive(Debug, Default)]
 pub struct ScriptedJni {
     state: Mutex<(JavaScript, Vec<JavaCall>, bool)>,
+    /// The Activity's intent and the content provider behind it ([`super::intent`]).
+    pub(super) content: Mutex<super::intent::ContentScript>,
 }
 
 impl ScriptedJni {
@@ -119,6 +121,7 @@ impl ScriptedJni {
     pub fn new(script: JavaScript) -> Self {
         Self {
             state: Mutex::new((script, Vec::new(), false)),
+            content: Mutex::default(),
         }
     }
 
@@ -149,11 +152,11 @@ impl ScriptedJni {
         }
     }
 
-    fn record(&self, method: &'static str, on: JavaObject) {
+    pub(super) fn record(&self, method: &'static str, on: JavaObject) {
         self.lock().1.push(JavaCall { method, on });
     }
 
-    fn activity_only(method: &str, on: JavaObject) -> Result<(), String> {
+    pub(super) fn activity_only(method: &str, on: JavaObject) -> Result<(), String> {
         match on {
             JavaObject::Activity => Ok(()),
             JavaObject::Application => Err(format!(

@@ -6,15 +6,19 @@
 //!   libloading;
 //! - [`frame`]: one frame read into an [`crate::CameraFrame`] and a [`DisplayCamera`];
 //! - [`session`]: [`ArCore`], which carries out the session machine's commands;
-//! - [`jni`]: the Java calls behind one trait ([`Jni`]), with the host's scripted fake.
+//! - [`jni`]: the Java calls behind one trait ([`Jni`]), with the host's scripted fake;
+//! - [`intent`]: the file an "Open with" or "Share" intent carries, read through the
+//!   ContentResolver ([`IntentJni`]; the scripted fake plays the content provider).
 //!
 //! `session` imports `frame` and `api`; `frame` imports only `api` (no module cycle).
 
 pub mod api;
 pub mod frame;
+pub mod intent;
 pub mod jni;
 pub mod session;
 
 pub use frame::{DisplayCamera, FAR_M, NEAR_M};
+pub use intent::{IntentFile, IntentJni};
 pub use jni::{JavaObject, JavaScript, Jni, ScriptedJni};
 pub use session::{ARCORE_LIBRARY, ArCore, LIBRARY_ENV, Told, library_path};
