@@ -21,3 +21,5 @@ pub mod water;
 
 #[cfg(target_os = "android")]
 mod android;
+#[cfg(any(target_os = "android", test))]
+mod android_log;

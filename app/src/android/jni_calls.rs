@@ -59,7 +59,11 @@ impl Jni for AndroidJni {
         let object = self.object(on);
         self.attached(on, |env, _| {
             f(env.get_raw().cast(), object);
-            Ok(())
+            // ARCore's native half calls its Java half (the install activity,
+            // SessionCreateJniHelper); what that throws stays pending here. Caught, it is
+            // cleared (the next JNI call would abort on it) and becomes this call's error with
+            // its class, message and stack, which the glue logs (issue 26, defect 2).
+            env.exception_catch()
         })
     }
 

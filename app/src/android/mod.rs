@@ -27,9 +27,7 @@ use unwinding as _;
 
 #[unsafe(no_mangle)]
 fn android_main(app: AndroidApp) {
-    android_logger::init_once(
-        android_logger::Config::default().with_max_level(log::LevelFilter::Info),
-    );
+    android_logger::init_once(crate::android_log::config());
     log::info!("regatta: android_main started");
     let world = crate::cli::inputs::load_race(&[])
         .and_then(|race| Ok(RaceWorld::new(race, crate::cli::inputs::load_sea(None)?)));
@@ -84,6 +82,8 @@ fn translate(app: &AndroidApp, jni: &dyn Jni, event: &MainEvent<'_>) -> Vec<Phon
             );
             events
         }
+        // The system bars or the cutout moved (issue 26, defect 5).
+        MainEvent::ContentRectChanged { .. } => vec![content_rect(app)],
         MainEvent::Resume { .. } => vec![PhoneEvent::Resumed],
         MainEvent::Pause => vec![PhoneEvent::Paused],
         _ => vec![],
@@ -103,7 +103,15 @@ fn configuration(app: &AndroidApp, jni: &dyn Jni) -> Vec<PhoneEvent> {
         PhoneEvent::Rotation(rotation),
         // Physical pixels per egui point: the display's density over Android's 160 dpi.
         PhoneEvent::Density(dpi as f32 / 160.0),
+        content_rect(app),
     ]
+}
+
+/// The window's part free of the status bar, navigation bar and cutout (NativeActivity's
+/// content rect, pixels): the bar and the panels are laid out inside it.
+fn content_rect(app: &AndroidApp) -> PhoneEvent {
+    let r = app.content_rect();
+    PhoneEvent::ContentRect([r.left, r.top, r.right, r.bottom])
 }
 
 fn size_of(w: &ndk::native_window::NativeWindow) -> [u32; 2] {

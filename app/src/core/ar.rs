@@ -52,6 +52,11 @@ pub trait ArBackend {
     }
     /// Camera images are kept within `max_side` pixels (the GPU's largest texture).
     fn limit_image_side(&mut self, _max_side: u32) {}
+    /// The display rotation now (`Surface.ROTATION_*`, 0..3), read from the platform; `None`
+    /// where it cannot be read (then the window events' rotation stands).
+    fn display_rotation(&self) -> Option<i32> {
+        None
+    }
     /// The point (AR metres) of a detected upward plane under the screen point `screen`
     /// (0..1 from the top-left) of `frame`'s view.
     fn hit_test(&self, frame: &CameraFrame, screen: DVec2) -> Option<DVec3> {

@@ -36,6 +36,11 @@ impl ArBackend for ArCore {
         ArCore::set_max_image_side(self, max_side);
     }
 
+    /// `Display.getRotation()` on the Activity.
+    fn display_rotation(&self) -> Option<i32> {
+        ArCore::read_display_rotation(self)
+    }
+
     fn next_frame(&mut self) -> Result<Option<(CameraFrame, DisplayCamera)>, ar::ArError> {
         let frame = FrameSource::next_frame(self)?;
         Ok(frame.zip(self.view))

@@ -11,6 +11,8 @@
 //! - [`ar`]: the AR backend trait and the session's state; ARCore's C API implements it
 //!   (`ar_ffi`: Google's library on the phone, `crates/arcore_sim` on the host).
 //! - [`phone`]: the phone app, driven by events ([`phone::PhoneEvent`]).
+//! - [`vulkan_marker`]: a launch that crashed on its first Vulkan frames sends the next one to
+//!   OpenGL ES.
 //!
 //! Invariant: nothing here names winit, android-activity, JNI or a clock of the OS; the
 //! adapters (`desktop`, `android`, `phone_sim`) translate their platform's events and wall time
@@ -23,3 +25,4 @@ pub mod gfx;
 pub mod phone;
 pub mod scene;
 pub mod table;
+pub mod vulkan_marker;

@@ -64,6 +64,17 @@ pub fn banner(s: &ArStatus<'_>) -> Option<(String, Tone)> {
     }
 }
 
+/// The label of the banner's button, where the user can do something about it: after the
+/// camera was refused, ask for it again (issue 26, defect 6).
+pub fn button(session: SessionState) -> Option<&'static str> {
+    match session {
+        SessionState::Unavailable(ar::arcore::Unavailable::PermissionRefused) => {
+            Some("Allow the camera")
+        }
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

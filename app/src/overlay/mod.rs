@@ -228,15 +228,22 @@ pub struct PhoneBar {
     pub race_button: egui::Rect,
     pub pool_button: egui::Rect,
     pub record_button: egui::Rect,
+    /// The banner's button ([`banner::button`]), where one is shown, and whether it was
+    /// pressed.
+    pub banner_button: Option<egui::Rect>,
+    pub banner_pressed: bool,
 }
 
 /// The phone's bar along the top: the scene toggle (race | pool), the record button, and
-/// under them the session's banner ([`banner::banner`]), if any.
+/// under them the session's banner ([`banner::banner`]), if any, with its button
+/// (`banner_button`: the label). Laid out inside egui's content rect, below the status bar and
+/// the cutout.
 pub fn phone_bar(
     ctx: &egui::Context,
     scene: &mut SceneChoice,
     recording: bool,
     banner: Option<&(String, banner::Tone)>,
+    banner_button: Option<&str>,
 ) -> PhoneBar {
     let glass = egui::Frame::window(&ctx.global_style())
         .fill(egui::Color32::from_black_alpha(170))
@@ -269,11 +276,14 @@ pub fn phone_bar(
                                 .wrap(),
                         );
                     }
+                    let button = banner_button.map(|label| ui.button(big(label)));
                     PhoneBar {
                         record_toggled: record.clicked(),
                         race_button: race.rect,
                         pool_button: pool.rect,
                         record_button: record.rect,
+                        banner_button: button.as_ref().map(|b| b.rect),
+                        banner_pressed: button.is_some_and(|b| b.clicked()),
                     }
                 })
                 .inner
@@ -301,7 +311,7 @@ mod tests {
             let mut bar = None;
             let mut free = egui::Rect::NOTHING;
             let out = ctx.run_ui(touch.take_raw_input([1080, 2340], now), |ui| {
-                bar = Some(phone_bar(ui.ctx(), scene, false, Some(&note)));
+                bar = Some(phone_bar(ui.ctx(), scene, false, Some(&note), None));
                 free = ui.available_rect_before_wrap();
             });
             out.drop_without_applying_deltas();
@@ -397,7 +407,7 @@ mod tests {
             for i in 0..10 {
                 let raw = touch.take_raw_input(size, 0.1 * f64::from(i));
                 painter.paint(&gpu.device, &gpu.queue, &texture, size, raw, |ui| {
-                    bar = Some(phone_bar(ui.ctx(), &mut scene, false, Some(&note)));
+                    bar = Some(phone_bar(ui.ctx(), &mut scene, false, Some(&note), None));
                 });
             }
             let img = gpu.read_texture(&texture).unwrap();

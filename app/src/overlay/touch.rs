@@ -60,6 +60,9 @@ pub enum Owner {
 pub struct TouchInput {
     /// Physical pixels per egui point (the display's density / 160 on Android).
     pub pixels_per_point: f32,
+    /// The window's part free of the status bar, navigation bar and display cutout (Android's
+    /// content rect: left, top, right, bottom in physical pixels); `None`: all of it.
+    pub content_px: Option<[i32; 4]>,
     pointer_finger: Option<i32>,
     owner: Option<Owner>,
     events: Vec<Event>,
@@ -69,6 +72,7 @@ impl TouchInput {
     pub fn new(pixels_per_point: f32) -> Self {
         Self {
             pixels_per_point: pixels_per_point.max(0.1),
+            content_px: None,
             pointer_finger: None,
             owner: None,
             events: Vec::new(),
@@ -176,6 +180,7 @@ impl TouchInput {
             time: Some(time),
             events: self.take_events(),
             focused: true,
+            safe_area_insets: Some(self.safe_area(size)),
             ..RawInput::default()
         };
         raw.viewports
@@ -183,6 +188,30 @@ impl TouchInput {
             .or_default()
             .native_pixels_per_point = Some(ppp);
         raw
+    }
+}
+
+impl TouchInput {
+    /// egui's safe-area insets (points) for a window of `size` pixels: what lies outside the
+    /// content rect, so that `Context::content_rect` (where the bar, the banner and the panels
+    /// are laid out) leaves the system bars and the cutout alone (issue 26, defect 5).
+    pub fn safe_area(&self, size: [u32; 2]) -> egui::SafeAreaInsets {
+        let Some([left, top, right, bottom]) = self.content_px else {
+            return egui::SafeAreaInsets::default();
+        };
+        let (w, h) = (size[0] as i32, size[1] as i32);
+        // An empty or inverted rect (before Android's first layout) says nothing.
+        if right <= left || bottom <= top {
+            return egui::SafeAreaInsets::default();
+        }
+        let ppp = self.pixels_per_point;
+        let inset = |px: i32| px.clamp(0, w.max(h)) as f32 / ppp;
+        egui::SafeAreaInsets(egui::epaint::MarginF32 {
+            left: inset(left),
+            right: inset(w - right),
+            top: inset(top),
+            bottom: inset(h - bottom),
+        })
     }
 }
 

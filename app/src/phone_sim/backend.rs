@@ -80,6 +80,8 @@ pub struct SimState {
     shown: Option<Shown>,
     /// The display rotation and view size the app last gave.
     pub geometry: Geometry,
+    /// The display's rotation as Android reports it now (`Display.getRotation()`).
+    pub display_rotation: i32,
     session: bool,
     running: bool,
     /// The last frame handed out, as the app got it.
@@ -109,6 +111,7 @@ impl SimArCore {
             feed,
             shown: None,
             geometry: (0, 1, 1),
+            display_rotation: 0,
             session: false,
             running: false,
             last_frame: None,
@@ -170,6 +173,10 @@ impl ArBackend for SimArCore {
 
     fn set_display_geometry(&mut self, rotation: i32, width: u32, height: u32) {
         self.0.lock().geometry = (rotation, width, height);
+    }
+
+    fn display_rotation(&self) -> Option<i32> {
+        Some(self.0.lock().display_rotation)
     }
 
     fn update(&mut self) -> Option<Event> {

@@ -136,4 +136,7 @@ impl ArBackend for FfiBackend {
     fn next_frame(&mut self) -> Result<Option<(CameraFrame, DisplayCamera)>, ArError> {
         ArBackend::next_frame(&mut self.core)
     }
+    fn display_rotation(&self) -> Option<i32> {
+        ArBackend::display_rotation(&self.core)
+    }
 }

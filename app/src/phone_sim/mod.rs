@@ -83,6 +83,9 @@ pub struct PhoneSim {
     /// The Java side that delivers shared files (`open FILE`): the FFI's scripted JNI, or one
     /// of its own beside the scripted stand-in.
     intents: Arc<ScriptedJni>,
+    /// The status bar's and navigation bar's heights, dp (`bars`); none by default.
+    bars_dp: [f64; 2],
+    ppp: f32,
 }
 
 impl PhoneSim {
@@ -137,6 +140,8 @@ impl PhoneSim {
             rotation: 0,
             foreground: false,
             launched: false,
+            bars_dp: [0.0, 0.0],
+            ppp,
         }
     }
 
@@ -148,10 +153,41 @@ impl PhoneSim {
         }
     }
 
+    /// Before launch: how the user will answer the permission dialog. After: the user's
+    /// answer from then on, in the dialog or in Settings > Apps > Regatta.
     fn set_permission(&self, granted: bool) {
+        let launched = self.launched;
         match &self.cues {
             Cues::Scripted(c) => c.lock().permission = granted,
-            Cues::Ffi { jni, .. } => jni.script(|s| s.dialog_answer = granted),
+            Cues::Ffi { jni, .. } => jni.script(|s| {
+                s.dialog_answer = granted;
+                if launched {
+                    s.permission_granted = granted;
+                }
+            }),
+        }
+    }
+
+    /// The display's rotation as Android reports it, without any event to the app.
+    fn set_display_rotation(&self, quarter_turns: u32) {
+        let r = quarter_turns as i32;
+        match &self.cues {
+            Cues::Scripted(c) => c.lock().display_rotation = r,
+            Cues::Ffi { jni, .. } => jni.script(|s| s.rotation = r),
+        }
+    }
+
+    /// The window's content rect (Android's): the window less the status bar at the top and
+    /// the navigation bar at the bottom (portrait) or on the side it turned to (landscape).
+    fn content_rect(&self) -> [i32; 4] {
+        let [w, h] = self.size();
+        let px = |dp: f64| (dp * f64::from(self.ppp)).round() as i32;
+        let (status, nav) = (px(self.bars_dp[0]), px(self.bars_dp[1]));
+        let (w, h) = (w as i32, h as i32);
+        match self.rotation {
+            1 => [0, status, w - nav, h],
+            3 => [nav, status, w, h],
+            _ => [0, status, w, h - nav],
         }
     }
 
@@ -280,6 +316,7 @@ impl PhoneSim {
             surface: None,
             size: self.size(),
         });
+        self.app.on(PhoneEvent::ContentRect(self.content_rect()));
         self.foreground = true;
         self.frame(0.0);
     }
@@ -287,8 +324,18 @@ impl PhoneSim {
     /// The display turned to `degrees`: the new rotation and the window's new size.
     pub fn rotate(&mut self, degrees: u32) {
         self.rotation = degrees / 90 % 4;
+        self.set_display_rotation(self.rotation);
         self.app.on(PhoneEvent::Rotation(self.rotation as i32));
         self.app.on(PhoneEvent::Resized(self.size()));
+        self.app.on(PhoneEvent::ContentRect(self.content_rect()));
+        self.frame(1.0 / SIM_FPS);
+    }
+
+    /// The phone turned by 180°: the display's rotation changes and nothing else reaches the
+    /// app (same size, same orientation class: no window or configuration event).
+    pub fn flip(&mut self) {
+        self.rotation = (self.rotation + 2) % 4;
+        self.set_display_rotation(self.rotation);
         self.frame(1.0 / SIM_FPS);
     }
 
@@ -328,7 +375,7 @@ impl PhoneSim {
     pub fn step(&mut self, step: &Step, out: &Path) -> Result<(), String> {
         let cue = matches!(
             step,
-            Step::Permission(_) | Step::ArCore(_) | Step::Tracking(_)
+            Step::Permission(_) | Step::ArCore(_) | Step::Tracking(_) | Step::Bars(..)
         );
         // The phone as the leading cues describe it, then the launch.
         if !self.launched && !cue && *step != Step::Resume {
@@ -342,6 +389,14 @@ impl PhoneSim {
             Step::Pause => self.pause(),
             Step::Resume => self.resume(),
             Step::Rotate(d) => self.rotate(*d),
+            Step::Flip => self.flip(),
+            Step::Bars(status, nav) => {
+                self.bars_dp = [*status, *nav];
+                if self.launched {
+                    self.app.on(PhoneEvent::ContentRect(self.content_rect()));
+                    self.frame(1.0 / SIM_FPS);
+                }
+            }
             Step::Permission(g) => self.set_permission(*g),
             Step::ArCore(a) => self.set_availability(*a),
             Step::Tracking(lost) => {

@@ -17,6 +17,11 @@ pub enum Step {
     Pause,
     Resume,
     Rotate(u32),
+    /// The phone turned upside down (180°): only the display's rotation changes; Android sends
+    /// no window or configuration event.
+    Flip,
+    /// The system bars over the window: the status bar's and the navigation bar's heights, dp.
+    Bars(f64, f64),
     Permission(bool),
     ArCore(Availability),
     /// `Some(reason code)`: tracking lost; `None`: regained.
@@ -117,6 +122,11 @@ fn parse_step(line: &str, script: &Path) -> Result<Step, String> {
             }
             Step::Rotate(d as u32)
         }
+        "flip" => Step::Flip,
+        "bars" => Step::Bars(
+            number(w.next(), "the status bar's dp", 0.0..=200.0)?,
+            number(w.next(), "the navigation bar's dp", 0.0..=200.0)?,
+        ),
         "permission" => match w.next() {
             Some("grant") => Step::Permission(true),
             Some("deny") => Step::Permission(false),
@@ -197,7 +207,7 @@ mod tests {
 
     #[test]
     fn every_step_parses_and_comments_are_skipped() {
-        let text = "# a session\nwait 1.5\ntap 0.5 0.25 # centre\ndrag 0 0 1 1 2\npinch 2\npinch 0.5 30\npause\nresume\nrotate 90\npermission deny\narcore unsupported\ntracking lost excessive_motion\ntracking ok\nscreenshot a-1\nrecord start\nscene pool\nrace valencia p02\nopen ../races/my boat.gpx\n";
+        let text = "# a session\nwait 1.5\ntap 0.5 0.25 # centre\ndrag 0 0 1 1 2\npinch 2\npinch 0.5 30\npause\nresume\nrotate 90\npermission deny\narcore unsupported\ntracking lost excessive_motion\ntracking ok\nscreenshot a-1\nrecord start\nscene pool\nrace valencia p02\nopen ../races/my boat.gpx\nflip\nbars 24 48\n";
         let lines = parse(Path::new("tests/s.txt"), text).unwrap();
         let steps: Vec<Step> = lines.iter().map(|l| l.step.clone()).collect();
         assert_eq!(
@@ -220,6 +230,8 @@ mod tests {
                 Step::Scene(SceneChoice::Pool),
                 Step::Race("valencia p02".into()),
                 Step::Open(PathBuf::from("tests/../races/my boat.gpx")),
+                Step::Flip,
+                Step::Bars(24.0, 48.0),
             ]
         );
         assert_eq!(lines[1].number, 3);

@@ -103,6 +103,32 @@ pub extern "C" fn RegattaSim_setApk(mode: i32) {
     s.install_pending = false;
 }
 
+/// The Java class ARCore's native half fails to find (`com.google.ar.core.ArCoreApk` for
+/// `ArCoreApk_requestInstall`, `com.google.ar.core.SessionCreateJniHelper` for
+/// `ArSession_create`), as in an APK without ARCore's classes: the call that needs it returns
+/// `AR_ERROR_FATAL` with `java.lang.ClassNotFoundException` pending in its env. Null: none.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn RegattaSim_failClassLookup(class_name: *const c_char) {
+    // SAFETY: the caller passes null or a C string.
+    let class = unsafe { text(class_name) }.map(str::to_string);
+    sim("RegattaSim_failClassLookup").script.missing_class = class;
+}
+
+/// The next call of the exported ARCore function `function` does its work as usual and leaves
+/// the Java exception `exception` (`class: message`) pending in its env, as when ARCore's Java
+/// half throws after the native call succeeded. Null `function`: none.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn RegattaSim_throwAfter(function: *const c_char, exception: *const c_char) {
+    // SAFETY: the caller passes null or C strings.
+    let (f, e) = unsafe { (text(function), text(exception)) };
+    sim("RegattaSim_throwAfter").script.throw_after = f.map(|f| {
+        (
+            f.to_string(),
+            e.unwrap_or("java.lang.RuntimeException").to_string(),
+        )
+    });
+}
+
 /// The `jobject` that is the Activity: `ArCoreApk_requestInstall` fails (`AR_ERROR_FATAL`,
 /// as ARCore's Java side throws) when given another object. Null: accept any.
 #[unsafe(no_mangle)]

@@ -6,7 +6,7 @@ use std::ffi::c_void;
 use ar::arcore::session::status;
 
 use crate::objects::{Config, Frame, Session, free_c, into_c, obj, obj_mut, put};
-use crate::state::{Apk, DESTROY, destroy_gate, sim};
+use crate::state::{Apk, DESTROY, Sim, destroy_gate, sim};
 
 type O = c_void;
 
@@ -16,6 +16,53 @@ const INSTALL_REQUESTED: i32 = 1;
 /// `AR_LIGHT_ESTIMATION_MODE_ENVIRONMENTAL_HDR`, `AR_TEXTURE_UPDATE_MODE_EXPOSE_HARDWARE_BUFFER`.
 const LIGHT_HDR: i32 = 2;
 const TEXTURE_HARDWARE_BUFFER: i32 = 1;
+
+/// The layout of the host's fake `JNIEnv` (`ar::arcore::ffi::jni::HostEnv`, repeated here
+/// because the simulator answers the C API only): a magic number, then the pending exception.
+#[repr(C)]
+struct HostEnv {
+    magic: u64,
+    exception: [u8; 256],
+}
+
+const HOST_ENV_MAGIC: u64 = 0x4A4E_4945_4E56_0001;
+
+/// Leaves `exception` pending in `env` when it is the host's fake env (any other env, e.g. a
+/// test's dummy pointer, is not touched).
+///
+/// SAFETY: `env` is null, the host's `HostEnv`, or points to at least 8 readable bytes.
+unsafe fn throw(env: *mut O, exception: &str) {
+    let env = env.cast::<HostEnv>();
+    // SAFETY: per the contract; the magic is read before anything is written.
+    unsafe {
+        if env.is_null() || (*env).magic != HOST_ENV_MAGIC {
+            return;
+        }
+        let slot = &mut (*env).exception;
+        let n = exception.len().min(slot.len() - 1);
+        slot[..n].copy_from_slice(&exception.as_bytes()[..n]);
+        slot[n] = 0;
+    }
+}
+
+/// The Java exception a call of `function` needing the Java class `class` leaves pending, if
+/// the script says so: a class not found fails the call (`true`), a throw after does not.
+fn java_failure(s: &mut Sim, function: &str, class: &str) -> Option<(String, bool)> {
+    if s.script.missing_class.as_deref() == Some(class) {
+        return Some((
+            format!("java.lang.ClassNotFoundException: Didn't find class \"{class}\""),
+            true,
+        ));
+    }
+    match &s.script.throw_after {
+        Some((f, e)) if f == function => {
+            let e = e.clone();
+            s.script.throw_after = None;
+            Some((e, false))
+        }
+        _ => None,
+    }
+}
 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn ArCoreApk_requestInstall(
@@ -35,6 +82,16 @@ pub unsafe extern "C" fn ArCoreApk_requestInstall(
         s.last_error = "ArCoreApk_requestInstall: the object is not the Activity".into();
         return status::ERROR_FATAL;
     }
+    let java = java_failure(
+        &mut s,
+        "ArCoreApk_requestInstall",
+        "com.google.ar.core.ArCoreApk",
+    );
+    if let Some((exception, true)) = &java {
+        // SAFETY: the app's env (see `throw`).
+        unsafe { throw(env, exception) };
+        return status::ERROR_FATAL;
+    }
     let (st, install) = match (s.script.apk, s.install_pending) {
         (Apk::Installed, _) => (status::SUCCESS, INSTALLED),
         (Apk::Unsupported, _) => (status::UNAVAILABLE_DEVICE_NOT_COMPATIBLE, 0),
@@ -52,8 +109,13 @@ pub unsafe extern "C" fn ArCoreApk_requestInstall(
             (status::UNAVAILABLE_USER_DECLINED_INSTALLATION, 0)
         }
     };
-    // SAFETY: ARCore's contract: a valid out pointer.
-    unsafe { put(out_install_status, install) };
+    // SAFETY: ARCore's contract: a valid out pointer; the app's env (see `throw`).
+    unsafe {
+        put(out_install_status, install);
+        if let Some((exception, _)) = &java {
+            throw(env, exception);
+        }
+    }
     st
 }
 
@@ -74,6 +136,16 @@ pub unsafe extern "C" fn ArSession_create(
     if s.script.apk != Apk::Installed {
         return status::UNAVAILABLE_ARCORE_NOT_INSTALLED;
     }
+    let java = java_failure(
+        &mut s,
+        "ArSession_create",
+        "com.google.ar.core.SessionCreateJniHelper",
+    );
+    if let Some((exception, true)) = &java {
+        // SAFETY: the app's env (see `throw`).
+        unsafe { throw(env, exception) };
+        return status::ERROR_FATAL;
+    }
     s.made("session");
     let session = into_c(Session {
         light_mode: 0,
@@ -81,8 +153,13 @@ pub unsafe extern "C" fn ArSession_create(
         rotation: 0,
         view: (0, 0),
     });
-    // SAFETY: checked non-null above.
-    unsafe { put(out_session_pointer, session) };
+    // SAFETY: checked non-null above; the app's env (see `throw`).
+    unsafe {
+        put(out_session_pointer, session);
+        if let Some((exception, _)) = &java {
+            throw(env, exception);
+        }
+    }
     status::SUCCESS
 }
 

@@ -47,6 +47,12 @@ pub struct Script {
     pub planes_visible: bool,
     /// A second plane, merged into the table (`ArPlane_acquireSubsumedBy` gives the table).
     pub subsumed_copy: bool,
+    /// A Java class ARCore's native half cannot find (its DEX is not in the APK): the C call
+    /// that needs it fails with `ClassNotFoundException` pending (`RegattaSim_failClassLookup`).
+    pub missing_class: Option<String>,
+    /// The next call of this exported function does its work and leaves this Java exception
+    /// pending (`RegattaSim_throwAfter`).
+    pub throw_after: Option<(String, String)>,
 }
 
 impl Default for Script {
@@ -65,6 +71,8 @@ impl Default for Script {
             hold_frame: false,
             planes_visible: true,
             subsumed_copy: false,
+            missing_class: None,
+            throw_after: None,
         }
     }
 }

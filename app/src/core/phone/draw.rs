@@ -12,6 +12,7 @@ use super::PhoneApp;
 use crate::core::camera_frame::{display_of, render_frame_with_image};
 use crate::core::gfx::{self, Acquired, LostFlag, Profile, Window};
 use crate::core::table;
+use crate::core::vulkan_marker::{FELL_BACK_NOTE, GOOD_FRAMES, VulkanMarker};
 use crate::overlay::{EguiPainter, SceneChoice, phone_bar, race_panels};
 
 /// The device, the window, and what draws into it.
@@ -38,6 +39,8 @@ pub struct Graphics {
     /// draws at and whether its effect passes were there then (`tiers.rs`).
     pub(super) gpu_ms: Option<f64>,
     pub(super) tier: Option<(quality::Tier, bool)>,
+    /// The Vulkan crash marker, armed until [`GOOD_FRAMES`] frames were presented.
+    marker: Option<VulkanMarker>,
 }
 
 /// Takes the sea's place in the backdrop renderer: only the camera image is drawn.
@@ -109,14 +112,30 @@ impl PhoneApp {
             Some(make) => Gpu::for_surface(b, |i| make(i), w, h).map(|(gpu, s)| (gpu, Some(s))),
             None => Gpu::headless(b).map(|gpu| (gpu, None)),
         };
+        // A launch that stopped on its first Vulkan frames left the marker: OpenGL ES now.
+        let marker = self.data_dir.as_deref().map(VulkanMarker::in_dir);
+        let crashed = only.is_none() && marker.as_ref().is_some_and(|m| m.left_by_a_crash());
+        let mut open = open;
         let ((gpu, surface), note) = match only {
-            Some(b) => {
-                let mut open = open;
-                open(b).map(|x| (x, None)).map_err(|e| e.to_string())?
+            Some(b) => open(b).map(|x| (x, None)).map_err(|e| e.to_string())?,
+            None if crashed => {
+                log::warn!("regatta: {FELL_BACK_NOTE}");
+                match open(wgpu::Backends::GL) {
+                    Ok(x) => (x, Some(FELL_BACK_NOTE.to_string())),
+                    Err(e) => {
+                        log::error!("regatta: no OpenGL ES ({e}); trying Vulkan again");
+                        gfx::open_with_fallback(open)?
+                    }
+                }
             }
             None => gfx::open_with_fallback(open)?,
         };
         log::info!("regatta: drawing on {}", gpu.describe());
+        // Armed before anything is submitted on Vulkan; cleared after GOOD_FRAMES frames.
+        let marker = marker.filter(|_| gpu.adapter.get_info().backend == wgpu::Backend::Vulkan);
+        if let Some(m) = &marker {
+            m.arm();
+        }
         let mut window = Window::default();
         let egui = match surface {
             Some(mut s) => {
@@ -149,6 +168,7 @@ impl PhoneApp {
             frames_drawn: 0,
             gpu_ms: None,
             tier: None,
+            marker,
             gpu,
             window,
         })
@@ -203,6 +223,11 @@ impl PhoneApp {
         self.draw_overlay(g, frame.texture(), size);
         g.window.present(&g.gpu, frame);
         g.frames_drawn += 1;
+        if g.frames_drawn >= GOOD_FRAMES
+            && let Some(m) = g.marker.take()
+        {
+            m.clear();
+        }
     }
 
     /// The camera image alone into `target`; false when there is none.
@@ -354,6 +379,7 @@ impl PhoneApp {
     /// The panels (race only), the phone's bar and the banner over the frame.
     fn draw_overlay(&mut self, g: &mut Graphics, texture: &wgpu::Texture, size: [u32; 2]) {
         let message = self.banner();
+        let banner_button = crate::overlay::banner::button(self.ar.session);
         let raw = self.touch.take_raw_input(size, self.now);
         let recording = self.ar.recorder.is_some();
         let mut choice = self.scene;
@@ -365,6 +391,7 @@ impl PhoneApp {
         let mut open = None;
         let mut clicked = None;
         let mut scene_rect = None;
+        let mut bar = None;
         // The phone has no cursor or clipboard to update: the platform output is not needed.
         let _ = g
             .egui
@@ -385,12 +412,26 @@ impl PhoneApp {
                     open = r.open;
                     scene_rect = r.scene_rect;
                 }
-                let bar = phone_bar(ui.ctx(), &mut choice, recording, message.as_ref());
-                record |= bar.record_toggled;
+                let laid = phone_bar(
+                    ui.ctx(),
+                    &mut choice,
+                    recording,
+                    message.as_ref(),
+                    banner_button,
+                );
+                record |= laid.record_toggled;
+                bar = Some(laid);
                 // The scene's part of the screen: what the panels left, else what the bar left.
                 free = scene_rect.unwrap_or_else(|| ui.available_rect_before_wrap());
             });
         self.ui_free = free;
+        self.bar = bar;
+        if bar.is_some_and(|b| b.banner_pressed) {
+            // After a refusal: ask for the camera again (Android shows its dialog, or answers
+            // at once when the user chose "don't ask again"; the banner then still points to
+            // Settings).
+            self.session_event(ar::arcore::Event::AskPermissionAgain);
+        }
         if let Some(b) = clicked {
             ui::toggle_selection(&mut self.overlays.settings.selected, b);
         }

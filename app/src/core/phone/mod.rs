@@ -35,6 +35,9 @@ pub use races::{RACES_DIR_ENV, host_races_dir};
 pub use shared::{EXTENSION_OF_MIME, Opened, SHARED_MAX_BYTES, SharedFile, kept_name, read_intent};
 pub use tiers::PHONE_START_TIER;
 
+/// Frames between two reads of the display rotation (a quarter second at 60 fps).
+pub const ROTATION_POLL_FRAMES: u32 = 15;
+
 /// What happens to the phone app, in the platform's words translated.
 pub enum PhoneEvent {
     /// A native window exists (Android `InitWindow`, winit `resumed`); `surface` makes its wgpu
@@ -56,6 +59,9 @@ pub enum PhoneEvent {
     Rotation(i32),
     /// Physical pixels per egui point (density / 160 on Android).
     Density(f32),
+    /// The window's part free of the status bar, navigation bar and cutout (Android's content
+    /// rect): left, top, right, bottom in physical pixels.
+    ContentRect([i32; 4]),
     /// The hardware key that starts and stops a recording (volume up).
     RecordKey,
 }
@@ -119,6 +125,10 @@ pub struct PhoneApp {
     /// The root ui's rect left free by the panels in the last frame (egui points).
     ui_free: egui::Rect,
     rotation: i32,
+    /// Frames since the display rotation was last read (a 180° turn sends no event).
+    rotation_age: u32,
+    /// The phone's bar as last laid out (points): its buttons, for tests and taps.
+    pub bar: Option<crate::overlay::PhoneBar>,
     /// Where recordings go (the app's storage).
     pub data_dir: Option<PathBuf>,
     /// The surface maker of the current window (kept to rebuild after a lost device).
@@ -169,6 +179,8 @@ impl PhoneApp {
             gesture: input::Gesture::default(),
             ui_free: egui::Rect::EVERYTHING,
             rotation: 0,
+            rotation_age: 0,
+            bar: None,
             data_dir: None,
             maker: None,
             graphics: None,
@@ -222,6 +234,8 @@ impl PhoneApp {
                 self.session_event(Event::AppResumed {
                     library_loaded: loaded,
                 });
+                // The phone may have been turned while away.
+                self.rotation_age = ROTATION_POLL_FRAMES;
                 // Files may have been pushed while the app was away.
                 self.rescan_races();
             }
@@ -235,6 +249,7 @@ impl PhoneApp {
             PhoneEvent::Touch(t) => self.on_touch(&t),
             PhoneEvent::Rotation(r) => self.rotation = r,
             PhoneEvent::Density(ppp) => self.touch.pixels_per_point = ppp.max(0.5),
+            PhoneEvent::ContentRect(r) => self.touch.content_px = Some(r),
             PhoneEvent::RecordKey => self.toggle_recording(),
         }
     }
@@ -257,10 +272,33 @@ impl PhoneApp {
         self.now += dt;
         self.panels.clock.advance(dt);
         self.pool_t += dt;
+        self.poll_rotation();
         let size = self.view_size();
         self.ar.update(self.backend.as_mut(), self.rotation, size);
         self.draw();
         self.govern();
+    }
+
+    /// Reads the display rotation every [`ROTATION_POLL_FRAMES`] frames while AR runs: a 180°
+    /// turn changes neither the window's size nor its orientation class, so Android sends no
+    /// window or configuration event for it (issue 26, defect 3). ARCore's own
+    /// `DisplayRotationHelper` listens to `DisplayManager`'s display events, which needs a
+    /// Java class of ours; a poll needs none, and costs three JNI calls a quarter second.
+    fn poll_rotation(&mut self) {
+        if !self.ar.session.is_running() {
+            return;
+        }
+        self.rotation_age += 1;
+        if self.rotation_age < ROTATION_POLL_FRAMES {
+            return;
+        }
+        self.rotation_age = 0;
+        if let Some(r) = self.backend.display_rotation()
+            && r != self.rotation
+        {
+            log::info!("regatta: display rotation {} -> {r}", self.rotation);
+            self.rotation = r;
+        }
     }
 
     pub fn race_time(&self) -> f64 {
@@ -345,6 +383,11 @@ impl PhoneApp {
         let g = self.graphics.as_ref()?;
         let t = g.window.offscreen_texture()?;
         Some(g.gpu.read_texture(t).map_err(|e| e.to_string()))
+    }
+
+    /// What the graphics said of their device (the OpenGL ES fallbacks), if anything.
+    pub fn graphics_note(&self) -> Option<&str> {
+        self.graphics.as_ref().and_then(|g| g.note.as_deref())
     }
 
     /// The device's adapter, for logs.

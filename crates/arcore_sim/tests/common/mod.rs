@@ -95,6 +95,32 @@ impl Sim {
         }
     }
 
+    /// `RegattaSim_failClassLookup`: ARCore's native half cannot find this Java class.
+    pub fn fail_class_lookup(&self, class: &str) {
+        let c = CString::new(class).expect("no NUL");
+        // SAFETY: `void RegattaSim_failClassLookup(const char *)`.
+        unsafe {
+            self.sym::<unsafe extern "C" fn(*const c_char)>("RegattaSim_failClassLookup")(
+                c.as_ptr(),
+            )
+        }
+    }
+
+    /// `RegattaSim_throwAfter`: the next call of `function` succeeds and leaves `exception`.
+    pub fn throw_after(&self, function: &str, exception: &str) {
+        let (f, e) = (
+            CString::new(function).expect("no NUL"),
+            CString::new(exception).expect("no NUL"),
+        );
+        // SAFETY: `void RegattaSim_throwAfter(const char *, const char *)`.
+        unsafe {
+            self.sym::<unsafe extern "C" fn(*const c_char, *const c_char)>("RegattaSim_throwAfter")(
+                f.as_ptr(),
+                e.as_ptr(),
+            )
+        }
+    }
+
     pub fn calls(&self, function: &str) -> u64 {
         let c = CString::new(function).expect("no NUL");
         // SAFETY: `uint64_t RegattaSim_callCount(const char *)`.

@@ -26,7 +26,7 @@ macro_rules! c_api {
             /// Looks every function up in `lib`; the first missing name is the error.
             pub fn load(lib: &libloading::Library) -> Result<Self, libloading::Error> {
                 // SAFETY: each symbol has the C signature stated in arcore_c_api.h; the
-                // library outlives these pointers (both live in one `Apis`).
+                // library is never unloaded (`Apis::load`).
                 unsafe { Ok(Self { $($field: *lib.get(concat!($sym, "\0").as_bytes())?,)* }) }
             }
         }
@@ -105,24 +105,28 @@ c_api! {
     }
 }
 
-/// Both tables and the library they point into (kept loaded as long as the tables live).
+/// Both tables, pointing into a library that stays loaded for the rest of the process.
 pub struct Apis {
     pub session: SessionApi,
     pub frame: FrameApi,
-    _library: libloading::Library,
 }
 
 impl Apis {
     /// Loads the library at `path` (a bare file name searches the loader's path, as on
     /// Android) and every function of both tables.
+    ///
+    /// The library's handle is leaked on purpose: it is never `dlclose`d. ARCore keeps threads
+    /// running for up to 10 s after a pause, and its session is destroyed on a thread of ours
+    /// after the activity is gone; unloading its code under them would crash the process
+    /// (issue 26). A second load of the same file only raises the loader's count.
     pub fn load(path: &std::path::Path) -> Result<Self, libloading::Error> {
         // SAFETY: loading ARCore's library (or the simulator) runs no initialiser with
         // preconditions of ours.
         let library = unsafe { libloading::Library::new(path) }?;
+        let library: &'static libloading::Library = Box::leak(Box::new(library));
         Ok(Self {
-            session: SessionApi::load(&library)?,
-            frame: FrameApi::load(&library)?,
-            _library: library,
+            session: SessionApi::load(library)?,
+            frame: FrameApi::load(library)?,
         })
     }
 }

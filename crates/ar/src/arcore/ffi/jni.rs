@@ -27,7 +27,11 @@ pub const CAMERA_REQUEST_CODE: i32 = 1;
 /// The Java side of the ARCore glue.
 pub trait Jni {
     /// Runs `f` with this thread's `JNIEnv*` and the raw `jobject` of `on`, for the C calls
-    /// that take them (`ArCoreApk_requestInstall`, `ArSession_create`).
+    /// that take them (`ArCoreApk_requestInstall`, `ArSession_create`). ARCore's native half
+    /// calls its Java half through that env; a Java exception it leaves pending (a class its
+    /// DEX lacks, the install activity refused) is caught after `f`, cleared (the next JNI call
+    /// would abort on it) and returned as the error, named, even though `f` itself ran to the
+    /// end (jni 0.22 reports it so; issue 26, defect 2). Whatever `f` wrote stays written.
     fn with_env(
         &self,
         on: JavaObject,
@@ -100,15 +104,54 @@ impl Default for JavaScript {
     }
 }
 
+/// What the host fake hands C calls as their `JNIEnv*`: not JNI's function table but the one
+/// thing the simulated ARCore (`crates/arcore_sim`, which repeats this layout) does with an env:
+/// leave a Java exception pending in it, as ARCore's native half does when its Java half throws.
+/// `exception` holds the pending throwable as NUL-terminated `class: message`, empty when none.
+#[repr(C)]
+#[derive(Debug)]
+pub struct HostEnv {
+    /// [`HostEnv::MAGIC`]: the simulator writes only into an env that carries it.
+    pub magic: u64,
+    pub exception: [u8; HostEnv::EXCEPTION_BYTES],
+}
+
+impl HostEnv {
+    pub const MAGIC: u64 = 0x4A4E_4945_4E56_0001;
+    pub const EXCEPTION_BYTES: usize = 256;
+
+    fn new() -> Self {
+        Self {
+            magic: Self::MAGIC,
+            exception: [0; Self::EXCEPTION_BYTES],
+        }
+    }
+
+    /// The pending exception, cleared (JNI's `ExceptionOccurred` then `ExceptionClear`).
+    fn catch(&mut self) -> Option<String> {
+        let len = self.exception.iter().position(|&b| b == 0)?;
+        if len == 0 {
+            return None;
+        }
+        let text = String::from_utf8_lossy(&self.exception[..len]).into_owned();
+        self.exception = [0; Self::EXCEPTION_BYTES];
+        Some(text)
+    }
+}
+
 /// The host's [`Jni`]: scripted answers, every call recorded with its receiver. It keeps
 /// Android's rule that `requestPermissions` and `getWindowManager` exist only on `Activity`
 /// (Android API reference: `android.app.Activity`; `Application` is a `ContextWrapper`
-/// without them): on the Application they fail as `NoSuchMethodError`, as on a device.
+/// without them): on the Application they fail as `NoSuchMethodError`, as on a device. Its env
+/// ([`HostEnv`]) is where the simulated ARCore leaves Java exceptions pending; [`Jni::with_env`]
+/// reports them as jni 0.22 does.
 #[derive(Debug, Default)]
 pub struct ScriptedJni {
     state: Mutex<(JavaScript, Vec<JavaCall>, bool)>,
     /// The Activity's intent and the content provider behind it ([`super::intent`]).
     pub(super) content: Mutex<super::intent::ContentScript>,
+    /// Boxed: C calls keep its address for the call's length.
+    env: Mutex<Option<Box<HostEnv>>>,
 }
 
 impl ScriptedJni {
@@ -116,12 +159,12 @@ impl ScriptedJni {
     /// the simulator.
     pub const ACTIVITY_HANDLE: usize = 0xAC71_0000;
     pub const APPLICATION_HANDLE: usize = 0xA991_0000;
-    pub const ENV_HANDLE: usize = 0xE7F0_0000;
 
     pub fn new(script: JavaScript) -> Self {
         Self {
             state: Mutex::new((script, Vec::new(), false)),
             content: Mutex::default(),
+            env: Mutex::new(None),
         }
     }
 
@@ -173,11 +216,16 @@ impl Jni for ScriptedJni {
         f: &mut dyn FnMut(*mut c_void, *mut c_void),
     ) -> Result<(), String> {
         self.record("<jobject passed to C>", on);
+        let mut slot = self.env.lock().unwrap_or_else(|e| e.into_inner());
+        let env = slot.get_or_insert_with(|| Box::new(HostEnv::new()));
         f(
-            Self::ENV_HANDLE as *mut c_void,
+            std::ptr::from_mut::<HostEnv>(env).cast(),
             Self::handle(on) as *mut c_void,
         );
-        Ok(())
+        match env.catch() {
+            Some(exception) => Err(format!("Java exception left pending: {exception}")),
+            None => Ok(()),
+        }
     }
 
     fn check_self_permission(&self, on: JavaObject, permission: &str) -> Result<bool, String> {

@@ -22,6 +22,15 @@ pub fn library_path() -> PathBuf {
     std::env::var_os(LIBRARY_ENV).map_or_else(|| PathBuf::from(ARCORE_LIBRARY), PathBuf::from)
 }
 
+/// A Java call around an ARCore C function that failed (JNI attach, or an exception left
+/// pending by ARCore's Java half): logged with what Java said, and AR given up.
+fn java_failed(function: &str, called: Result<(), String>) -> Result<(), Unavailable> {
+    called.map_err(|e| {
+        log::error!("regatta: {function}: {e}");
+        Unavailable::JavaFailed
+    })
+}
+
 /// A raw ARCore session handed to the thread that destroys it.
 struct SessionToDestroy(*mut O);
 // SAFETY: ARCore's session may be destroyed from any thread once no other call uses it; the
@@ -114,8 +123,19 @@ impl ArCore {
             })
     }
 
+    /// The display rotation (`Surface.ROTATION_*` = 0..3) read on the Activity, `None` (logged)
+    /// when it cannot be read.
+    pub fn read_display_rotation(&self) -> Option<i32> {
+        self.jni
+            .display_rotation(JavaObject::Activity)
+            .map_err(|e| log::warn!("regatta: display rotation not read ({e})"))
+            .ok()
+    }
+
     /// Steps `state` with `event` and carries out every command, feeding ARCore's and
-    /// Android's immediate answers back in. Gives what the user must be told.
+    /// Android's immediate answers back in. Gives what the user must be told. A command that
+    /// cannot be carried out (a Java call that failed, an exception left pending) is an answer
+    /// too: AR is given up with its reason, never left waiting (issue 26, defect 2).
     pub fn drive(&mut self, state: &mut SessionState, event: Event) -> Told {
         let mut told = Told::default();
         let mut queue = vec![self.gate(*state, event)];
@@ -140,11 +160,7 @@ impl ArCore {
                         drop(self.close());
                         told.fell_back = Some(why);
                     }
-                    other => {
-                        if let Some(answer) = self.carry_out(other) {
-                            queue.push(Ok(answer));
-                        }
-                    }
+                    other => queue.extend(self.try_carry_out(other).transpose()),
                 }
             }
         }
@@ -166,15 +182,42 @@ impl ArCore {
         }
     }
 
-    /// Carries out one command; returns ARCore's or Android's answer when it is immediate.
+    /// Carries out one command; returns ARCore's or Android's answer when it is immediate. A
+    /// command that fails outright answers as ARCore's `AR_ERROR_FATAL` would (use
+    /// [`ArCore::drive`] to keep the reason).
     pub fn carry_out(&mut self, command: Command) -> Option<Event> {
-        let apis = Arc::clone(self.apis.as_ref()?);
+        match self.try_carry_out(command) {
+            Ok(answer) => answer,
+            Err(why) => {
+                let fatal = status::ERROR_FATAL;
+                log::error!("regatta: {}", why.message());
+                match command {
+                    Command::RequestInstall { .. } => Some(Event::Install {
+                        status: fatal,
+                        install_status: 0,
+                    }),
+                    Command::CreateSession => Some(Event::Created { status: fatal }),
+                    Command::Configure(_) => Some(Event::Configured { status: fatal }),
+                    Command::Resume => Some(Event::Resumed { status: fatal }),
+                    _ => None,
+                }
+            }
+        }
+    }
+
+    /// Carries out one command: `Ok(Some(answer))` when ARCore or Android answered now,
+    /// `Ok(None)` when the answer comes later (the permission dialog) or none is due (pause),
+    /// `Err(why)` when it could not be carried out.
+    fn try_carry_out(&mut self, command: Command) -> Result<Option<Event>, Unavailable> {
+        let apis = Arc::clone(self.apis.as_ref().ok_or(Unavailable::LibraryMissing)?);
         let api = &apis.session;
+        let no_session = Unavailable::Failed(status::ERROR_FATAL);
         match command {
             Command::RequestInstall { user_requested } => {
                 let mut answer = None;
                 // ARCore starts the install activity on this object: the Activity.
-                self.jni
+                let called = self
+                    .jni
                     .with_env(JavaObject::Activity, &mut |env, activity| {
                         let mut install = 0;
                         // SAFETY: env and activity are live for this call (attached thread).
@@ -190,51 +233,60 @@ impl ArCore {
                             status: st,
                             install_status: install,
                         });
-                    })
-                    .map_err(|e| log::error!("regatta: JNI attach failed: {e}"))
-                    .ok()?;
-                answer
+                    });
+                java_failed("ArCoreApk_requestInstall", called)?;
+                Ok(answer)
             }
-            Command::RequestCameraPermission => self
+            Command::RequestCameraPermission => Ok(self
                 .camera_permission(true)
-                .map(|granted| Event::Permission { granted }),
-            Command::CheckCameraPermission => self
+                .map(|granted| Event::Permission { granted })),
+            Command::CheckCameraPermission => Ok(self
                 .camera_permission(false)
-                .map(|granted| Event::Permission { granted }),
+                .map(|granted| Event::Permission { granted })),
+            // Asked again (a resume while creating): the session made is the answer; a second
+            // one would leak the first.
+            Command::CreateSession if self.has_session() => Ok(Some(Event::Created {
+                status: status::SUCCESS,
+            })),
             Command::CreateSession => {
                 let mut st = status::ERROR_FATAL;
                 let mut session = std::ptr::null_mut();
                 // A Context is enough here: the Application outlives every Activity.
-                self.jni
+                let called = self
+                    .jni
                     .with_env(JavaObject::Application, &mut |env, context| {
                         // SAFETY: as above; ARCore writes the session pointer.
                         st = unsafe { (api.session_create)(env, context, &mut session) };
-                    })
-                    .map_err(|e| log::error!("regatta: JNI attach failed: {e}"))
-                    .ok()?;
+                    });
+                // A session ARCore made is kept even when the call failed after making it, so
+                // that the fall-back closes it (destroyed, not leaked).
                 if st == status::SUCCESS && !session.is_null() {
                     self.session = session;
                     // SAFETY: a live session.
                     unsafe { (api.frame_create)(session, &mut self.frame) };
                 }
-                Some(Event::Created { status: st })
+                java_failed("ArSession_create", called)?;
+                Ok(Some(Event::Created { status: st }))
             }
-            Command::Configure(light) => Some(Event::Configured {
-                status: self.configure(light)?,
-            }),
+            Command::Configure(light) => Ok(Some(Event::Configured {
+                status: self.configure(light).ok_or(no_session)?,
+            })),
             Command::Resume => {
+                let session = self.live_session().ok_or(no_session)?;
                 // SAFETY: a live session.
-                let st = unsafe { (api.session_resume)(self.live_session()?) };
+                let st = unsafe { (api.session_resume)(session) };
                 self.resumed = st == status::SUCCESS;
-                Some(Event::Resumed { status: st })
+                Ok(Some(Event::Resumed { status: st }))
             }
             Command::Pause => {
-                // SAFETY: a live session.
-                unsafe { (api.session_pause)(self.live_session()?) };
+                if let Some(session) = self.live_session() {
+                    // SAFETY: a live session.
+                    unsafe { (api.session_pause)(session) };
+                }
                 self.resumed = false;
-                None
+                Ok(None)
             }
-            Command::Tell(_) | Command::FallBack(_) => None,
+            Command::Tell(_) | Command::FallBack(_) => Ok(None),
         }
     }
 
