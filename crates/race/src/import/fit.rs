@@ -54,8 +54,63 @@ fn field<'a>(fields: &'a [FitDataField], name: &str) -> Option<&'a Value> {
     fields.iter().find(|f| f.name() == name).map(|f| f.value())
 }
 
+/// FIT CRC-16 (FIT SDK, "FIT File Protocol": the nibble table below, register from 0).
+fn fit_crc(bytes: &[u8]) -> u16 {
+    const T: [u16; 16] = [
+        0x0000, 0xCC01, 0xD801, 0x1400, 0xF001, 0x3C00, 0x2800, 0xE401, 0xA001, 0x6C00, 0x7800,
+        0xB401, 0x5000, 0x9C01, 0x8801, 0x4400,
+    ];
+    let mut crc = 0u16;
+    for &b in bytes {
+        for nibble in [b & 0xF, b >> 4] {
+            let tmp = T[(crc & 0xF) as usize];
+            crc = ((crc >> 4) & 0x0FFF) ^ tmp ^ T[nibble as usize];
+        }
+    }
+    crc
+}
+
+/// Every FIT file of the chain (a file may hold several, back to back) complete and matching
+/// its CRC: header size, `.FIT`, the declared data size present, and the 2-byte CRC after the
+/// data equal to the CRC of header and data (0 = not computed). Checked before decoding
+/// because the decoder panics on some damaged files (found by fuzzing: an arithmetic overflow
+/// on a header longer than the rest of the file).
+fn check_chain(bytes: &[u8]) -> Result<(), String> {
+    let mut at = 0usize;
+    while at < bytes.len() {
+        let b = &bytes[at..];
+        if !is_fit(b) {
+            return Err(format!(
+                "{} bytes after the FIT data are not another FIT file",
+                crate::text::count(b.len())
+            ));
+        }
+        let header = b[0] as usize;
+        let data = u32::from_le_bytes([b[4], b[5], b[6], b[7]]) as usize;
+        let end = header.saturating_add(data).saturating_add(2);
+        if b.len() < end {
+            return Err(format!(
+                "the FIT file is cut: its header declares {} bytes of records, {} are present",
+                crate::text::count(data),
+                crate::text::count(b.len().saturating_sub(header + 2))
+            ));
+        }
+        let want = u16::from_le_bytes([b[end - 2], b[end - 1]]);
+        if want != 0 && fit_crc(&b[..end - 2]) != want {
+            return Err("the FIT file's checksum does not match its content (damaged)".into());
+        }
+        at += end;
+    }
+    Ok(())
+}
+
 pub(crate) fn parse(file: &str, bytes: &[u8]) -> RaceResult<Source> {
-    let records = fitparser::from_bytes(bytes).map_err(|e| {
+    check_chain(bytes).map_err(|m| RaceError::in_file(file, m))?;
+    // A second guard: a file crafted to pass the CRC can still reach a panic in the decoder.
+    let decoded = std::panic::catch_unwind(|| fitparser::from_bytes(bytes)).map_err(|_| {
+        RaceError::in_file(file, "is not a readable FIT file (the FIT decoder failed)")
+    })?;
+    let records = decoded.map_err(|e| {
         RaceError::in_file(
             file,
             format!(
@@ -99,10 +154,8 @@ pub(crate) fn parse(file: &str, bytes: &[u8]) -> RaceResult<Source> {
                 }
             }
             MesgNum::Lap => laps += 1,
-            MesgNum::Session | MesgNum::Sport => {
-                if sport.is_none() {
-                    sport = field(f, "sport").and_then(text);
-                }
+            MesgNum::Session | MesgNum::Sport if sport.is_none() => {
+                sport = field(f, "sport").and_then(text);
             }
             MesgNum::UserProfile => {
                 athlete = athlete.or_else(|| field(f, "friendly_name").and_then(text));

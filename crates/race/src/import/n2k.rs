@@ -56,7 +56,7 @@ pub(crate) fn is_fast_packet(pgn: u32) -> bool {
     matches!(pgn, 129029 | 129038 | 129039)
 }
 
-/// A message being reassembled: (source, PGN) → sequence, next frame, length, bytes.
+/// A message being reassembled from one (source, PGN).
 struct Partial {
     source: u8,
     pgn: u32,
@@ -64,13 +64,15 @@ struct Partial {
     next_frame: u8,
     len: usize,
     data: Vec<u8>,
+    /// A frame was lost: the rest of this sequence's frames are dropped without counting.
+    broken: bool,
 }
 
 /// Reassembles fast packets frame by frame.
 #[derive(Default)]
 pub(crate) struct FastPackets {
     partial: Vec<Partial>,
-    /// Messages abandoned for a missing or out-of-order frame.
+    /// Messages abandoned for a missing or out-of-order frame (each counted once).
     pub broken: usize,
 }
 
@@ -88,8 +90,11 @@ impl FastPackets {
             .position(|p| p.source == id.source && p.pgn == id.pgn);
         if counter == 0 {
             if let Some(k) = k {
-                self.partial.swap_remove(k);
-                self.broken += 1;
+                let p = self.partial.swap_remove(k);
+                if !p.broken {
+                    // Its last frames never came.
+                    self.broken += 1;
+                }
             }
             let len = frame[1] as usize;
             let mut data = Vec::with_capacity(len);
@@ -105,18 +110,35 @@ impl FastPackets {
                 next_frame: 1,
                 len,
                 data,
+                broken: false,
             });
             return None;
         }
         let Some(k) = k else {
-            // A continuation without its first frame (the capture began mid-message).
+            // A continuation without its first frame (lost, or the capture began mid-message).
             self.broken += 1;
+            self.partial.push(Partial {
+                source: id.source,
+                pgn: id.pgn,
+                sequence,
+                next_frame: 0,
+                len: 0,
+                data: Vec::new(),
+                broken: true,
+            });
             return None;
         };
         let p = &mut self.partial[k];
+        if p.broken && p.sequence == sequence {
+            return None;
+        }
         if p.sequence != sequence || p.next_frame != counter {
-            self.partial.swap_remove(k);
-            self.broken += 1;
+            if !p.broken || p.sequence != sequence {
+                self.broken += 1;
+            }
+            p.broken = true;
+            p.sequence = sequence;
+            p.data.clear();
             return None;
         }
         p.data.extend_from_slice(&frame[1..]);
@@ -294,10 +316,20 @@ mod tests {
         assert_eq!(fp.frame(id, &f0), None);
         assert_eq!(fp.frame(id, &f1), None);
         assert_eq!(fp.frame(id, &f2), Some(msg.clone()));
-        // A lost frame 1: frame 2 abandons the message.
+        // A lost frame 1: frame 2 abandons the message, counted once.
         assert_eq!(fp.frame(id, &f0), None);
         assert_eq!(fp.frame(id, &f2), None);
+        assert_eq!(fp.frame(id, &f2), None);
         assert_eq!(fp.broken, 1);
+        // The next message (frame 0 again) reassembles.
+        assert_eq!(fp.frame(id, &f0), None);
+        assert_eq!(fp.frame(id, &f1), None);
+        assert_eq!(fp.frame(id, &f2), Some(msg.clone()));
+        assert_eq!(fp.broken, 1);
+        // Continuations without their frame 0: one message lost, not one per frame.
+        assert_eq!(fp.frame(id, &f1), None);
+        assert_eq!(fp.frame(id, &f2), None);
+        assert_eq!(fp.broken, 2);
     }
 
     #[test]
@@ -318,8 +350,8 @@ mod tests {
         let Decoded::Position { lat, lon } = out[1] else {
             panic!("{out:?}")
         };
-        assert!((lat - 60.123_456_789_012_345_6).abs() < 1e-12);
-        assert!((lon - 24.987_654_321_098_765_4).abs() < 1e-12);
+        assert!((lat - 60.123_456_789_012_35).abs() < 1e-12);
+        assert!((lon - 24.987_654_321_098_77).abs() < 1e-12);
     }
 
     #[test]

@@ -33,13 +33,11 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             Node::Open(path, attrs) => match last(path) {
                 "Trackpoint" => p = Point::default(),
                 "Lap" => laps += 1,
-                "Activity" => {
-                    if sport.is_none() {
-                        sport = attrs
-                            .iter()
-                            .find(|(k, _)| k == "Sport")
-                            .map(|(_, v)| v.clone());
-                    }
+                "Activity" if sport.is_none() => {
+                    sport = attrs
+                        .iter()
+                        .find(|(k, _)| k == "Sport")
+                        .map(|(_, v)| v.clone());
                 }
                 _ => {}
             },

@@ -89,11 +89,9 @@ pub(crate) fn walk(
                     visit(Node::Text(&path, s.trim())).map_err(at)?;
                 }
             }
-            Event::End(_) => {
-                if !path.is_empty() {
-                    visit(Node::Close(&path)).map_err(at)?;
-                    path.pop();
-                }
+            Event::End(_) if !path.is_empty() => {
+                visit(Node::Close(&path)).map_err(at)?;
+                path.pop();
             }
             Event::Eof => break,
             _ => {}
