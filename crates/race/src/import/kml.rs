@@ -132,8 +132,14 @@ pub(crate) fn parse(file: &str, text: &str, format: &str) -> RaceResult<Source> 
         }
         Ok(())
     })?;
-    boats.retain(|(_, r)| !r.points.is_empty() || r.bad_positions > 0);
-    if boats.iter().all(|(_, r)| r.points.is_empty()) {
+    // A boat all of whose fixes had impossible positions: counted, not a boat.
+    bad += boats
+        .iter()
+        .filter(|(_, r)| r.points.is_empty())
+        .map(|(_, r)| r.bad_positions)
+        .sum::<usize>();
+    boats.retain(|(_, r)| !r.points.is_empty());
+    if boats.is_empty() {
         return Err(RaceError::in_file(
             file,
             format!(
@@ -154,7 +160,7 @@ pub(crate) fn parse(file: &str, text: &str, format: &str) -> RaceResult<Source> 
     s.report.date_source = "when (ISO 8601, UTC unless an offset is given)".into();
     s.drop_rule("line points without times", line_points);
     s.drop_rule("gx:Track when or coord without its pair", unpaired);
-    s.drop_rule("marks with an impossible position", bad);
+    s.drop_rule("placemarks with an impossible position", bad);
     s.marks = marks;
     for (name, rec) in boats {
         rec.finish(&mut s, name.clone(), name);

@@ -17,8 +17,31 @@ pub(crate) enum Node<'a> {
     Close(&'a [String]),
 }
 
-fn local(name: &str) -> String {
-    name.rsplit(':').next().unwrap_or(name).to_string()
+fn local(name: &str) -> &str {
+    name.rsplit(':').next().unwrap_or(name)
+}
+
+/// The open elements: names kept in reused strings (`depth` of them are open), so a long
+/// track allocates nothing per element once the path is warm.
+struct Path {
+    names: Vec<String>,
+    depth: usize,
+}
+
+impl Path {
+    fn push(&mut self, name: &str) {
+        if self.depth == self.names.len() {
+            self.names.push(String::new());
+        }
+        let slot = &mut self.names[self.depth];
+        slot.clear();
+        slot.push_str(local(name));
+        self.depth += 1;
+    }
+
+    fn open(&self) -> &[String] {
+        &self.names[..self.depth]
+    }
 }
 
 /// 1-based line of a byte offset.
@@ -39,7 +62,10 @@ pub(crate) fn walk(
     mut visit: impl FnMut(Node<'_>) -> Result<(), String>,
 ) -> RaceResult<()> {
     let mut r = quick_xml::Reader::from_str(text);
-    let mut path: Vec<String> = Vec::new();
+    let mut path = Path {
+        names: Vec::new(),
+        depth: 0,
+    };
     let mut attrs: Vec<(String, String)> = Vec::new();
     loop {
         let pos = r.buffer_position();
@@ -55,43 +81,35 @@ pub(crate) fn walk(
         })?;
         let at = |m: String| RaceError::at_line(file, line_of(text, pos), m);
         match ev {
-            Event::Start(e) => {
-                path.push(local(e.name().as_ref()));
+            Event::Start(ref e) | Event::Empty(ref e) => {
+                path.push(e.name().as_ref());
                 attrs.clear();
                 for a in e.attributes().flatten() {
                     if let Ok(v) = a.normalized_value(XmlVersion::Implicit1_0) {
-                        attrs.push((local(a.key.as_ref()), v.into_owned()));
+                        attrs.push((local(a.key.as_ref()).to_string(), v.into_owned()));
                     }
                 }
-                visit(Node::Open(&path, &attrs)).map_err(at)?;
-            }
-            Event::Empty(e) => {
-                path.push(local(e.name().as_ref()));
-                attrs.clear();
-                for a in e.attributes().flatten() {
-                    if let Ok(v) = a.normalized_value(XmlVersion::Implicit1_0) {
-                        attrs.push((local(a.key.as_ref()), v.into_owned()));
-                    }
+                visit(Node::Open(path.open(), &attrs)).map_err(at)?;
+                if matches!(ev, Event::Empty(_)) {
+                    visit(Node::Close(path.open())).map_err(at)?;
+                    path.depth -= 1;
                 }
-                visit(Node::Open(&path, &attrs)).map_err(at)?;
-                visit(Node::Close(&path)).map_err(at)?;
-                path.pop();
             }
             Event::Text(t) => {
                 let s = t.xml10_content();
-                if !s.trim().is_empty() && !path.is_empty() {
-                    visit(Node::Text(&path, s.trim())).map_err(at)?;
+                if !s.trim().is_empty() && path.depth > 0 {
+                    visit(Node::Text(path.open(), s.trim())).map_err(at)?;
                 }
             }
             Event::CData(t) => {
                 let s = t.xml10_content();
-                if !s.trim().is_empty() && !path.is_empty() {
-                    visit(Node::Text(&path, s.trim())).map_err(at)?;
+                if !s.trim().is_empty() && path.depth > 0 {
+                    visit(Node::Text(path.open(), s.trim())).map_err(at)?;
                 }
             }
-            Event::End(_) if !path.is_empty() => {
-                visit(Node::Close(&path)).map_err(at)?;
-                path.pop();
+            Event::End(_) if path.depth > 0 => {
+                visit(Node::Close(path.open())).map_err(at)?;
+                path.depth -= 1;
             }
             Event::Eof => break,
             _ => {}
