@@ -11,6 +11,7 @@
 //! (`file_id` manufacturer and product), else the file name; its id is always from the file
 //! name, so two sailors with the same watch stay two boats.
 
+use fitparser::de::{FitObject, FitStreamProcessor};
 use fitparser::profile::MesgNum;
 use fitparser::{FitDataField, Value};
 
@@ -106,30 +107,17 @@ fn check_chain(bytes: &[u8]) -> Result<(), String> {
 
 pub(crate) fn parse(file: &str, bytes: &[u8]) -> RaceResult<Source> {
     check_chain(bytes).map_err(|m| RaceError::in_file(file, m))?;
-    // A second guard: a file crafted to pass the CRC can still reach a panic in the decoder.
-    let decoded = std::panic::catch_unwind(|| fitparser::from_bytes(bytes)).map_err(|_| {
-        RaceError::in_file(file, "is not a readable FIT file (the FIT decoder failed)")
-    })?;
-    let records = decoded.map_err(|e| {
-        RaceError::in_file(
-            file,
-            format!(
-                "is not a readable FIT file ({})",
-                crate::text::cut(&crate::text::escape(&e.to_string()), 80)
-            ),
-        )
-    })?;
     let mut rec = Recorder::new();
     let (mut records_read, mut no_position, mut laps) = (0usize, 0usize, 0usize);
     let (mut sport, mut athlete, mut maker, mut product) = (None, None, None, None);
-    for r in &records {
+    let mut handle = |r: fitparser::FitDataRecord| {
         let f = r.fields();
         match r.kind() {
             MesgNum::Record => {
                 records_read += 1;
                 let Some(Value::Timestamp(ts)) = field(f, "timestamp") else {
                     no_position += 1;
-                    continue;
+                    return;
                 };
                 let t = (ts.timestamp() - EPOCH_UNIX) as f64
                     + ts.timestamp_subsec_nanos() as f64 * 1e-9;
@@ -157,20 +145,46 @@ pub(crate) fn parse(file: &str, bytes: &[u8]) -> RaceResult<Source> {
             MesgNum::Session | MesgNum::Sport if sport.is_none() => {
                 sport = field(f, "sport").and_then(text);
             }
-            MesgNum::UserProfile => {
-                athlete = athlete.or_else(|| field(f, "friendly_name").and_then(text));
+            MesgNum::UserProfile if athlete.is_none() => {
+                athlete = field(f, "friendly_name").and_then(text);
             }
-            MesgNum::FileId => {
-                maker = maker.or_else(|| field(f, "manufacturer").and_then(text));
-                product = product.or_else(|| {
-                    field(f, "product_name")
-                        .or_else(|| field(f, "garmin_product"))
-                        .and_then(text)
-                });
+            MesgNum::FileId if maker.is_none() && product.is_none() => {
+                maker = field(f, "manufacturer").and_then(text);
+                product = field(f, "product_name")
+                    .or_else(|| field(f, "garmin_product"))
+                    .and_then(text);
             }
             _ => {}
         }
-    }
+    };
+    // Message by message (fitparser's stream decoder), so no list of every decoded record is
+    // held: the FIT decoder's records are several times the size of the fixes they carry.
+    // A second guard: a file crafted to pass the CRC can still reach a panic in the decoder.
+    let handle = &mut handle;
+    let decoded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let mut processor = FitStreamProcessor::new();
+        let mut input = bytes;
+        while !input.is_empty() {
+            let (rest, obj) = processor.deserialize_next(input)?;
+            input = rest;
+            match obj {
+                FitObject::Header(_) => processor.reset(),
+                FitObject::DataMessage(m) => handle(processor.decode_message(m)?),
+                FitObject::DefinitionMessage(_) | FitObject::Crc(_) => {}
+            }
+        }
+        Ok::<(), fitparser::Error>(())
+    }))
+    .map_err(|_| RaceError::in_file(file, "is not a readable FIT file (the FIT decoder failed)"))?;
+    decoded.map_err(|e| {
+        RaceError::in_file(
+            file,
+            format!(
+                "is not a readable FIT file ({})",
+                crate::text::cut(&crate::text::escape(&e.to_string()), 80)
+            ),
+        )
+    })?;
     if rec.points.is_empty() {
         return Err(RaceError::in_file(
             file,
