@@ -17,6 +17,20 @@ fn position(i: usize) -> (f64, f64) {
     (lat, lon)
 }
 
+/// The calendar time of tenth-second `i` from 2025-06-21T11:00Z: (day of June, hour, minute,
+/// second, millisecond).
+fn stamp(i: usize) -> (usize, usize, usize, usize, usize) {
+    let ms = 11 * 3_600_000 + i * 100;
+    let s = ms / 1000;
+    (
+        21 + s / 86_400,
+        s / 3600 % 24,
+        s / 60 % 60,
+        s % 60,
+        ms % 1000,
+    )
+}
+
 /// The NMEA 2000 payloads of tenth-second `i` (canboat layouts; see `import::n2k`).
 fn n2k_payloads(i: usize) -> [(u32, [u8; 8]); 4] {
     let (lat, lon) = position(i);
@@ -60,14 +74,8 @@ pub fn canboat_json_log(bytes: usize) -> String {
     let mut i = 0usize;
     while s.len() < bytes {
         let (lat, lon) = position(i);
-        let ms = i * 100;
-        let ts = format!(
-            "2025-06-21-{:02}:{:02}:{:02}.{:03}",
-            11 + ms / 3_600_000,
-            ms / 60_000 % 60,
-            ms / 1000 % 60,
-            ms % 1000
-        );
+        let (d, h, m, sec, ms) = stamp(i);
+        let ts = format!("2025-06-{d:02}-{h:02}:{m:02}:{sec:02}.{ms:03}");
         let a = (i % 600) as f64 * 0.0573;
         let _ = writeln!(
             s,
@@ -103,14 +111,10 @@ pub fn tcx_log(bytes: usize) -> String {
     let mut i = 0usize;
     while s.len() < bytes {
         let (lat, lon) = position(i);
-        let ms = i * 100;
+        let (d, h, m, sec, ms) = stamp(i);
         let _ = writeln!(
             s,
-            "<Trackpoint><Time>2025-06-21T{:02}:{:02}:{:02}.{:03}Z</Time><Position><LatitudeDegrees>{lat:.7}</LatitudeDegrees><LongitudeDegrees>{lon:.7}</LongitudeDegrees></Position></Trackpoint>",
-            11 + ms / 3_600_000,
-            ms / 60_000 % 60,
-            ms / 1000 % 60,
-            ms % 1000
+            "<Trackpoint><Time>2025-06-{d:02}T{h:02}:{m:02}:{sec:02}.{ms:03}Z</Time><Position><LatitudeDegrees>{lat:.7}</LatitudeDegrees><LongitudeDegrees>{lon:.7}</LongitudeDegrees></Position></Trackpoint>"
         );
         i += 1;
     }
@@ -171,6 +175,13 @@ pub fn fit_log(fixes: usize) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn stamps_roll_over_midnight() {
+        // 13 h after 11:00 is 00:00 of the next day.
+        assert_eq!(stamp(13 * 36_000), (22, 0, 0, 0, 0));
+        assert_eq!(stamp(1), (21, 11, 0, 0, 100));
+    }
 
     #[test]
     fn generated_logs_load_with_every_fix() {
