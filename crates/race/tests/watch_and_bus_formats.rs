@@ -390,6 +390,12 @@ fn ac35_race_xml_is_a_course_beside_tracks_and_as_marks() {
     let r = Race::from_files_with(&[("w.tcx", tcx.as_bytes())], &opts).unwrap();
     let course: Vec<&str> = r.course_marks().map(|m| m.name.as_str()).collect();
     assert_eq!(course, ["PRO/PIN", "M1"]);
+    // Alone, it says what it is (it used to say only "contain no boats").
+    let e = Race::from_files(&[("race.xml", ac35_xml().as_bytes())]).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "race.xml hold a course but no boats: load the boats' tracks beside it (or give it to --marks or --course)."
+    );
 }
 
 #[test]
