@@ -445,3 +445,35 @@ fn damaged_fit_files_are_one_sentence() {
         assert!(e.starts_with("a.fit: ") && e.contains(want), "{e}");
     }
 }
+
+/// Outside folders, repeating Placemark names are boats; a name per fix (a time label) is not.
+#[test]
+fn kml_placemark_names_name_boats_only_when_they_repeat() {
+    let doc = |name: &dyn Fn(usize, usize) -> String| {
+        let mut s = String::from("<kml><Document>\n");
+        for boat in 0..2 {
+            for k in 0..10 {
+                let (lat, lon) = fix(k);
+                s += &format!(
+                    "<Placemark><name>{}</name><TimeStamp><when>{}</when></TimeStamp><Point><coordinates>{},{lat}</coordinates></Point></Placemark>\n",
+                    name(boat, k),
+                    iso(k),
+                    lon + boat as f64 * 0.001
+                );
+            }
+        }
+        s + "</Document></kml>\n"
+    };
+    let named = doc(&|b, _| ["Alpha", "Bravo"][b].to_string());
+    let r = Race::from_files(&[("t.kml", named.as_bytes())]).unwrap();
+    let names: Vec<&str> = r.boats.iter().map(|b| b.name.as_str()).collect();
+    assert_eq!(names, ["Alpha", "Bravo"]);
+    assert_fixture_track(&r, 0);
+    // Time labels: one boat of the file; its 20 fixes share 10 timestamps, which cleaning
+    // merges with a warning (never silently).
+    let labels = doc(&|b, k| format!("{b}-{k}"));
+    let r = Race::from_files(&[("t.kml", labels.as_bytes())]).unwrap();
+    assert_eq!(r.boats.len(), 1);
+    assert_eq!(r.boats[0].name, "t");
+    assert_eq!(r.report.boats[0].duplicates_merged, 10);
+}

@@ -2,7 +2,9 @@
 //! trackers and phone apps export them. Two shapes carry time:
 //!
 //! - one `Placemark` per fix: `<TimeStamp><when>` and `<Point><coordinates>lon,lat[,alt]`;
-//!   the fixes of one boat share a `Folder`, whose `name` names the boat (no folder: the file);
+//!   the fixes of one boat share a `Folder`, whose `name` names the boat; outside folders,
+//!   Placemark names name the boats when they repeat (each name on at least two fixes on
+//!   average), else the file is one boat (names that are time labels);
 //! - `gx:Track` (KML 2.2 extension): `when` and `gx:coord` (`lon lat alt`, space-separated)
 //!   lists paired in order, one track per `Placemark`, named by the Placemark (else its folder,
 //!   else the file).
@@ -56,6 +58,8 @@ fn time(v: &str) -> Result<f64, String> {
 
 pub(crate) fn parse(file: &str, text: &str, format: &str) -> RaceResult<Source> {
     let mut boats: Vec<(String, Recorder)> = Vec::new();
+    // Timed Point placemarks: (folder, placemark name, t, lat, lon), grouped into boats below.
+    let mut point_fixes: Vec<(Option<String>, Option<String>, f64, f64, f64)> = Vec::new();
     let mut marks: Vec<RawMark> = Vec::new();
     let mut folders: Vec<Option<String>> = Vec::new();
     let mut pm: Option<Placemark> = None;
@@ -108,9 +112,7 @@ pub(crate) fn parse(file: &str, text: &str, format: &str) -> RaceResult<Source> 
                         match p.when {
                             Some(t) => {
                                 records += 1;
-                                let name = folder.unwrap_or_else(|| file_id.clone());
-                                let k = boat(&mut boats, &name);
-                                boats[k].1.fix(t, la, lo);
+                                point_fixes.push((folder, p.name, t, la, lo));
                             }
                             None => {
                                 if super::geo_problem(la, lo).is_some() {
@@ -132,6 +134,27 @@ pub(crate) fn parse(file: &str, text: &str, format: &str) -> RaceResult<Source> 
         }
         Ok(())
     })?;
+    // One boat per folder. Outside folders, placemark names name boats when they repeat (a
+    // tracker writing the boat's name on each fix); names that do not (a time label per fix)
+    // leave the file as one boat.
+    let unfoldered: Vec<&str> = point_fixes
+        .iter()
+        .filter(|f| f.0.is_none())
+        .filter_map(|f| f.1.as_deref())
+        .collect();
+    let mut distinct = unfoldered.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    let names_are_boats = !unfoldered.is_empty() && 2 * distinct.len() <= unfoldered.len();
+    for (folder, name, t, la, lo) in point_fixes {
+        let boat_name = match (folder, name) {
+            (Some(f), _) => f,
+            (None, Some(n)) if names_are_boats => n,
+            _ => file_id.clone(),
+        };
+        let k = boat(&mut boats, &boat_name);
+        boats[k].1.fix(t, la, lo);
+    }
     // A boat all of whose fixes had impossible positions: counted, not a boat.
     bad += boats
         .iter()
