@@ -41,6 +41,10 @@ fn lon_lat(v: &str, sep: char) -> Result<(f64, f64), String> {
     Ok((lat, lon))
 }
 
+/// A timed Point placemark: (folder, placemark name, t, lat, lon), grouped into boats once
+/// the whole file is read.
+type PointFix = (Option<String>, Option<String>, f64, f64, f64);
+
 /// The index of the boat `name`, added if new.
 fn boat(boats: &mut Vec<(String, Recorder)>, name: &str) -> usize {
     match boats.iter().position(|(n, _)| n == name) {
@@ -58,8 +62,7 @@ fn time(v: &str) -> Result<f64, String> {
 
 pub(crate) fn parse(file: &str, text: &str, format: &str) -> RaceResult<Source> {
     let mut boats: Vec<(String, Recorder)> = Vec::new();
-    // Timed Point placemarks: (folder, placemark name, t, lat, lon), grouped into boats below.
-    let mut point_fixes: Vec<(Option<String>, Option<String>, f64, f64, f64)> = Vec::new();
+    let mut point_fixes: Vec<PointFix> = Vec::new();
     let mut marks: Vec<RawMark> = Vec::new();
     let mut folders: Vec<Option<String>> = Vec::new();
     let mut pm: Option<Placemark> = None;
