@@ -10,7 +10,8 @@
 #   FUZZ_RELEASE=1 scripts/fuzz.sh ...            builds the tests with --release (faster cases)
 #
 # What it runs: every proptest in the workspace (crates/ocean/tests/properties.rs, the wake
-# property in crates/ocean/src/wake/tests.rs, crates/race/tests/fuzz.rs and state.rs). Each
+# property in crates/ocean/src/wake/tests.rs, crates/race/tests/fuzz.rs, fuzz_formats.rs and
+# state.rs). Each
 # reads REGATTA_FUZZ_SEED (u64) and REGATTA_FUZZ_CASES (u32) instead of its fixed seed and case
 # count (the convention: crates/ocean/tests/support/fuzz_config.rs and docs/testing.md). A new
 # property test must follow it and be added to TARGETS below.
@@ -35,7 +36,7 @@ release=()
 TARGETS=(
   "ocean|--test properties|"
   "ocean|--lib|wake::tests::no_nan_for_stops_reversals_and_jumps"
-  "race|--test fuzz --test state|"
+  "race|--test fuzz --test fuzz_formats --test state|"
 )
 
 random_seed() { od -An -N8 -tu8 /dev/urandom | tr -d ' '; }

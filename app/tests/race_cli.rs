@@ -296,6 +296,21 @@ fn marks_and_course_flags_give_a_course() {
     );
 }
 
+/// A race XML is a course: `--marks RACE.xml` and `--course RACE.xml` both race its sequence
+/// (Auckland race 25011905: start line SL1/SL2, M1, the gates, finish FL1/FL2), where `--marks`
+/// used to read it as GPX ("invalid child element `Race` in `gpx`").
+#[test]
+fn a_race_xml_is_a_course_for_marks_and_course() {
+    let log = data("sailgp-auckland-2025/boat_logs/data_NZL.csv");
+    let xml = data("sailgp-auckland-2025/race_xmls/25011905_03-13-55.xml");
+    let beside = ok_json(&["race", "--report", "--race", &log, &xml]);
+    for flag in ["--marks", "--course"] {
+        let v = ok_json(&["race", "--report", "--race", &log, flag, &xml]);
+        assert_eq!(v["course"], beside["course"], "{flag}");
+        assert_eq!(v["course"][0], "SL1/SL2", "{flag}");
+    }
+}
+
 #[test]
 fn a_device_is_refused_at_once() {
     fails_with(

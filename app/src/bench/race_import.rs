@@ -1,6 +1,8 @@
 //! Bench table `race_import`: import throughput per format and peak memory. A generated
-//! 100 MB NMEA 0183 log (RMC, HDT and MWV at 10 Hz) and a generated 100 MB instrument CSV
-//! (time, lat, lon, sog, heading, heel at 10 Hz; `race::synth_logs`) are loaded by `Race::from_files` (detect,
+//! 100 MB NMEA 0183 log (RMC, HDT and MWV at 10 Hz), a generated 100 MB instrument CSV
+//! (time, lat, lon, sog, heading, heel at 10 Hz; `race::synth_logs`), 100 MB NMEA 2000 candump
+//! and canboat JSON logs and a TCX file (`race::synth_formats`, 10 Hz) and a FIT file of 1 Hz
+//! records (binary: judged in fixes per second) are loaded by `Race::from_files` (detect,
 //! parse, clean, derive) on one core. Peak memory is the OS's figure (VmHWM, reset through
 //! /proc/self/clear_refs before each load) above the resident size before it, compared with
 //! the kept samples' size. `--quick`: 10 MB each.
@@ -8,6 +10,7 @@
 use std::time::Instant;
 
 use race::Race;
+use race::synth_formats::{canboat_json_log, candump_log, fit_log, tcx_log};
 use race::synth_logs::{csv_log, nmea_log};
 use serde_json::json;
 
@@ -50,14 +53,28 @@ pub fn table(ctx: &BenchContext) -> CliResult<Table> {
             "import s (wall)",
             "import s (CPU)",
             "MB/s (CPU)",
+            "fixes/s (CPU)",
             "kept samples MB",
             "peak above start MB",
             "peak / kept samples",
         ],
     );
     for (name, file, make) in [
-        ("NMEA 0183", "bench.nmea", nmea_log as fn(usize) -> String),
-        ("CSV", "bench.csv", csv_log),
+        (
+            "NMEA 0183",
+            "bench.nmea",
+            (|n| nmea_log(n).into_bytes()) as fn(usize) -> Vec<u8>,
+        ),
+        ("CSV", "bench.csv", |n| csv_log(n).into_bytes()),
+        ("NMEA 2000 candump", "bench.log", |n| {
+            candump_log(n).into_bytes()
+        }),
+        ("NMEA 2000 canboat JSON", "bench.json", |n| {
+            canboat_json_log(n).into_bytes()
+        }),
+        ("TCX", "bench.tcx", |n| tcx_log(n).into_bytes()),
+        // Binary, 1 Hz records of 17 bytes: as many fixes as the text logs have bytes / 100.
+        ("FIT", "bench.fit", |n| fit_log(n / 100)),
     ] {
         ctx.progress(format!(
             "race import: generating {} MB of {name}",
@@ -68,7 +85,7 @@ pub fn table(ctx: &BenchContext) -> CliResult<Table> {
         let measured = reset_peak();
         let start = status_bytes("VmRSS:").unwrap_or(0);
         let (t0, c0) = (Instant::now(), cpu_seconds());
-        let race = Race::from_files(&[(file, text.as_bytes())])
+        let race = Race::from_files(&[(file, &text)])
             .map_err(|e| CliError::new(format!("the bench {name} log did not load: {e}")))?;
         let secs = t0.elapsed().as_secs_f64();
         let cpu = cpu_seconds().zip(c0).map(|(b, a)| b - a);
@@ -85,6 +102,7 @@ pub fn table(ctx: &BenchContext) -> CliResult<Table> {
             json!(secs),
             json!(cpu),
             json!(cpu.map_or(mb / secs, |c| mb / c.max(0.01))),
+            json!(cpu.map_or(kept as f64 / secs, |c| kept as f64 / c.max(0.01))),
             json!(kept_mb),
             json!(above),
             json!(above.map(|a| a / kept_mb)),
@@ -102,8 +120,8 @@ pub fn table(ctx: &BenchContext) -> CliResult<Table> {
          (12 bytes each: f64 time, f32 value).",
     );
     t.note(
-        "Goals (issue 17): ≥ 50 MB/s on one core for both formats; peak ≤ 3 × the kept samples' \
-         size. The NMEA and CSV importers read by hand-written field parsers (checksums, \
+        "Goals (issues 17, 29): ≥ 50 MB/s on one core for the text formats; FIT in fixes per \
+         second; peak ≤ 3 × the kept samples' size. The NMEA and CSV importers read by hand-written field parsers (checksums, \
          timestamps) because a per-row format-description parser dominated the import.",
     );
     Ok(t)

@@ -28,10 +28,12 @@ pub struct RaceArgs {
     /// For GPX tracks of several days: the session to race (1-based).
     #[arg(long)]
     pub session: Option<usize>,
-    /// Course marks for tracks that have none: GPX waypoints, JSON or CSV name,lat,lon.
+    /// Course marks for tracks that have none: GPX waypoints, a SailGP/AC race XML (its course
+    /// in order), JSON, or CSV (name,lat,lon, or columns named by a header).
     #[arg(long)]
     pub marks: Option<PathBuf>,
-    /// The course as mark names in order, e.g. S,W,G1a/G1b,F (a gate as two names with /).
+    /// The course as mark names in order, e.g. S,W,G1a/G1b,F (a gate as two names with /), or a
+    /// course file (a race XML) read as --marks.
     #[arg(long, value_delimiter = ',')]
     pub course: Vec<String>,
 }
@@ -39,7 +41,17 @@ pub struct RaceArgs {
 impl RaceArgs {
     /// The load options these flags ask for.
     pub fn load_options(&self) -> CliResult<race::LoadOptions> {
-        let marks = match &self.marks {
+        // `--course FILE`: one value naming a file is a course file (a race XML), read as marks.
+        let course_file = match self.course.as_slice() {
+            [one] if std::path::Path::new(one).is_file() => Some(PathBuf::from(one)),
+            _ => None,
+        };
+        if course_file.is_some() && self.marks.is_some() {
+            return Err(CliError::new(
+                "--course names a file and --marks gives marks too; give the course file once",
+            ));
+        }
+        let marks = match self.marks.as_ref().or(course_file.as_ref()) {
             Some(p) => Some((
                 p.display().to_string(),
                 race::read_file(p).map_err(|e| CliError::new(e.to_string()))?,
@@ -52,7 +64,7 @@ impl RaceArgs {
         Ok(race::LoadOptions {
             keep_going: self.keep_going,
             session: self.session,
-            course: (!self.course.is_empty()).then(|| self.course.clone()),
+            course: (!self.course.is_empty() && course_file.is_none()).then(|| self.course.clone()),
             marks,
         })
     }

@@ -26,6 +26,7 @@ pub mod events;
 pub mod geo;
 mod import;
 pub mod synth;
+pub mod synth_formats;
 pub mod synth_logs;
 pub mod text;
 pub mod track;

@@ -178,7 +178,7 @@ fn unknown_file_extension() {
     let m = err(&[("race.txt", "whatever")]);
     assert_eq!(
         m,
-        "race.txt: starts with \"whatever\", which is no race format this program reads; a race file is GPX, native race JSON, CSV, an Expedition log, an NMEA 0183 log or a SailGP race XML."
+        "race.txt: starts with \"whatever\", which is no race format this program reads; a race file is GPX, FIT, TCX, KML or KMZ, native race JSON, CSV, an Expedition log, an NMEA 0183 or NMEA 2000 log or a SailGP / AC race XML (any of them may be gzipped)."
     );
     let m = err(&[("race", "whatever")]);
     assert!(m.starts_with("race: starts with \"whatever\""), "{m}");

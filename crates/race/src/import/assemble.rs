@@ -40,6 +40,16 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
     }
     if seen.is_empty() {
         let files: Vec<&str> = sources.iter().map(|s| s.file.as_str()).collect();
+        if sources
+            .iter()
+            .all(|s| s.course.is_some() || !s.marks.is_empty())
+        {
+            // A race XML (or a marks file) alone: a course without boats.
+            return Err(RaceError::new(format!(
+                "{} hold a course but no boats: load the boats' tracks beside it (or give it to --marks or --course)",
+                files.join(", ")
+            )));
+        }
         return Err(RaceError::new(format!(
             "{} contain no boats",
             files.join(", ")

@@ -18,6 +18,16 @@ pub enum Format {
     Nmea,
     /// SailGP / America's Cup race XML (course, marks, start time).
     RaceXml,
+    /// Garmin Training Center XML.
+    Tcx,
+    /// KML (Google Earth) tracks and placemarks.
+    Kml,
+    /// NMEA 2000 bus log: SocketCAN `candump -l` text.
+    N2kCandump,
+    /// NMEA 2000 bus log: Actisense / canboat plain CSV.
+    N2kPlain,
+    /// NMEA 2000 bus log: canboat `analyzer -json` lines.
+    N2kJson,
 }
 
 impl Format {
@@ -30,6 +40,11 @@ impl Format {
             Format::Expedition => "Expedition log",
             Format::Nmea => "NMEA 0183",
             Format::RaceXml => "SailGP race XML",
+            Format::Tcx => "TCX",
+            Format::Kml => "KML",
+            Format::N2kCandump => super::n2k_logs::N2kForm::Candump.name(),
+            Format::N2kPlain => super::n2k_logs::N2kForm::Plain.name(),
+            Format::N2kJson => super::n2k_logs::N2kForm::Json.name(),
         }
     }
 }
@@ -37,7 +52,7 @@ impl Format {
 /// How much of the file the detection looks at.
 const SNIFF_BYTES: usize = 64 * 1024;
 
-const KNOWN: &str = "a race file is GPX, native race JSON, CSV, an Expedition log, an NMEA 0183 log or a SailGP race XML";
+const KNOWN: &str = "a race file is GPX, FIT, TCX, KML or KMZ, native race JSON, CSV, an Expedition log, an NMEA 0183 or NMEA 2000 log or a SailGP / AC race XML (any of them may be gzipped)";
 
 pub(crate) fn detect(file: &str, bytes: &[u8]) -> RaceResult<Format> {
     let head = &bytes[..bytes.len().min(SNIFF_BYTES)];
@@ -49,11 +64,22 @@ pub(crate) fn detect(file: &str, bytes: &[u8]) -> RaceResult<Format> {
     }
     let text = String::from_utf8_lossy(head);
     let t = text.trim_start();
-    let ext = file
-        .rsplit(['/', '\\'])
-        .next()
+    let base = file.rsplit(['/', '\\']).next().unwrap_or(file);
+    let base = base
+        .strip_suffix(".gz")
+        .or_else(|| base.strip_suffix(".GZ"))
+        .unwrap_or(base);
+    let ext = Some(base)
         .and_then(|b| b.rsplit_once('.'))
         .map(|(_, e)| e.to_ascii_lowercase());
+    // NMEA 2000 logs first: canboat JSON lines start with `{`, plain CSV captures have cells.
+    if let Some(form) = super::n2k_logs::sniff(t) {
+        return Ok(match form {
+            super::n2k_logs::N2kForm::Candump => Format::N2kCandump,
+            super::n2k_logs::N2kForm::Plain => Format::N2kPlain,
+            super::n2k_logs::N2kForm::Json => Format::N2kJson,
+        });
+    }
     if t.starts_with('{') || t.starts_with('[') {
         return Ok(if text.contains("\"BALIZAS\"") {
             Format::MaxSail
@@ -67,6 +93,12 @@ pub(crate) fn detect(file: &str, bytes: &[u8]) -> RaceResult<Format> {
         }
         if text.contains("<Race") {
             return Ok(Format::RaceXml);
+        }
+        if text.contains("<TrainingCenterDatabase") {
+            return Ok(Format::Tcx);
+        }
+        if text.contains("<kml") {
+            return Ok(Format::Kml);
         }
     }
     let mut lines = t.lines().map(str::trim).filter(|l| !l.is_empty());
@@ -95,6 +127,8 @@ pub(crate) fn detect(file: &str, bytes: &[u8]) -> RaceResult<Format> {
         Some("gpx") => return Ok(Format::Gpx),
         Some("xml") => return Ok(Format::RaceXml),
         Some("nmea") => return Ok(Format::Nmea),
+        Some("tcx") => return Ok(Format::Tcx),
+        Some("kml") => return Ok(Format::Kml),
         _ => {}
     }
     if cells.len() >= 3 && !t.starts_with('<') {

@@ -3,6 +3,12 @@
 //! forward from the row that last wrote it, and a fix exists only on a row that wrote a
 //! position. `Set`/`iSet` and `Drift`/`iDrift` are synonyms.
 //!
+//! Sparse form: when many channels are logged Expedition writes the header `!Boat,Utc,Bsp,…`
+//! and each row as `boat,utc` followed by `channel id,value` pairs, only for the channels that
+//! changed. A channel's id is its place in the header counted from `Utc` (Utc = 0, the next
+//! column 1, …), as in the dense form where `Utc` is the first column. Such rows are spread
+//! back into the header's columns before reading; pairs naming no column are counted.
+//!
 //! Resolution: the times are kept as written, in f64 seconds; Expedition writes `Utc` with 5
 //! decimals, so the file's own resolution is 1e-5 day = 0.864 s (f64 holds 38516.38857 days to
 //! 1e-11 day, about a microsecond).
@@ -55,6 +61,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         .filter_map(|(h, c, u, f)| col(&[h]).map(|i| (i, *c, *u, *f)))
         .collect();
     let set_col = col(&["iset", "set"]);
+    // The sparse form: `!Boat` first in the header.
+    let sparse = header.first().is_some_and(|h| h.starts_with('!'));
+    let mut dense: Vec<&str> = Vec::new();
+    let mut bad_pairs = 0usize;
     let mut series: Vec<Series> = chans
         .iter()
         .map(|(_, c, u, _)| Series {
@@ -74,13 +84,17 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let mut cells: Vec<&str> = Vec::with_capacity(header.len());
     for (i, l) in lines {
         let l = l.trim_end_matches('\r');
-        if l.trim().is_empty() {
+        if l.trim().is_empty() || (sparse && l.starts_with('!')) {
             continue;
         }
         rows += 1;
         let line = i as u64 + 1;
         cells.clear();
         cells.extend(l.split(','));
+        if sparse {
+            bad_pairs += spread_pairs(&cells, utc, header.len(), &mut dense);
+            std::mem::swap(&mut cells, &mut dense);
+        }
         let num = |k: usize| number_cell(file, line, &header[k], cells.get(k).map_or("", |c| c));
         let days = num(utc)?;
         if !days.is_finite() {
@@ -147,6 +161,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         "Utc (serial days since 1899-12-30, resolution 1e-5 day = 0.864 s)".into();
     s.drop_rule("rows without a Utc time", no_time);
     s.drop_rule("rows without a position (channels carried forward)", no_fix);
+    s.drop_rule("sparse channel pairs naming no header column", bad_pairs);
+    if sparse {
+        s.report.format = "Expedition log (sparse rows)".into();
+    }
     let id = super::boat_id_from_file(file);
     s.report.channels = series
         .iter()
@@ -168,4 +186,27 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         max_speed_mps: (1.2 * max_sog).max(super::knots_to_mps(DEFAULT_MAX_SPEED_KN)),
     });
     Ok(s)
+}
+
+/// A sparse row (`boat,utc,id,value,id,value,…`) spread into `dense` by header column: the
+/// column of channel `id` is `utc + id`. Returns the pairs that name no column.
+fn spread_pairs<'a>(
+    cells: &[&'a str],
+    utc: usize,
+    columns: usize,
+    dense: &mut Vec<&'a str>,
+) -> usize {
+    dense.clear();
+    dense.resize(columns, "");
+    for (k, c) in cells.iter().take(utc + 1).enumerate() {
+        dense[k] = c;
+    }
+    let mut bad = 0;
+    for pair in cells.get(utc + 1..).unwrap_or(&[]).chunks(2) {
+        match (pair[0].trim().parse::<usize>(), pair.get(1)) {
+            (Ok(id), Some(v)) if id > 0 && utc + id < columns => dense[utc + id] = v,
+            _ => bad += 1,
+        }
+    }
+    bad
 }

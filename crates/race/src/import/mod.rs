@@ -16,13 +16,21 @@ mod assemble;
 mod csv;
 mod detect;
 mod expedition;
+mod fit;
 mod gpx;
 mod json;
+mod kml;
 pub(crate) mod marks;
 mod maxsail;
+mod n2k;
+mod n2k_logs;
 mod nmea;
+mod packed;
 mod race_xml;
+mod recorder;
+mod tcx;
 mod timefmt;
+mod xml_text;
 
 pub(crate) use assemble::assemble;
 pub use detect::Format;
@@ -243,6 +251,25 @@ pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
 /// Parse one file by its content (the extension only breaks ties).
 pub(crate) fn parse(file: &str, bytes: &[u8], opts: &LoadOptions) -> RaceResult<Source> {
+    // Containers and binary formats, by their magic bytes: gzip (any format inside), KMZ
+    // (zipped KML), FIT.
+    if packed::is_gzip(bytes) {
+        let inner = packed::gunzip(file, bytes)?;
+        if packed::is_gzip(&inner) {
+            return Err(RaceError::in_file(
+                file,
+                "is gzip inside gzip; unpack it once",
+            ));
+        }
+        return parse(file, &inner, opts);
+    }
+    if packed::is_zip(bytes) {
+        let kml = packed::kml_of_kmz(file, bytes)?;
+        return finish(kml::parse(file, &kml, "KMZ")?, "KMZ");
+    }
+    if fit::is_fit(bytes) {
+        return finish(fit::parse(file, bytes)?, "FIT");
+    }
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(RaceError::in_file(file, "the file is empty"));
@@ -256,7 +283,7 @@ pub(crate) fn parse(file: &str, bytes: &[u8], opts: &LoadOptions) -> RaceResult<
             + 1;
         RaceError::at_line(file, line as u64, "the text is not valid UTF-8")
     })?;
-    let mut s = match format {
+    let s = match format {
         Format::MaxSail => maxsail::parse(file, text),
         Format::NativeJson => json::parse(file, text),
         Format::Gpx => gpx::parse(file, text, opts.session),
@@ -264,9 +291,19 @@ pub(crate) fn parse(file: &str, bytes: &[u8], opts: &LoadOptions) -> RaceResult<
         Format::Expedition => expedition::parse(file, text),
         Format::Nmea => nmea::parse(file, text),
         Format::RaceXml => race_xml::parse(file, text),
+        Format::Tcx => tcx::parse(file, text),
+        Format::Kml => kml::parse(file, text, "KML"),
+        Format::N2kCandump => n2k_logs::parse_candump(file, text),
+        Format::N2kPlain => n2k_logs::parse_plain(file, text),
+        Format::N2kJson => n2k_logs::parse_json(file, text),
     }?;
+    finish(s, format.name())
+}
+
+/// The report's format (where the reader named none) and fix count.
+fn finish(mut s: Source, format: &str) -> RaceResult<Source> {
     if s.report.format.is_empty() {
-        s.report.format = format.name().to_string();
+        s.report.format = format.to_string();
     }
     s.report.fixes = s.boats.iter().map(|b| b.points.len()).sum();
     Ok(s)

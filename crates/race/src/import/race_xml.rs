@@ -1,4 +1,4 @@
-//! SailGP / America's Cup race XML (`<Race>`): the course as compound marks in sequence
+//! SailGP / America's Cup (AC35 data feed) race XML (`<Race>`): the course as compound marks in sequence
 //! (`CompoundMarkSequence/Corner`), each one mark or two (a gate, or the start or finish line),
 //! their rounding sides, the `Boundary` course limit and the race start time. Boats come from
 //! the boat logs loaded beside it (the XML names yachts only by a SourceID).
@@ -86,19 +86,23 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         match name.as_str() {
             "Race" => saw_race = true,
             "RaceStartTime" => {
-                if let Some(v) = attr(e, "Start") {
+                // SailGP writes `Start` (RFC 3339); the AC35 feed `Time` ("…T13:30:00-0700").
+                if let Some(v) = attr(e, "Start").or_else(|| attr(e, "Time")) {
                     let t = time::OffsetDateTime::parse(
                         &v,
                         &time::format_description::well_known::Rfc3339,
                     )
-                    .map_err(|_| {
+                    .ok()
+                    .map(epoch_seconds)
+                    .or_else(|| super::timefmt::parse_datetime(&v))
+                    .ok_or_else(|| {
                         RaceError::at_line(
                             file,
                             line(),
-                            format!("RaceStartTime Start is {}, not an RFC 3339 time", q(&v)),
+                            format!("RaceStartTime is {}, not an ISO 8601 time", q(&v)),
                         )
                     })?;
-                    s.start_time = Some(epoch_seconds(t));
+                    s.start_time = Some(t);
                 }
             }
             "RaceID" => {}
@@ -130,7 +134,10 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
                 attr(e, "CompoundMarkID").unwrap_or_default(),
                 attr(e, "Rounding"),
             )),
-            "CourseLimit" => in_boundary = attr(e, "name").as_deref() == Some("Boundary"),
+            // SailGP names its limits (`Boundary`, `Exclusion Zone`, …); AC35 has one, unnamed.
+            "CourseLimit" => {
+                in_boundary = matches!(attr(e, "name").as_deref(), Some("Boundary") | None)
+            }
             "Limit" if in_boundary => {
                 let (lat, lon) = (num(e, "Lat")?, num(e, "Lon")?);
                 if let Some(p) = super::geo_problem(lat, lon) {
