@@ -394,6 +394,7 @@ impl ApplicationHandler for App {
                     );
                     // The sliders start at the water the command line chose.
                     if let Some(feed) = &self.feed {
+                        o.panels.settings.water_type = feed.water().water_type.name().to_string();
                         o.panels.settings.water_depth_m = feed.water().depth_m;
                         o.panels.settings.turbidity = feed.water().turbidity_ntu;
                     }
