@@ -84,16 +84,22 @@ mod tests {
             turbidity: t,
         };
         for d in [0.0, -1.0, 0.3, 100.5, f64::NAN, f64::INFINITY] {
-            let e = a(None, Some(d), None).look(WaterLook::default()).unwrap_err();
+            let e = a(None, Some(d), None)
+                .look(WaterLook::default())
+                .unwrap_err();
             let e = e.to_string();
             assert!(e.starts_with("--water-depth") && !e.contains('\n'), "{e}");
         }
         for t in [-0.1, 100.5, f64::NAN] {
-            let e = a(None, None, Some(t)).look(WaterLook::default()).unwrap_err();
+            let e = a(None, None, Some(t))
+                .look(WaterLook::default())
+                .unwrap_err();
             assert!(e.to_string().starts_with("--turbidity"), "{e}");
         }
         for w in ["IV", "", "coastal\u{1b}[31m"] {
-            let e = a(Some(w), None, None).look(WaterLook::default()).unwrap_err();
+            let e = a(Some(w), None, None)
+                .look(WaterLook::default())
+                .unwrap_err();
             let e = e.to_string();
             assert!(e.starts_with("--water-type") && e.contains("1C, 3C"), "{e}");
             assert!(!e.contains('\u{1b}'), "{e}");

@@ -119,7 +119,10 @@ fn the_default_table_sea_is_blue_green_and_the_table_shows_through() {
             let px: Vec<(u32, u32)> = (0..16).map(|i| (bx * 4 + i % 4, by * 4 + i / 4)).collect();
             if px.iter().all(|p| in_water.contains(p)) {
                 let m = |img: &image::RgbImage| {
-                    px.iter().map(|&(x, y)| luma(img.get_pixel(x, y))).sum::<f64>() / 16.0
+                    px.iter()
+                        .map(|&(x, y)| luma(img.get_pixel(x, y)))
+                        .sum::<f64>()
+                        / 16.0
                 };
                 blocks.push((m(&dry), m(&wet)));
             }

@@ -184,8 +184,7 @@ impl WaterLook {
     /// and the deep-water reflectance b_b/(a + b_b) are the real sea's.
     pub fn on_table(&self, course_to_table: f64) -> TableWater {
         let iops = self.iops();
-        let kappa: [f64; 3] =
-            std::array::from_fn(|i| iops.absorption[i] + iops.backscattering[i]);
+        let kappa: [f64; 3] = std::array::from_fn(|i| iops.absorption[i] + iops.backscattering[i]);
         TableWater {
             depth_m: self.depth_m * course_to_table,
             attenuation: kappa.map(|k| k / course_to_table),
@@ -404,7 +403,10 @@ mod tests {
             let r = 0.33 * iops.backscattering[i] / k;
             let want = diffuse_entry() * r / (n2 * (1.0 - r * diffuse_internal_reflectance()));
             // Red is fully deep; blue keeps e^{−κ(100/μ̄ + 200)} of the table (< 10⁻³).
-            assert!((deep[i] - want).abs() < 1e-3 * want.max(1e-3), "{i}: {deep:?}");
+            assert!(
+                (deep[i] - want).abs() < 1e-3 * want.max(1e-3),
+                "{i}: {deep:?}"
+            );
         }
         // The open ocean is blue: B > G > R.
         assert!(deep[2] > deep[1] && deep[1] > deep[0], "{deep:?}");
@@ -476,7 +478,10 @@ mod tests {
         let black = transmitted([0.0; 3], [0.8; 3], 6.0, &murky);
         let white = transmitted([1.0; 3], [0.8; 3], 6.0, &murky);
         for i in 0..3 {
-            assert!(black[i] > 0.05 && white[i] - black[i] < 0.1, "{black:?} {white:?}");
+            assert!(
+                black[i] > 0.05 && white[i] - black[i] < 0.1,
+                "{black:?} {white:?}"
+            );
         }
     }
 

@@ -348,7 +348,10 @@ mod tests {
                 assert!(e < 0.10, "{t} at {} nm: {e}", JERLOV_WAVELENGTHS_NM[i]);
             }
         }
-        eprintln!("worst K_d error {:.3} ({} at {} nm)", worst.0, worst.1, worst.2);
+        eprintln!(
+            "worst K_d error {:.3} ({} at {} nm)",
+            worst.0, worst.1, worst.2
+        );
     }
 
     #[test]
@@ -396,7 +399,10 @@ mod tests {
         let pure = WaterType::Pure.band_iops();
         let pf = crate::water_look::pure_water_absorption();
         for i in 0..3 {
-            assert!((pure.absorption[i] - pf[i]).abs() < 1e-12, "{pure:?} {pf:?}");
+            assert!(
+                (pure.absorption[i] - pf[i]).abs() < 1e-12,
+                "{pure:?} {pf:?}"
+            );
         }
         let b450 = molecular_backscattering_at(450.0, false);
         assert!((b450 - 0.5 * 0.00222 * 0.9f64.powf(-4.32)).abs() < 1e-15);

@@ -135,6 +135,9 @@ fn a_wrong_depth_or_type_would_fail_the_parity_check() {
     ] {
         let out = render::compute::gpu_water_transmitted(&gpu, &wrong, &items(&one)).unwrap();
         let (s, e) = worst(&one, &one, &out);
-        assert!(s > 1000.0 && e > 1.0 / 255.0, "{wrong:?}: only {e} ({s} of the bound)");
+        assert!(
+            s > 1000.0 && e > 1.0 / 255.0,
+            "{wrong:?}: only {e} ({s} of the bound)"
+        );
     }
 }
