@@ -47,7 +47,7 @@ pub struct RunArgs {
     /// `--phone`, the simulated ARCore's camera.
     #[arg(long, value_name = "DIR")]
     pub replay: Option<PathBuf>,
-    /// The water's depth and turbidity on the table.
+    /// The real sea on the table: water type, depth and turbidity (docs/water-look.md).
     #[command(flatten)]
     pub water: crate::water::WaterArgs,
     /// The phone app in a portrait window of the phone's aspect and density, through the
