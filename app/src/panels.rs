@@ -41,23 +41,25 @@ pub fn effect_toggles(with_effect_passes: bool) -> Vec<EffectToggle> {
 
 /// Why the water sliders are greyed out without a table.
 pub const NO_TABLE: &str =
-    "the water's depth and turbidity are the table's: open a camera feed (--replay)";
+    "the sea's water type, depth and turbidity are the table's: open a camera feed (--replay)";
 
 /// Gives the Scene panel the renderer's water ranges and defaults, and greys the water sliders
 /// out where no table is shown (`has_table`: a camera feed or the synthetic table).
 pub fn set_water_ranges(settings: &mut SceneSettings, has_table: bool) {
-    use render::water_look::{MAX_DEPTH_M, MAX_TURBIDITY_NTU, MIN_DEPTH_M, WaterLook};
+    use render::water_look::{MAX_DEPTH_M, MAX_TURBIDITY_NTU, MIN_DEPTH_M, WaterLook, WaterType};
     let look = WaterLook::default();
     settings.water_ranges = ui::settings::WaterRanges {
         depth_m: MIN_DEPTH_M..=MAX_DEPTH_M,
         turbidity_ntu: 0.0..=MAX_TURBIDITY_NTU,
+        water_types: WaterType::ALL.map(|t| t.name().to_string()).to_vec(),
     };
+    settings.water_type = look.water_type.name().to_string();
     settings.water_depth_m = look.depth_m;
     settings.turbidity = look.turbidity_ntu;
     settings.unavailable = if has_table {
         Vec::new()
     } else {
-        ["depth", "turbidity"]
+        ["type", "depth", "turbidity"]
             .map(|k| (k.to_string(), NO_TABLE.to_string()))
             .to_vec()
     };
@@ -66,6 +68,8 @@ pub fn set_water_ranges(settings: &mut SceneSettings, has_table: bool) {
 /// The water the Scene panel asks for.
 pub fn water_look(settings: &SceneSettings) -> render::water_look::WaterLook {
     render::water_look::WaterLook {
+        water_type: render::water_look::WaterType::from_name(&settings.water_type)
+            .unwrap_or_default(),
         depth_m: settings.water_depth_m,
         turbidity_ntu: settings.turbidity,
     }

@@ -38,9 +38,10 @@ pub const AR_AS_IS: CoursePlacement = CoursePlacement {
     course_to_table: 1.0,
 };
 
-/// The sea stands this far above the table top, race metres (the effect passes' table).
+/// The sea stands this far above the table top, race metres: the default real sea's depth
+/// (`WaterLook::default`, the phone's table effects: `ArConfig::on_table`).
 pub fn table_depth() -> f64 {
-    effects::passes::ArConfig::default().table_depth
+    render::water_look::WaterLook::default().depth_m
 }
 
 /// The centre of `area` (`[min x, min z, max x, max z]`, race metres) at the table's depth

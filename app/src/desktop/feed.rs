@@ -56,8 +56,8 @@ pub struct FeedView {
     /// The effects drawn over the feed (all of them in the window; `--effects` for
     /// `regatta render --replay`).
     config: ArConfig,
-    /// The water's depth (real metres: the table lies that deep under the race's sea, in race
-    /// metres `depth × scale`) and turbidity.
+    /// The real sea: its water type, depth (race metres: the table lies that deep under the
+    /// race's sea; on the table `depth × scale`) and turbidity.
     water: render::water_look::WaterLook,
     /// The wake handed in (the boats' own, or none) and what the renderer draws for it on this
     /// table: Froude-scaled for the models ([`crate::wakes::table_wake`]), per map scale.
@@ -107,6 +107,16 @@ impl FeedView {
         self
     }
 
+    /// The same feed drawn at a quality tier's effect set-up (`TierRender::ar`: which effects
+    /// run, reflection size, caustic tier and map cells; the water and table stay the feed's).
+    pub fn with_quality(mut self, ar: &ArConfig) -> Self {
+        self.config.effects = ar.effects;
+        self.config.reflection_fraction = ar.reflection_fraction;
+        self.config.cheap_caustics = ar.cheap_caustics;
+        self.config.caustic_resolution = ar.caustic_resolution;
+        self
+    }
+
     /// The water's look on the table from the next frame on (the panel's setter; ranges as
     /// `WaterLook::check`, out-of-range values are clamped into them).
     pub fn set_water(&mut self, water: render::water_look::WaterLook) {
@@ -115,6 +125,7 @@ impl FeedView {
             |v: f64, lo: f64, hi: f64, or: f64| if v.is_finite() { v.clamp(lo, hi) } else { or };
         let base = render::water_look::WaterLook::default();
         self.water = render::water_look::WaterLook {
+            water_type: water.water_type,
             depth_m: clamp(water.depth_m, MIN_DEPTH_M, MAX_DEPTH_M, base.depth_m),
             turbidity_ntu: clamp(
                 water.turbidity_ntu,
@@ -267,9 +278,9 @@ impl FeedView {
             // No table recorded (TUM): a 1 m table under the first frame's view centre.
             None => (DVec2::ONE, DVec3::ZERO),
         };
-        // The table lies the water's depth down, in race metres at the table's scale.
-        let course_to_table = fit_on_table(race_bounds, centre, extent, 0.0).course_to_table;
-        cfg.table_depth = self.water.depth_m / course_to_table;
+        // The table lies the real sea's depth down, in race metres (optical similarity: the
+        // water over the table is depth × scale deep, its optics the real sea's).
+        cfg.table_depth = self.water.depth_m;
         cfg.water = self.water;
         let map = fit_on_table(race_bounds, centre, extent, cfg.table_depth);
         let (camera, view) = to_render(&frame, &map, size);

@@ -48,7 +48,7 @@ pub struct RunArgs {
     /// `--phone`, the simulated ARCore's camera.
     #[arg(long, value_name = "DIR")]
     pub replay: Option<PathBuf>,
-    /// The water's depth and turbidity on the table.
+    /// The real sea on the table: water type, depth and turbidity (docs/water-look.md).
     #[command(flatten)]
     pub water: crate::water::WaterArgs,
     /// The phone app in a portrait window of the phone's aspect and density, through the
@@ -395,6 +395,7 @@ impl ApplicationHandler for App {
                     );
                     // The sliders start at the water the command line chose.
                     if let Some(feed) = &self.feed {
+                        o.panels.settings.water_type = feed.water().water_type.name().to_string();
                         o.panels.settings.water_depth_m = feed.water().depth_m;
                         o.panels.settings.turbidity = feed.water().turbidity_ntu;
                     }

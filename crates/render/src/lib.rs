@@ -57,6 +57,7 @@ pub mod shader;
 mod timing;
 pub mod wake_bins;
 pub mod water_look;
+pub mod water_types;
 
 pub use camera::{Camera, OrbitCamera};
 pub use frame::{FRAME_REUSED, FrameReport, Pass};

@@ -92,10 +92,7 @@ pub fn shared_consts() -> Vec<(&'static str, WgslValue)> {
     .chain(
         crate::water_look::wgsl_values()
             .into_iter()
-            .map(|(name, v)| match name {
-                "WATER_ABSORPTION" => (name, WgslValue::Vec3(v)),
-                _ => (name, WgslValue::F32(v[0])),
-            }),
+            .map(|(name, v)| (name, WgslValue::F32(v))),
     )
     .collect()
 }

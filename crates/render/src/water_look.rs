@@ -1,33 +1,41 @@
-//! Clear water over a table, from physical optics (docs/water-look.md): the f64 reference of
-//! `shaders/water_look.wgsl`, whose constants come from here through the generated prelude
-//! ([`crate::shader::prelude`]).
+//! The real sea's water over a table, from physical optics (docs/water-look.md): the f64
+//! reference of `shaders/render/water_look.wgsl`, whose constants come from here through the
+//! generated prelude ([`crate::shader::prelude`]).
 //!
-//! What the camera sees of the table through a layer of water `depth_m` deep, per RGB band:
+//! **Optical similarity** (as Froude scaling is for the wakes): the user states the real sea,
+//! a water type ([`WaterType`]: Jerlov's classes, their absorption a and backscattering b_b
+//! per RGB band from [`crate::water_types`]) and a depth in metres. On a table of scale s
+//! (table metres per race metre) the water is depth·s deep and its coefficients are the real
+//! ones ÷ s ([`WaterLook::on_table`]), so every optical depth is the real sea's: 8 m of
+//! coastal water over the table looks like 8 m of coastal water over a sandy bottom.
 //!
-//! - **Absorption** of pure water, Pope & Fry (1997) (380–700 nm, [`POPE_FRY_1997`]), averaged
-//!   over box bands B 400–500, G 500–600, R 600–700 nm ([`pure_water_absorption`]);
-//!   Beer–Lambert over the optical path.
-//! - **Turbidity** (NTU): particles scatter, wavelength-neutral, b_p = [`SCATTERING_PER_NTU`]
-//!   per NTU, absorbing nothing. They take light out of the table's image (attenuation
-//!   c = a_w + b_p) and scatter room light into the view (single scattering, isotropic,
-//!   uniform room radiance L_room): a veil L_room·(1 − R̄)·(b_p/c)·(1 − e^{−c l}).
+//! What the camera sees of the table and the water, per band (κ = a + b_b, the diffuse
+//! attenuation; forward scattering blurs the table's image but does not take light out of it):
+//!
+//! - **The column's own colour**: deep water reflects R∞ = f · b_b/(a + b_b) of the light
+//!   that enters (f = 0.33, [`DEEP_REFLECTANCE_FACTOR`]); over a bottom at depth H the column
+//!   shows R∞ (1 − T_d T_v) and the bottom ρ T_d T_v (Maritorena, Morel & Gentili 1994's
+//!   shallow-water reflectance, with the view path instead of their vertical one).
 //! - **The table under water**: room light enters through the surface (diffuse, share
 //!   1 − R̄ with R̄ the hemispherical Fresnel reflectance, [`diffuse_entry`]), goes down to
 //!   the table (path depth/μ̄, μ̄ the mean cosine of the refracted diffuse light,
-//!   [`diffuse_mean_cosine`]), is reflected by the table (albedo ρ: the camera's dry table
-//!   colour, white = 1), comes back up (the view path l) and leaves through the surface with
-//!   1 − R(θ) (the exact Fresnel factor the shader mixes with, not here) and 1/n² (radiance
-//!   in a denser medium). Light reflected back down by the surface from below (r̄_int,
-//!   [`diffuse_internal_reflectance`], total internal reflection included) reaches the table
-//!   again: a geometric series 1/(1 − ρ r̄_int T_d²). Together:
-//!   L = L_dry (1 − R̄) T_d T_v / (n² (1 − ρ r̄_int T_d²)): a white table keeps its radiance
-//!   (energy conservation: (1 − R̄)/n² = 1 − r̄_int), a darker one darkens as wet things do.
+//!   [`diffuse_mean_cosine`]: T_d = e^{−κ H/μ̄}), is reflected by the table (albedo ρ: the
+//!   camera's dry table colour, white = 1), comes back up (the view path l: T_v = e^{−κ l})
+//!   and leaves through the surface with 1 − R(θ) (the exact Fresnel factor the shader mixes
+//!   with, not here) and 1/n² (radiance in a denser medium). Light reflected back down by the
+//!   surface from below (r̄_int, [`diffuse_internal_reflectance`], total internal reflection
+//!   included) meets the column and the table again: a geometric series 1/(1 − A r̄_int) with
+//!   A = ρ T_d² + R∞ (1 − T_d²). Together:
+//!   L = (1 − R̄) [L_table T_d T_v + L_room R∞ (1 − T_d T_v)] / (n² (1 − A r̄_int)): a white
+//!   table under clear water keeps its radiance (energy conservation:
+//!   (1 − R̄)/n² = 1 − r̄_int), a darker one darkens as wet things do.
 //! - **Reflection** of the sky and room: the exact unpolarised Fresnel equations
 //!   (`optics::fresnel`, `shaders/optics.wgsl`), no Schlick.
 
 use std::f64::consts::FRAC_PI_2;
 
 use crate::optics::{N_AIR, N_WATER, fresnel};
+pub use crate::water_types::{BandIops, WaterType};
 
 /// The WGSL of the transmitted light (the AR water pass appends it).
 pub const WATER_LOOK_WGSL: &str = include_str!("../../../shaders/render/water_look.wgsl");
@@ -96,34 +104,44 @@ pub fn pure_water_absorption() -> [f64; 3] {
 
 /// Particle scattering per NTU of turbidity, 1/m: the beam attenuation of natural waters is
 /// about 1 m⁻¹ per NTU (order of the turbidity–attenuation relations of suspended sediment);
-/// taken as pure scattering, the same in every band.
+/// taken as pure scattering with the particles' backscattering ratio
+/// ([`crate::water_types::PARTICLE_BACKSCATTER_RATIO`]): it adds b_b, nothing else.
 pub const SCATTERING_PER_NTU: f64 = 1.0;
 
-/// Deepest water the settings take, m: the water's surface floats this far above the table
-/// (no tank walls are drawn, so a deep layer reads as a floating sheet), and the synthetic
-/// feed's camera is 0.55 m above its table (a surface near the camera hides the scene).
-pub const MAX_DEPTH_M: f64 = 0.1;
-/// Shallowest, m (a film: 0.1 mm).
-pub const MIN_DEPTH_M: f64 = 1e-4;
-/// Most turbid water the settings take, NTU (muddy river water).
+/// Deepest real sea the settings take, m: at the first table's scale (about 1/1000) its
+/// water is 10 cm deep (no tank walls are drawn, so a deeper layer reads as a floating sheet).
+pub const MAX_DEPTH_M: f64 = 100.0;
+/// Shallowest real sea, m.
+pub const MIN_DEPTH_M: f64 = 0.5;
+/// Most turbid water the settings take, NTU (muddy river water), added to the water type's.
 pub const MAX_TURBIDITY_NTU: f64 = 100.0;
+/// Irradiance reflectance of deep water per b_b/(a + b_b): R∞ = f · b_b/(a + b_b) with
+/// f = 0.33 (Gordon, Brown & Jacobs 1975; Morel & Prieur 1977: R ≈ 0.33 b_b/a).
+pub const DEEP_REFLECTANCE_FACTOR: f64 = 0.33;
 
-/// The water the user chose.
+/// The real sea the user chose; on a table it is drawn by optical similarity
+/// ([`WaterLook::on_table`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WaterLook {
-    /// Depth of the water over the table, m (real metres, whatever the scene's scale).
+    /// Jerlov's water type (or pure water).
+    pub water_type: WaterType,
+    /// Depth of the real sea, m (race metres): on a table of scale s (table metres per race
+    /// metre) the water is `depth_m · s` deep.
     pub depth_m: f64,
-    /// Turbidity, NTU (0: pure water).
+    /// Turbidity added to the type's particles, NTU (0: the type's own water).
     pub turbidity_ntu: f64,
 }
 
 impl Default for WaterLook {
-    /// 1 cm of clear water (tap water is below 1 NTU; 0.5 here). Deeper, the sea's steep
-    /// table-sized waves focus the light into caustic speckles (3 cm: their focal length).
+    /// 8 m of Jerlov coastal 1 water: over the table it reads as shallow coastal sea over
+    /// sand (docs/water-look.md, chosen by the look), and at the first table's scale it lies
+    /// about 8 mm deep, where the sea's table-sized waves ripple the light rather than focus
+    /// it into speckles.
     fn default() -> Self {
         WaterLook {
-            depth_m: 0.01,
-            turbidity_ntu: 0.5,
+            water_type: WaterType::Coastal1,
+            depth_m: 8.0,
+            turbidity_ntu: 0.0,
         }
     }
 }
@@ -148,10 +166,45 @@ impl WaterLook {
         Ok(())
     }
 
-    /// Particle scattering b_p, 1/m.
-    pub fn scattering(&self) -> f64 {
-        SCATTERING_PER_NTU * self.turbidity_ntu
+    /// The real sea's absorption and backscattering per band (the type's and the turbidity's),
+    /// 1/m.
+    pub fn iops(&self) -> BandIops {
+        let t = self.water_type.band_iops();
+        let bbp = SCATTERING_PER_NTU
+            * self.turbidity_ntu
+            * crate::water_types::PARTICLE_BACKSCATTER_RATIO;
+        BandIops {
+            absorption: t.absorption,
+            backscattering: t.backscattering.map(|b| b + bbp),
+        }
     }
+
+    /// The water on a table of scale `course_to_table` (table metres per race metre), by
+    /// optical similarity: depth × s, coefficients ÷ s, so every optical depth (κ·depth, κ·path)
+    /// and the deep-water reflectance b_b/(a + b_b) are the real sea's.
+    pub fn on_table(&self, course_to_table: f64) -> TableWater {
+        let iops = self.iops();
+        let kappa: [f64; 3] = std::array::from_fn(|i| iops.absorption[i] + iops.backscattering[i]);
+        TableWater {
+            depth_m: self.depth_m * course_to_table,
+            attenuation: kappa.map(|k| k / course_to_table),
+            deep_reflectance: std::array::from_fn(|i| {
+                DEEP_REFLECTANCE_FACTOR * iops.backscattering[i] / kappa[i]
+            }),
+        }
+    }
+}
+
+/// The water over a table, in the table's own metres ([`WaterLook::on_table`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableWater {
+    /// Depth of the water over the table, m.
+    pub depth_m: f64,
+    /// Diffuse attenuation κ = a + b_b per band, 1/m (forward-scattered light stays in the
+    /// table's image, blurred, and is not taken out of it).
+    pub attenuation: [f64; 3],
+    /// Irradiance reflectance of infinitely deep water R∞ per band.
+    pub deep_reflectance: [f64; 3],
 }
 
 /// ∫₀^{π/2} f(θ) 2 sin θ cos θ dθ: the cosine-weighted hemispherical mean of f.
@@ -216,56 +269,69 @@ fn mean_cosine() -> f64 {
 }
 
 impl WaterLook {
-    /// The per-frame shader inputs (`water_a`, `water_b` of the effects' uniform):
-    /// [T_d (R, G, B): the way down to the table, b_p], [metres of water per scene metre, 0,
-    /// 0, 0], for a scene whose table lies `table_depth` scene metres down.
-    pub fn gpu_uniform(&self, table_depth: f64) -> [[f32; 4]; 2] {
-        let a = pure_water_absorption();
-        let b = self.scattering();
+    /// The per-frame shader inputs (`water_a`, `water_b`, `water_c` of the effects' uniform)
+    /// for a scene whose table lies `table_depth` scene metres down: [T_d (R, G, B): the room
+    /// light's way down to the table, 0], [metres of real sea per scene metre, 0, 0, 0],
+    /// [κ (R, G, B) of the real sea, 1/m, 0], [R∞ (R, G, B), 0]. A table scene in race metres
+    /// has 1 real metre per scene metre: optical similarity needs no scale on the GPU.
+    pub fn gpu_uniform(&self, table_depth: f64) -> [[f32; 4]; 4] {
+        let w = self.on_table(1.0);
         let mu = diffuse_mean_cosine();
-        let td = a.map(|a| (-(a + b) * self.depth_m / mu).exp() as f32);
+        let td = w.attenuation.map(|k| (-k * w.depth_m / mu).exp() as f32);
+        let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
         [
-            [td[0], td[1], td[2], b as f32],
+            [td[0], td[1], td[2], 0.0],
             [(self.depth_m / table_depth) as f32, 0.0, 0.0, 0.0],
+            f(w.attenuation),
+            f(w.deep_reflectance),
         ]
     }
 }
 
 /// The water's constants as WGSL needs them (name, value), for the generated prelude
-/// (`crate::shader::shared_consts`): the band absorption, the diffuse entry share, the mean
-/// internal reflectance and n².
-pub fn wgsl_values() -> [(&'static str, [f64; 3]); 4] {
+/// (`crate::shader::shared_consts`): the diffuse entry share, the mean internal reflectance
+/// and n².
+pub fn wgsl_values() -> [(&'static str, f64); 3] {
     let n2 = (N_WATER / N_AIR).powi(2);
     [
-        ("WATER_ABSORPTION", pure_water_absorption()),
-        ("WATER_DIFFUSE_ENTRY", [diffuse_entry(); 3]),
-        (
-            "WATER_INTERNAL_REFLECTANCE",
-            [diffuse_internal_reflectance(); 3],
-        ),
-        ("WATER_N2", [n2; 3]),
+        ("WATER_DIFFUSE_ENTRY", diffuse_entry()),
+        ("WATER_INTERNAL_REFLECTANCE", diffuse_internal_reflectance()),
+        ("WATER_N2", n2),
     ]
 }
 
-/// The light that leaves the water from the table and the particles, before the view
-/// direction's 1 − R(θ) (module docs), per band: `table` the dry table's linear colour (the
-/// camera's, also its albedo, clamped to [0, 1]), `room` the room's radiance, `path_m` the
-/// view ray's path in the water, m.
+/// The light that leaves the water from the table and from the water column, before the
+/// view direction's 1 − R(θ) (module docs), per band: `table` the dry table's linear colour
+/// (the camera's, also its albedo, clamped to [0, 1]), `room` the room's radiance, `path_m`
+/// the view ray's path in the real sea, m (a table path ÷ the scale: [`transmitted_on`]).
 pub fn transmitted(table: [f64; 3], room: [f64; 3], path_m: f64, look: &WaterLook) -> [f64; 3] {
-    let a = pure_water_absorption();
-    let b = look.scattering();
+    transmitted_on(table, room, path_m, &look.on_table(1.0))
+}
+
+/// [`transmitted`] over a table's water, `path_m` in the table's metres: the table seen
+/// through the column (T_d T_v) and the column's own backscattered light where it hides the
+/// table (R∞ (1 − T_d T_v), the shallow-water form of Maritorena, Morel & Gentili 1994),
+/// through the wet-layer model (module docs) with the column's albedo ρ T_d² + R∞ (1 − T_d²)
+/// under the surface.
+pub fn transmitted_on(
+    table: [f64; 3],
+    room: [f64; 3],
+    path_m: f64,
+    water: &TableWater,
+) -> [f64; 3] {
     let entry = diffuse_entry();
     let r_int = diffuse_internal_reflectance();
     let mu = diffuse_mean_cosine();
     let n2 = (N_WATER / N_AIR).powi(2);
     std::array::from_fn(|i| {
-        let c = a[i] + b;
-        let td = (-c * look.depth_m / mu).exp();
-        let tv = (-c * path_m).exp();
+        let k = water.attenuation[i];
+        let r = water.deep_reflectance[i];
+        let td = (-k * water.depth_m / mu).exp();
+        let tv = (-k * path_m).exp();
         let rho = table[i].clamp(0.0, 1.0);
-        let through = table[i] * entry * td * tv / (n2 * (1.0 - rho * r_int * td * td));
-        let veil = room[i] * entry * (b / c) * (1.0 - tv);
-        through + veil
+        let seen = table[i] * td * tv + room[i] * r * (1.0 - td * tv);
+        let albedo = rho * td * td + r * (1.0 - td * td);
+        seen * entry / (n2 * (1.0 - albedo * r_int))
     })
 }
 
@@ -299,46 +365,124 @@ mod tests {
         assert!(mu > 0.8 && mu < 0.87, "{mu}");
     }
 
-    #[test]
-    fn a_white_table_under_pure_water_keeps_its_light_and_a_dark_one_darkens() {
-        let pure = WaterLook {
-            depth_m: 1e-4,
+    fn pure(depth_m: f64) -> WaterLook {
+        WaterLook {
+            water_type: WaterType::Pure,
+            depth_m,
             turbidity_ntu: 0.0,
-        };
-        let w = transmitted([1.0; 3], [0.5; 3], 0.0, &pure);
+        }
+    }
+
+    #[test]
+    fn a_white_table_under_clear_water_keeps_its_light_and_a_dark_one_darkens() {
+        // A film of water: T_d = T_v = 1 (to 10⁻⁴), R∞ (1 − T) negligible.
+        let film = pure(1e-4).on_table(1.0);
+        let w = transmitted_on([1.0; 3], [0.5; 3], 0.0, &film);
         for c in w {
             assert!((c - 1.0).abs() < 1e-3, "{w:?}");
         }
         // Albedo 0.2: 0.934/(1.777·(1 − 0.2·0.475)) = 0.58 of its dry radiance.
-        let d = transmitted([0.2; 3], [0.5; 3], 0.0, &pure);
+        let d = transmitted_on([0.2; 3], [0.5; 3], 0.0, &film);
         assert!(d[0] < 0.2 * 0.59 && d[0] > 0.2 * 0.57, "{d:?}");
     }
 
     #[test]
-    fn deep_water_turns_blue_green_and_turbid_water_veils() {
-        let grey = [0.5; 3];
-        let clear = WaterLook {
-            depth_m: 1.0,
+    fn deep_water_shows_its_backscatter_and_beer_lambert_holds_by_hand() {
+        // So deep the table is gone: L = (1 − R̄) R∞ L_room / (n² (1 − R∞ r̄_int)), R∞ from the
+        // type's own band IOPs, by hand.
+        let look = WaterLook {
+            water_type: WaterType::OceanicIB,
+            depth_m: 100.0,
             turbidity_ntu: 0.0,
         };
-        // (Deeper than the settings take: the reference holds at any depth.)
-        let [r, g, b] = transmitted(grey, grey, 1.1, &clear);
-        assert!(r < 0.6 * g && g < b, "{r} {g} {b}");
-        // A table 1 m down, seen along 1.1 m: Beer–Lambert by hand for red.
-        let a = pure_water_absorption()[0];
-        let mu = diffuse_mean_cosine();
-        let td = (-a / mu).exp();
+        let iops = WaterType::OceanicIB.band_iops();
         let n2 = N_WATER * N_WATER;
-        let want = 0.5 * diffuse_entry() * td * (-a * 1.1).exp()
-            / (n2 * (1.0 - 0.5 * diffuse_internal_reflectance() * td * td));
-        assert!((r - want).abs() < 1e-12);
-        // Turbid: the table fades towards the room's light.
-        let murky = WaterLook {
-            depth_m: 0.05,
-            turbidity_ntu: 100.0,
+        let deep = transmitted([0.5; 3], [1.0; 3], 200.0, &look);
+        for i in 0..3 {
+            let k = iops.absorption[i] + iops.backscattering[i];
+            let r = 0.33 * iops.backscattering[i] / k;
+            let want = diffuse_entry() * r / (n2 * (1.0 - r * diffuse_internal_reflectance()));
+            // Red is fully deep; blue keeps e^{−κ(100/μ̄ + 200)} of the table (< 10⁻³).
+            assert!(
+                (deep[i] - want).abs() < 1e-3 * want.max(1e-3),
+                "{i}: {deep:?}"
+            );
+        }
+        // The open ocean is blue: B > G > R.
+        assert!(deep[2] > deep[1] && deep[1] > deep[0], "{deep:?}");
+        // 3 m over a grey table seen along 3.3 m: Beer–Lambert in red, by hand.
+        let look = WaterLook {
+            depth_m: 3.0,
+            ..look
         };
-        let black_table = transmitted([0.0; 3], [0.8; 3], 0.06, &murky);
-        assert!(black_table.iter().all(|&c| c > 0.5), "{black_table:?}");
+        let [r, g, b] = transmitted([0.5; 3], [1.0; 3], 3.3, &look);
+        let k = iops.absorption[0] + iops.backscattering[0];
+        let rinf = 0.33 * iops.backscattering[0] / k;
+        let td = (-k * 3.0 / diffuse_mean_cosine()).exp();
+        let tv = (-k * 3.3).exp();
+        let albedo = 0.5 * td * td + rinf * (1.0 - td * td);
+        let want = diffuse_entry() * (0.5 * td * tv + rinf * (1.0 - td * tv))
+            / (n2 * (1.0 - albedo * diffuse_internal_reflectance()));
+        assert!((r - want).abs() < 1e-12);
+        // Shallow clear water over a grey table: the red goes first, blue-green stays.
+        assert!(r < 0.7 * g && r < 0.7 * b, "{r} {g} {b}");
+    }
+
+    #[test]
+    fn optical_depth_and_the_look_are_invariant_under_the_table_scale() {
+        // Closed form: on a table of scale s, depth·s and κ/s: κ_t·H_t = κ·H for every s, and
+        // what the camera sees along a table path l·s is what the real sea shows along l.
+        for t in [WaterType::Pure, WaterType::OceanicII, WaterType::Coastal5] {
+            let look = WaterLook {
+                water_type: t,
+                depth_m: 12.0,
+                turbidity_ntu: 2.0,
+            };
+            let real = look.on_table(1.0);
+            for s in [1.0, 1.0 / 250.0, 0.45e-3, 1e-5] {
+                let tw = look.on_table(s);
+                for i in 0..3 {
+                    let real_od = real.attenuation[i] * real.depth_m;
+                    let od = tw.attenuation[i] * tw.depth_m;
+                    assert!((od - real_od).abs() < 1e-12 * real_od, "{t} {s}");
+                    assert_eq!(tw.deep_reflectance[i], real.deep_reflectance[i]);
+                }
+                for (table, path) in [([0.6, 0.4, 0.25], 13.0), ([1.0; 3], 30.0)] {
+                    let a = transmitted_on(table, [1.0; 3], path * s, &tw);
+                    let b = transmitted_on(table, [1.0; 3], path, &real);
+                    for i in 0..3 {
+                        assert!((a[i] - b[i]).abs() < 1e-12, "{t} {s}: {a:?} {b:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn turbidity_adds_backscatter_and_veils_the_table() {
+        let clear = WaterLook {
+            water_type: WaterType::Coastal1,
+            depth_m: 5.0,
+            turbidity_ntu: 0.0,
+        };
+        let murky = WaterLook {
+            turbidity_ntu: 100.0,
+            ..clear
+        };
+        let add = 100.0 * SCATTERING_PER_NTU * crate::water_types::PARTICLE_BACKSCATTER_RATIO;
+        for i in 0..3 {
+            let d = murky.iops().backscattering[i] - clear.iops().backscattering[i];
+            assert!((d - add).abs() < 1e-12);
+        }
+        // A black table under murky water: the veil, near R∞'s grey, hides it.
+        let black = transmitted([0.0; 3], [0.8; 3], 6.0, &murky);
+        let white = transmitted([1.0; 3], [0.8; 3], 6.0, &murky);
+        for i in 0..3 {
+            assert!(
+                black[i] > 0.05 && white[i] - black[i] < 0.1,
+                "{black:?} {white:?}"
+            );
+        }
     }
 
     #[test]
@@ -347,13 +491,15 @@ mod tests {
         for (d, t) in [
             (0.0, 0.0),
             (0.3, 0.0),
+            (101.0, 0.0),
             (f64::NAN, 0.0),
-            (0.1, -1.0),
-            (0.1, 101.0),
+            (10.0, -1.0),
+            (10.0, 101.0),
         ] {
             let e = WaterLook {
                 depth_m: d,
                 turbidity_ntu: t,
+                ..WaterLook::default()
             }
             .check()
             .unwrap_err();

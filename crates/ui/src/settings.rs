@@ -1,7 +1,7 @@
 //! The "Scene" panel: one switch per renderer effect and the quality tier control
 //! ([`crate::tier::tier_ui`]), one switch per scene overlay (`labels`,
 //! `trails`, `course`, `lines`, `wind`: the names of `regatta render --overlays`), and the
-//! water (depth over the table, turbidity). ui knows none of the renderer's types: the panel
+//! real sea shown on the table (water type, depth, turbidity). ui knows none of the renderer's types: the panel
 //! returns what changed as [`SettingChange`]s named as on the command line, and the app maps
 //! each name onto its renderer (and says which it cannot apply, [`SceneSettings::unavailable`]).
 
@@ -23,18 +23,22 @@ pub const OVERLAYS: [(&str, &str); 5] = [
 /// ranges: ui keeps no copy of them).
 #[derive(Clone, Debug, PartialEq)]
 pub struct WaterRanges {
-    /// Depth of the water over the table, metres.
+    /// Depth of the real sea, metres.
     pub depth_m: std::ops::RangeInclusive<f64>,
     /// Turbidity, NTU.
     pub turbidity_ntu: std::ops::RangeInclusive<f64>,
+    /// The water types' names (`--water-type`), in the order offered.
+    pub water_types: Vec<String>,
 }
 
 impl Default for WaterRanges {
-    /// A stand-in for panels drawn without a renderer (tests): 1 mm to 10 cm, 0 to 100 NTU.
+    /// A stand-in for panels drawn without a renderer (tests): 0.5 to 100 m, 0 to 100 NTU,
+    /// two types.
     fn default() -> Self {
         Self {
-            depth_m: 0.001..=0.1,
+            depth_m: 0.5..=100.0,
             turbidity_ntu: 0.0..=100.0,
+            water_types: vec!["pure".to_string(), "1C".to_string()],
         }
     }
 }
@@ -46,7 +50,9 @@ pub enum SettingChange {
     Effect { key: String, enabled: bool },
     /// An overlay (`labels`, `trails`, `course`, `lines`, `wind`) on or off.
     Overlay { key: String, enabled: bool },
-    /// Water depth over the table, metres.
+    /// The real sea's water type (`--water-type` name).
+    WaterType(String),
+    /// Depth of the real sea, metres.
     WaterDepth(f64),
     /// Turbidity, NTU.
     Turbidity(f64),
@@ -59,7 +65,9 @@ pub enum SettingChange {
 pub struct SceneSettings {
     pub effects: Vec<EffectToggle>,
     pub overlays: Vec<EffectToggle>,
-    /// Depth of the water over the table, metres.
+    /// The real sea's water type (`--water-type` name).
+    pub water_type: String,
+    /// Depth of the real sea, metres.
     pub water_depth_m: f64,
     /// Turbidity, NTU.
     pub turbidity: f64,
@@ -74,7 +82,7 @@ pub struct SceneSettings {
 }
 
 impl SceneSettings {
-    /// `effects` as the app offers them, every overlay on, 1 cm of clear water (the app sets
+    /// `effects` as the app offers them, every overlay on, 8 m of coastal water (the app sets
     /// the renderer's own defaults and ranges).
     pub fn new(effects: Vec<EffectToggle>) -> Self {
         Self {
@@ -83,8 +91,9 @@ impl SceneSettings {
                 .iter()
                 .map(|(k, l)| EffectToggle::new(k, l, true))
                 .collect(),
-            water_depth_m: 0.01,
-            turbidity: 0.5,
+            water_type: "1C".to_string(),
+            water_depth_m: 8.0,
+            turbidity: 0.0,
             water_ranges: WaterRanges::default(),
             unavailable: Vec::new(),
             tier: None,
@@ -143,23 +152,32 @@ pub fn scene_settings_ui(ui: &mut Ui, s: &mut SceneSettings) -> Vec<SettingChang
     }
     ui.separator();
     ui.label(RichText::new("Water").strong());
+    let type_why = s.why_unavailable("type").map(str::to_string);
     let depth_why = s.why_unavailable("depth").map(str::to_string);
+    let before = s.water_type.clone();
+    ui.add_enabled_ui(type_why.is_none(), |ui| {
+        egui::ComboBox::from_label("Water type")
+            .selected_text(s.water_type.as_str())
+            .show_ui(ui, |ui| {
+                for name in &s.water_ranges.water_types {
+                    ui.selectable_value(&mut s.water_type, name.clone(), name.as_str());
+                }
+            })
+    })
+    .response
+    .on_disabled_hover_text(type_why.unwrap_or_default());
+    if s.water_type != before {
+        out.push(SettingChange::WaterType(s.water_type.clone()));
+    }
     let turbidity_why = s.why_unavailable("turbidity").map(str::to_string);
     let depth = ui
         .add_enabled(
             depth_why.is_none(),
             egui::Slider::new(&mut s.water_depth_m, s.water_ranges.depth_m.clone())
                 .logarithmic(true)
-                .text("Depth")
-                .custom_formatter(|m, _| format!("{:.1} cm", m * 100.0))
-                .custom_parser(|t| {
-                    t.trim()
-                        .trim_end_matches("cm")
-                        .trim()
-                        .parse::<f64>()
-                        .ok()
-                        .map(|cm| cm / 100.0)
-                }),
+                .text("Sea depth")
+                .suffix(" m")
+                .max_decimals(1),
         )
         .on_disabled_hover_text(depth_why.unwrap_or_default());
     if depth.changed() {

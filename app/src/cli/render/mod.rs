@@ -58,7 +58,8 @@ pub struct RenderArgs {
     /// none; all without it (docs/overlays.md).
     #[arg(long, value_name = "LIST")]
     pub overlays: Option<String>,
-    /// The water's depth and turbidity (the AR effects' water: `--replay`, `--effects`).
+    /// The real sea's water type, depth and turbidity (the AR effects' water: `--replay`,
+    /// `--effects`).
     #[command(flatten)]
     pub water: crate::water::WaterArgs,
     /// A recorded camera feed (replay folder, TUM RGB-D folder, or `synth`): the race fitted on
@@ -70,7 +71,7 @@ pub struct RenderArgs {
     pub frame: Option<usize>,
     /// A quality tier (low, medium, high, ultra; docs/quality.md): its render scale, clip-map
     /// error target, AR effects and their sizes, wake spacing and budget.
-    #[arg(long, conflicts_with_all = ["effects", "error_px", "replay"])]
+    #[arg(long, conflicts_with_all = ["effects", "error_px"])]
     pub tier: Option<String>,
 }
 
@@ -189,7 +190,7 @@ pub fn run(a: RenderArgs) -> CliResult {
                 "--camera has no meaning with --replay: the feed's camera draws",
             ));
         }
-        return replay::run(&a, dir, &out, size, effects, &overlays);
+        return replay::run(&a, dir, &out, size, effects, tier, &overlays);
     }
     let camera = a
         .camera

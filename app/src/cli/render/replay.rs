@@ -20,6 +20,7 @@ pub fn run(
     out: &ImageOut,
     size: [u32; 2],
     effects: Option<EffectSet>,
+    tier: Option<quality::Tier>,
     overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
     use crate::cli::inputs::{drawable_sea, load_race, load_sea};
@@ -29,9 +30,13 @@ pub fn run(
 
     let mut feed = crate::desktop::feed::FeedView::open(dir)?;
     feed.set_water(a.water.look(feed.water())?);
-    // Without --effects, the window's own set.
+    // Without --effects, the window's own set; with --tier, the tier's effects and sizes.
     if let Some(effects) = effects {
         feed = feed.with_effects(effects);
+    }
+    let tier = tier.map(crate::tier_render::TierRender::of);
+    if let Some(tier) = &tier {
+        feed = feed.with_quality(&tier.ar);
     }
     let frame = a.frame.unwrap_or(0);
     if frame >= feed.len() {
@@ -45,17 +50,38 @@ pub fn run(
     let t = a.t.unwrap_or_else(|| world.middle_time());
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
-    let options = RenderOptions {
-        error_px: a.error_px,
-        measure_gpu_time: true,
-        ..Default::default()
+    let options = match &tier {
+        Some(tier) => RenderOptions {
+            measure_gpu_time: true,
+            ..tier.options
+        },
+        None => RenderOptions {
+            error_px: a.error_px,
+            measure_gpu_time: true,
+            ..Default::default()
+        },
     };
     let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
-    let wake = if a.no_wakes {
-        None
-    } else {
-        Some(world.wake()?)
+    let wake = match (&tier, a.no_wakes) {
+        (_, true) => None,
+        (Some(tier), false) => Some(tier.race_wake(&world.race)?),
+        (None, false) => Some(world.wake()?),
     };
+    if let Some(tier) = &tier {
+        // The feed builds its renderer on the first frame: build it, then set the tier's
+        // options and wake source budget on it (the draw below keeps that renderer).
+        feed.prepare_frame(
+            &gpu,
+            &mut renderer,
+            render::OFFSCREEN_FORMAT,
+            options,
+            wake.clone(),
+            world.race_bounds,
+            size,
+            frame,
+        )?;
+        tier.apply_to(&mut renderer);
+    }
     let table = TableFrame {
         world: &world,
         t,
@@ -131,6 +157,7 @@ pub fn run(
     _out: &ImageOut,
     _size: [u32; 2],
     _effects: Option<EffectSet>,
+    _tier: Option<quality::Tier>,
     _overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
     Err(CliError::new(

@@ -41,6 +41,9 @@ pub struct Graphics {
     pub(super) tier: Option<(quality::Tier, bool)>,
     /// The Vulkan crash marker, armed until [`GOOD_FRAMES`] frames were presented.
     marker: Option<VulkanMarker>,
+    /// The sea last handed to `race_effects` (`tiers.rs`, `follow_water`); `None` after they
+    /// were built anew.
+    pub(super) water: Option<render::water_look::WaterLook>,
 }
 
 /// Takes the sea's place in the backdrop renderer: only the camera image is drawn.
@@ -166,6 +169,7 @@ impl PhoneApp {
             lost: LostFlag::watch(&gpu),
             note,
             frames_drawn: 0,
+            water: None,
             gpu_ms: None,
             tier: None,
             marker,
@@ -302,12 +306,11 @@ impl PhoneApp {
                     Ok(background) => match &g.race_effects {
                         Some(handle) => handle.set_camera_frame(&g.gpu, background),
                         None => {
-                            g.race_effects = Some(add_effect_passes(
-                                &mut g.race,
-                                &g.gpu,
-                                ArConfig::default(),
-                                background,
-                            ));
+                            // The table's sea; the Scene panel's water follows (`follow_water`).
+                            let cfg = ArConfig::on_table(render::water_look::WaterLook::default());
+                            let fx = add_effect_passes(&mut g.race, &g.gpu, cfg, background);
+                            g.water = None;
+                            g.race_effects = Some(fx);
                         }
                     },
                     Err(e) => log::warn!("regatta: {e}"),

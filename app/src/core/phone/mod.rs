@@ -159,6 +159,8 @@ impl PhoneApp {
         // toggle in the timeline's header, no frame statistics.
         panels.show_perf = false;
         panels.show_leaderboard = false;
+        // The Scene panel's water: the table's real sea (type, depth, turbidity).
+        crate::panels::set_water_ranges(&mut panels.settings, true);
         PhoneApp {
             events: ui::timeline_events(&world.race),
             panels,

@@ -42,6 +42,24 @@ impl PhoneApp {
         }
         self.apply_tier();
         self.panels.settings.tier = Some(self.tiers.panel());
+        self.follow_water();
+    }
+
+    /// The Scene panel's sea onto the table's effects when it changed: its type and turbidity,
+    /// and its depth as the optical depth over the placed table (the table stays where it was
+    /// placed, `table::table_depth()` down, as `regatta render --effects` keeps its table).
+    fn follow_water(&mut self) {
+        let Some(g) = self.graphics.as_mut() else {
+            return;
+        };
+        let Some(fx) = g.race_effects.as_ref() else {
+            return;
+        };
+        let look = crate::panels::water_look(&self.panels.settings);
+        if g.water != Some(look) && look.check().is_ok() {
+            fx.set_water(look, crate::core::table::table_depth());
+            g.water = Some(look);
+        }
     }
 
     /// The governor's tier onto the race renderer, when it or the renderer's effect passes

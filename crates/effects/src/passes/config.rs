@@ -11,8 +11,8 @@ pub struct ArConfig {
     pub effects: EffectSet,
     /// Depth of the water over the table, metres of the scene (table units × scale).
     pub table_depth: f64,
-    /// The water's optics: its real depth and turbidity (`render::water_look`); real metres
-    /// per scene metre are `water.depth_m / table_depth`.
+    /// The water's optics: the real sea's type, depth and turbidity (`render::water_look`);
+    /// real metres per scene metre are `water.depth_m / table_depth`.
     pub water: render::water_look::WaterLook,
     /// Radius of the ring the camera image is reflected on; `None`: 1.05 × half the play
     /// area's diagonal (000: at least half the water's diagonal).
@@ -46,6 +46,7 @@ impl Default for ArConfig {
             // The scene at full size: 3 m of pure water (turbidity over metres would veil the
             // table and every effect under it).
             water: render::water_look::WaterLook {
+                water_type: render::water_look::WaterType::Pure,
                 depth_m: 3.0,
                 turbidity_ntu: 0.0,
             },
@@ -63,6 +64,17 @@ impl Default for ArConfig {
 }
 
 impl ArConfig {
+    /// The effects over a table scene in race metres showing the real sea `water`: the table
+    /// lies the sea's depth down (optical similarity: on the table the water is depth × scale
+    /// deep with the real sea's optics, docs/water-look.md); the rest as [`ArConfig::default`].
+    pub fn on_table(water: render::water_look::WaterLook) -> Self {
+        ArConfig {
+            table_depth: water.depth_m,
+            water,
+            ..ArConfig::default()
+        }
+    }
+
     /// The ring radius for a scene's play area.
     pub fn ring_radius_for(&self, play_area: [f64; 4]) -> f64 {
         let [ax, az, bx, bz] = play_area;

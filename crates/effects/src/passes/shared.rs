@@ -33,9 +33,12 @@ pub struct EffectsUniform {
     pub current: [f32; 4],
     pub flags: [u32; 4],
     pub marks: [[f32; 4]; 8],
-    /// `WaterLook::gpu_uniform`: the way down to the table and b_p; metres per scene metre.
+    /// `WaterLook::gpu_uniform`: the way down to the table; real metres per scene metre; the
+    /// sea's κ; its R∞.
     pub water_a: [f32; 4],
     pub water_b: [f32; 4],
+    pub water_c: [f32; 4],
+    pub water_d: [f32; 4],
 }
 
 /// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
@@ -310,7 +313,7 @@ impl Shared {
         let centre = DVec2::new(ax + bx, az + bz) / 2.0 - o;
         let region = self.caustic_region(frame);
         let [a, b] = flow_phases(s.t, self.cfg.flow_period, DEFAULT_JUMP);
-        let [water_a, water_b] = self.cfg.water.gpu_uniform(self.cfg.table_depth);
+        let [water_a, water_b, water_c, water_d] = self.cfg.water.gpu_uniform(self.cfg.table_depth);
         let mut marks = [[0.0f32; 4]; 8];
         let mut near: Vec<DVec2> = s.marks.iter().map(|m| m.position - o).collect();
         let target = DVec2::new(s.camera.target.x, s.camera.target.z) - o;
@@ -347,6 +350,8 @@ impl Shared {
             marks,
             water_a,
             water_b,
+            water_c,
+            water_d,
         }
     }
 
