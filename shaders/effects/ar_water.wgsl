@@ -78,12 +78,16 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
 
     // The table under the water (q), straight through or refracted, and its colour and
     // path length in the water (table.w).
-    var q = table_point_straight(p, view);
+    // (One refraction and one straight table point per pixel: each is a Snell or ray-plane
+    // solve, a tenth of the pixel's work.)
+    var q: vec3<f32>;
     var table: vec4<f32>;
     if fx_on(FX_REFRACTION) {
-        table = refracted_table(p, view, n);
-        q = p + refract_dir(view, n, N_AIR, N_WATER).xyz * table.w;
+        let t = refract_dir(view, n, N_AIR, N_WATER);
+        table = refracted_table_along(p, view, t);
+        q = p + t.xyz * table.w;
     } else {
+        q = table_point_straight(p, view);
         table = vec4<f32>(sample_camera(camera_uv(q).xy), length(q - p));
     }
     var light = 1.0;

@@ -15,9 +15,14 @@ fn table_point_straight(p: vec3<f32>, view: vec3<f32>) -> vec3<f32> {
 }
 
 fn refracted_table(p: vec3<f32>, view: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    return refracted_table_along(p, view, refract_dir(view, n, N_AIR, N_WATER));
+}
+
+// refracted_table with the refracted ray t = refract_dir(view, n, N_AIR, N_WATER) given: the
+// AR water needs t again for the table point the caustics light, and refracts once.
+fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
     let straight_point = table_point_straight(p, view);
     let straight = camera_uv(straight_point).xy;
-    let t = refract_dir(view, n, N_AIR, N_WATER);
     let hit = ray_plane(p, t.xyz, vec4<f32>(0.0, 1.0, 0.0, fx.table.x));
     // Without a table along the refracted ray (or behind the camera): w = 0, the unrefracted
     // sample and the ray's path along the view direction (ar_water puts q there). No branch:

@@ -68,7 +68,11 @@ fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
 // − (12g + 3) cos Φ/Φ + (4g − 3) sin Φ].
 fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
     let d = p - s.pos;
-    let r2 = dot(d, d);
+    return wake_source_height_grad_at(s, d, dot(d, d));
+}
+
+// wake_source_height_grad with the offset d = p − s.pos and r2 = |d|² already formed.
+fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32) -> vec3<f32> {
     if (r2 > s.cull_r2 || r2 < WAKE_MIN_R2) {
         return vec3<f32>(0.0);
     }
@@ -94,6 +98,15 @@ fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
 fn wake_source_foam(s: WakeSource, p: vec2<f32>) -> f32 {
     let d = p - s.pos;
     return s.foam * exp(-dot(d, d) / s.foam_w2);
+}
+
+// One source at p: (w, ∂w/∂x, ∂w/∂z) of wake_source_height_grad and the foam density of
+// wake_source_foam, the offset and its squared length formed once for both (what a point
+// sums over its bin's sources).
+fn wake_source_grad_foam(s: WakeSource, p: vec2<f32>) -> vec4<f32> {
+    let d = p - s.pos;
+    let r2 = dot(d, d);
+    return vec4<f32>(wake_source_height_grad_at(s, d, r2), s.foam * exp(-r2 / s.foam_w2));
 }
 
 // Summed foam density → foam strength in [0, 1].

@@ -13,9 +13,10 @@ struct Wave {
     k: f32,
     amplitude: f32,
     phase0: f32,
-    _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
+    // k·a, and (k·a)²/2 (a cos wave's mean square slope), formed on the CPU.
+    slope: f32,
+    half_slope2: f32,
+    _pad: f32,
 }
 
 // Per-frame values (render::frame::FrameUniform).
@@ -100,17 +101,19 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
         // (wavelength under four footprints) aliases into moiré; fade it out from k·footprint
         // = π/4 to π/2 and keep its slope variance (a cos wave's mean square slope is (ka)²/2).
         let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, w.k * footprint);
-        let ka = w.k * w.amplitude;
-        variance += (1.0 - fade * fade) * 0.5 * ka * ka;
+        variance += (1.0 - fade * fade) * w.half_slope2;
         let theta = wave_phase(w, p);
-        let s = sin(theta) * fade;
-        let c = cos(theta) * fade;
+        // The faded slope k·a·fade scales sin and cos once, not each of the five sums.
+        let fka = fade * w.slope;
+        let s = sin(theta) * fka;
+        let c = cos(theta) * fka;
         let d = w.direction;
-        dxdx -= d.x * d.x * ka * s;
-        dxdz -= d.x * d.y * ka * s;
-        dzdz -= d.y * d.y * ka * s;
-        dydx += d.x * ka * c;
-        dydz += d.y * ka * c;
+        let dxs = d.x * s;
+        dxdx -= d.x * dxs;
+        dxdz -= d.y * dxs;
+        dzdz -= d.y * d.y * s;
+        dydx += d.x * c;
+        dydz += d.y * c;
     }
     let tx = vec3<f32>(dxdx, dydx, dxdz);
     let tz = vec3<f32>(dxdz, dydz, dzdz);

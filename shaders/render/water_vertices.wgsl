@@ -37,14 +37,11 @@ fn wake_bin(p: vec2<f32>) -> vec2<u32> {
 // with each source's closed-form gradient.
 fn wake_at(p: vec2<f32>) -> vec4<f32> {
     let bin = wake_bin(p);
-    var h = vec3<f32>(0.0);
-    var f = 0.0;
+    var sum = vec4<f32>(0.0);
     for (var i = 0u; i < bin.y; i = i + 1u) {
-        let s = wake_sources[wake_index[bin.x + i]];
-        h += wake_source_height_grad(s, p);
-        f += wake_source_foam(s, p);
+        sum += wake_source_grad_foam(wake_sources[wake_index[bin.x + i]], p);
     }
-    return vec4<f32>(h, wake_foam_from_density(f));
+    return vec4<f32>(sum.xyz, wake_foam_from_density(sum.w));
 }
 
 // A clip-map vertex as the CPU builds it (render::clipmap::ClipVertex, 16 bytes).

@@ -123,7 +123,10 @@ pub struct FrameInputs<'a> {
 }
 
 /// The entry points a pass runs, by the pass's name in the frame record.
-fn pass_shaders(name: &str, ar: &fx::ArConfig) -> Option<(String, &'static str, &'static str)> {
+pub(crate) fn pass_shaders(
+    name: &str,
+    ar: &fx::ArConfig,
+) -> Option<(String, &'static str, &'static str)> {
     let mask = ar.effects.iter().fold(0u32, |m, e| m | 1 << e as u32);
     Some(match name {
         "sky" => (shader::source(&[shader::SKY]), "vs_main", "fs_main"),

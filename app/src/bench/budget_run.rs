@@ -18,18 +18,20 @@ use crate::tier_render::TierRender;
 const T: f64 = 600.0;
 
 /// One phone and tier: both estimates and the frame behind them.
-struct Row {
-    phone: &'static PhoneGpu,
-    tier: Tier,
+pub(crate) struct Row {
+    pub(crate) phone: &'static PhoneGpu,
+    pub(crate) tier: Tier,
     /// Phone ms per repetition (timed, interleaved).
     timed_ms: Vec<f64>,
     /// Model ms: at the spec sheets' high rates, and at their low rates with the phone's own
     /// hidden surface removal (the phone's figure).
-    model_ms: (f64, f64),
+    pub(crate) model_ms: (f64, f64),
     /// Model ms range: fast spec with all occluded fragments removed, slow spec with none.
-    model_range: (f64, f64),
-    work: Vec<PassWork>,
-    report: render::FrameReport,
+    pub(crate) model_range: (f64, f64),
+    pub(crate) work: Vec<PassWork>,
+    pub(crate) report: render::FrameReport,
+    /// The loops' trip counts the model used for this frame.
+    pub(crate) trips: Trips,
 }
 
 /// Median and relative interquartile range of `v`.
@@ -111,12 +113,12 @@ fn as_phone_shades(
     shaded
 }
 
-/// Draw `tier` on `phone`'s screen `reps` times alternating with the kernel; model its work.
-fn measure(
+/// Draw `tier` on `phone`'s screen `reps` times alternating with the kernel (none without
+/// one: the model alone); model its work.
+pub(crate) fn measure(
     ctx: &BenchContext,
     gpu: &render::Gpu,
-    kernel: &FmaKernel,
-    iterations: u32,
+    kernel: Option<(&FmaKernel, u32)>,
     phone: &'static PhoneGpu,
     tier: Tier,
     reps: usize,
@@ -134,7 +136,10 @@ fn measure(
     let failed = |e: render::GpuError| CliError(e.to_string());
     let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up
     let mut timed_ms = Vec::with_capacity(reps);
-    for k in 0..reps {
+    for k in 0..kernel.map_or(0, |_| reps) {
+        let Some((kernel, iterations)) = kernel else {
+            break;
+        };
         // The kernel before and after the frame: the load the frame saw lies between.
         let before = kernel.gflops(iterations);
         // The frame: GPU timestamps on a GPU that has them, else the kernel's clock (on a CPU
@@ -199,11 +204,12 @@ fn measure(
         model_range: range,
         work,
         report,
+        trips,
     })
 }
 
 /// The goal a tier is held to on a phone, if any: (fps, what the goal asks).
-fn goal(phone: &PhoneGpu, tier: Tier) -> Option<(f64, &'static str)> {
+pub(crate) fn goal(phone: &PhoneGpu, tier: Tier) -> Option<(f64, &'static str)> {
     match (phone.phone, tier) {
         ("OPPO A54", Tier::Low) => Some((30.0, "≥ 30 fps, background + reflection + refraction")),
         ("Pixel 2 XL", Tier::High) => Some((60.0, "≥ 60 fps, every effect, render scale ≥ ¾")),
@@ -223,7 +229,14 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let mut rows = Vec::new();
     for phone in &PHONES {
         for tier in Tier::ALL {
-            rows.push(measure(ctx, &gpu, &kernel, iterations, phone, tier, reps)?);
+            rows.push(measure(
+                ctx,
+                &gpu,
+                Some((&kernel, iterations)),
+                phone,
+                tier,
+                reps,
+            )?);
         }
     }
     let mut tiers = Table::new(
@@ -306,7 +319,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
 }
 
 /// Per pass of every row: the model's ms at the slow spec and what bounds it.
-fn passes_table(rows: &[Row]) -> Table {
+pub(crate) fn passes_table(rows: &[Row]) -> Table {
     let mut t = Table::new(
         "budget_passes",
         "Machine-independent model per pass: invocations × shader work against the phone's rates",

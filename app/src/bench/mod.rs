@@ -15,6 +15,7 @@ use crate::error::{CliError, CliResult};
 pub mod budget;
 pub mod budget_accuracy;
 pub mod budget_model;
+pub mod budget_model_run;
 pub mod budget_run;
 pub mod effects;
 pub mod mesh;
@@ -191,6 +192,7 @@ pub const SECTIONS: &[Section] = &[
     ("wakes", wakes::run),
     ("pool", pool::run),
     ("budget", budget_run::run),
+    ("budget-model", budget_model_run::run),
     ("overlays", overlays::run),
 ];
 

@@ -92,19 +92,75 @@ pub fn entry_cost(source: &str, entry: &str, trips: &Trips) -> Result<Cost, Stri
         module: &module,
         info: &info,
         trips,
+        without: None,
     };
     let ep = &module.entry_points[index];
     Ok(walker.function(&ep.function, info.get_entry_point(index), "entry"))
+}
+
+/// Where the work of one invocation of `entry` goes: for each function it calls (directly or
+/// not), the work that function's calls add to the invocation, loops and branches included
+/// (the entry's cost less its cost with that function's body counted as nothing). A function
+/// called inside another's loop counts once per turn; the shares of nested functions overlap
+/// (a caller's share includes its callees'). Sorted by ALU work, costliest first; the entry's
+/// own total is `entry_cost`.
+pub fn function_costs(
+    source: &str,
+    entry: &str,
+    trips: &Trips,
+) -> Result<Vec<(String, Cost)>, String> {
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
+    let info = Validator::new(ValidationFlags::all(), Capabilities::all())
+        .validate(&module)
+        .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
+    let index = module
+        .entry_points
+        .iter()
+        .position(|e| e.name == entry)
+        .ok_or_else(|| format!("no entry point {entry}"))?;
+    let ep = &module.entry_points[index];
+    let cost_without = |without: Option<&str>| {
+        Walker {
+            module: &module,
+            info: &info,
+            trips,
+            without,
+        }
+        .function(&ep.function, info.get_entry_point(index), "entry")
+    };
+    let total = cost_without(None);
+    let mut out: Vec<(String, Cost)> = module
+        .functions
+        .iter()
+        .filter_map(|(_, f)| f.name.as_deref())
+        .filter_map(|name| {
+            let rest = cost_without(Some(name));
+            let share = Cost {
+                alu: total.alu - rest.alu,
+                tex: total.tex - rest.tex,
+                storage_bytes: total.storage_bytes - rest.storage_bytes,
+            };
+            (share != Cost::default()).then(|| (name.to_string(), share))
+        })
+        .collect();
+    out.sort_by(|a, b| b.1.alu.total_cmp(&a.1.alu));
+    Ok(out)
 }
 
 struct Walker<'a> {
     module: &'a Module,
     info: &'a naga::valid::ModuleInfo,
     trips: &'a Trips,
+    /// A function whose body counts as no work ([`function_costs`]).
+    without: Option<&'a str>,
 }
 
 impl Walker<'_> {
     fn function(&self, f: &Function, fi: &FunctionInfo, name: &str) -> Cost {
+        if self.without == Some(name) {
+            return Cost::default();
+        }
         let mut known = Vec::new();
         self.block(f, fi, name, &f.body, &mut known)
     }

@@ -30,7 +30,11 @@ pub struct GpuWave {
     pub amplitude: f32,
     /// θ0 = (k D·o − ω t + φ) mod 2π, radians, in [0, 2π).
     pub phase0: f32,
-    pub _pad: [f32; 3],
+    /// k·A, the wave's peak slope (formed in f64).
+    pub slope: f32,
+    /// (k·A)²/2, its mean square slope (the slope variance a shader keeps for a faded wave).
+    pub half_slope2: f32,
+    pub _pad: f32,
 }
 
 impl WaveSet {
@@ -45,7 +49,9 @@ impl WaveSet {
                     k: w.k() as f32,
                     amplitude: w.amplitude() as f32,
                     phase0: theta0 as f32,
-                    _pad: [0.0; 3],
+                    slope: (w.k() * w.amplitude()) as f32,
+                    half_slope2: (0.5 * (w.k() * w.amplitude()).powi(2)) as f32,
+                    _pad: 0.0,
                 }
             })
             .collect()

@@ -126,11 +126,34 @@ impl Layout {
         ])
     }
 
+    /// Does bin (i, j) list `s`: does its cull circle, grown by the margin, reach the bin's
+    /// square? (Its bounding square reaches about 4/π as many bins: a bin in a corner of that
+    /// square is out of reach of every point of the circle, and listing it would only add
+    /// loop turns to the bin's points.)
+    fn reaches(&self, s: &GpuWakeSource, i: u32, j: u32) -> bool {
+        let r = f64::from(s.cull_r2.max(0.0)).sqrt() + f64::from(self.margin);
+        let cell = f64::from(self.cell);
+        let gap = |v: f32, lo: f32, k: u32| {
+            let a = f64::from(lo) + f64::from(k) * cell;
+            (a - f64::from(v)).max(f64::from(v) - (a + cell)).max(0.0)
+        };
+        let (dx, dz) = (gap(s.pos[0], self.lo[0], i), gap(s.pos[1], self.lo[1], j));
+        dx * dx + dz * dz <= r * r
+    }
+
+    /// The bins that list `s` (row-major indices).
+    fn bins_of<'a>(&'a self, s: &'a GpuWakeSource) -> impl Iterator<Item = u32> + 'a {
+        let [i0, i1, j0, j1] = self.span(s).unwrap_or([1, 0, 1, 0]);
+        (j0..=j1).flat_map(move |j| {
+            (i0..=i1)
+                .filter(move |&i| self.reaches(s, i, j))
+                .map(move |i| j * self.nx + i)
+        })
+    }
+
     /// How many bins list `s`.
     fn listed(&self, s: &GpuWakeSource) -> u64 {
-        self.span(s).map_or(0, |[i0, i1, j0, j1]| {
-            u64::from(i1 - i0 + 1) * u64::from(j1 - j0 + 1)
-        })
+        self.bins_of(s).count() as u64
     }
 }
 
@@ -180,13 +203,8 @@ impl WakeBins {
         let Layout { nx, nz, .. } = layout;
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
         for (k, s) in sources.iter().enumerate() {
-            let Some([i0, i1, j0, j1]) = layout.span(s) else {
-                continue;
-            };
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    lists[(j * nx + i) as usize].push(k as u32);
-                }
+            for b in layout.bins_of(s) {
+                lists[b as usize].push(k as u32);
             }
         }
         let mut bins = Vec::with_capacity(lists.len());
@@ -308,6 +326,69 @@ mod tests {
         }
         // And binning saves work: far fewer than all sources per point on average.
         assert!(listed < 97 * 89 * sources.len() / 5, "{listed}");
+    }
+
+    /// A bin lists a source exactly when the source's cull circle grown by the margin
+    /// reaches some point of the bin's square (the square's nearest point to the source, by
+    /// clamping, within the grown radius), so a large circle is listed in about its Minkowski
+    /// sum with a bin over a bin's area, (πr² + 4rc + c²)/c², not its bounding square's
+    /// (2r/c + 1)² bins: π/4 of them and less.
+    #[test]
+    fn a_bin_lists_the_sources_whose_circle_reaches_it_and_no_other() {
+        // 2 m bins over [−100, 100]²; a source at the origin reaching 39.5 m (+ 0.5 margin).
+        let big = GpuWakeSource {
+            pos: [0.0, 0.0],
+            cull_r2: 39.5 * 39.5,
+            ..Default::default()
+        };
+        let mut sources = vec![big];
+        sources.extend((0..60).map(|k| {
+            let f = k as f32;
+            GpuWakeSource {
+                pos: [(f * 37.3) % 180.0 - 90.0, (f * 91.7) % 180.0 - 90.0],
+                cull_r2: (0.3 + (f * 13.1) % 25.0).powi(2),
+                ..Default::default()
+            }
+        }));
+        let bins = WakeBins::new(&sources, [-100.0; 2], [100.0; 2], 100, 0.5);
+        let g = bins.grid;
+        let cell = 1.0 / f64::from(g.inv_cell);
+        assert!((cell - 2.0).abs() < 1e-6, "{g:?}");
+        let mut big_bins = 0usize;
+        for j in 0..g.nz {
+            for i in 0..g.nx {
+                let [first, count] = bins.bins[(j * g.nx + i) as usize];
+                let list = &bins.indices[first as usize..(first + count) as usize];
+                let (x0, z0) = (
+                    f64::from(g.origin[0]) + f64::from(i) * cell,
+                    f64::from(g.origin[1]) + f64::from(j) * cell,
+                );
+                for (k, s) in sources.iter().enumerate() {
+                    let (px, pz) = (f64::from(s.pos[0]), f64::from(s.pos[1]));
+                    let near = [px.clamp(x0, x0 + cell), pz.clamp(z0, z0 + cell)];
+                    let d = (near[0] - px).hypot(near[1] - pz);
+                    let r = f64::from(s.cull_r2).sqrt() + 0.5;
+                    let listed = list.contains(&(k as u32));
+                    if d <= r - 1e-4 {
+                        assert!(listed, "source {k} reaches bin ({i}, {j}) at {d} m < {r}");
+                    }
+                    if d > r + 1e-4 {
+                        assert!(!listed, "source {k} listed in bin ({i}, {j}) {d} m away");
+                    }
+                    if k == 0 && listed {
+                        big_bins += 1;
+                    }
+                }
+            }
+        }
+        let (r, c) = (40.0, 2.0);
+        let minkowski = (std::f64::consts::PI * r * r + 4.0 * r * c + c * c) / (c * c);
+        assert!(
+            (big_bins as f64 - minkowski).abs() < 0.03 * minkowski,
+            "{big_bins} bins against {minkowski:.0}"
+        );
+        let square = (2.0 * r / c + 1.0).powi(2);
+        assert!((big_bins as f64) < 0.82 * square, "{big_bins} of {square}");
     }
 
     /// The sources a point sums: its bin's list, or none outside the grid (as `wake_bin`).
