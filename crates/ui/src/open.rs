@@ -9,8 +9,11 @@ use std::path::{Path, PathBuf};
 use egui::{Color32, RichText, Ui};
 
 /// File extensions the importer reads (it detects the format by content; these only pick the
-/// files out of a folder).
-pub const RACE_EXTENSIONS: [&str; 7] = ["json", "gpx", "csv", "xml", "nmea", "log", "txt"];
+/// files out of a folder): tracks and logs, watch files (FIT, TCX), tracker exports (KML,
+/// KMZ), and any of them gzipped (`.gz`).
+pub const RACE_EXTENSIONS: [&str; 12] = [
+    "json", "gpx", "csv", "xml", "nmea", "log", "txt", "fit", "tcx", "kml", "kmz", "gz",
+];
 
 /// At most this many races are listed (a folder of thousands would not be read through).
 pub const MAX_LISTED: usize = 200;
