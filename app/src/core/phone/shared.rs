@@ -84,7 +84,7 @@ pub fn kept_name(display: Option<&str>, uri: &str, mime: Option<&str>) -> String
     let has_race_extension = Path::new(&name)
         .extension()
         .and_then(|e| e.to_str())
-        .is_some_and(|e| ui::RACE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()));
+        .is_some_and(|e| ui::open::RACE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()));
     if !has_race_extension {
         let mime = mime.map(|m| {
             m.split(';')
@@ -390,7 +390,7 @@ fn race_files(folder: &Path) -> Vec<PathBuf> {
                 .is_some_and(|n| n.starts_with('.'))
             && p.extension()
                 .and_then(|e| e.to_str())
-                .is_some_and(|e| ui::RACE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+                .is_some_and(|e| ui::open::RACE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
     });
     files.sort();
     files
