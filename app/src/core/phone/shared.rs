@@ -388,9 +388,9 @@ fn race_files(folder: &Path) -> Vec<PathBuf> {
                 .file_name()
                 .and_then(|n| n.to_str())
                 .is_some_and(|n| n.starts_with('.'))
-            && p.extension()
-                .and_then(|e| e.to_str())
-                .is_some_and(|e| ui::open::RACE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+            && p.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+                ui::open::RACE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str())
+            })
     });
     files.sort();
     files
