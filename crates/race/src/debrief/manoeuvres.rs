@@ -5,9 +5,9 @@
 //! `margin ≤ TWA ≤ 180° − margin`, port for the mirror, none near head-to-wind or dead
 //! downwind or below [`Settings::min_speed_fraction`] of its median speed (a drifting boat's
 //! GPS heading is noise). Runs of one side shorter than [`Settings::hold_s`] are noise and
-//! dropped. Between two kept runs at most [`Settings::max_transition_s`] apart, each multiple
-//! of 180° that the TWA's unwrapped path passes net is one manoeuvre: 0° (mod 360°) a tack,
-//! 180° a gybe ([`crossings`]); a wobble across the wind that comes back passes nothing, and a
+//! dropped. Between two kept runs, each multiple of 180° that the TWA's unwrapped path passes
+//! net is one manoeuvre: 0° (mod 360°) a tack, 180° a gybe ([`crossings`]), at the last time
+//! the path passes it (a boat running by the lee wobbles across 180° before it gybes); a wobble across the wind that comes back passes nothing, and a
 //! 360° turn is one tack and one gybe, as the racing rules count a penalty turn. A mark rounding that keeps the side (bearing away from starboard upwind to starboard
 //! downwind, heading up at a leeward mark) is no manoeuvre; a rounding that changes side is a
 //! real tack or gybe and counts.
@@ -83,8 +83,6 @@ pub struct Settings {
     pub margin_deg: f64,
     /// A side must hold this long to count, seconds.
     pub hold_s: f64,
-    /// Longest time between two sides that is still one manoeuvre, seconds.
-    pub max_transition_s: f64,
     /// Below this fraction of the boat's median speed it has no side.
     pub min_speed_fraction: f64,
     /// A turn is turning faster than this, degrees per second (heading over ±2 s).
@@ -101,7 +99,6 @@ impl Default for Settings {
             step_s: 1.0,
             margin_deg: 15.0,
             hold_s: 8.0,
-            max_transition_s: 60.0,
             min_speed_fraction: 0.3,
             turn_rate_deg_s: 4.0,
             entry_window_s: 10.0,
@@ -109,6 +106,9 @@ impl Default for Settings {
         }
     }
 }
+
+/// Seconds before the span asked for that the sides are read from.
+pub const LEAD_IN_S: f64 = 60.0;
 
 /// One run of a side: sign (+1 starboard, −1 port), first and last sample index.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -171,6 +171,8 @@ pub fn detect(
     if !(to > from) || boat.fixes().len() < 3 {
         return Vec::new();
     }
+    // Look from a minute earlier, so a manoeuvre just after `from` has its side before.
+    let (t_keep, from) = (from, (from - LEAD_IN_S).max(boat.time_span().0));
     let n = ((to - from) / st.step_s) as usize + 1;
     let times: Vec<f64> = (0..n).map(|k| from + k as f64 * st.step_s).collect();
     let states: Vec<_> = times.iter().map(|&t| boat.state_at(t)).collect();
@@ -198,9 +200,6 @@ pub fn detect(
     let mut out = Vec::new();
     for w in runs.windows(2) {
         let (a, b) = (w[0], w[1]);
-        if times[b.first] - times[a.last] > st.max_transition_s {
-            continue;
-        }
         // The TWA's path from the last sample of one side to the first of the next, unwrapped.
         let mut path = vec![twa[a.last]];
         for k in a.last + 1..=b.first {
@@ -216,6 +215,9 @@ pub fn detect(
             // The side before this crossing: TWA just below the boundary on the way.
             let before = path[0] + (boundary - path[0]) * 0.999;
             let side = if angle_diff(before, 0.0) > 0.0 { 1 } else { -1 };
+            if t_c < t_keep {
+                continue;
+            }
             if let Some(m) = measure(boat, wind, kind, side, t_c, sigma_p, st) {
                 out.push(m);
             }
@@ -225,7 +227,7 @@ pub fn detect(
 }
 
 /// The multiples of 180° that an unwrapped TWA path passes net (from its first to its last
-/// value), in the order it passes them, each with the time it first reaches it (linear between
+/// value), in the order it passes them, each with the time it last passes it (linear between
 /// samples `step` apart from `t0`). A wobble that comes back passes nothing; a 360° turn passes
 /// one 0° and one 180°, a tack and a gybe (as the racing rules count a penalty turn).
 pub fn crossings(path: &[f64], t0: f64, step: f64) -> Vec<(f64, f64)> {
@@ -244,8 +246,10 @@ pub fn crossings(path: &[f64], t0: f64, step: f64) -> Vec<(f64, f64)> {
     bounds
         .into_iter()
         .map(|b| {
+            // The last time it passes: a boat running by the lee crosses 180° back and forth
+            // before it settles on the new gybe, and the settling is the gybe.
             let mut t = t0 + (path.len() - 1) as f64 * step;
-            for k in 1..path.len() {
+            for k in (1..path.len()).rev() {
                 let (p0, p1) = (path[k - 1] - b, path[k] - b);
                 if p0 == 0.0 || p0.signum() != p1.signum() {
                     let f = if p1 == p0 { 0.0 } else { p0 / (p0 - p1) };
@@ -260,7 +264,12 @@ pub fn crossings(path: &[f64], t0: f64, step: f64) -> Vec<(f64, f64)> {
 
 /// Heading turn rate at t over ±2 s, degrees per second.
 fn turn_rate(boat: &Boat, t: f64) -> f64 {
-    angle_diff(boat.state_at(t + 2.0).heading_deg, boat.state_at(t - 2.0).heading_deg).abs() / 4.0
+    angle_diff(
+        boat.state_at(t + 2.0).heading_deg,
+        boat.state_at(t - 2.0).heading_deg,
+    )
+    .abs()
+        / 4.0
 }
 
 /// Entry, exit, speeds and the distance lost of a manoeuvre crossing at `t_c`.
@@ -276,12 +285,15 @@ fn measure(
     let (f0, f1) = boat.time_span();
     let limit = st.recovery_cap_s;
     let mut t_entry = t_c;
-    while t_entry > t_c - limit && t_entry - 1.0 > f0 && turn_rate(boat, t_entry) > st.turn_rate_deg_s
+    while t_entry > t_c - limit
+        && t_entry - 1.0 > f0
+        && turn_rate(boat, t_entry) > st.turn_rate_deg_s
     {
         t_entry -= 1.0;
     }
     let mut t_exit = t_c;
-    while t_exit < t_c + limit && t_exit + 1.0 < f1 && turn_rate(boat, t_exit) > st.turn_rate_deg_s {
+    while t_exit < t_c + limit && t_exit + 1.0 < f1 && turn_rate(boat, t_exit) > st.turn_rate_deg_s
+    {
         t_exit += 1.0;
     }
     let e = st.entry_window_s.min(t_entry - f0);

@@ -154,33 +154,33 @@ impl StartLine {
 
     /// First crossing of the segment from the pre-start side to the course side at t ≥ 0.
     fn crossing(&self, b: &crate::Boat) -> Option<f64> {
-    let (pin, len) = (self.pin, self.length_m);
-    let side = |p: [f64; 2]| self.course_side_m(p);
-    let along = |p: [f64; 2]| dot([p[0] - pin[0], p[1] - pin[1]], self.along);
-    let f = b.fixes();
-    let i0 = f.partition_point(|x| x.t < 0.0).saturating_sub(1);
-    // Start from the gun's own position so a boat over at the gun must come back first.
-    let mut prev = (0.0f64.max(f.first()?.t), b.state_at(0.0).position);
-    for x in &f[i0..] {
-        if x.t <= prev.0 {
-            continue;
-        }
-        let (s0, s1) = (side(prev.1), side(x.pos()));
-        if s0 <= 0.0 && s1 > 0.0 {
-            let k = s0 / (s0 - s1);
-            let p = [
-                prev.1[0] + k * (x.x - prev.1[0]),
-                prev.1[1] + k * (x.z - prev.1[1]),
-            ];
-            let a = along(p);
-            if (0.0..=len).contains(&a) {
-                return Some(prev.0 + k * (x.t - prev.0));
+        let (pin, len) = (self.pin, self.length_m);
+        let side = |p: [f64; 2]| self.course_side_m(p);
+        let along = |p: [f64; 2]| dot([p[0] - pin[0], p[1] - pin[1]], self.along);
+        let f = b.fixes();
+        let i0 = f.partition_point(|x| x.t < 0.0).saturating_sub(1);
+        // Start from the gun's own position so a boat over at the gun must come back first.
+        let mut prev = (0.0f64.max(f.first()?.t), b.state_at(0.0).position);
+        for x in &f[i0..] {
+            if x.t <= prev.0 {
+                continue;
             }
+            let (s0, s1) = (side(prev.1), side(x.pos()));
+            if s0 <= 0.0 && s1 > 0.0 {
+                let k = s0 / (s0 - s1);
+                let p = [
+                    prev.1[0] + k * (x.x - prev.1[0]),
+                    prev.1[1] + k * (x.z - prev.1[1]),
+                ];
+                let a = along(p);
+                if (0.0..=len).contains(&a) {
+                    return Some(prev.0 + k * (x.t - prev.0));
+                }
+            }
+            prev = (x.t, x.pos());
         }
-        prev = (x.t, x.pos());
+        None
     }
-    None
-}
 }
 
 /// The start report, where the course begins with a start line; `Err` says why not.
@@ -190,10 +190,16 @@ pub fn start_report(race: &Race, wind: Option<&WindModel>) -> Result<StartReport
     let r = line.wind_from_deg.to_radians();
     let up = [r.sin(), -r.cos()];
     let bias_m = dot(
-        [line.pin[0] - line.committee[0], line.pin[1] - line.committee[1]],
+        [
+            line.pin[0] - line.committee[0],
+            line.pin[1] - line.committee[1],
+        ],
         up,
     );
-    let bias_deg = (bias_m / line.length_m).clamp(-1.0, 1.0).asin().to_degrees();
+    let bias_deg = (bias_m / line.length_m)
+        .clamp(-1.0, 1.0)
+        .asin()
+        .to_degrees();
     Ok(StartReport {
         pin: line.pin,
         committee: line.committee,

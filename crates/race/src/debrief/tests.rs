@@ -12,15 +12,28 @@ use crate::{LoadReport, Race};
 /// dipping by `dip` (fraction) at mid-turn: v(s) = V (1 − dip sin(π s / D)).
 #[derive(Clone, Copy)]
 enum Step {
-    Hold { secs: f64 },
-    Turn { turn: f64, secs: f64, dip: f64 },
+    Hold {
+        secs: f64,
+    },
+    Turn {
+        turn: f64,
+        secs: f64,
+        dip: f64,
+    },
     /// From here on sail at this speed, m/s.
     Speed(f64),
 }
 
 /// Integrates the plan in f64 (1 ms steps) and samples it at 1 Hz; returns the fixes and the
 /// heading at each sample. `noise` adds a fixed-seed GPS error of that sigma (metres).
-fn sail(start: [f64; 2], heading0: f64, speed: f64, plan: &[Step], noise: f64, seed: u64) -> Vec<Fix> {
+fn sail(
+    start: [f64; 2],
+    heading0: f64,
+    speed: f64,
+    plan: &[Step],
+    noise: f64,
+    seed: u64,
+) -> Vec<Fix> {
     let dt = 1e-3;
     let mut rng = seed.max(1);
     let mut gauss = || {
@@ -99,7 +112,16 @@ fn race_of(boats: Vec<Boat>) -> Race {
         file_reports: vec![],
         warnings: vec![],
     };
-    Race::new("synthetic".into(), None, None, boats, vec![], vec![], None, report)
+    Race::new(
+        "synthetic".into(),
+        None,
+        None,
+        boats,
+        vec![],
+        vec![],
+        None,
+        report,
+    )
 }
 
 /// Wind from 0° (north); close-hauled at TWA ±45°: starboard heading 315°, port 45°.
@@ -138,7 +160,10 @@ fn closed_form_tack_loss_matches_a_direct_quadrature() {
         .sum::<f64>()
         * d
         / n as f64;
-    assert!((sum - tack_loss_closed_form(v, d, dip)).abs() < 1e-6, "{sum}");
+    assert!(
+        (sum - tack_loss_closed_form(v, d, dip)).abs() < 1e-6,
+        "{sum}"
+    );
 }
 
 #[test]
@@ -155,7 +180,11 @@ fn synthetic_tacks_are_found_at_their_times_with_their_closed_form_loss() {
         assert_eq!(m.kind, ManoeuvreKind::Tack);
         // Head to wind at mid-turn: 60 s + k (8 + 60) s + 4 s.
         let t_truth = 60.0 + k as f64 * 68.0 + 4.0;
-        assert!((m.t - t_truth).abs() < 1.0, "tack {k} at {} vs {t_truth}", m.t);
+        assert!(
+            (m.t - t_truth).abs() < 1.0,
+            "tack {k} at {} vs {t_truth}",
+            m.t
+        );
         assert!(
             (m.loss_m - truth).abs() < 0.5,
             "tack {k}: loss {} vs closed form {truth}",

@@ -197,7 +197,10 @@ pub fn from_data(race: &Race) -> Option<WindModel> {
                 .or_else(|| channel_median(race, "tws"));
             return Some(WindModel {
                 source: WindSource::Data,
-                method: format!("the logs' true wind direction (twd, {} channel(s))", twd.len()),
+                method: format!(
+                    "the logs' true wind direction (twd, {} channel(s))",
+                    twd.len()
+                ),
                 from_deg: mean,
                 speed_mps: speed,
                 uncertainty_deg: DATA_UNCERTAINTY_DEG,
@@ -405,8 +408,16 @@ pub fn estimate(race: &Race) -> Option<WindModel> {
     }
     let down = bisector(&samples, wind, false);
     let (from, sigma_stat, how) = match (up, down) {
-        (Some(u), _) => (u.from, u.sigma, "bisector of upwind headings on opposite tacks"),
-        (None, Some(d)) => (d.from, d.sigma, "bisector of downwind headings on opposite gybes"),
+        (Some(u), _) => (
+            u.from,
+            u.sigma,
+            "bisector of upwind headings on opposite tacks",
+        ),
+        (None, Some(d)) => (
+            d.from,
+            d.sigma,
+            "bisector of downwind headings on opposite gybes",
+        ),
         (None, None) => (wind, 20.0, "mirror axis of the fleet's headings"),
     };
     let systematic = match (up, down) {
