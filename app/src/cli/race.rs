@@ -1,5 +1,6 @@
 //! `regatta race --t T [--race PATH ...]`: boat states and ranks at one race time (DESIGN.md
-//! contract); `regatta race --report`: the import and cleaning report. Files of every format
+//! contract); `regatta race --report`: the import and cleaning report and the debrief
+//! (wind, manoeuvres, start, legs). Files of every format
 //! of docs/race-files.md; `--keep-going`, `--session N`, `--marks FILE`, `--course A,B,C`.
 
 use std::path::PathBuf;
@@ -131,6 +132,11 @@ fn rank_basis(race: &race::Race) -> Value {
 
 fn report_json(race: &race::Race) -> Value {
     let (t0, t1) = race.time_span();
+    let debrief = race::Debrief::of(race);
+    let start = match &debrief.start {
+        Ok(s) => json!(s),
+        Err(why) => json!({ "none": why }),
+    };
     let marks: Vec<&str> = race.course_marks().map(|m| m.name.as_str()).collect();
     let roundings: Vec<Value> = race
         .boats
@@ -144,7 +150,10 @@ fn report_json(race: &race::Race) -> Value {
         "course": marks,
         "leg_lengths_m": race.leg_lengths(),
         "rounding_radius_m": race.rounding_radius_m,
-        "wind": race.wind,
+        "wind": debrief.wind,
+        "manoeuvres": debrief.manoeuvres,
+        "start": start,
+        "legs": debrief.legs,
         "rank_basis": rank_basis(race),
         "boundary": race.boundary,
         "series": race

@@ -23,7 +23,11 @@ pub const FAR_M: f64 = 20_000.0;
 #[derive(Clone, Debug)]
 pub struct RaceWorld {
     pub race: race::Race,
+    /// The sea drawn: the one given, or the embedded default sea turned to the race's wind
+    /// ([`sea_for_race`]).
     pub sea: Arc<ocean::WaveSet>,
+    /// The sea as given, which a new race on this world starts from ([`RaceWorld::with_race`]).
+    pub given_sea: Arc<ocean::WaveSet>,
     /// Every buoy once: single marks and both ends of gates and lines.
     pub marks: Vec<Mark>,
     /// Min x, min z, max x, max z (race metres): every track and mark, what the table
@@ -35,7 +39,10 @@ pub struct RaceWorld {
 }
 
 impl RaceWorld {
+    /// A race on `sea`; where `sea` is the embedded default sea (no `--sea` given), its waves
+    /// are turned to run with the race's wind ([`sea_for_race`]).
     pub fn new(race: race::Race, sea: ocean::WaveSet) -> Self {
+        let drawn = sea_for_race(&race, &sea);
         let marks: Vec<Mark> = race
             .buoys()
             .into_iter()
@@ -53,11 +60,18 @@ impl RaceWorld {
         let m = PLAY_AREA_MARGIN_M;
         RaceWorld {
             race,
-            sea: Arc::new(sea),
+            sea: Arc::new(drawn.unwrap_or_else(|| sea.clone())),
+            given_sea: Arc::new(sea),
             marks,
             race_bounds,
             play_area: [ax - m, az - m, bx + m, bz + m],
         }
+    }
+
+    /// Another race on the sea this world was given (the default sea turns to the new race's
+    /// wind; a sea file stays as it is).
+    pub fn with_race(&self, race: race::Race) -> RaceWorld {
+        RaceWorld::new(race, (*self.given_sea).clone())
     }
 
     /// The scene at race time `t`: boats that have data at t (not inside a gap), the marks, the
@@ -108,6 +122,49 @@ impl RaceWorld {
     pub fn wake(&self) -> CliResult<Arc<ocean::wake::Wake>> {
         race_wake(&self.race)
     }
+}
+
+/// The sea a race is drawn on when no sea was chosen: `Some(the default sea turned so its
+/// dominant wave runs downwind of the race's wind)` where `sea` is the embedded default sea and
+/// the race has a wind (stated, logged or estimated: [`race::Race::wind_model`]); `None` (draw
+/// `sea` as it is) for a sea from a file, or a race without wind.
+pub fn sea_for_race(race: &race::Race, sea: &ocean::WaveSet) -> Option<ocean::WaveSet> {
+    if *sea != ocean::WaveSet::default_sea() {
+        return None;
+    }
+    let from = match race.wind {
+        Some(w) => w.from_deg,
+        None => race.wind_model()?.from_deg,
+    };
+    Some(turned_to_wind(sea, from))
+}
+
+/// `sea` turned about the vertical so its dominant wave (largest amplitude) travels downwind
+/// of a wind from `from_deg` (compass); every wave turns by the same angle, so the spectrum's
+/// spread and phases are kept.
+pub fn turned_to_wind(sea: &ocean::WaveSet, from_deg: f64) -> ocean::WaveSet {
+    let amplitude = |w: &ocean::Wave| w.steepness * w.wavelength;
+    let Some(dominant) = sea
+        .waves
+        .iter()
+        .filter(|w| w.steepness > 0.0)
+        .max_by(|a, b| amplitude(a).total_cmp(&amplitude(b)))
+    else {
+        return sea.clone();
+    };
+    let d = dominant.direction;
+    let n = d[0].hypot(d[1]);
+    let c = [d[0] / n, d[1] / n];
+    // Downwind in race metres [east, south]: the bearing from + 180°.
+    let b = (from_deg + 180.0).to_radians();
+    let t = [b.sin(), -b.cos()];
+    let (cos, sin) = (c[0] * t[0] + c[1] * t[1], c[0] * t[1] - c[1] * t[0]);
+    let mut out = sea.clone();
+    for w in &mut out.waves {
+        let v = w.direction;
+        w.direction = [v[0] * cos - v[1] * sin, v[0] * sin + v[1] * cos];
+    }
+    out
 }
 
 /// [`RaceWorld::scene_at`] for one frame (a command, a bench): builds the world once.
@@ -210,5 +267,58 @@ mod tests {
         let s2 = world.scene_at(world.middle_time() + 5.0, None);
         assert!(Arc::ptr_eq(&s1.sea, &s2.sea) && Arc::ptr_eq(&s1.sea, &world.sea));
         assert_eq!(s1.play_area, world.play_area);
+    }
+
+    /// The compass direction a sea's dominant wave comes from (against its travel).
+    fn dominant_from(sea: &ocean::WaveSet) -> f64 {
+        let w = sea
+            .waves
+            .iter()
+            .max_by(|a, b| (a.steepness * a.wavelength).total_cmp(&(b.steepness * b.wavelength)))
+            .unwrap();
+        race::track::bearing_deg([-w.direction[0], -w.direction[1]])
+    }
+
+    #[test]
+    fn the_default_sea_turns_to_the_race_wind_and_a_sea_file_stays() {
+        let default = ocean::WaveSet::default_sea();
+        // The default sea alone comes from about 289° (its dominant wave runs east-south-east).
+        assert!(
+            (dominant_from(&default) - 289.3).abs() < 0.1,
+            "{}",
+            dominant_from(&default)
+        );
+        // Valencia's metadata state a wind from 110°; the sample's file from 0°.
+        for (race, from) in [(race::Race::valencia(), 110.0), (race::Race::sample(), 0.0)] {
+            let world = RaceWorld::new(race, default.clone());
+            let got = dominant_from(&world.sea);
+            assert!(
+                race::debrief::wind::angle_diff(got, from).abs() < 1e-9,
+                "{got} vs {from}"
+            );
+            // Every wave turned by the same angle: the angles between waves are kept.
+            for (a, b) in default.waves.iter().zip(&world.sea.waves) {
+                let turn = |v: [f64; 2]| race::track::bearing_deg(v);
+                let d = race::debrief::wind::angle_diff(turn(b.direction), turn(a.direction));
+                let d0 = race::debrief::wind::angle_diff(
+                    turn(world.sea.waves[0].direction),
+                    turn(default.waves[0].direction),
+                );
+                assert!((d - d0).abs() < 1e-9);
+                assert!(
+                    (a.direction[0].hypot(a.direction[1]) - b.direction[0].hypot(b.direction[1]))
+                        .abs()
+                        < 1e-12
+                );
+            }
+            // A new race on the same world turns the given sea again, not the turned one.
+            let next = world.with_race(race::Race::sample());
+            assert!(race::debrief::wind::angle_diff(dominant_from(&next.sea), 0.0).abs() < 1e-9);
+        }
+        // A sea from a file is drawn as given.
+        let mut file_sea = default.clone();
+        file_sea.waves[0].phase += 0.5;
+        let world = RaceWorld::new(race::Race::valencia(), file_sea.clone());
+        assert_eq!(*world.sea, file_sea);
     }
 }

@@ -217,7 +217,7 @@ impl App {
             Ok(race) => {
                 log::info!("opened {}", race.name);
                 o.set_race(&race, &mut st.renderer);
-                self.world = RaceWorld::new(race, (*self.world.sea).clone());
+                self.world = self.world.with_race(race);
                 // Its wakes at the tier's spacing.
                 self.tier_applied = None;
             }

@@ -141,6 +141,8 @@ impl OverlaySettings {
 pub enum WindSource {
     /// The race file states it.
     Race,
+    /// Estimated from the fleet's headings (`race::debrief::wind`): direction only, and said.
+    Estimated,
     /// The sea's dominant wave travels downwind (direction only).
     Sea,
 }
@@ -162,19 +164,31 @@ impl WindInfo {
         match (self.speed_mps, self.source) {
             (Some(v), _) => format!("wind {:.1} kn {from}", v * 3600.0 / 1852.0),
             (None, WindSource::Sea) => format!("wind {from} (the sea's waves)"),
+            (None, WindSource::Estimated) => format!("wind {from} (estimated)"),
             (None, WindSource::Race) => format!("wind {from}"),
         }
     }
 }
 
-/// The wind of the race, or where it states none, the direction the sea's dominant wave
-/// (largest amplitude) comes from; `None` for a race without wind on a calm sea.
+/// The wind of the race: the files' (a stated wind, or the logs' TWD channels), else the
+/// fleet's estimate (said "estimated"), else the direction the sea's dominant wave (largest
+/// amplitude) comes from; `None` for a race without wind or sailing on a calm sea.
 pub fn wind_of(race: &race::Race, sea: &ocean::WaveSet) -> Option<WindInfo> {
     if let Some(w) = race.wind {
         return Some(WindInfo {
             from_deg: w.from_deg,
             speed_mps: Some(w.speed_mps),
             source: WindSource::Race,
+        });
+    }
+    if let Some(w) = race.wind_model() {
+        return Some(WindInfo {
+            from_deg: w.from_deg,
+            speed_mps: w.speed_mps,
+            source: match w.source {
+                race::debrief::WindSource::Data => WindSource::Race,
+                race::debrief::WindSource::Estimated => WindSource::Estimated,
+            },
         });
     }
     let amplitude = |w: &ocean::Wave| w.steepness * w.wavelength / std::f64::consts::TAU;
@@ -335,8 +349,25 @@ mod tests {
         let race = race::Race::sample();
         let w = wind_of(&race, &ocean::WaveSet::default_sea()).unwrap();
         assert_eq!((w.from_deg, w.speed_mps), (0.0, Some(4.5)));
-        let mut no_wind = race.clone();
+        // Without a stated wind, the fleet's estimate, said so: the generated breeze blows from
+        // 0° (oscillating by a few degrees).
+        let mut no_wind = race::Race::sample();
         no_wind.wind = None;
+        let w = wind_of(&no_wind, &ocean::WaveSet::default_sea()).unwrap();
+        assert_eq!(w.source, WindSource::Estimated);
+        assert!(
+            race::debrief::wind::angle_diff(w.from_deg, 0.0).abs() < 5.0,
+            "{w:?}"
+        );
+        assert!(w.text().contains("estimated"), "{}", w.text());
+        // A race with too little sailing to estimate: one boat, three fixes.
+        let gpx = r#"<?xml version="1.0"?><gpx version="1.1" creator="t" xmlns="http://www.topografix.com/GPX/1/1"><trk><trkseg>
+<trkpt lat="39.40" lon="-0.30"><time>2025-06-21T11:00:00Z</time></trkpt>
+<trkpt lat="39.40001" lon="-0.30"><time>2025-06-21T11:00:01Z</time></trkpt>
+<trkpt lat="39.40002" lon="-0.30"><time>2025-06-21T11:00:02Z</time></trkpt>
+</trkseg></trk></gpx>"#;
+        let no_wind = race::Race::from_files(&[("t.gpx", gpx.as_bytes())]).unwrap();
+        assert!(no_wind.wind_model().is_none());
         // One wave travelling east (+x): the wind blows from the west, 270°.
         let sea = ocean::WaveSet {
             gravity: 9.81,

@@ -21,6 +21,7 @@ use time::OffsetDateTime;
 
 pub mod clean;
 pub mod course;
+pub mod debrief;
 pub mod error;
 pub mod events;
 pub mod geo;
@@ -33,6 +34,7 @@ pub mod track;
 
 pub use clean::{BoatReport, Spike};
 pub use course::{Mark, MarkKind, Standing};
+pub use debrief::Debrief;
 pub use error::{RaceError, RaceResult};
 pub use events::{EventKind, RaceEvent, race_events};
 pub use geo::{GeoPoint, LocalFrame};
@@ -108,6 +110,8 @@ pub struct Race {
     pub boundary: Vec<[f64; 2]>,
     frame: Option<LocalFrame>,
     tail: Vec<f64>,
+    /// The debrief's wind, worked out on first use ([`Race::wind_model`]).
+    wind_model: std::sync::OnceLock<Option<debrief::WindModel>>,
 }
 
 /// The embedded default race: a generated eight-boat windward-leeward race
@@ -166,6 +170,7 @@ impl Race {
             boundary: Vec::new(),
             frame: origin.map(LocalFrame::new),
             tail,
+            wind_model: std::sync::OnceLock::new(),
         }
     }
 
@@ -332,6 +337,15 @@ impl Race {
             .collect();
         v.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.boat.cmp(&b.boat)));
         v
+    }
+
+    /// The race's wind over time: the files' where they bring one, else estimated from the
+    /// fleet ([`debrief::wind`]); worked out once, on first use (the estimate samples every
+    /// boat every 2 s, milliseconds for a race). `None` where neither exists.
+    pub fn wind_model(&self) -> Option<&debrief::WindModel> {
+        self.wind_model
+            .get_or_init(|| debrief::race_wind(self))
+            .as_ref()
     }
 
     /// The index of the boat with this id.
