@@ -1,5 +1,5 @@
 //! The default table sea reads as sea (docs/water-look.md): `regatta render --replay synth` at
-//! the default look (8 m of Jerlov coastal 1 by optical similarity), read back as a PNG, is
+//! the default look (5 m of Jerlov oceanic IB by optical similarity), read back as a PNG, is
 //! blue-green over the water's pixels, while the table's texture still shows through. The dry
 //! table is the same frame with the background effect alone (the camera image). On a GPU
 //! (lavapipe in CI); skipped without one unless REGATTA_REQUIRE_GPU=true.
