@@ -11,10 +11,10 @@ use crate::error::{CliError, CliResult};
 #[derive(Debug, Args, Default, Clone)]
 pub struct WaterArgs {
     /// The real sea's water: Jerlov's type `I`, `IA`, `IB`, `II`, `III` (oceanic), `1C`, `3C`,
-    /// `5C`, `7C`, `9C` (coastal), or `pure` (pure water, the clear look); default `1C`.
+    /// `5C`, `7C`, `9C` (coastal), or `pure` (pure water, the clear look); default `IB`.
     #[arg(long, value_name = "NAME")]
     pub water_type: Option<String>,
-    /// Depth of the real sea, metres (0.5 to 100; default 8): on a table the water is this
+    /// Depth of the real sea, metres (0.5 to 100; default 5): on a table the water is this
     /// times the table's scale deep, with the real sea's optics; with `--effects` at full
     /// size, the optical depth over the scene's table.
     #[arg(long, value_name = "M", allow_negative_numbers = true)]

@@ -1,5 +1,5 @@
 //! The default table sea reads as sea (docs/water-look.md): `regatta render --replay synth` at
-//! the default look (8 m of Jerlov coastal 1 by optical similarity), read back as a PNG, is
+//! the default look (5 m of Jerlov oceanic IB by optical similarity), read back as a PNG, is
 //! blue-green over the water's pixels, while the table's texture still shows through. The dry
 //! table is the same frame with the background effect alone (the camera image). On a GPU
 //! (lavapipe in CI); skipped without one unless REGATTA_REQUIRE_GPU=true.
@@ -11,16 +11,16 @@ use std::path::{Path, PathBuf};
 use common::regatta;
 
 /// Hue of the water's mean colour, degrees: blue-green (cyan is 180°; green 120°, blue 240°).
-const HUE_DEG: std::ops::RangeInclusive<f64> = 150.0..=200.0;
+const HUE_DEG: std::ops::RangeInclusive<f64> = 160.0..=200.0;
 /// Share of the water's pixels whose own hue is blue-green (the range above widened to
 /// 120°–230°: green-cyan to azure).
 const MIN_BLUE_GREEN_SHARE: f64 = 0.8;
 /// HSV saturation of the water's mean colour: a coloured sea, not a grey or milky sheet.
-const SATURATION: std::ops::RangeInclusive<f64> = 0.3..=0.95;
+const SATURATION: std::ops::RangeInclusive<f64> = 0.3..=0.7;
 /// The table's texture through the water: the regression slope of the wet picture's luminance
 /// on the dry table's, over 4×4 blocks of the water (the share of the table's contrast that
 /// survives the water), and their correlation.
-const MIN_CONTRAST_SHARE: f64 = 0.15;
+const MIN_CONTRAST_SHARE: f64 = 0.5;
 const MIN_CORRELATION: f64 = 0.5;
 
 fn tmp_dir(name: &str) -> PathBuf {

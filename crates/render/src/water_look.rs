@@ -133,14 +133,15 @@ pub struct WaterLook {
 }
 
 impl Default for WaterLook {
-    /// 8 m of Jerlov coastal 1 water: over the table it reads as shallow coastal sea over
-    /// sand (docs/water-look.md, chosen by the look), and at the first table's scale it lies
-    /// about 8 mm deep, where the sea's table-sized waves ripple the light rather than focus
-    /// it into speckles.
+    /// 5 m of Jerlov oceanic IB water: over the table it reads as shallow blue-green sea with
+    /// the table still seen through it (docs/water-look.md, chosen by the look: 8 m of coastal
+    /// 1 hid the table under dark teal), and at the first table's scale it lies about 5 mm
+    /// deep, where the sea's table-sized waves ripple the light rather than focus it into
+    /// speckles.
     fn default() -> Self {
         WaterLook {
-            water_type: WaterType::Coastal1,
-            depth_m: 8.0,
+            water_type: WaterType::OceanicIB,
+            depth_m: 5.0,
             turbidity_ntu: 0.0,
         }
     }

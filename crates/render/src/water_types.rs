@@ -46,14 +46,14 @@ pub enum WaterType {
     OceanicI,
     /// Oceanic IA.
     OceanicIA,
-    /// Oceanic IB.
+    /// Oceanic IB (the default look's).
+    #[default]
     OceanicIB,
     /// Oceanic II.
     OceanicII,
     /// Oceanic III.
     OceanicIII,
     /// Coastal 1: the clearest coastal water.
-    #[default]
     Coastal1,
     /// Coastal 3.
     Coastal3,

@@ -38,7 +38,7 @@ impl Default for WaterRanges {
         Self {
             depth_m: 0.5..=100.0,
             turbidity_ntu: 0.0..=100.0,
-            water_types: vec!["pure".to_string(), "1C".to_string()],
+            water_types: vec!["pure".to_string(), "IB".to_string()],
         }
     }
 }
@@ -82,7 +82,7 @@ pub struct SceneSettings {
 }
 
 impl SceneSettings {
-    /// `effects` as the app offers them, every overlay on, 8 m of coastal water (the app sets
+    /// `effects` as the app offers them, every overlay on, 5 m of oceanic IB water (the app sets
     /// the renderer's own defaults and ranges).
     pub fn new(effects: Vec<EffectToggle>) -> Self {
         Self {
@@ -91,8 +91,8 @@ impl SceneSettings {
                 .iter()
                 .map(|(k, l)| EffectToggle::new(k, l, true))
                 .collect(),
-            water_type: "1C".to_string(),
-            water_depth_m: 8.0,
+            water_type: "IB".to_string(),
+            water_depth_m: 5.0,
             turbidity: 0.0,
             water_ranges: WaterRanges::default(),
             unavailable: Vec::new(),
