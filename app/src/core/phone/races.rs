@@ -8,7 +8,6 @@
 use std::path::{Path, PathBuf};
 
 use super::PhoneApp;
-use crate::core::scene::RaceWorld;
 use crate::core::table;
 
 /// Names the host's races folder.
