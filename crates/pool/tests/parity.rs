@@ -145,8 +145,10 @@ fn the_wgsl_sphere_hit_is_the_f64_one() {
         "{hits} hits of {}",
         rays.len()
     );
-    // Grazing rays may go either way on a conforming GPU; none of these comes that close.
-    assert_eq!((e.disagree, e.undecided), (0, 0));
+    // Grazing rays (a discriminant within its bound of 0) may go either way on a conforming
+    // GPU: 2 of these 400; every other hit or miss agrees.
+    assert_eq!(e.disagree, 0);
+    assert!(e.undecided <= 4, "{} undecided", e.undecided);
     // Each distance within its bound: two dot products, sqrt (1.0/inverseSqrt: 2 + 2.5 ULP)
     // of the discriminant, inputs rounded to f32.
     assert!(e.ratio <= 1.0, "error/bound {:e}", e.ratio);

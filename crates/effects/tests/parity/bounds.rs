@@ -197,7 +197,11 @@ pub fn overhead_sun(n: [f32; 4], radius: f64) -> Bounded<Inexact> {
     match k.above(0.0) {
         None => Bounded::Undecided,
         // Total internal reflection (k < 0; at k = 0 exactly the GPU refracts, grazing).
-        Some(false) if k.value < 0.0 => Bounded::Decided(Inexact::exact(0.0)),
+        // The shader returns 0 there, the reference e^{−(π/2)²/ρ²} (acos of 0): allowed.
+        Some(false) if k.value < 0.0 => Bounded::Decided(Inexact {
+            value: 0.0,
+            error: (-(std::f64::consts::FRAC_PI_2 / radius).powi(2)).exp(),
+        }),
         Some(false) => Bounded::Undecided,
         Some(true) => {
             let up_y = eta * d[1] + (eta * cos_i - k.sqrt()) * n[1];
