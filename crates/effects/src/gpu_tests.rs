@@ -4,8 +4,6 @@
 //! Regenerate the golden images after an intended change of the picture:
 //! `REGATTA_UPDATE_GOLDEN=1 cargo test -p effects --lib gpu_tests`, then look at them.
 
-mod bounds;
-
 use std::path::PathBuf;
 
 use glam::{DVec2, DVec3};
@@ -244,11 +242,6 @@ fn each_effect_changes_the_picture_and_none_changes_nothing() {
 /// Evaluate the WGSL optics on the GPU for `cosines`: (R full, Schlick, refracted x, y) per
 /// cosine, air → water, ray in the x–y plane through a level surface.
 fn wgsl_optics(gpu: &Gpu, cosines: &[f32]) -> Vec<[f32; 4]> {
-    wgsl_optics_with(gpu, cosines, "N_AIR, N_WATER")
-}
-
-/// [`wgsl_optics`] with the kernel's indices `indices` ("n1, n2") in every call.
-fn wgsl_optics_with(gpu: &Gpu, cosines: &[f32], indices: &str) -> Vec<[f32; 4]> {
     let device = &gpu.device;
     let src = format!(
         "{}{}\n{}",
@@ -267,7 +260,6 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         schlick_reflectance(c, N_AIR, N_WATER), t.x, t.y);
 }
 "#
-        .replace("N_AIR, N_WATER", indices)
     );
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("optics parity"),
@@ -312,57 +304,19 @@ fn wgsl_optics_match_the_f64_reference() {
         .map(|i| (f64::from(i) * 0.5).to_radians().cos() as f32)
         .collect();
     let got = wgsl_optics(&gpu, &cosines);
-    let (worst, largest_bound, ratio) = optics_errors(&cosines, &got);
-    eprintln!(
-        "optics: {} cosines, worst |Δ| {worst:.2e}, largest bound {largest_bound:.2e}, worst \
-         error/bound {ratio:.3}",
-        cosines.len()
-    );
-    // Each output within its bound (bounds::optics: division 2.5 ULP, sqrt from
-    // 1.0/inverseSqrt, pow from exp2(y·log2(x)), the rest correctly rounded).
-    assert!(ratio <= 1.0, "error/bound {ratio:e}");
-    // Well under a thousandth of the 2 % normal reflectance on any conforming GPU.
-    assert!(largest_bound < 2e-5, "bound {largest_bound:e}");
-}
-
-/// The GPU's optics against the f64 reference, each output against its bound: the largest
-/// error, the largest bound and the largest error/bound ratio.
-fn optics_errors(cosines: &[f32], got: &[[f32; 4]]) -> (f64, f64, f64) {
-    let (mut worst, mut largest_bound, mut ratio) = (0.0f64, 0.0f64, 0.0f64);
-    for (c32, g) in cosines.iter().zip(got) {
-        let c = f64::from(*c32);
+    let mut worst = 0.0f64;
+    for (c, g) in cosines.iter().zip(&got) {
+        let c = f64::from(*c);
         let full = fresnel(c, N_AIR, N_WATER).r;
         let sch = schlick(c, N_AIR, N_WATER);
         let s = (1.0 - c * c).max(0.0).sqrt();
         let t = refract(DVec3::new(s, -c, 0.0), DVec3::Y, N_AIR, N_WATER).expect("no TIR");
-        let bound = bounds::optics(*c32);
-        for ((a, b), e) in [(g[0], full), (g[1], sch), (g[2], t.x), (g[3], t.y)]
-            .into_iter()
-            .zip(bound)
-        {
-            assert!((e.value - b).abs() < 1e-9, "{c}: {} {b}", e.value);
-            let error = (f64::from(a) - b).abs();
-            worst = worst.max(error);
-            if e.error.is_finite() {
-                largest_bound = largest_bound.max(e.error);
-            }
-            ratio = ratio.max(if error == 0.0 { 0.0 } else { error / e.error });
+        for (a, b) in [(g[0], full), (g[1], sch), (g[2], t.x), (g[3], t.y)] {
+            worst = worst.max((f64::from(a) - b).abs());
         }
     }
-    (worst, largest_bound, ratio)
-}
-
-#[test]
-fn swapped_indices_fail_the_optics_parity() {
-    // The same kernel and check, the GPU's air and water swapped (a ray from water into air):
-    // the reflectance and the bent ray leave their bounds.
-    let Some(gpu) = test_gpu() else { return };
-    let cosines: Vec<f32> = (0..=180)
-        .map(|i| (f64::from(i) * 0.5).to_radians().cos() as f32)
-        .collect();
-    let got = wgsl_optics_with(&gpu, &cosines, "N_WATER, N_AIR");
-    let (_, _, ratio) = optics_errors(&cosines, &got);
-    assert!(ratio > 100.0, "error/bound {ratio:e}");
+    // f32 with a few roundings: well under a thousandth of the 2 % normal reflectance.
+    assert!(worst < 2e-5, "worst WGSL vs f64 difference {worst:e}");
 }
 
 #[test]
@@ -629,37 +583,20 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         .iter()
         .map(|&centre| MarkObstacle { centre, radius })
         .collect();
-    let (mut worst, mut largest_bound, mut ratio) = (0.0f64, 0.0f64, 0.0f64);
-    let (mut inside, mut undecided) = (0, 0);
-    for (p32, g) in points.iter().zip(got) {
-        let p = DVec2::new(f64::from(p32[0]), f64::from(p32[1]));
+    let mut worst = 0.0f64;
+    let mut inside = 0;
+    for (p, g) in points.iter().zip(got) {
+        let p = DVec2::new(f64::from(p[0]), f64::from(p[1]));
         let want = current_at(p, current, &obstacles);
         inside += usize::from(want == DVec2::ZERO);
         worst = worst.max((DVec2::new(f64::from(g[0]), f64::from(g[1])) - want).length());
-        // Each component within its bound (bounds::current_at: WGSL's accuracy of each
-        // operation, the division 2.5 ULP); on a mark's rim either side is right.
-        let Some(bound) = bounds::current_at(*p32, current, radius, &marks) else {
-            undecided += 1;
-            continue;
-        };
-        for (c, b) in bound.iter().enumerate() {
-            assert!((b.value - want[c]).abs() < 1e-9, "{p}: {} {}", b.value, want[c]);
-            let error = (f64::from(g[c]) - want[c]).abs();
-            largest_bound = largest_bound.max(b.error);
-            ratio = ratio.max(if error == 0.0 { 0.0 } else { error / b.error });
-        }
     }
-    eprintln!(
-        "current_at: {} points ({inside} inside the marks, {undecided} on a rim), worst |Δv| \
-         {worst:.2e} m/s, largest bound {largest_bound:.2e} m/s, worst error/bound {ratio:.3}",
-        points.len()
-    );
     assert!(
         inside > 10,
         "the grid reaches into the marks: {inside} points"
     );
-    assert!(undecided <= 4, "{undecided} points on a rim");
-    assert!(ratio <= 1.0, "error/bound {ratio:e}");
+    // f32 arithmetic on metre-sized offsets: a millionth of the 0.65 m/s current.
+    assert!(worst < 1e-5, "worst WGSL vs f64 difference {worst:e} m/s");
 }
 
 /// The camera image fills every pixel behind the scene, so the sky is not drawn under it: the

@@ -59,7 +59,11 @@ fn worst_edge_weight_error(got: &[f32], points: &[[f32; 2]]) -> (f64, f64, f64) 
         let error = (f64::from(*g) - want).abs();
         worst = worst.max(error);
         largest_bound = largest_bound.max(bound.error);
-        ratio = ratio.max(if error == 0.0 { 0.0 } else { error / bound.error });
+        ratio = ratio.max(if error == 0.0 {
+            0.0
+        } else {
+            error / bound.error
+        });
     }
     (worst, largest_bound, ratio)
 }
@@ -103,7 +107,10 @@ fn a_broken_edge_fade_fails_the_edge_weight_parity() {
     let points = points();
     let got = wgsl_edge_weights(&gpu, &broken, &points);
     let (worst, bound, _) = worst_edge_weight_error(&got, &points);
-    assert!(worst > 0.4 && worst > 100.0 * bound, "{worst:e} against {bound:e}");
+    assert!(
+        worst > 0.4 && worst > 100.0 * bound,
+        "{worst:e} against {bound:e}"
+    );
 }
 
 // ---- overhead_sun (caustics.wgsl) --------------------------------------------------------------
@@ -165,11 +172,19 @@ fn worst_sun_error(got: &[f32], normals: &[[f32; 4]]) -> (f64, f64, f64, usize) 
             undecided += 1;
             continue;
         };
-        assert!((bound.value - want).abs() < 1e-9, "{n4:?}: {} {want}", bound.value);
+        assert!(
+            (bound.value - want).abs() < 1e-9,
+            "{n4:?}: {} {want}",
+            bound.value
+        );
         let error = (f64::from(*g) - want).abs();
         worst = worst.max(error);
         largest_bound = largest_bound.max(bound.error);
-        ratio = ratio.max(if error == 0.0 { 0.0 } else { error / bound.error });
+        ratio = ratio.max(if error == 0.0 {
+            0.0
+        } else {
+            error / bound.error
+        });
     }
     (worst, largest_bound, ratio, undecided)
 }
@@ -212,7 +227,10 @@ fn a_broken_sun_radius_fails_the_overhead_sun_parity() {
     let normals = sun_normals();
     let got = wgsl_overhead_sun(&gpu, &prelude.replace(&line, &doubled), &normals);
     let (worst, bound, _, _) = worst_sun_error(&got, &normals);
-    assert!(worst > 0.3 && worst > 100.0 * bound, "{worst:e} against {bound:e}");
+    assert!(
+        worst > 0.3 && worst > 100.0 * bound,
+        "{worst:e} against {bound:e}"
+    );
 }
 
 // ---- the effects' uniform and camera image, for ring_hit and refracted_table -------------------
@@ -540,7 +558,10 @@ enum Sampling {
 fn effects_common_with_spy() -> String {
     let signature = "fn sample_camera(uv: vec2<f32>) -> vec3<f32> {";
     let common = effects::passes::EFFECTS_COMMON;
-    assert!(common.contains(signature), "sample_camera changed its signature");
+    assert!(
+        common.contains(signature),
+        "sample_camera changed its signature"
+    );
     // The spy still calls the real one (its result times 0), so the pipeline keeps the
     // texture and sampler bindings the test binds.
     let spy = "fn sample_camera(uv: vec2<f32>) -> vec3<f32> {\n    \
@@ -548,7 +569,10 @@ fn effects_common_with_spy() -> String {
                0.0 * sample_camera_texture(uv).r);\n}\n";
     format!(
         "{}\n{spy}",
-        common.replace(signature, "fn sample_camera_texture(uv: vec2<f32>) -> vec3<f32> {")
+        common.replace(
+            signature,
+            "fn sample_camera_texture(uv: vec2<f32>) -> vec3<f32> {"
+        )
     )
 }
 
@@ -732,7 +756,11 @@ fn the_wgsl_refracted_table_is_the_f64_one() {
             // through the refraction, the plane hit and the projection (and for the image,
             // what the texture unit may add).
             assert!(e.uv_ratio <= 1.0, "|Δuv| over its bound: {:.3}", e.uv_ratio);
-            assert!(e.path_ratio <= 1.0, "|Δpath| over its bound: {:.3}", e.path_ratio);
+            assert!(
+                e.path_ratio <= 1.0,
+                "|Δpath| over its bound: {:.3}",
+                e.path_ratio
+            );
             // Branches a conforming GPU may take either way: none in these views.
             assert_eq!(e.undecided, 0);
             if sampling == Sampling::Spy {

@@ -344,9 +344,12 @@ fn compare_box_exits(got: &[[[f32; 4]; 2]], rays: &[[[f32; 4]; 2]], b: &PoolBox)
         let point = bounds::exit_point(*o4, *d4, exit.s);
         let errors = [
             (f64::from(hit[3]) - h.s).abs() / s_bound,
-            (f64::from(hit[0]) - h.point.x).abs() / ((point[0].value - h.point.x).abs() + point[0].error),
-            (f64::from(hit[1]) - h.point.y).abs() / ((point[1].value - h.point.y).abs() + point[1].error),
-            (f64::from(hit[2]) - h.point.z).abs() / ((point[2].value - h.point.z).abs() + point[2].error),
+            (f64::from(hit[0]) - h.point.x).abs()
+                / ((point[0].value - h.point.x).abs() + point[0].error),
+            (f64::from(hit[1]) - h.point.y).abs()
+                / ((point[1].value - h.point.y).abs() + point[1].error),
+            (f64::from(hit[2]) - h.point.z).abs()
+                / ((point[2].value - h.point.z).abs() + point[2].error),
         ];
         e.worst = e
             .worst
@@ -425,7 +428,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 /// edge: `bounds::tile_edge_width` at the box's largest coordinate.
 fn tile_border() -> f64 {
     let b = pool_box().1;
-    let extent = b.half_x.max(b.half_z).max(b.rim_y.abs()).max(b.floor_y.abs());
+    let extent = b
+        .half_x
+        .max(b.half_z)
+        .max(b.rim_y.abs())
+        .max(b.floor_y.abs());
     let border = bounds::tile_edge_width(extent, TILE, GROUT, b.rim_y);
     // Far below the grout (a broken grout moves edges by a whole grout width).
     assert!(border < GROUT / 100.0, "{border}");

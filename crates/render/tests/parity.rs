@@ -171,9 +171,7 @@ fn the_drawn_vertices_match_the_f64_sea_with_their_level_masks_and_fade() {
             .filter_map(|(i, w)| {
                 let kept = |l: usize| frame.levels.get(l).is_some_and(|p| p.kept.contains(&i));
                 let weight = if kept(level + 1) { 1.0 } else { fade };
-                kept(level).then(|| {
-                    bounds::gerstner(w, at).map(|c| c * Inexact::of(weight as f32))
-                })
+                kept(level).then(|| bounds::gerstner(w, at).map(|c| c * Inexact::of(weight as f32)))
             })
             .collect();
         let bound = bounds::accumulate(rest.map(Inexact::exact), &terms);
@@ -281,10 +279,12 @@ fn the_drawn_foam_is_probes_foam_within_one_level() {
         .iter()
         .zip(&points)
         .zip(reference.iter().zip(&foam_bounds))
-        .filter(|((g, (_, wake)), (r, b)): &((&[f32; 2], &([f32; 2], f32)), (&f64, &Inexact))| {
-            let old = ((0.72 - g[1]) / 0.35).clamp(0.0, 1.0).max(*wake);
-            (f64::from(old) - **r).abs() > b.error
-        })
+        .filter(
+            |((g, (_, wake)), (r, b)): &((&[f32; 2], &([f32; 2], f32)), (&f64, &Inexact))| {
+                let old = ((0.72 - g[1]) / 0.35).clamp(0.0, 1.0).max(*wake);
+                (f64::from(old) - **r).abs() > b.error
+            },
+        )
         .count();
     assert!(drifted > 200, "only {drifted} points tell the rules apart");
 }

@@ -15,7 +15,12 @@ const TOLERANCE: f64 = 1.0 / 255.0;
 /// `water_transmitted` of `water_look.wgsl` evaluated with WGSL's accuracy of each operation
 /// (exp 3 + 2|x| ULP, division 2.5 ULP, the rest correctly rounded), the constants and the
 /// uniform the f32 of the reference's f64: per channel, the value and its bound.
-fn transmitted_bound(table: [f32; 3], room: [f32; 3], path_m: f32, look: &WaterLook) -> [Inexact; 3] {
+fn transmitted_bound(
+    table: [f32; 3],
+    room: [f32; 3],
+    path_m: f32,
+    look: &WaterLook,
+) -> [Inexact; 3] {
     let constant = |name: &str, i: usize| {
         let (_, v) = render::water_look::wgsl_values()
             .into_iter()
@@ -30,7 +35,10 @@ fn transmitted_bound(table: [f32; 3], room: [f32; 3], path_m: f32, look: &WaterL
     let one = Inexact::exact(1.0);
     std::array::from_fn(|i| {
         let b = Inexact::input(b64, water_a[3]);
-        let td = Inexact::input((-(absorption[i] + b64) * look.depth_m / mu).exp(), water_a[i]);
+        let td = Inexact::input(
+            (-(absorption[i] + b64) * look.depth_m / mu).exp(),
+            water_a[i],
+        );
         let c = constant("WATER_ABSORPTION", i) + b;
         let tv = (-c * Inexact::of(path_m)).exp();
         let t = Inexact::of(table[i]);
@@ -76,7 +84,11 @@ fn worst_error(look: &WaterLook, gpu_out: &[[f32; 3]]) -> (f64, f64, f64) {
             let error = (f64::from(g[c]) - want[c]).abs();
             worst = worst.max(error);
             largest_bound = largest_bound.max(bound[c].error);
-            ratio = ratio.max(if error == 0.0 { 0.0 } else { error / bound[c].error });
+            ratio = ratio.max(if error == 0.0 {
+                0.0
+            } else {
+                error / bound[c].error
+            });
         }
     }
     (worst, largest_bound, ratio)
@@ -129,5 +141,8 @@ fn a_wrong_depth_would_fail_the_parity_check() {
     };
     let out = render::compute::gpu_water_transmitted(&gpu, &three, &items(&one)).unwrap();
     let (e, bound, ratio) = worst_error(&one, &out);
-    assert!(e > 10.0 * TOLERANCE && ratio > 100.0, "only {e} (bound {bound})");
+    assert!(
+        e > 10.0 * TOLERANCE && ratio > 100.0,
+        "only {e} (bound {bound})"
+    );
 }

@@ -182,7 +182,11 @@ pub fn refracted_table(
 /// GPU gets its f32): the upward ray refracted out of the water, the Gaussian of its angle
 /// from the zenith; 0 under total internal reflection.
 pub fn overhead_sun(n: [f32; 4], radius: f64) -> Bounded<Inexact> {
-    let d = [Inexact::exact(0.0), Inexact::exact(1.0), Inexact::exact(0.0)];
+    let d = [
+        Inexact::exact(0.0),
+        Inexact::exact(1.0),
+        Inexact::exact(0.0),
+    ];
     let n_in = vec3(n);
     let facing = dot(&d, &n_in);
     let n = match facing.above(0.0) {

@@ -45,7 +45,10 @@ fn the_bounds_state_the_specifications_numbers() {
     // An exact argument: each built-in's own allowance and nothing more.
     let x = Inexact::of(0.75);
     assert_eq!(x.sin().error, 2f64.powi(-11));
-    assert_eq!((Inexact::of(1.0) / Inexact::of(3.0)).error, 2.5 * ulp(1.0 / 3.0));
+    assert_eq!(
+        (Inexact::of(1.0) / Inexact::of(3.0)).error,
+        2.5 * ulp(1.0 / 3.0)
+    );
     assert_eq!(x.inverse_sqrt().error, 2.0 * ulp(1.0 / 0.75f64.sqrt()));
     assert_eq!(Inexact::of(2.0).exp().error, 7.0 * ulp(2f64.exp()));
     assert_eq!(x.log2().error, 2f64.powi(-21));
@@ -131,7 +134,13 @@ impl Adversary {
 
 /// One refraction and plane hit as `refract_dir` and `ray_plane` compute them, with both
 /// arithmetics: returns (exact, bound) and the adversary's f32 result, per component.
-fn refract_to_plane(d: [f32; 3], n: [f32; 3], o: [f32; 3], depth: f32, adv: &mut Adversary) -> ([Inexact; 3], [f32; 3]) {
+fn refract_to_plane(
+    d: [f32; 3],
+    n: [f32; 3],
+    o: [f32; 3],
+    depth: f32,
+    adv: &mut Adversary,
+) -> ([Inexact; 3], [f32; 3]) {
     // The bound.
     let di = d.map(Inexact::of);
     let ni = n.map(Inexact::of);
@@ -187,7 +196,11 @@ fn a_refracted_plane_hit_stays_within_its_bound_on_a_worst_case_gpu() {
         let d = [el.cos() * az.cos(), -el.sin(), el.cos() * az.sin()];
         let (tilt, naz) = (rng.range(0.0, 1.05), rng.range(0.0, 2.0 * PI));
         let n = [tilt.sin() * naz.cos(), tilt.cos(), tilt.sin() * naz.sin()];
-        let o = [rng.range(-5.0, 5.0), rng.range(-0.3, 0.3), rng.range(-5.0, 5.0)];
+        let o = [
+            rng.range(-5.0, 5.0),
+            rng.range(-0.3, 0.3),
+            rng.range(-5.0, 5.0),
+        ];
         let depth = rng.range(0.01, 10.0) as f32;
         let (bound, got) = refract_to_plane(
             d.map(|c| c as f32),
@@ -235,7 +248,11 @@ fn a_wave_sum_stays_within_its_bound_on_a_worst_case_gpu() {
             let term = adv.mul(Gpu32(a), s);
             sum_g = adv.add(sum_g, term);
         }
-        assert!((f64::from(sum_g.0) - sum.value).abs() <= sum.error, "{} {sum:?}", sum_g.0);
+        assert!(
+            (f64::from(sum_g.0) - sum.value).abs() <= sum.error,
+            "{} {sum:?}",
+            sum_g.0
+        );
         let path = rng.range(0.0, 20.0) as f32;
         let e = (-Inexact::of(path)).exp();
         let e_g = adv.exp(Gpu32(-path));
@@ -258,8 +275,16 @@ fn the_cpus_own_f32_lies_within_the_bounds() {
         assert!((f64::from(x.acos()) - b.value).abs() <= b.error, "acos {x}");
         let (base, e) = (rng.range(0.01, 4.0) as f32, rng.range(-3.0, 3.0) as f32);
         let p = Inexact::of(base).pow(Inexact::of(e));
-        assert!((f64::from(base.powf(e)) - p.value).abs() <= p.error, "pow {base} {e}");
-        let v = [rng.range(-3.0, 3.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)].map(|c| c as f32);
+        assert!(
+            (f64::from(base.powf(e)) - p.value).abs() <= p.error,
+            "pow {base} {e}"
+        );
+        let v = [
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+        ]
+        .map(|c| c as f32);
         let n = normalize(v.map(Inexact::of));
         let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
         for i in 0..3 {

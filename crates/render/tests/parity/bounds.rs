@@ -88,7 +88,10 @@ pub fn foam(waves: &[WaveBound], p: [Inexact; 2], wake: (f64, f32)) -> Inexact {
     }
     let (xx, xz, zz) = (sum(&xx), sum(&xz), sum(&zz));
     let jacobian = xx * zz - xz * xz;
-    let onset = Inexact::input(ocean::FOAM_ONSET_JACOBIAN, ocean::FOAM_ONSET_JACOBIAN as f32);
+    let onset = Inexact::input(
+        ocean::FOAM_ONSET_JACOBIAN,
+        ocean::FOAM_ONSET_JACOBIAN as f32,
+    );
     let sea = ((onset - jacobian) / onset).clamp(0.0, 1.0);
     let wake = Inexact::input(wake.0, wake.1).clamp(0.0, 1.0);
     one - (one - sea) * (one - wake)
