@@ -12,6 +12,9 @@ use pool::trace::{GROUT, TILE, tile_albedo};
 use render::gpu::{Gpu, test_gpu};
 use wgpu::util::DeviceExt;
 
+#[path = "parity/bounds.rs"]
+mod bounds;
+
 /// One ray against one sphere: origin, direction (unit), sphere centre and radius.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -71,37 +74,84 @@ fn cases(rays: &[(Ray, Sphere)]) -> Vec<Case> {
         .collect()
 }
 
-/// The largest distance error of the GPU hits, metres, and whether every hit or miss agrees.
-fn compare(got: &[f32], rays: &[(Ray, Sphere)]) -> (f64, usize) {
-    let mut worst = 0.0f64;
-    let mut disagree = 0;
-    for (g, (ray, sphere)) in got.iter().zip(rays) {
-        match sphere.hit(ray) {
-            Some(s) if *g >= 0.0 => worst = worst.max((f64::from(*g) - s).abs()),
-            None if *g < 0.0 => {}
-            _ => disagree += 1,
+/// The GPU hits against `Sphere::hit`, each against its own bound (`bounds::hit_sphere`: near
+/// grazing the discriminant is small and its square root magnifies its error): the largest
+/// distance error, metres, the largest bound, the largest error/bound ratio, how many hits or
+/// misses disagree, and the rays a conforming GPU may decide either way (not bounded).
+struct SphereErrors {
+    worst: f64,
+    bound: f64,
+    ratio: f64,
+    disagree: usize,
+    undecided: usize,
+}
+
+fn compare(got: &[f32], rays: &[(Ray, Sphere)]) -> SphereErrors {
+    let mut e = SphereErrors {
+        worst: 0.0,
+        bound: 0.0,
+        ratio: 0.0,
+        disagree: 0,
+        undecided: 0,
+    };
+    let truth = cases(rays);
+    for ((g, (ray, sphere)), c) in got.iter().zip(rays).zip(&truth) {
+        let bound = bounds::hit_sphere(
+            (ray.origin, c.origin),
+            (ray.dir, c.dir),
+            (sphere.center, sphere.radius, c.sphere),
+        );
+        let bound = match bound {
+            bounds::Bounded::Decided(b) => b,
+            bounds::Bounded::Undecided => {
+                e.undecided += 1;
+                continue;
+            }
+        };
+        match (sphere.hit(ray), bound) {
+            (Some(s), Some(b)) if *g >= 0.0 => {
+                assert!((b.value - s).abs() < 1e-9, "{} {s}", b.value);
+                let error = (f64::from(*g) - s).abs();
+                e.worst = e.worst.max(error);
+                e.bound = e.bound.max(b.error);
+                e.ratio = e.ratio.max(error / b.error);
+            }
+            (None, None) if *g < 0.0 => {}
+            _ => e.disagree += 1,
         }
     }
-    (worst, disagree)
+    e
 }
 
 #[test]
 fn the_wgsl_sphere_hit_is_the_f64_one() {
     let Some(gpu) = test_gpu() else { return };
     let rays = rays();
-    let got = wgsl_hits(&gpu, &cases(&rays));
-    let (worst, disagree) = compare(&got, &rays);
+    let cases = cases(&rays);
+    let got = wgsl_hits(&gpu, &cases);
+    let e = compare(&got, &rays);
     let hits = got.iter().filter(|g| **g >= 0.0).count();
+    eprintln!(
+        "hit_sphere: {} rays, {hits} hits ({} undecided), worst |Δs| {:.2e} m, largest bound \
+         {:.2e} m, worst error/bound {:.3}",
+        rays.len(),
+        e.undecided,
+        e.worst,
+        e.bound,
+        e.ratio
+    );
     assert!(
         hits > 50 && hits < rays.len() - 50,
         "{hits} hits of {}",
         rays.len()
     );
-    // Grazing rays may disagree in f32; none here comes within a micrometre of grazing.
-    assert_eq!(disagree, 0);
-    // Distances of 1–3 m in f32; near-grazing rays lose most (the square root of a small
-    // discriminant): under a millimetre, a tenth of what a 1 cm larger sphere moves.
-    assert!(worst < 1e-3, "worst {worst:e} m");
+    // Grazing rays (a discriminant within its bound of 0) may go either way on a conforming
+    // GPU: 2 of these 400; every other hit or miss agrees.
+    assert_eq!(e.disagree, 0);
+    assert!(e.undecided <= 4, "{} undecided", e.undecided);
+    // Each distance within its bound: two dot products, sqrt (1.0/inverseSqrt: 2 + 2.5 ULP)
+    // of the discriminant, inputs rounded to f32.
+    assert!(e.ratio <= 1.0, "error/bound {:e}", e.ratio);
 }
 
 #[test]
@@ -114,17 +164,16 @@ fn a_broken_sphere_fails_the_sphere_hit_parity() {
         c.sphere[3] += 0.01;
     }
     let got = wgsl_hits(&gpu, &broken);
-    let (worst, disagree) = compare(&got, &rays);
+    let e = compare(&got, &rays);
     assert!(
-        worst > 5e-3 || disagree > 0,
-        "worst {worst:e} m, {disagree} disagree"
+        e.ratio > 100.0 || e.disagree > 0,
+        "error/bound {:e}, {} disagree",
+        e.ratio,
+        e.disagree
     );
 }
 
 // ---- the box (box_inside, tile_albedo): the pool uniform's box bound as group 1 ----------------
-
-/// f32 unit roundoff.
-const U: f64 = f32::EPSILON as f64 / 2.0;
 
 /// The default pool's box as the GPU gets it (f32), and the same values as the reference's.
 fn pool_box() -> ([f32; 4], PoolBox) {
@@ -234,58 +283,85 @@ fn face_none() -> f32 {
     }
 }
 
-/// Against `PoolBox::hit_inside` at the same (f32) rays: the largest error of the exit point
-/// relative to the distances it comes from (|o| + s + the box's extent), the rays that leave
-/// through another face (allowed at an edge: the reference's exit lies within `edge` metres
-/// of the GPU's face too), and the rays the two disagree on away from any edge.
-fn compare_box_exits(
-    got: &[[[f32; 4]; 2]],
-    rays: &[[[f32; 4]; 2]],
-    b: &PoolBox,
-    edge: f64,
-) -> (f64, usize, usize) {
+/// The face numbers of `box_inside`: west, east, north, south, floor, and the open top.
+fn face_numbers() -> [u32; 6] {
+    [
+        Face::West as u32,
+        Face::East as u32,
+        Face::North as u32,
+        Face::South as u32,
+        Face::Floor as u32,
+        face_none() as u32,
+    ]
+}
+
+/// Against `PoolBox::hit_inside` at the same (f32) rays, each against its own bound
+/// (`bounds::box_exits`): the GPU's face must be one a conforming GPU may pick (an exit whose
+/// distance lies within the errors of the smallest: at an edge, either face), its distance
+/// and point within that exit's bound of the reference's. Returns the largest error of the
+/// exit point and distance, metres, the largest bound, the largest error/bound ratio, the
+/// rays that left through another face that a conforming GPU may pick (at an edge), and the
+/// rays whose face no conforming GPU picks.
+struct BoxErrors {
+    worst: f64,
+    bound: f64,
+    ratio: f64,
+    at_edges: usize,
+    disagree: usize,
+}
+
+fn compare_box_exits(got: &[[[f32; 4]; 2]], rays: &[[[f32; 4]; 2]], b: &PoolBox) -> BoxErrors {
     let dvec = |v: [f32; 4]| DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]));
-    let extent = b.half_x + b.half_z + b.rim_y - b.floor_y;
-    // Which planes a point lies on (within `edge`): the faces in order, then the rim.
-    let on = |p: DVec3| {
-        [
-            (p.y - b.floor_y).abs(),
-            (p.x + b.half_x).abs(),
-            (p.x - b.half_x).abs(),
-            (p.z + b.half_z).abs(),
-            (p.z - b.half_z).abs(),
-            (p.y - b.rim_y).abs(),
-        ]
-        .map(|d| d < edge)
+    let box_ = pool_box().0;
+    let mut e = BoxErrors {
+        worst: 0.0,
+        bound: 0.0,
+        ratio: 0.0,
+        at_edges: 0,
+        disagree: 0,
     };
-    let (mut worst, mut at_edges, mut disagree) = (0.0f64, 0, 0);
     let none = face_none();
-    for ([hit, normal], [o, d]) in got.iter().zip(rays) {
-        let (o, d) = (dvec(*o), dvec(*d));
+    for ([hit, normal], [o4, d4]) in got.iter().zip(rays) {
+        let (o, d) = (dvec(*o4), dvec(*d4));
         let want = b.hit_inside(&Ray { origin: o, dir: d });
-        let (face, point) = (normal[3], dvec(*hit));
-        let want_face = want.map_or(none, |h| h.face as u32 as f32);
-        // The reference's exit point, through the rim when it has none.
-        let want_point = want.map_or_else(|| o + d * ((b.rim_y - o.y) / d.y), |h| h.point);
-        if face != want_face {
-            if on(want_point)[face as usize] {
-                at_edges += 1;
-            } else {
-                disagree += 1;
-            }
+        let face = normal[3];
+        let exits = bounds::box_exits(box_, *o4, *d4, face_numbers());
+        let Some(exit) = exits.iter().find(|x| x.face as f32 == face) else {
+            e.disagree += 1;
             continue;
+        };
+        let want_face = want.map_or(none, |h| h.face as u32 as f32);
+        if face != want_face {
+            e.at_edges += 1;
         }
         let Some(h) = want else { continue };
-        let want_normal = h.normal.as_vec3().to_array();
-        if normal[..3] != want_normal {
-            disagree += 1;
+        if face == want_face && normal[..3] != h.normal.as_vec3().to_array() {
+            e.disagree += 1;
         }
-        let scale = o.length() + h.s + extent;
-        worst = worst
-            .max((point - h.point).length() / scale)
-            .max((f64::from(hit[3]) - h.s).abs() / scale);
+        // The reference's distance against the picked exit's bound (its value differs from
+        // the reference's by the distance between the two candidates at an edge).
+        let s_bound = (exit.s.value.max(0.0) - h.s).abs() + exit.s.error;
+        let point = bounds::exit_point(*o4, *d4, exit.s);
+        let errors = [
+            (f64::from(hit[3]) - h.s).abs() / s_bound,
+            (f64::from(hit[0]) - h.point.x).abs()
+                / ((point[0].value - h.point.x).abs() + point[0].error),
+            (f64::from(hit[1]) - h.point.y).abs()
+                / ((point[1].value - h.point.y).abs() + point[1].error),
+            (f64::from(hit[2]) - h.point.z).abs()
+                / ((point[2].value - h.point.z).abs() + point[2].error),
+        ];
+        e.worst = e
+            .worst
+            .max((dvec(*hit) - h.point).length())
+            .max((f64::from(hit[3]) - h.s).abs());
+        e.bound = e.bound.max(s_bound);
+        e.ratio = errors
+            .iter()
+            .map(|r| if r.is_nan() { 0.0 } else { *r })
+            .fold(e.ratio, f64::max);
     }
-    (worst, at_edges, disagree)
+    e
 }
 
 #[test]
@@ -294,24 +370,24 @@ fn the_wgsl_box_exit_is_the_f64_one() {
     let (box_, b) = pool_box();
     let rays = box_rays(&b);
     let got = wgsl_box_exits(&gpu, box_, &rays);
-    // The exit distance is a difference over a quotient, (bound − o)/d, and the comparisons
-    // pick the smallest: two exits closer than a few u of the box's extent (3.75 m) may go
-    // either way, so an exit within 1e-6 m of an edge may be the neighbouring face's.
-    let (worst, at_edges, disagree) = compare_box_exits(&got, &rays, &b, 1e-6);
+    let e = compare_box_exits(&got, &rays, &b);
     let faces: Vec<usize> = (0..6)
         .map(|f| got.iter().filter(|g| g[1][3] == f as f32).count())
         .collect();
     eprintln!(
-        "box_inside: {} rays (floor, west, east, north, south, top: {faces:?}), worst |Δ| {:.1} u \
-         of the distances, {at_edges} at an edge on another face",
+        "box_inside: {} rays (floor, west, east, north, south, top: {faces:?}), worst |Δ| \
+         {:.2e} m, largest bound {:.2e} m, worst error/bound {:.3}, {} at an edge on another \
+         face",
         rays.len(),
-        worst / U
+        e.worst,
+        e.bound,
+        e.ratio,
+        e.at_edges
     );
-    assert_eq!(disagree, 0);
+    assert_eq!(e.disagree, 0);
     assert!(faces.iter().all(|&n| n > 100), "{faces:?}");
-    // s = (bound − o)/d: a subtraction and a division, each ≤ u of the distances involved,
-    // the point o + d·s two more: 8 u of |o| + s + the box's extent.
-    assert!(worst < 8.0 * U, "worst {worst:e}");
+    // s = (bound − o)/d: a subtraction and a division (2.5 ULP), the point o + d·s.
+    assert!(e.ratio <= 1.0, "error/bound {:e}", e.ratio);
 }
 
 #[test]
@@ -322,10 +398,12 @@ fn a_broken_box_fails_the_box_exit_parity() {
     box_[0] += 0.01;
     let rays = box_rays(&b);
     let got = wgsl_box_exits(&gpu, box_, &rays);
-    let (worst, _, disagree) = compare_box_exits(&got, &rays, &b, 1e-6);
+    let e = compare_box_exits(&got, &rays, &b);
     assert!(
-        worst > 1e-4 || disagree > 0,
-        "worst {worst:e}, {disagree} disagree"
+        e.ratio > 100.0 || e.disagree > 0,
+        "error/bound {:e}, {} disagree",
+        e.ratio,
+        e.disagree
     );
 }
 
@@ -344,6 +422,21 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 "#;
     let bytes = run_on_box(gpu, prelude, kernel, pool_box().0, points, 16);
     bytemuck::cast_slice(&bytes).to_vec()
+}
+
+/// The width, metres, within which a conforming GPU may put a point on either side of a tile
+/// edge: `bounds::tile_edge_width` at the box's largest coordinate.
+fn tile_border() -> f64 {
+    let b = pool_box().1;
+    let extent = b
+        .half_x
+        .max(b.half_z)
+        .max(b.rim_y.abs())
+        .max(b.floor_y.abs());
+    let border = bounds::tile_edge_width(extent, TILE, GROUT, b.rim_y);
+    // Far below the grout (a broken grout moves edges by a whole grout width).
+    assert!(border < GROUT / 100.0, "{border}");
+    border
 }
 
 const FACES: [Face; 5] = [
@@ -429,17 +522,16 @@ fn the_wgsl_tile_albedo_is_the_f64_one() {
     let Some(gpu) = test_gpu() else { return };
     let points = tile_points(&pool_box().1);
     let got = wgsl_albedos(&gpu, &pool::wgsl::prelude(), &points);
-    // An edge of |coordinate| ≤ 1.2 m moves by the f32 rounding of the point (≤ 0.5 ulp,
-    // 6e-8 m), of TILE and GROUT (≤ 12 tiles · 1.5e-9 m) and of uv/TILE − floor(uv/TILE)
-    // (≤ 2 ulps of 12, 1.9e-6 tiles, 1.9e-7 m): within 1e-6 m of an edge either colour is
-    // right, everywhere else the very colour.
-    let (wrong, at_borders) = compare_albedos(&got, &points, 1e-6);
+    // Within `border` of a tile, grout, band or lane edge either colour is right: how far a
+    // conforming GPU may move an edge at the pool's largest coordinate (bounds::tile_edge_width).
+    let border = tile_border();
+    let (wrong, at_borders) = compare_albedos(&got, &points, border);
     let colours: std::collections::HashSet<[u32; 3]> = got
         .iter()
         .map(|g| [g[0], g[1], g[2]].map(f32::to_bits))
         .collect();
     eprintln!(
-        "tile_albedo: {} points, {at_borders} within 1e-6 m of an edge, {wrong} wrong",
+        "tile_albedo: {} points, {at_borders} within {border:.2e} m of an edge, {wrong} wrong",
         points.len()
     );
     assert_eq!(wrong, 0);
@@ -461,6 +553,6 @@ fn a_broken_grout_fails_the_tile_albedo_parity() {
     );
     let points = tile_points(&pool_box().1);
     let got = wgsl_albedos(&gpu, &broken, &points);
-    let (wrong, _) = compare_albedos(&got, &points, 1e-6);
+    let (wrong, _) = compare_albedos(&got, &points, tile_border());
     assert!(wrong > 1000, "{wrong} wrong");
 }

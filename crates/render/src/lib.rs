@@ -19,6 +19,8 @@
 //! - [`wake_bins`]: the wake sources binned for the GPU within the buffer limits and budget.
 //! - [`compute`]: the same WGSL sea on a compute shader (the f64 parity test);
 //!   [`mesh_error`]: a clip-map's measured screen-space height error (the mesh bench).
+//! - [`wgsl_accuracy`]: the f32 accuracy WGSL guarantees per built-in and the running error
+//!   bound every GPU parity test derives its tolerance from.
 //!
 //! # Adding a pass (effects, wakes, pool)
 //! 1. **WGSL**: one file `shaders/<name>.wgsl` (in the crate that owns the pass) with `vs_main`/`fs_main` (or `cs_main`). It is
@@ -58,6 +60,7 @@ mod timing;
 pub mod wake_bins;
 pub mod water_look;
 pub mod water_types;
+pub mod wgsl_accuracy;
 
 pub use camera::{Camera, OrbitCamera};
 pub use frame::{FRAME_REUSED, FrameReport, Pass};
