@@ -441,6 +441,33 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
         assert_eq!(c.alu, 8.0 + 1.0 + 12.0 + 30.0, "{c:?}");
     }
 
+    /// The hand-counted shader above by function: `surface_frame`'s loop (3 × 10 turns) is
+    /// its share, the rest the entry's own; a function called in a loop counts once per turn.
+    #[test]
+    fn a_function_share_is_its_calls_work_as_counted_by_hand() {
+        let src = r#"
+fn double_up(x: f32) -> f32 { return x * 2.0 + 1.0; }
+fn surface_frame(n: u32) -> f32 {
+    var x = 0.0;
+    for (var i = 0u; i < n; i = i + 1u) { x = double_up(x); }
+    return x;
+}
+@fragment
+fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(surface_frame(u32(p.x)) + double_up(p.y));
+}
+"#;
+        let total = entry_cost(src, "fs", &TRIPS).unwrap();
+        let shares = function_costs(src, "fs", &TRIPS).unwrap();
+        let share = |name: &str| shares.iter().find(|(n, _)| n == name).unwrap().1.alu;
+        // double_up: 2 per call, 10 calls in the loop and 1 in the entry; the loop's compare and
+        // increment 2 per turn; the entry: u32(p.x) and the add.
+        assert_eq!(share("double_up"), 2.0 * 11.0);
+        assert_eq!(share("surface_frame"), (2.0 + 2.0) * 10.0);
+        assert_eq!(total.alu, 40.0 + 2.0 + 2.0, "{total:?}");
+        assert_eq!(shares[0].0, "surface_frame");
+    }
+
     /// A branch on a pipeline constant counts only the branch that runs.
     #[test]
     fn pipeline_constants_prune_branches() {
