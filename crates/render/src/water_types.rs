@@ -299,7 +299,9 @@ fn fit(kd: &[f64; 13]) -> Components {
             (rest, one.yellow(nm), one.particles(nm), w)
         })
         .collect();
-    let sum = |f: &dyn Fn(&(f64, f64, f64, f64)) -> f64| rows.iter().map(f).sum::<f64>();
+    // (rest, yellow, particles, weight) at one wavelength.
+    type FitRow = (f64, f64, f64, f64);
+    let sum = |f: &dyn Fn(&FitRow) -> f64| rows.iter().map(f).sum::<f64>();
     let s11 = sum(&|r| r.3 * r.1 * r.1);
     let s12 = sum(&|r| r.3 * r.1 * r.2);
     let s22 = sum(&|r| r.3 * r.2 * r.2);

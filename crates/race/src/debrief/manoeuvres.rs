@@ -168,7 +168,7 @@ pub fn detect(
     settings: &Settings,
 ) -> Vec<Manoeuvre> {
     let st = settings;
-    if !(to > from) || boat.fixes().len() < 3 {
+    if to.partial_cmp(&from) != Some(std::cmp::Ordering::Greater) || boat.fixes().len() < 3 {
         return Vec::new();
     }
     // Look from a minute earlier, so a manoeuvre just after `from` has its side before.

@@ -305,7 +305,7 @@ fn symmetry_axis(samples: &[Sample]) -> f64 {
     // Half-degree candidates: the mirror of bin i about a is bin 2a - i.
     for a2 in 0..360 {
         let score: f64 = (0..360)
-            .map(|i| sm[i] * sm[(a2 as i32 - i as i32).rem_euclid(360) as usize])
+            .map(|i| sm[i] * sm[(a2 - i as i32).rem_euclid(360) as usize])
             .sum();
         if score > best.1 {
             best = (a2 as f64 * 0.5, score);
