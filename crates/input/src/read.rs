@@ -35,6 +35,20 @@ pub fn show_path(path: &Path) -> String {
     cut(&path.display().to_string(), PATH_MAX_CHARS)
 }
 
+/// Whether `meta` is a named pipe (never on systems without them).
+fn is_fifo(meta: &std::fs::Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        meta.file_type().is_fifo()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = meta;
+        false
+    }
+}
+
 /// A byte count for people: `16 MiB`, `512 KiB`, `300 bytes`.
 pub fn show_bytes(n: u64) -> String {
     const KIB: u64 = 1024;
@@ -60,6 +74,13 @@ pub fn read_capped(
         std::fs::metadata(path).map_err(|e| ReadError(format!("could not read {name}: {e}")))?;
     if meta.is_dir() {
         return Err(ReadError(format!("{name} is a directory, not {what}")));
+    }
+    if is_fifo(&meta) {
+        // Opening a named pipe waits for a writer, maybe forever: refused up front, as a race
+        // file that is not a regular file is.
+        return Err(ReadError(format!(
+            "{name} is a named pipe (FIFO), not {what}: opening it would wait for a writer; give a regular file"
+        )));
     }
     if meta.is_file() && meta.len() > max_bytes {
         return Err(ReadError(format!(
@@ -138,6 +159,27 @@ mod tests {
         // …and without one, the read stops one byte past the cap.
         let e = read_capped(zero, 4096, "a thing", |_| None).unwrap_err();
         assert!(e.0.contains("larger than 4 KiB"), "{e}");
+    }
+
+    /// Issue 30: `--sea`, `--ndbc`, `--script` and a `frames.txt` that name a FIFO blocked in
+    /// `open()` while `--race` refused it: every capped read refuses it up front now.
+    #[test]
+    fn a_named_pipe_is_refused_before_it_is_opened() {
+        let p = std::env::temp_dir().join(format!("input-read-{}-fifo", std::process::id()));
+        let _ = std::fs::remove_file(&p);
+        let made = std::process::Command::new("mkfifo").arg(&p).status();
+        if !made.is_ok_and(|s| s.success()) {
+            eprintln!("mkfifo is not available; skipped");
+            return;
+        }
+        let e = read_capped(&p, 1 << 20, "a sea file", json_object_sniff).unwrap_err();
+        std::fs::remove_file(&p).unwrap();
+        assert!(
+            e.0.ends_with(
+                "is a named pipe (FIFO), not a sea file: opening it would wait for a writer; give a regular file"
+            ),
+            "{e}"
+        );
     }
 
     #[test]

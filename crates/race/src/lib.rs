@@ -38,7 +38,10 @@ pub use debrief::Debrief;
 pub use error::{RaceError, RaceResult};
 pub use events::{EventKind, RaceEvent, race_events};
 pub use geo::{GeoPoint, LocalFrame};
-pub use import::{DEFAULT_MAX_SPEED_KN, FileReport, Format, LoadOptions, MAX_FILE_BYTES, Series};
+pub use import::{
+    DEFAULT_MAX_SPEED_KN, FileReport, Format, LoadOptions, MAX_FILE_BYTES, MAX_SAILING_SPEED_KN,
+    Series,
+};
 pub use track::{Boat, BoatState, Fix};
 
 /// The wind a file states (for the sea and the UI; nothing in the race depends on it).

@@ -25,6 +25,10 @@ pub fn plain(s: &str) -> String {
 /// The first `max` characters of `s` (with "…" when something was cut), escaped.
 pub use input::message::cut;
 
+/// A number read from a file, for a message: as written for ordinary magnitudes, in exponent
+/// form beyond 1e9 or below 1e-4 (a latitude of 1e308 is "1e308", not 309 digits).
+pub use input::show_number as number;
+
 /// A count with thousands grouped by commas: 11977 → "11,977".
 pub fn count(n: usize) -> String {
     let d = n.to_string();
@@ -78,6 +82,9 @@ mod tests {
         assert_eq!(count(11_977), "11,977");
         assert_eq!(count(999), "999");
         assert_eq!(count(1_000_000), "1,000,000");
+        assert_eq!(number(1e308), "1e308");
+        assert_eq!(number(-91.5), "-91.5");
+        assert_eq!(number(f64::INFINITY), "inf");
         assert_eq!(
             serde_message(
                 "unknown field `\nname`, expected struct JsonRace",

@@ -1,6 +1,8 @@
 //! Assembling parsed files into one race: unique boat ids, a common origin and start,
 //! cleaning with the silent-loss rule, the racing-area check, marks and the course.
 
+use std::collections::HashMap;
+
 use time::OffsetDateTime;
 
 use super::{Coords, EPOCH_UNIX, Source, Times, q, stem};
@@ -23,11 +25,11 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
         return Err(RaceError::new("no race files were given"));
     }
     let mut warnings: Vec<String> = Vec::new();
-    // Unique boat ids across all files.
-    let mut seen: Vec<(&str, &str)> = Vec::new();
+    // Unique boat ids across all files (a map: fleets of 40,000 boats are read).
+    let mut seen: HashMap<&str, &str> = HashMap::new();
     for s in &sources {
         for b in &s.boats {
-            if let Some((_, other)) = seen.iter().find(|(id, _)| *id == b.id) {
+            if let Some(other) = seen.insert(&b.id, &s.file) {
                 return Err(RaceError::new(format!(
                     "boat id {} appears twice ({} and {}); every boat needs its own id",
                     q(&b.id),
@@ -35,7 +37,6 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
                     s.file
                 )));
             }
-            seen.push((&b.id, &s.file));
         }
     }
     if seen.is_empty() {
@@ -55,6 +56,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             files.join(", ")
         )));
     }
+    refuse_lost_reading(&sources, opts, &mut warnings)?;
     for s in &mut sources {
         merge_duplicate_tracks(s);
     }
@@ -82,7 +84,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
     let stated = sources.iter().find_map(|s| s.origin);
     let origin = match stated {
         Some(o) => Some(o),
-        None if any_geo => Some(geo_centre(&sources)),
+        None if any_geo => Some(geo_centre(&sources)?),
         None => None,
     };
     if origin.is_some()
@@ -113,6 +115,9 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
     };
 
     let (start, start_how) = race_start(&sources, &mut warnings);
+    if let Some(st) = start {
+        check_one_time(&sources, st, &start_how)?;
+    }
 
     // --- boats -------------------------------------------------------------------------------
     let mut boats = Vec::new();
@@ -199,10 +204,12 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
 
     // --- marks and course ---------------------------------------------------------------------
     let mut marks: Vec<Mark> = Vec::new();
+    // Mark name → index in `marks` (100,000 marks were quadratic by scanning).
+    let mut mark_of: HashMap<String, usize> = HashMap::new();
     for s in &sources {
         for m in &s.marks {
             let position = to_race(s, m.c);
-            match marks.iter().find(|k| k.name == m.name) {
+            match mark_of.get(&m.name).map(|&i| &marks[i]) {
                 Some(k) if dist(k.position, position) > 1.0 => {
                     warnings.push(format!(
                         "{}: mark {} is given again {:.0} m away; the first position is kept",
@@ -212,13 +219,18 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
                     ));
                 }
                 Some(_) => {}
-                None => marks.push(Mark::buoy(m.name.clone(), position)),
+                None => {
+                    mark_of.insert(m.name.clone(), marks.len());
+                    marks.push(Mark::buoy(m.name.clone(), position));
+                }
             }
         }
     }
     for s in &sources {
+        let by_name: HashMap<&str, &super::RawMark> =
+            s.marks.iter().rev().map(|m| (m.name.as_str(), m)).collect();
         for cm in &s.compound {
-            if let Some(k) = marks.iter_mut().find(|k| k.name == cm.name) {
+            if let Some(k) = mark_of.get(&cm.name).map(|&i| &mut marks[i]) {
                 // A compound of one mark is that buoy: it only adds the rounding side.
                 if k.rounding.is_none() {
                     k.rounding = cm.rounding.clone();
@@ -228,9 +240,10 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             let ends: Vec<[f64; 2]> = cm
                 .marks
                 .iter()
-                .filter_map(|n| s.marks.iter().find(|m| &m.name == n))
+                .filter_map(|n| by_name.get(n.as_str()))
                 .map(|m| to_race(s, m.c))
                 .collect();
+            mark_of.insert(cm.name.clone(), marks.len());
             marks.push(compound_mark(
                 cm.name.clone(),
                 cm.kind,
@@ -239,7 +252,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             ));
         }
     }
-    let course = build_course(&sources, opts, &mut marks, &boats)?;
+    let course = build_course(&sources, opts, &mut marks, &mut mark_of, &boats)?;
     let course = if sources.iter().any(|s| s.repeat_laps) && opts.course.is_none() {
         repeat_laps(&boats, &marks, course)
     } else {
@@ -319,26 +332,50 @@ fn compound_mark(
 /// The same track twice in one file (a GPX exported twice into one): the copy is merged
 /// into the first, with a warning.
 fn merge_duplicate_tracks(s: &mut Source) {
-    let mut k = 0;
-    while k < s.boats.len() {
-        let dup = (0..k).find(|&j| {
+    // Candidates by length and first point (a map: comparing every pair of a 40,000-boat
+    // fleet was quadratic), then compared point for point.
+    type Key = (usize, u64, u64, u64);
+    let key = |b: &super::RawBoat| -> Key {
+        let p = b.points.first();
+        (
+            b.points.len(),
+            p.map_or(0, |p| p.t.to_bits()),
+            p.map_or(0, |p| p.c[0].to_bits()),
+            p.map_or(0, |p| p.c[1].to_bits()),
+        )
+    };
+    let mut first_of: HashMap<Key, Vec<usize>> = HashMap::new();
+    let mut merged_into: Vec<Option<usize>> = vec![None; s.boats.len()];
+    for k in 0..s.boats.len() {
+        let same = first_of.entry(key(&s.boats[k])).or_default();
+        let dup = same.iter().copied().find(|&j| {
             let (a, b) = (&s.boats[j].points, &s.boats[k].points);
-            a.len() == b.len() && a.iter().zip(b).all(|(p, r)| p.t == r.t && p.c == r.c)
+            a.iter().zip(b).all(|(p, r)| p.t == r.t && p.c == r.c)
         });
-        if let Some(j) = dup {
-            let gone = s.boats.remove(k);
-            let msg = format!(
-                "boat {} repeats the track of boat {} point for point; it was merged into it",
-                q(&gone.id),
-                q(&s.boats[j].id)
-            );
-            s.warnings.push(format!("{}: {msg}", s.file));
-            s.report
-                .dropped
-                .push(("duplicate track".into(), gone.points.len()));
-        } else {
-            k += 1;
+        match dup {
+            Some(j) => merged_into[k] = Some(j),
+            None => same.push(k),
         }
+    }
+    if merged_into.iter().all(Option::is_none) {
+        return;
+    }
+    let boats = std::mem::take(&mut s.boats);
+    let ids: Vec<String> = boats.iter().map(|b| b.id.clone()).collect();
+    for (k, gone) in boats.into_iter().enumerate() {
+        let Some(j) = merged_into[k] else {
+            s.boats.push(gone);
+            continue;
+        };
+        let msg = format!(
+            "boat {} repeats the track of boat {} point for point; it was merged into it",
+            q(&gone.id),
+            q(&ids[j])
+        );
+        s.warnings.push(format!("{}: {msg}", s.file));
+        s.report
+            .dropped
+            .push(("duplicate track".into(), gone.points.len()));
     }
 }
 
@@ -402,6 +439,41 @@ fn pick_sessions(sources: &mut [Source]) {
     }
 }
 
+/// The silent-loss rule for what the readers dropped: a file whose dropped positions outnumber
+/// the fixes it kept is refused with the rule that dropped most, unless `keep_going`.
+fn refuse_lost_reading(
+    sources: &[Source],
+    opts: &LoadOptions,
+    warnings: &mut Vec<String>,
+) -> RaceResult<()> {
+    for s in sources {
+        let (lost, kept) = (s.report.fixes_dropped, s.report.fixes);
+        if lost <= kept {
+            continue;
+        }
+        let (rule, n) = s
+            .report
+            .dropped
+            .iter()
+            .max_by_key(|d| d.1)
+            .map_or(("dropped positions", lost), |d| (d.0.as_str(), d.1));
+        let what = format!(
+            "{}: reading would keep {} of {} positions, because of {} {rule}",
+            s.file,
+            count(kept),
+            count(kept + lost),
+            count(n)
+        );
+        if !opts.keep_going {
+            return Err(RaceError::new(format!(
+                "{what} (--keep-going loads it anyway)"
+            )));
+        }
+        warnings.push(format!("{what}; loaded anyway (--keep-going)"));
+    }
+    Ok(())
+}
+
 /// Refuse boats whose median fix is further than [`MAX_RACE_RADIUS_M`] from the origin.
 fn check_racing_area(sources: &[Source], origin: GeoPoint) -> RaceResult<()> {
     let mut far = Vec::new();
@@ -437,6 +509,64 @@ fn great_circle_m(a: GeoPoint, b: GeoPoint) -> f64 {
     let dl = (b.lon - a.lon).to_radians();
     let h = (dp / 2.0).sin().powi(2) + p1.cos() * p2.cos() * (dl / 2.0).sin().powi(2);
     2.0 * 6_371_008.8 * h.sqrt().min(1.0).asin()
+}
+
+/// Refuse pieces of a race that are far apart in time: every boat's fixes must come within
+/// [`super::TIME_OUTLIER_GAP_S`] (a day) of the start (`st`, seconds since the epoch for
+/// absolute times); a race XML whose start is 10 years from the tracks, or two years' logs
+/// loaded together, say so instead of drawing boats that never meet.
+fn check_one_time(sources: &[Source], st: f64, start_how: &str) -> RaceResult<()> {
+    let day = super::TIME_OUTLIER_GAP_S;
+    for s in sources {
+        let shift = match (s.times, s.start_time) {
+            (Times::Absolute, _) => -st,
+            (Times::Relative, Some(own)) => own - st,
+            (Times::Relative, None) => 0.0,
+        };
+        for b in &s.boats {
+            let (lo, hi) = b
+                .points
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, z), p| {
+                    (a.min(p.t + shift), z.max(p.t + shift))
+                });
+            if lo > hi || (lo - day..=hi + day).contains(&0.0) {
+                continue;
+            }
+            let away = if lo > 0.0 { lo } else { -hi };
+            let undated = sources
+                .iter()
+                .find(|s| s.time_of_day)
+                .map(|s| {
+                    format!(
+                        " ({} has no date: its times of day were read as 2020-01-01)",
+                        s.file
+                    )
+                })
+                .unwrap_or_default();
+            return Err(RaceError::in_file(
+                &s.file,
+                format!(
+                    "boat {}'s fixes are {} {} the race start (the start comes from {start_how}){undated}; the files are not one race, load each on its own",
+                    q(&b.id),
+                    span_words(away.abs()),
+                    if lo > 0.0 { "after" } else { "before" },
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A long duration in words: "3.2 days", "10.0 years" (times are at most 120 years apart:
+/// absolute times lie in 1980–2099, relative ones within ±1e9 s).
+fn span_words(s: f64) -> String {
+    const YEAR: f64 = 365.25 * 86_400.0;
+    if s >= YEAR {
+        format!("{:.1} years", s / YEAR)
+    } else {
+        format!("{:.1} days", s / 86_400.0)
+    }
 }
 
 /// The start: stated, else maxSail's minute after its track's first fix, else the earliest
@@ -488,6 +618,7 @@ fn build_course(
     sources: &[Source],
     opts: &LoadOptions,
     marks: &mut Vec<Mark>,
+    mark_of: &mut HashMap<String, usize>,
     boats: &[Boat],
 ) -> RaceResult<Vec<usize>> {
     let stated = opts
@@ -502,7 +633,7 @@ fn build_course(
     if let Some((names, from)) = stated {
         let mut c = Vec::with_capacity(names.len());
         for n in &names {
-            c.push(resolve_mark(marks, n).ok_or_else(|| {
+            c.push(resolve_mark(marks, mark_of, n).ok_or_else(|| {
                 RaceError::new(format!(
                     "{from}: the course names the mark {}, which no file defines",
                     q(n)
@@ -535,13 +666,19 @@ fn build_course(
 }
 
 /// A course name: a mark, or `A/B` (a gate between the marks A and B, added to `marks`).
-fn resolve_mark(marks: &mut Vec<Mark>, name: &str) -> Option<usize> {
-    if let Some(i) = marks.iter().position(|m| m.name == name) {
+/// `mark_of`: mark name → index in `marks`, kept in step.
+fn resolve_mark(
+    marks: &mut Vec<Mark>,
+    mark_of: &mut HashMap<String, usize>,
+    name: &str,
+) -> Option<usize> {
+    if let Some(&i) = mark_of.get(name) {
         return Some(i);
     }
     let (a, b) = name.split_once('/')?;
-    let pa = marks.iter().find(|m| m.name == a.trim())?.position;
-    let pb = marks.iter().find(|m| m.name == b.trim())?.position;
+    let pa = marks[*mark_of.get(a.trim())?].position;
+    let pb = marks[*mark_of.get(b.trim())?].position;
+    mark_of.insert(name.to_string(), marks.len());
     marks.push(compound_mark(
         name.to_string(),
         MarkKind::Gate,
@@ -585,26 +722,77 @@ pub const PALETTE: [&str; 10] = [
     "#fabebe", "#9a6324",
 ];
 
+/// The fleet's median fix (the medians of every geographic fix's latitude and longitude):
+/// where the racing is, whatever a few glitches say. `None` without geographic fixes.
+fn fleet_median(sources: &[Source]) -> Option<GeoPoint> {
+    let fixes = || {
+        sources
+            .iter()
+            .filter(|s| s.coords == Coords::Geo)
+            .flat_map(|s| s.boats.iter().flat_map(|b| b.points.iter()))
+    };
+    let median = |k: usize| {
+        let mut v: Vec<f64> = fixes().map(|p| p.c[k]).collect();
+        if v.is_empty() {
+            return None;
+        }
+        let mid = v.len() / 2;
+        Some(*v.select_nth_unstable_by(mid, f64::total_cmp).1)
+    };
+    Some(GeoPoint::new(median(0)?, median(1)?))
+}
+
 /// Centre of everything geographic: the marks' mean if any file has marks, else the middle of
-/// the tracks' bounding box.
-fn geo_centre(sources: &[Source]) -> GeoPoint {
+/// the bounding box of the tracks' fixes within [`MAX_RACE_RADIUS_M`] of the fleet's median
+/// fix (a glitch 100 km off, which cleaning drops as a spike, does not move the origin). A mark
+/// that far from the fleet is refused, naming its file.
+fn geo_centre(sources: &[Source]) -> RaceResult<GeoPoint> {
     let geo = || sources.iter().filter(|s| s.coords == Coords::Geo);
+    let fleet = fleet_median(sources);
+    if let Some(f) = fleet {
+        for s in geo() {
+            for m in &s.marks {
+                let d = great_circle_m(f, GeoPoint::new(m.c[0], m.c[1]));
+                if d > MAX_RACE_RADIUS_M {
+                    return Err(RaceError::in_file(
+                        &s.file,
+                        format!(
+                            "mark {} ({:.4}, {:.4}) is {:.0} km from the boats' median fix ({:.4}, {:.4}), more than {:.0} km: it belongs to another racing area",
+                            q(&m.name),
+                            m.c[0],
+                            m.c[1],
+                            d / 1000.0,
+                            f.lat,
+                            f.lon,
+                            MAX_RACE_RADIUS_M / 1000.0
+                        ),
+                    ));
+                }
+            }
+        }
+    }
     let marks: Vec<[f64; 2]> = geo().flat_map(|s| s.marks.iter().map(|m| m.c)).collect();
     if !marks.is_empty() {
         let k = marks.len() as f64;
-        return GeoPoint::new(
+        return Ok(GeoPoint::new(
             marks.iter().map(|c| c[0]).sum::<f64>() / k,
             marks.iter().map(|c| c[1]).sum::<f64>() / k,
-        );
+        ));
     }
+    let near = |p: &super::RawPoint| {
+        fleet.is_none_or(|f| great_circle_m(f, GeoPoint::new(p.c[0], p.c[1])) <= MAX_RACE_RADIUS_M)
+    };
     let (mut lat0, mut lat1, mut lon0, mut lon1) = (90.0f64, -90.0f64, 180.0f64, -180.0f64);
-    for p in geo().flat_map(|s| s.boats.iter().flat_map(|b| b.points.iter())) {
+    for p in geo()
+        .flat_map(|s| s.boats.iter().flat_map(|b| b.points.iter()))
+        .filter(|p| near(p))
+    {
         lat0 = lat0.min(p.c[0]);
         lat1 = lat1.max(p.c[0]);
         lon0 = lon0.min(p.c[1]);
         lon1 = lon1.max(p.c[1]);
     }
-    GeoPoint::new(0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1))
+    Ok(GeoPoint::new(0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1)))
 }
 
 /// A name from the files: their common stem prefix, else the first stem.

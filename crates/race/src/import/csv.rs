@@ -5,11 +5,13 @@
 //! `+05:30`; none = UTC), Unix seconds or milliseconds (values near 1e9 or 1e12), else plain
 //! seconds since the race start. Blank rows and rows without a position are skipped and
 //! counted; a `boat` column that names several boats splits the file into one boat per id.
-//! The spike limit is 1.2 × the log's own top speed over ground (the instrument knows what the
-//! class can do), at least 20 kn.
+//! A time column's name may state its unit (`time_ms`, `t_us`, `elapsed_min`; seconds
+//! otherwise), like the speed columns. The spike limit is 1.2 × the log's own top speed over
+//! ground within twice its 99th percentile (the instrument knows what the class can do; one
+//! garbage cell does not), from 20 kn to 80 kn.
 
 use super::timefmt::parse_datetime;
-use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Series, Source, Times, q};
+use super::{Coords, RawBoat, RawPoint, Series, Source, Times, q};
 use crate::Wind;
 use crate::error::{RaceError, RaceResult};
 use crate::text::plain;
@@ -20,6 +22,8 @@ type Col = Option<(usize, f64)>;
 
 struct Columns {
     time: usize,
+    /// Seconds per unit of a plain-number time column, from its name (`time_ms` → 0.001).
+    time_unit_s: f64,
     lat: usize,
     lon: usize,
     sog: Col,
@@ -46,6 +50,24 @@ fn unit_of(name: &str) -> f64 {
         0.447_04
     } else {
         super::knots_to_mps(1.0)
+    }
+}
+
+/// Seconds per unit named at the end of a time column's name: `_ms`, `_millis`, `_msec` →
+/// 0.001; `_us`, `_usec`, `_micros` → 1e-6; `_ns`, `_nanos` → 1e-9; `_min` → 60; `_h`, `_hours`
+/// → 3600; else seconds.
+fn time_unit_of(name: &str) -> f64 {
+    let last = name.rsplit('_').next().unwrap_or("");
+    if name == last {
+        return 1.0;
+    }
+    match last {
+        "ms" | "millis" | "msec" | "milliseconds" => 1e-3,
+        "us" | "usec" | "micros" | "microseconds" => 1e-6,
+        "ns" | "nanos" | "nanoseconds" => 1e-9,
+        "min" | "mins" | "minutes" => 60.0,
+        "h" | "hr" | "hours" => 3600.0,
+        _ => 1.0,
     }
 }
 
@@ -90,8 +112,10 @@ fn detect(file: &str, header: &csv::StringRecord) -> RaceResult<Columns> {
     let deg = |i: Option<usize>| i.map(|i| (i, 1.0));
     let sog = find(&|n| n.contains("sog") && !n.contains("vmg"))
         .or_else(|| find(&starts(&["speed", "speed_over_ground"])));
+    let time = need(time, "time (DATETIME, time, timestamp or utc)")?;
     Ok(Columns {
-        time: need(time, "time (DATETIME, time, timestamp or utc)")?,
+        time,
+        time_unit_s: time_unit_of(&names[time]),
         lat: need(
             find(&starts(&["lat", "latitude", "latitude_gps"])),
             "latitude (LAT…)",
@@ -123,19 +147,21 @@ fn detect(file: &str, header: &csv::StringRecord) -> RaceResult<Columns> {
     })
 }
 
-/// A time cell: (seconds, kind). Calendar times and Unix times are absolute.
-fn parse_time(cell: &str) -> Option<(f64, Times)> {
+/// A time cell: (seconds, kind). Calendar times and Unix times are absolute. `unit_s`: the
+/// seconds per unit of a plain number, as the column's name says (1 when it says nothing).
+fn parse_time(cell: &str, unit_s: f64) -> Option<(f64, Times)> {
     if let Some(t) = parse_datetime(cell) {
         return Some((t, Times::Absolute));
     }
     let v: f64 = cell.trim().parse().ok().filter(|v: &f64| v.is_finite())?;
     let unix = |s: f64| s - super::EPOCH_UNIX as f64;
-    Some(if (1e9..4e9).contains(&v) {
-        (unix(v), Times::Absolute)
-    } else if (1e12..4e12).contains(&v) {
+    let secs = v * unit_s;
+    Some(if (1e9..4e9).contains(&secs) {
+        (unix(secs), Times::Absolute)
+    } else if unit_s == 1.0 && (1e12..4e12).contains(&v) {
         (unix(v / 1000.0), Times::Absolute)
     } else {
-        (v, Times::Relative)
+        (secs, Times::Relative)
     })
 }
 
@@ -143,7 +169,6 @@ fn parse_time(cell: &str) -> Option<(f64, Times)> {
 struct Track {
     id: String,
     points: Vec<RawPoint>,
-    max_sog: f64,
     series: Vec<Series>,
 }
 
@@ -160,6 +185,9 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let names: Vec<&str> = header.iter().map(str::trim).collect();
     let n_cols = names.len();
     let mut tracks: Vec<Track> = Vec::new();
+    // Boat id → index in `tracks`: a fleet file of 40,000 boats looked up by scanning was
+    // quadratic in the boat count.
+    let mut track_of: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
     let mut times: Option<Times> = None;
     let (mut wind_e, mut wind_n, mut tws_sum, mut n_wind) = (0.0, 0.0, 0.0, 0usize);
     let (mut rows, mut blank, mut no_fix) = (0usize, 0usize, 0usize);
@@ -210,7 +238,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             no_fix += 1;
             continue;
         }
-        let Some((t, kind)) = parse_time(cell(cols.time)) else {
+        let Some((t, kind)) = parse_time(cell(cols.time), cols.time_unit_s) else {
             return Err(RaceError::at_line(
                 file,
                 line,
@@ -250,13 +278,13 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             .map(cell)
             .filter(|b| !b.is_empty())
             .unwrap_or(&file_id);
-        let k = match tracks.iter().position(|tr| tr.id == id) {
-            Some(k) => k,
+        let k = match track_of.get(id) {
+            Some(&k) => k,
             None => {
+                track_of.insert(id.to_string(), tracks.len());
                 tracks.push(Track {
                     id: id.to_string(),
                     points: Vec::new(),
-                    max_sog: 0.0,
                     series: channels
                         .iter()
                         .filter(|(_, c)| c.is_some())
@@ -278,9 +306,6 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             }
         };
         let tr = &mut tracks[k];
-        if sog.is_finite() {
-            tr.max_sog = tr.max_sog.max(sog);
-        }
         for (ser, (_, c)) in tr
             .series
             .iter_mut()
@@ -351,8 +376,8 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             name: tr.id.clone(),
             id: tr.id,
             color: None,
+            max_speed_mps: super::spike_limit_mps(&tr.points),
             points: tr.points,
-            max_speed_mps: (1.2 * tr.max_sog).max(super::knots_to_mps(DEFAULT_MAX_SPEED_KN)),
         });
     }
     Ok(s)

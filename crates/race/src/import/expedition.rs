@@ -14,7 +14,7 @@
 //! 1e-11 day, about a microsecond).
 
 use super::csv::number_cell;
-use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Series, Source, Times};
+use super::{Coords, RawBoat, RawPoint, Series, Source, Times};
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
 
@@ -80,7 +80,6 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let mut last_sog = f64::NAN;
     let mut points = Vec::new();
     let (mut rows, mut no_time, mut no_fix) = (0usize, 0usize, 0usize);
-    let mut max_sog: f64 = 0.0;
     let mut cells: Vec<&str> = Vec::with_capacity(header.len());
     for (i, l) in lines {
         let l = l.trim_end_matches('\r');
@@ -97,9 +96,19 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         }
         let num = |k: usize| number_cell(file, line, &header[k], cells.get(k).map_or("", |c| c));
         let days = num(utc)?;
-        if !days.is_finite() {
+        if days.is_nan() && cells.get(utc).is_none_or(|c| c.trim().is_empty()) {
             no_time += 1;
             continue;
+        }
+        if !(days.is_finite() && (days * 86_400.0).is_finite()) {
+            return Err(RaceError::at_line(
+                file,
+                line,
+                format!(
+                    "Utc is {}, not a finite day number",
+                    super::q(cells.get(utc).map_or("", |c| c.trim()))
+                ),
+            ));
         }
         // To the millisecond: the file's 5 decimals of a day are 0.864 s steps, and the
         // product's last bits are noise (…32.448000193 s).
@@ -121,7 +130,6 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             let v = num(c)?;
             if v.is_finite() {
                 last_sog = v * super::super::clean::MPS_PER_KNOT;
-                max_sog = max_sog.max(last_sog);
             }
         }
         let (la, lo) = (num(lat)?, num(lon)?);
@@ -182,8 +190,8 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         name: id.clone(),
         id,
         color: None,
+        max_speed_mps: super::spike_limit_mps(&points),
         points,
-        max_speed_mps: (1.2 * max_sog).max(super::knots_to_mps(DEFAULT_MAX_SPEED_KN)),
     });
     Ok(s)
 }

@@ -9,25 +9,55 @@ use serde::Deserialize;
 use super::{Coords, RawMark, Source, Times, q};
 use crate::error::{RaceError, RaceResult};
 
+/// A mark as written: its fields' types are checked by hand, so a message names the field
+/// (serde names the type it expected, not the field), and the shape by serde, which gives the
+/// line (an untagged enum of list and object gave only "line 0").
 #[derive(Deserialize)]
 #[serde(
     deny_unknown_fields,
     expecting = "a mark object with name, lat and lon"
 )]
 struct JsonMark {
-    name: String,
-    lat: f64,
-    lon: f64,
+    name: serde_json::Value,
+    lat: serde_json::Value,
+    lon: serde_json::Value,
 }
 
 #[derive(Deserialize)]
-#[serde(untagged, expecting = "a list of marks, or an object with \"marks\"")]
-enum JsonMarks {
-    List(Vec<JsonMark>),
-    Object { marks: Vec<JsonMark> },
+#[serde(
+    deny_unknown_fields,
+    expecting = "an object with \"marks\", a list of marks"
+)]
+struct JsonMarksObject {
+    marks: Vec<JsonMark>,
+}
+
+/// Mark `k`'s name, latitude and longitude, or what is wrong, naming the field.
+fn mark_fields(k: usize, m: &JsonMark) -> Result<(String, f64, f64), String> {
+    let name = m
+        .name
+        .as_str()
+        .ok_or_else(|| format!("marks[{k}]: \"name\" is {}, not a string", shown(&m.name)))?;
+    let num = |v: &serde_json::Value, field: &str| {
+        v.as_f64().ok_or_else(|| {
+            format!(
+                "marks[{k}] ({}): \"{field}\" is {}, not a number",
+                q(name),
+                shown(v)
+            )
+        })
+    };
+    Ok((name.to_string(), num(&m.lat, "lat")?, num(&m.lon, "lon")?))
+}
+
+/// A JSON value for a message, escaped and cut.
+fn shown(v: &serde_json::Value) -> String {
+    crate::text::cut(&v.to_string(), crate::text::QUOTE_MAX_CHARS)
 }
 
 pub(crate) fn parse(file: &str, bytes: &[u8]) -> RaceResult<Source> {
+    let decoded = super::rules::utf8_of(file, bytes)?;
+    let bytes = &decoded[..];
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let text = std::str::from_utf8(bytes)
         .map_err(|_| RaceError::in_file(file, "the marks file is not UTF-8 text"))?;
@@ -40,22 +70,27 @@ pub(crate) fn parse(file: &str, bytes: &[u8]) -> RaceResult<Source> {
         s.boats.clear();
         s
     } else if t.starts_with('[') || t.starts_with('{') {
-        let m: JsonMarks = serde_json::from_str(text)
-            .map_err(|e| super::json::json_error(file, "a marks file", &e))?;
-        let list = match m {
-            JsonMarks::List(l) | JsonMarks::Object { marks: l } => l,
+        let wrong = |e: serde_json::Error| super::json::json_error(file, "a marks file", &e);
+        let list: Vec<JsonMark> = if t.starts_with('[') {
+            serde_json::from_str(text).map_err(wrong)?
+        } else {
+            serde_json::from_str::<JsonMarksObject>(text)
+                .map_err(wrong)?
+                .marks
         };
         let mut s = Source::new(file, Coords::Geo, Times::Absolute);
-        for (k, m) in list.into_iter().enumerate() {
-            if let Some(p) = super::geo_problem(m.lat, m.lon) {
+        for (k, m) in list.iter().enumerate() {
+            let (name, lat, lon) =
+                mark_fields(k, m).map_err(|what| RaceError::in_file(file, what))?;
+            if let Some(p) = super::geo_problem(lat, lon) {
                 return Err(RaceError::in_file(
                     file,
-                    format!("marks[{k}] ({}): {p}", q(&m.name)),
+                    format!("marks[{k}] ({}): {p}", q(&name)),
                 ));
             }
             s.marks.push(RawMark {
-                name: m.name,
-                c: [m.lat, m.lon],
+                name,
+                c: [lat, lon],
             });
         }
         s

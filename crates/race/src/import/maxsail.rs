@@ -29,6 +29,10 @@ struct Baliza {
     nombre: String,
 }
 
+/// The largest start minute after the track's first fix: a day (the Valencia files say 5 to
+/// 12 minutes; a race starts the day its boats are out).
+const MAX_START_MINUTE: f64 = 1440.0;
+
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let m: Meta = serde_json::from_str(text)
         .map_err(|e| super::json::json_error(file, "a maxSail meta-data file", &e))?;
@@ -55,9 +59,18 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             speed_mps: super::knots_to_mps(k),
         });
     }
-    if let (Some(min), Some(track)) = (m.MINUTO_SALIDA, m.ARCHIVO_TRACK)
-        && min.is_finite()
+    if let Some(min) = m.MINUTO_SALIDA
+        && !(min.is_finite() && min.abs() <= MAX_START_MINUTE)
     {
+        return Err(RaceError::in_file(
+            file,
+            format!(
+                "MINUTO_SALIDA is {}, not a minute within a day of the track's first fix (-1440 to 1440)",
+                crate::text::number(min)
+            ),
+        ));
+    }
+    if let (Some(min), Some(track)) = (m.MINUTO_SALIDA, m.ARCHIVO_TRACK) {
         s.start_after_track = Some((track, min));
     }
     let start = s.marks.iter().position(|b| b.name.starts_with('S'));

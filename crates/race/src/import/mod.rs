@@ -29,11 +29,14 @@ mod packed;
 mod race_xml;
 mod recorder;
 mod tcx;
+mod rules;
 mod timefmt;
 mod xml_text;
 
 pub(crate) use assemble::assemble;
 pub use detect::Format;
+pub use rules::{MAX_SAILING_SPEED_KN, TIME_OUTLIER_GAP_S};
+pub(crate) use rules::{lines, spike_limit_mps};
 
 /// The default spike limit for a GPS track of unknown class: 20 knots. No dinghy or keelboat
 /// of a club fleet sails faster (a planing 470 peaks near 15 kn); the Gdańsk spike is 37.7 kn.
@@ -123,6 +126,9 @@ pub struct FileReport {
     pub date_source: String,
     /// Rule → records it dropped while reading (bad checksums, blank rows, …).
     pub dropped: Vec<(String, usize)>,
+    /// Positions among `dropped` (a fix that was in the file and is not in `fixes`): more of
+    /// them than `fixes` refuses the file unless `--keep-going` (the silent-loss rule).
+    pub fixes_dropped: usize,
 }
 
 /// Options for loading races from several files.
@@ -198,6 +204,7 @@ impl Source {
                 channels: Vec::new(),
                 date_source: String::new(),
                 dropped: Vec::new(),
+                fixes_dropped: 0,
             },
             time_of_day: false,
             sessions: Vec::new(),
@@ -215,6 +222,13 @@ impl Source {
             crate::text::count(n)
         ));
         self.report.dropped.push((rule.to_string(), n));
+    }
+
+    /// Count `n` positions dropped by `rule`, like [`Source::drop_rule`], and add them to the
+    /// positions the silent-loss rule weighs against the fixes kept.
+    pub(crate) fn drop_fixes(&mut self, rule: &str, n: usize) {
+        self.drop_rule(rule, n);
+        self.report.fixes_dropped += n;
     }
 }
 
@@ -270,6 +284,8 @@ pub(crate) fn parse(file: &str, bytes: &[u8], opts: &LoadOptions) -> RaceResult<
     if fit::is_fit(bytes) {
         return finish(fit::parse(file, bytes)?, "FIT");
     }
+    let decoded = rules::utf8_of(file, bytes)?;
+    let bytes = &decoded[..];
     let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     if bytes.iter().all(|b| b.is_ascii_whitespace()) {
         return Err(RaceError::in_file(file, "the file is empty"));
@@ -305,6 +321,7 @@ fn finish(mut s: Source, format: &str) -> RaceResult<Source> {
     if s.report.format.is_empty() {
         s.report.format = format.to_string();
     }
+    rules::drop_time_outliers(&mut s);
     s.report.fixes = s.boats.iter().map(|b| b.points.len()).sum();
     Ok(s)
 }
@@ -317,9 +334,15 @@ pub(crate) fn q(s: &str) -> String {
 /// What is wrong with a geographic point read from a file, if anything.
 pub(crate) fn geo_problem(lat: f64, lon: f64) -> Option<String> {
     if !(lat.is_finite() && lat.abs() <= 90.0) {
-        Some(format!("latitude {lat} is not a number in [-90, 90]"))
+        Some(format!(
+            "latitude {} is not a number in [-90, 90]",
+            crate::text::number(lat)
+        ))
     } else if !(lon.is_finite() && lon.abs() <= 180.0) {
-        Some(format!("longitude {lon} is not a number in [-180, 180]"))
+        Some(format!(
+            "longitude {} is not a number in [-180, 180]",
+            crate::text::number(lon)
+        ))
     } else {
         None
     }

@@ -6,14 +6,20 @@
 //! all 7,250 VWT sentences (the true wind) and all 7,250 GSV sentences for their empty trailing
 //! fields, and it gives no access to the fields of sentences it does not model. Here every line
 //! is checked against its checksum (XOR of the bytes between `$` and `*`); a bad or missing
-//! checksum (a truncated line) skips the line and is counted, never fatal. CRLF or LF.
+//! checksum (a truncated line) skips the line and is counted, never fatal. Lines end in CR, LF
+//! or CRLF, and a line may hold several sentences (as some multiplexers write them): each `$`
+//! or `!` starts one. Every position dropped is counted by its reason (the receiver's own "no
+//! fix" status V or quality 0, a latitude or longitude out of range, no time yet), and a log
+//! that would lose most of its positions is refused unless `--keep-going` (the silent-loss
+//! rule, see `assemble`). A time field that is not `hhmmss[.s…]` (`110000inf`, `nan`, `1e300`)
+//! refuses the log at its line: reading on would shift every later fix.
 //!
 //! Time: sentences without a time (HDT, MWV, …) take the time of the last timed sentence.
 //! Where the log has no date anywhere, times are times of day (a roll-over past midnight adds
 //! a day) and the report says the date is missing.
 
 use super::timefmt::{days_in_month, epoch_of};
-use super::{Coords, DEFAULT_MAX_SPEED_KN, RawBoat, RawPoint, Series, Source, Times};
+use super::{Coords, RawBoat, RawPoint, Series, Source, Times};
 use crate::clean::MPS_PER_KNOT;
 use crate::error::{RaceError, RaceResult};
 use crate::track::Logged;
@@ -36,8 +42,26 @@ struct Log {
     variation: f64,
     /// Channel → (day, tod, value).
     channels: Vec<Channel>,
-    max_sog: f32,
+    /// Positions dropped: the receiver said "no fix" (status V, quality 0).
+    no_fix_status: usize,
+    /// Positions dropped: latitude or longitude unreadable or out of range.
+    bad_position: usize,
+    /// Positions dropped: no timed sentence before them.
+    no_time_yet: usize,
+    /// The last epoch (day, time of day) that gave a fix or a dropped position: RMC, GGA and
+    /// GLL of one epoch are one position, kept or dropped once.
+    last_epoch: Option<(i64, f64)>,
 }
+
+/// Why a position was dropped.
+#[derive(Clone, Copy)]
+enum Lost {
+    NoFixStatus,
+    BadPosition,
+}
+
+/// Why a sentence refuses the log.
+type SentenceError = String;
 
 fn hex(b: u8) -> Option<u8> {
     (b as char).to_digit(16).map(|d| d as u8)
@@ -96,10 +120,17 @@ fn hms(v: &str) -> Option<f64> {
         return None;
     }
     let n = |i: usize| ((b[i] - b'0') * 10 + (b[i + 1] - b'0')) as f64;
-    let frac: f64 = if b.len() > 6 {
-        v[6..].parse().ok()?
-    } else {
-        0.0
+    // Only `.` and digits after the seconds: `f64::parse` would take "inf", "nan" or "1e300".
+    let frac: f64 = match &b[6..] {
+        [] => 0.0,
+        [b'.', digits @ ..] if digits.iter().all(u8::is_ascii_digit) => {
+            if digits.is_empty() {
+                0.0
+            } else {
+                v[6..].parse().ok()?
+            }
+        }
+        _ => return None,
     };
     let (h, m, s) = (n(0), n(2), n(4));
     (h < 24.0 && m < 60.0 && s < 61.0).then_some(h * 3600.0 + m * 60.0 + s + frac)
@@ -123,9 +154,59 @@ impl Log {
         }
     }
 
+    /// The time field `i` of a timed sentence: read into the log's clock when present;
+    /// present but not a time of day refuses the log.
+    fn time_field(&mut self, fields: &[&str], i: usize) -> Result<(), SentenceError> {
+        let v = field(fields, i).trim();
+        if v.is_empty() {
+            return Ok(());
+        }
+        match hms(v) {
+            Some(t) => {
+                self.at(t);
+                Ok(())
+            }
+            None => Err(format!(
+                "{} time is {}, not a time of day hhmmss[.ss]",
+                fields[0].get(2..).unwrap_or(""),
+                super::q(v)
+            )),
+        }
+    }
+
+    /// Whether the current epoch already gave a fix or a drop; marks it as seen.
+    fn seen_epoch(&mut self) -> bool {
+        let now = self.tod.map(|t| (self.day, t));
+        let seen = now.is_some() && self.last_epoch == now;
+        self.last_epoch = now;
+        seen
+    }
+
+    fn drop_position(&mut self, why: Lost) {
+        if self.tod.is_none() {
+            self.no_time_yet += 1;
+            return;
+        }
+        let later_fix = self
+            .fixes
+            .last()
+            .is_some_and(|l| Some((l.0, l.1)) == self.tod.map(|t| (self.day, t)));
+        if self.seen_epoch() || later_fix {
+            return;
+        }
+        match why {
+            Lost::NoFixStatus => self.no_fix_status += 1,
+            Lost::BadPosition => self.bad_position += 1,
+        }
+    }
+
     fn fix(&mut self, lat: f64, lon: f64) {
-        let Some(tod) = self.tod else { return };
+        let Some(tod) = self.tod else {
+            self.no_time_yet += 1;
+            return;
+        };
         if !(lat.is_finite() && lon.is_finite()) || super::geo_problem(lat, lon).is_some() {
+            self.drop_position(Lost::BadPosition);
             return;
         }
         // RMC, GGA and GLL of one epoch are one fix.
@@ -135,6 +216,7 @@ impl Log {
         {
             return;
         }
+        self.last_epoch = Some((self.day, tod));
         self.fixes
             .push((self.day, tod, lat, lon, self.sog, self.heading));
     }
@@ -164,14 +246,12 @@ impl Log {
         }
     }
 
-    fn sentence(&mut self, body: &str) {
+    fn sentence(&mut self, body: &str) -> Result<(), SentenceError> {
         let fields: Vec<&str> = body.split(',').collect();
         let kind = fields[0].get(2..).unwrap_or("");
         match kind {
             "RMC" => {
-                if let Some(t) = hms(field(&fields, 1)) {
-                    self.at(t);
-                }
+                self.time_field(&fields, 1)?;
                 let d = field(&fields, 9);
                 if d.len() == 6 && d.bytes().all(|b| b.is_ascii_digit()) {
                     let n = |i: usize| d[i..i + 2].parse::<u32>().unwrap_or(0);
@@ -186,32 +266,32 @@ impl Log {
                     let lat = coord(field(&fields, 3), field(&fields, 4));
                     let lon = coord(field(&fields, 5), field(&fields, 6));
                     self.fix(lat, lon);
+                } else {
+                    self.drop_position(Lost::NoFixStatus);
                 }
             }
             "GLL" => {
-                if let Some(t) = hms(field(&fields, 5)) {
-                    self.at(t);
-                }
+                self.time_field(&fields, 5)?;
                 if field(&fields, 6) != "V" {
                     let lat = coord(field(&fields, 1), field(&fields, 2));
                     let lon = coord(field(&fields, 3), field(&fields, 4));
                     self.fix(lat, lon);
+                } else {
+                    self.drop_position(Lost::NoFixStatus);
                 }
             }
             "GGA" => {
-                if let Some(t) = hms(field(&fields, 1)) {
-                    self.at(t);
-                }
+                self.time_field(&fields, 1)?;
                 if f(&fields, 6) > 0.0 {
                     let lat = coord(field(&fields, 2), field(&fields, 3));
                     let lon = coord(field(&fields, 4), field(&fields, 5));
                     self.fix(lat, lon);
+                } else {
+                    self.drop_position(Lost::NoFixStatus);
                 }
             }
             "ZDA" => {
-                if let Some(t) = hms(field(&fields, 1)) {
-                    self.at(t);
-                }
+                self.time_field(&fields, 1)?;
                 let (d, m, y) = (f(&fields, 2), f(&fields, 3), f(&fields, 4));
                 if d.is_finite() && m.is_finite() && y.is_finite() {
                     self.date(y as i64, m as u32, d as u32);
@@ -257,7 +337,7 @@ impl Log {
             "MWV" => {
                 let (a, v) = (f(&fields, 1), Log::speed(f(&fields, 3), field(&fields, 4)));
                 if field(&fields, 5) == "V" {
-                    return;
+                    return Ok(());
                 }
                 match field(&fields, 2) {
                     "R" => {
@@ -288,10 +368,23 @@ impl Log {
             }
             _ => {}
         }
-        if let Some(s) = (self.sog.is_finite()).then_some(self.sog) {
-            self.max_sog = self.max_sog.max(s);
-        }
+        Ok(())
     }
+}
+
+/// Whether a sentence (its text from `$`/`!`, checksum or not) carries a position.
+fn is_position(sentence: &str) -> bool {
+    matches!(sentence.get(3..6), Some("RMC" | "GLL" | "GGA"))
+}
+
+/// The sentences of one line: each `$` or `!` starts one (NMEA reserves both characters, so
+/// neither appears inside a field); text before the first is not a sentence.
+fn sentences_of(line: &str) -> impl Iterator<Item = &str> {
+    let starts: Vec<usize> = line.match_indices(['$', '!']).map(|(i, _)| i).collect();
+    (0..starts.len()).map(move |k| {
+        let end = starts.get(k + 1).copied().unwrap_or(line.len());
+        &line[starts[k]..end]
+    })
 }
 
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
@@ -302,8 +395,9 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         ..Log::default()
     };
     let (mut sentences, mut bad, mut truncated, mut other) = (0usize, 0usize, 0usize, 0usize);
-    for line in text.split('\n') {
-        let line = line.trim_end_matches('\r');
+    // Position sentences lost to a wrong or missing checksum (for the silent-loss rule).
+    let mut positions_unchecked = 0usize;
+    for (line_no, line) in super::lines(text) {
         if line.trim().is_empty() {
             continue;
         }
@@ -311,11 +405,21 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             other += 1;
             continue;
         }
-        sentences += 1;
-        match checked(line) {
-            Ok(body) => log.sentence(body),
-            Err(true) => truncated += 1,
-            Err(false) => bad += 1,
+        for one in sentences_of(line) {
+            sentences += 1;
+            match checked(one) {
+                Ok(body) => log
+                    .sentence(body)
+                    .map_err(|why| RaceError::at_line(file, line_no, why))?,
+                Err(broken) => {
+                    if broken {
+                        truncated += 1;
+                    } else {
+                        bad += 1;
+                    }
+                    positions_unchecked += usize::from(is_position(one));
+                }
+            }
         }
     }
     if log.fixes.is_empty() {
@@ -332,6 +436,16 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     s.drop_rule("sentences with a wrong checksum", bad);
     s.drop_rule("truncated sentences (no checksum)", truncated);
     s.drop_rule("lines that are not NMEA sentences", other);
+    s.drop_fixes(
+        "position sentences the receiver marked as no fix (RMC or GLL status V, GGA quality 0)",
+        log.no_fix_status,
+    );
+    s.drop_fixes(
+        "positions with a latitude outside [-90, 90] or a longitude outside [-180, 180]",
+        log.bad_position,
+    );
+    s.drop_fixes("positions before the log's first time", log.no_time_yet);
+    s.report.fixes_dropped += positions_unchecked;
     let base = match log.base_day {
         Some(d) => {
             s.report.date_source = "RMC or ZDA sentences".into();
@@ -353,7 +467,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         epoch_of(1970, 1, 1, 0.0) + d as f64 * 86_400.0 + tod
     };
     let id = super::boat_id_from_file(file);
-    let points = std::mem::take(&mut log.fixes)
+    let points: Vec<RawPoint> = std::mem::take(&mut log.fixes)
         .into_iter()
         .map(|(day, tod, lat, lon, sog, heading)| RawPoint {
             t: t_of(day, tod),
@@ -379,8 +493,8 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         name: id.clone(),
         id,
         color: None,
+        max_speed_mps: super::spike_limit_mps(&points),
         points,
-        max_speed_mps: (1.2 * log.max_sog as f64).max(super::knots_to_mps(DEFAULT_MAX_SPEED_KN)),
     });
     Ok(s)
 }

@@ -48,6 +48,8 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let mut in_boundary = false;
     let mut saw_race = false;
     let mut path: Vec<String> = Vec::new();
+    // The line of each open element, to name where a truncated file stops.
+    let mut opened_at: Vec<u64> = Vec::new();
     loop {
         let pos = r.buffer_position();
         let ev = r.read_event().map_err(|e| {
@@ -74,6 +76,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             Event::Start(e) => (e, false),
             Event::Empty(e) => (e, true),
             Event::End(_) => {
+                opened_at.pop();
                 if path.pop().as_deref() == Some("CourseLimit") {
                     in_boundary = false;
                 }
@@ -149,7 +152,20 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         }
         if !empty {
             path.push(name);
+            opened_at.push(line());
         }
+    }
+    // quick-xml reports no error for elements left open at the end: a file cut short (a
+    // partial download) would load a partial course, its finish gone.
+    if let (Some(open), Some(at)) = (path.last(), opened_at.last()) {
+        return Err(RaceError::at_line(
+            file,
+            *at,
+            format!(
+                "<{}> is never closed: the file ends inside it (a truncated download?) and its course would be incomplete",
+                crate::text::cut(open, 40)
+            ),
+        ));
     }
     if !saw_race {
         return Err(RaceError::in_file(
