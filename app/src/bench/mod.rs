@@ -22,6 +22,7 @@ pub mod mesh;
 pub mod overlays;
 pub mod pool;
 pub mod race;
+pub mod race_fleet;
 pub mod race_import;
 pub mod shader_cost;
 pub mod wakes;
@@ -211,19 +212,20 @@ pub fn offscreen(gpu: &render::Gpu, size: [u32; 2]) -> wgpu::TextureView {
 
 /// Run the sections (all, or those named in `only`) and write the report.
 pub fn run_all(ctx: &BenchContext, only: &[String]) -> CliResult<Vec<Table>> {
-    std::fs::create_dir_all(&ctx.out_dir).map_err(|e| {
-        CliError::new(format!(
-            "could not create the bench folder {}: {e}",
-            ctx.out_dir.display()
-        ))
-    })?;
     if let Some(bad) = only.iter().find(|o| !SECTIONS.iter().any(|(n, _)| n == o)) {
         let names: Vec<&str> = SECTIONS.iter().map(|(n, _)| *n).collect();
         return Err(CliError::new(format!(
-            "--only names the unknown section \"{bad}\"; the sections are: {}",
+            "--only names the unknown section {}; the sections are: {}",
+            input::quote(bad),
             names.join(", ")
         )));
     }
+    std::fs::create_dir_all(&ctx.out_dir).map_err(|e| {
+        CliError::new(format!(
+            "could not create the bench folder {}: {e}",
+            input::show_path(&ctx.out_dir)
+        ))
+    })?;
     let mut tables = Vec::new();
     let chosen: Vec<&Section> = SECTIONS
         .iter()

@@ -208,5 +208,6 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
          reference at 100,000 points (bound stated in track.rs: < 1e-4 m).",
     ));
     let import = crate::bench::race_import::table(ctx)?;
-    Ok(vec![t, import])
+    let fleet = crate::bench::race_fleet::table(ctx)?;
+    Ok(vec![t, import, fleet])
 }

@@ -29,7 +29,7 @@ pub fn run(a: BenchArgs) -> CliResult {
     eprintln!(
         "bench: wrote {} tables to {}",
         tables.len(),
-        a.out.join("report.md").display()
+        input::show_path(&a.out.join("report.md"))
     );
     super::output::print_stdout(
         "the bench summary",

@@ -8,6 +8,37 @@ use ocean::WaveSet;
 
 use crate::error::{CliError, CliResult};
 
+/// clap's parser for a whole-number option: `--waves -1` or `--seed x` is refused by saying
+/// the values the option takes (`takes`, e.g. "from 1 to 4096"), where clap took `-1` for an
+/// unknown flag before (the argument also sets `allow_negative_numbers`). A value that parses is
+/// range-checked where the option is used, as before.
+pub fn whole_number<T>(
+    takes: &'static str,
+) -> impl Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static
+where
+    T: std::str::FromStr + Clone + Send + Sync + 'static,
+{
+    move |s: &str| {
+        s.trim()
+            .parse::<T>()
+            .map_err(|_| format!("give a whole number {takes}"))
+    }
+}
+
+/// `--t` of `race` and `render`: the same cap `probe` has (±[`super::probe::MAX_TIME_S`], 31
+/// years), where they took `--t 1e300` before.
+pub fn check_race_time(t: f64) -> CliResult<f64> {
+    if t.abs() <= super::probe::MAX_TIME_S {
+        Ok(t)
+    } else {
+        Err(CliError::new(format!(
+            "--t {} is not a finite number of seconds within ±{:e}",
+            input::show_number(t),
+            super::probe::MAX_TIME_S
+        )))
+    }
+}
+
 /// Parse `--size WxH` (or `WXH`) with each side in `sides` pixels; a bad size is the sentence
 /// `--size "S" is not {expected}`.
 pub fn parse_size_in(s: &str, sides: RangeInclusive<u32>, expected: &str) -> CliResult<[u32; 2]> {

@@ -99,6 +99,13 @@ pub fn clap_one_line(rendered: &str) -> String {
     input::one_line(&format!("{} (see --help)", parts.join("; ")))
 }
 
+/// A message for stderr as the one `regatta:` line every message is: control characters
+/// escaped, cut, one `regatta:` prefix (log lines that carry their own keep one).
+pub fn user_line(msg: &str) -> String {
+    let msg = msg.strip_prefix("regatta: ").unwrap_or(msg);
+    format!("regatta: {}", input::one_line(msg))
+}
+
 /// True when descriptor 1 was closed when the program started (`>&-`). Rust's runtime reopens
 /// a closed stdout on /dev/null (read-write) before `main`, so the output would vanish with exit
 /// 0; a shell's `>/dev/null` opens it write-only, which stays allowed. Linux and Android tell
@@ -168,6 +175,18 @@ pub use output::print_stdout;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn log_lines_print_as_one_regatta_line() {
+        assert_eq!(
+            user_line("regatta: no wakes\nsecond line"),
+            "regatta: no wakes\\nsecond line"
+        );
+        assert_eq!(
+            user_line("no GPU timings this frame: x"),
+            "regatta: no GPU timings this frame: x"
+        );
+    }
 
     #[test]
     fn clap_errors_become_one_line_with_their_details_and_tips() {

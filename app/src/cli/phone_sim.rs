@@ -30,7 +30,7 @@ pub struct PhoneSimArgs {
     pub device: Device,
     /// The screen in portrait, WIDTHxHEIGHT pixels; half the phone's pixels per side without
     /// it (the layout in dp stays the phone's).
-    #[arg(long, value_name = "WxH")]
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
     pub size: Option<String>,
     /// The simulated ARCore library (crates/arcore_sim's cdylib, `cargo build -p arcore_sim`):
     /// the phone's own ARCore glue runs against it. Without it, a scripted stand-in answers.
@@ -54,9 +54,25 @@ pub fn open_feed(replay: Option<&std::path::Path>) -> CliResult<Feed> {
     })
 }
 
+/// Largest phone-sim script, bytes: 1 MiB, thousands of times the longest script in
+/// app/tests/phone (a few KiB); `/dev/zero` read until memory ran out (2.1 GB) before.
+pub const MAX_SCRIPT_BYTES: u64 = 1 << 20;
+
 pub fn run(a: PhoneSimArgs) -> CliResult {
-    let text = std::fs::read_to_string(&a.script)
-        .map_err(|e| CliError::new(format!("{}: {e}", input::show_path(&a.script))))?;
+    let bytes = input::read_capped(
+        &a.script,
+        MAX_SCRIPT_BYTES,
+        "a phone-sim script",
+        input::text_sniff,
+    )
+    .map_err(|e| CliError::new(e.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        CliError::new(format!(
+            "{} is not UTF-8 text (byte {})",
+            input::show_path(&a.script),
+            e.utf8_error().valid_up_to()
+        ))
+    })?;
     let lines = match script::parse(&a.script, &text) {
         Ok(l) => l,
         Err(e) => {

@@ -27,7 +27,8 @@ pub struct RaceArgs {
     #[arg(long)]
     pub keep_going: bool,
     /// For GPX tracks of several days: the session to race (1-based).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true,
+        value_parser = super::inputs::whole_number::<usize>("from 1 (the first session)"))]
     pub session: Option<usize>,
     /// Course marks for tracks that have none: GPX waypoints, a SailGP/AC race XML (its course
     /// in order), JSON, or CSV (name,lat,lon, or columns named by a header).
@@ -77,12 +78,8 @@ pub fn run(a: RaceArgs) -> CliResult {
             "regatta race needs --t SECONDS (or --report for the import report)",
         ));
     }
-    if let Some(t) = a.t
-        && !t.is_finite()
-    {
-        return Err(CliError::new(format!(
-            "--t is {t}; it must be a finite number of seconds"
-        )));
+    if let Some(t) = a.t {
+        super::inputs::check_race_time(t)?;
     }
     let race = load_race_with(&a.race, &a.load_options()?)?;
     let out = if a.report {

@@ -40,16 +40,25 @@ pub struct SynthArgs {
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
     /// Number of frames (the camera path loops over them).
-    #[arg(long, value_name = "N", default_value_t = SynthConfig::default().frames)]
+    #[arg(long, value_name = "N", default_value_t = SynthConfig::default().frames,
+        allow_negative_numbers = true,
+        value_parser = crate::cli::inputs::whole_number::<usize>("from 1 to 100000"))]
     pub frames: usize,
     /// Image size in pixels.
-    #[arg(long, value_name = "WxH", default_value = "400x300")]
+    #[arg(
+        long,
+        value_name = "WxH",
+        default_value = "400x300",
+        allow_hyphen_values = true
+    )]
     pub size: String,
     /// Seed of the hand tremor.
-    #[arg(long, default_value_t = SynthConfig::default().seed)]
+    #[arg(long, default_value_t = SynthConfig::default().seed, allow_negative_numbers = true,
+        value_parser = crate::cli::inputs::whole_number::<u64>("from 0 to 18446744073709551615"))]
     pub seed: u64,
     /// JPEG quality, 1–100.
-    #[arg(long, default_value_t = 85)]
+    #[arg(long, default_value_t = 85, allow_negative_numbers = true,
+        value_parser = crate::cli::inputs::whole_number::<u8>("from 1 to 100"))]
     pub quality: u8,
 }
 
@@ -84,7 +93,7 @@ fn synth(a: SynthArgs) -> CliResult {
     eprintln!(
         "regatta: rendering {} synthetic frames of {width}x{height} into {}",
         a.frames,
-        a.out.display()
+        input::show_path(&a.out)
     );
     cfg.write(&a.out, a.quality)
         .map_err(|e| CliError::new(e.to_string()))?;

@@ -35,7 +35,8 @@ pub struct SeaArgs {
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub spreading: f64,
     /// Number of waves (parametric spectrum).
-    #[arg(long, default_value_t = 32)]
+    #[arg(long, default_value_t = 32, allow_negative_numbers = true,
+        value_parser = super::inputs::whole_number::<usize>("from 1 to 4096"))]
     pub waves: usize,
     /// NDBC spectral density file (realtime `.data_spec` or historical `w` file, .gz allowed).
     #[arg(long)]
@@ -50,7 +51,8 @@ pub struct SeaArgs {
     #[arg(long)]
     pub time: Option<String>,
     /// Seed of the random frequencies, directions and phases.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true,
+        value_parser = super::inputs::whole_number::<u64>("from 0 to 18446744073709551615"))]
     pub seed: u64,
     /// Σ kA is scaled down to this if the spectrum is steeper (must be below 1).
     #[arg(long, default_value_t = 0.8, allow_hyphen_values = true)]
@@ -149,7 +151,16 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
         )));
     }
     if let Some(h) = a.depth {
-        positive("depth", h)?;
+        // The sea file's own range: a depth written here must read back.
+        let range = ocean::sea_file::DEPTH_RANGE;
+        if !range.contains(&h) {
+            return Err(CliError::new(format!(
+                "--depth must lie in {}..={} m (a centimetre of water to the deepest trench; a sea file holds no other), got {}",
+                range.start(),
+                range.end(),
+                input::show_number(h)
+            )));
+        }
     }
     let opts = SpectralOptions {
         seed: a.seed,

@@ -81,6 +81,7 @@ impl RunArgs {
 
 /// Open the window and run until it is closed.
 pub fn run(a: RunArgs) -> CliResult {
+    smoke::check_exit_after_env().map_err(CliError::new)?;
     if a.phone {
         return phone::run(a);
     }
@@ -98,8 +99,12 @@ pub fn run(a: RunArgs) -> CliResult {
         .as_deref()
         .map(crate::tier_render::parse_tier)
         .transpose()?;
-    let event_loop = EventLoop::new()
-        .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        CliError::new(format!(
+            "cannot open a window (no display?): {}",
+            smoke::window_error(&e)
+        ))
+    })?;
     let pool = (a.scene == SceneKind::Pool)
         .then(|| pool::PoolMode::new(a.sea.is_some().then(|| sea.clone())));
     // Without the panels (the pool), race time plays at real speed from the start and loops.

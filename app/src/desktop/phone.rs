@@ -57,8 +57,12 @@ pub fn run(a: RunArgs) -> CliResult {
         [w, h]
     };
     app.on(PhoneEvent::Density(a.device.pixels_per_point(size)));
-    let event_loop = EventLoop::new()
-        .map_err(|e| CliError::new(format!("cannot open a window (no display?): {e}")))?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        CliError::new(format!(
+            "cannot open a window (no display?): {}",
+            super::smoke::window_error(&e)
+        ))
+    })?;
     let mut shell = Shell {
         app,
         cues,

@@ -189,8 +189,16 @@ impl Intrinsics {
         if ok {
             Ok(())
         } else {
+            // The values as a person reads them (JSON field names), not Rust's Debug text.
+            let n = input::show_number;
             Err(ArError::new(format!(
-                "{what}: intrinsics need positive finite fx and fy, finite cx and cy and a non-empty image, got {self:?}"
+                "{what}: intrinsics need positive finite fx and fy, finite cx and cy and a non-empty image, got fx {}, fy {}, cx {}, cy {}, {}x{} pixels",
+                n(self.fx),
+                n(self.fy),
+                n(self.cx),
+                n(self.cy),
+                self.width,
+                self.height
             )))
         }
     }

@@ -31,7 +31,7 @@ pub struct RenderArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub t: Option<f64>,
     /// Image size, WIDTHxHEIGHT pixels.
-    #[arg(long, default_value = "1280x720")]
+    #[arg(long, default_value = "1280x720", allow_hyphen_values = true)]
     pub size: String,
     /// Camera: EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z in race metres (y up); without
     /// it the camera frames the fleet.
@@ -67,7 +67,8 @@ pub struct RenderArgs {
     #[arg(long, value_name = "DIR")]
     pub replay: Option<PathBuf>,
     /// Which frame of `--replay`, from 0.
-    #[arg(long, value_name = "N", requires = "replay")]
+    #[arg(long, value_name = "N", requires = "replay", allow_negative_numbers = true,
+        value_parser = crate::cli::inputs::whole_number::<usize>("from 0 to the feed's last frame"))]
     pub frame: Option<usize>,
     /// A quality tier (low, medium, high, ultra; docs/quality.md): its render scale, clip-map
     /// error target, AR effects and their sizes, wake spacing and budget.
@@ -122,6 +123,20 @@ pub fn parse_size(s: &str) -> CliResult<[u32; 2]> {
     )
 }
 
+/// Whether two output paths name one file: equal as given, or equal once their folders are
+/// resolved (`x.png` and `./x.png`; a file that does not exist yet has no canonical path).
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    let resolved = |p: &std::path::Path| {
+        let dir = p.parent().filter(|d| !d.as_os_str().is_empty());
+        let dir = dir.map_or_else(|| std::path::PathBuf::from("."), |d| d.to_path_buf());
+        std::fs::canonicalize(dir)
+            .ok()
+            .zip(p.file_name())
+            .map(|(d, f)| d.join(f))
+    };
+    a == b || matches!((resolved(a), resolved(b)), (Some(x), Some(y)) if x == y)
+}
+
 /// Parse `--camera` (six finite numbers; the eye must differ from the target and not look
 /// straight down the vertical).
 pub fn parse_camera(s: &str, far: f64) -> CliResult<Camera> {
@@ -137,6 +152,12 @@ pub fn parse_camera(s: &str, far: f64) -> CliResult<Camera> {
     if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
         return Err(CliError::new(format!(
             "--camera \"{s}\" needs exactly six finite numbers EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z"
+        )));
+    }
+    let max = crate::cli::probe::MAX_WORLD_M;
+    if v.iter().any(|x| x.abs() > max) {
+        return Err(CliError::new(format!(
+            "--camera \"{s}\" lies outside the world: every coordinate must lie within ±{max:e} m, as probe's --at"
         )));
     }
     let eye = DVec3::new(v[0], v[1], v[2]);
@@ -159,10 +180,16 @@ pub fn run(a: RenderArgs) -> CliResult {
         .map(effects::EffectSet::parse)
         .transpose()
         .map_err(CliError::new)?;
-    if let Some(t) = a.t
-        && !t.is_finite()
+    if let Some(t) = a.t {
+        crate::cli::inputs::check_race_time(t)?;
+    }
+    if let Some(report) = &a.report
+        && same_file(&a.out, report)
     {
-        return Err(CliError::new("--t must be a finite number of seconds"));
+        return Err(CliError::new(format!(
+            "--out and --report are the same file ({}): the frame record would overwrite the image; give two paths",
+            input::show_path(&a.out)
+        )));
     }
     let overlays = overlay_settings(&a)?;
     let tier = a
