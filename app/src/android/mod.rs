@@ -13,11 +13,11 @@ use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction, Moti
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent};
 use ar::arcore::ffi::{ArCore, JavaObject, Jni};
 
-use crate::wall_clock::Ticker;
 use crate::core::gfx::SurfaceMaker;
 use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::overlay::touch::{Finger, Touch, TouchAction};
+use crate::wall_clock::Ticker;
 
 mod intents;
 mod jni_calls;

@@ -95,17 +95,6 @@ fn in_range(
     }
 }
 
-fn positive(name: &str, v: f64) -> CliResult<f64> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(CliError::new(format!(
-            "--{name} must be a positive number, got {}",
-            input::show_number(v)
-        )))
-    }
-}
-
 /// "YYYY-MM-DD hh:mm" as an NDBC record time.
 pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
     let bad = || {

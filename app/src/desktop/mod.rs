@@ -20,10 +20,10 @@ use winit::window::{Window, WindowId};
 
 use crate::cli::inputs::{load_race, load_sea};
 use crate::cli::scene_kind::SceneKind;
-use crate::wall_clock::Ticker;
 use crate::core::gfx::{self, Acquired, Profile};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
+use crate::wall_clock::Ticker;
 
 pub mod feed;
 pub mod overlay;

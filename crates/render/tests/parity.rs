@@ -279,12 +279,10 @@ fn the_drawn_foam_is_probes_foam_within_one_level() {
         .iter()
         .zip(&points)
         .zip(reference.iter().zip(&foam_bounds))
-        .filter(
-            |((g, (_, wake)), (r, b)): &((&[f32; 2], &([f32; 2], f32)), (&f64, &Inexact))| {
-                let old = ((0.72 - g[1]) / 0.35).clamp(0.0, 1.0).max(*wake);
-                (f64::from(old) - **r).abs() > b.error
-            },
-        )
+        .filter(|((g, (_, wake)), (r, b))| {
+            let old = ((0.72 - g[1]) / 0.35).clamp(0.0, 1.0).max(*wake);
+            (f64::from(old) - **r).abs() > b.error
+        })
         .count();
     assert!(drifted > 200, "only {drifted} points tell the rules apart");
 }

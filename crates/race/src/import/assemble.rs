@@ -346,14 +346,14 @@ fn merge_duplicate_tracks(s: &mut Source) {
     };
     let mut first_of: HashMap<Key, Vec<usize>> = HashMap::new();
     let mut merged_into: Vec<Option<usize>> = vec![None; s.boats.len()];
-    for k in 0..s.boats.len() {
+    for (k, merged) in merged_into.iter_mut().enumerate() {
         let same = first_of.entry(key(&s.boats[k])).or_default();
         let dup = same.iter().copied().find(|&j| {
             let (a, b) = (&s.boats[j].points, &s.boats[k].points);
             a.iter().zip(b).all(|(p, r)| p.t == r.t && p.c == r.c)
         });
         match dup {
-            Some(j) => merged_into[k] = Some(j),
+            Some(j) => *merged = Some(j),
             None => same.push(k),
         }
     }

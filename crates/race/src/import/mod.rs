@@ -28,8 +28,8 @@ mod nmea;
 mod packed;
 mod race_xml;
 mod recorder;
-mod tcx;
 mod rules;
+mod tcx;
 mod timefmt;
 mod xml_text;
 

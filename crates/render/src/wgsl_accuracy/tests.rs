@@ -238,7 +238,7 @@ fn a_wave_sum_stays_within_its_bound_on_a_worst_case_gpu() {
             let (a, k, phi) = (
                 rng.range(0.01, 1.0) as f32,
                 rng.range(0.01, 3.0) as f32,
-                rng.range(0.0, 6.28) as f32,
+                rng.range(0.0, std::f64::consts::TAU) as f32,
             );
             let theta = Inexact::of(k) * Inexact::of(x) + Inexact::of(phi);
             sum = sum + Inexact::of(a) * theta.sin();
