@@ -25,16 +25,20 @@ where
     }
 }
 
-/// `--t` of `race` and `render`: the same cap `probe` has (±[`super::probe::MAX_TIME_S`], 31
+/// Largest |race time|, seconds, for `--t` of `probe`, `race` and `render`: 31 years; a phase
+/// ω t keeps 1e-7 rad there.
+pub const MAX_TIME_S: f64 = 1.0e9;
+
+/// `--t` of `race` and `render`: the same cap `probe` has (±[`MAX_TIME_S`], 31
 /// years), where they took `--t 1e300` before.
 pub fn check_race_time(t: f64) -> CliResult<f64> {
-    if t.abs() <= super::probe::MAX_TIME_S {
+    if t.abs() <= MAX_TIME_S {
         Ok(t)
     } else {
         Err(CliError::new(format!(
             "--t {} is not a finite number of seconds within ±{:e}",
             input::show_number(t),
-            super::probe::MAX_TIME_S
+            MAX_TIME_S
         )))
     }
 }

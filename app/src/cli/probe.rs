@@ -49,8 +49,7 @@ pub struct WakeSample {
 /// 1.2e-10 m, far below the inverse's tolerance. At 1e155 m the inverse had no digits left and
 /// probe printed nulls.
 pub const MAX_WORLD_M: f64 = 1.0e6;
-/// Largest |race time|, seconds: 31 years; a phase ω t keeps 1e-7 rad there.
-pub const MAX_TIME_S: f64 = 1.0e9;
+pub use super::inputs::MAX_TIME_S;
 
 /// The race time of `--t`: a number of seconds within ±[`MAX_TIME_S`].
 pub fn parse_time(t: Option<&str>) -> CliResult<f64> {

@@ -53,6 +53,7 @@ pub(crate) mod hull;
 pub mod mesh_error;
 pub mod optics;
 pub mod passes;
+pub mod pure_water;
 pub mod renderer;
 pub mod scene;
 pub mod shader;

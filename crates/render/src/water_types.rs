@@ -1,6 +1,6 @@
 //! The real sea's water: Jerlov's optical water types and their inherent optical properties
 //! (absorption a and backscattering b_b per RGB band), the f64 input of
-//! [`crate::water_look`] (docs/water-look.md).
+//! `water_look` (docs/water-look.md).
 //!
 //! Jerlov classed the world's waters by how fast daylight fades with depth, the diffuse
 //! attenuation coefficient of downwelling irradiance K_d(λ): oceanic I (clearest), IA, IB, II,
@@ -11,7 +11,7 @@
 //! to Jerlov's, with fewer components than theirs (two per type) and a closed-form fit:
 //!
 //! - **Water**: pure-water absorption a_w(λ), Pope & Fry (1997)
-//!   ([`crate::water_look::POPE_FRY_1997`]); molecular backscattering of sea water
+//!   ([`crate::pure_water::POPE_FRY_1997`]); molecular backscattering of sea water
 //!   b_bw(λ) = ½ · 0.00288 m⁻¹ · (λ / 500 nm)^−4.32 (Morel 1974, "Optical properties of pure
 //!   water and pure sea water": b_w(500) = 0.00288 m⁻¹ for sea water, 0.00222 m⁻¹ for pure
 //!   water, half of it backwards).
@@ -32,10 +32,10 @@
 //! error over Jerlov's 13 wavelengths (400–700 nm every 25 nm). The fitted model reproduces
 //! Jerlov's K_d within 16 % at every one of them (tested at each; the worst, 16 %, is type I at
 //! 700 nm, where Jerlov's K_d of the clearest sea is below Pope & Fry's pure-water absorption).
-//! The band means of a and b_b (box bands, as [`crate::water_look::BANDS_NM`]) are what the
+//! The band means of a and b_b (box bands, as [`crate::pure_water::BANDS_NM`]) are what the
 //! renderer uses.
 
-use crate::water_look::{BANDS_NM, POPE_FRY_1997};
+use crate::pure_water::{BANDS_NM, POPE_FRY_1997};
 
 /// Jerlov's optical water types, and pure water (no sea salt, nothing dissolved or suspended).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -399,7 +399,7 @@ mod tests {
         }
         // Pure water: Pope & Fry's band means (water_look's), and Morel's b_bw at 450 nm.
         let pure = WaterType::Pure.band_iops();
-        let pf = crate::water_look::pure_water_absorption();
+        let pf = crate::pure_water::pure_water_absorption();
         for i in 0..3 {
             assert!(
                 (pure.absorption[i] - pf[i]).abs() < 1e-12,

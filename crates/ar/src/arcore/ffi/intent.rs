@@ -7,23 +7,10 @@
 
 use std::sync::{Mutex, MutexGuard};
 
+pub use super::intent_file::{
+    ACTION_SEND, ACTION_VIEW, ContentFile, ContentScript, IntentFile, SIM_AUTHORITY,
+};
 use super::jni::{JavaObject, ScriptedJni};
-
-/// `Intent.ACTION_VIEW` ("Open with").
-pub const ACTION_VIEW: &str = "android.intent.action.VIEW";
-/// `Intent.ACTION_SEND` ("Share").
-pub const ACTION_SEND: &str = "android.intent.action.SEND";
-
-/// The file an intent carries, before it is read.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct IntentFile {
-    /// `ACTION_VIEW` or `ACTION_SEND`.
-    pub action: String,
-    /// `content://…` (as `Uri.toString()` gives it).
-    pub uri: String,
-    /// The intent's MIME type (`Intent.getType()`), where the sender gave one.
-    pub mime: Option<String>,
-}
 
 /// The Java calls that read an intent's file.
 pub trait IntentJni {
@@ -38,27 +25,6 @@ pub trait IntentJni {
     /// most `max_bytes + 1` (so that a longer file shows as longer without being read whole).
     fn read_content(&self, on: JavaObject, uri: &str, max_bytes: u64) -> Result<Vec<u8>, String>;
 }
-
-/// One file the host's content provider holds.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ContentFile {
-    pub uri: String,
-    /// `DISPLAY_NAME`; `None`: the provider gives no name.
-    pub name: Option<String>,
-    pub bytes: Vec<u8>,
-}
-
-/// The host fake's intent and content provider.
-#[derive(Debug, Default)]
-pub struct ContentScript {
-    /// The intent the Activity holds now (`None`: started from the launcher).
-    pub intent: Option<IntentFile>,
-    /// The provider's files, by URI.
-    pub files: Vec<ContentFile>,
-}
-
-/// The authority of the host's provider (Android's `FileProvider` URIs look the same).
-pub const SIM_AUTHORITY: &str = "org.regatta.sim.provider";
 
 impl ScriptedJni {
     fn content(&self) -> MutexGuard<'_, ContentScript> {

@@ -148,8 +148,8 @@ impl HostEnv {
 #[derive(Debug, Default)]
 pub struct ScriptedJni {
     state: Mutex<(JavaScript, Vec<JavaCall>, bool)>,
-    /// The Activity's intent and the content provider behind it ([`super::intent`]).
-    pub(super) content: Mutex<super::intent::ContentScript>,
+    /// The Activity's intent and the content provider behind it ([`super::intent_file`]).
+    pub(super) content: Mutex<super::intent_file::ContentScript>,
     /// Boxed: C calls keep its address for the call's length.
     env: Mutex<Option<Box<HostEnv>>>,
 }

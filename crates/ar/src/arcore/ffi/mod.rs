@@ -15,6 +15,7 @@
 pub mod api;
 pub mod frame;
 pub mod intent;
+mod intent_file;
 pub mod jni;
 pub mod session;
 
