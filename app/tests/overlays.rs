@@ -220,9 +220,11 @@ fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
             .1
             .clone()
     };
-    assert_eq!(
-        layer(OverlayKind::Wind),
-        Layer::Nothing("no wind in the race and a calm sea".into())
+    // No wind in the race's files and a calm sea: the wind drawn is the fleet's estimate
+    // (race::debrief::wind; its label says "estimated", tested in scene_overlay).
+    assert!(
+        matches!(layer(OverlayKind::Wind), Layer::Draw(_)),
+        "the estimated wind is drawn"
     );
     assert_eq!(layer(OverlayKind::Trails), Layer::Off);
     assert!(f.labels.is_empty(), "labels off: none placed");

@@ -176,7 +176,7 @@ fn bad_input_is_one_sentence_and_a_failure() {
         "/nonexistent/r.gpx: could not be read",
     );
     fails_with(&["race"], "needs --t");
-    fails_with(&["race", "--t", "nan"], "--t is NaN");
+    fails_with(&["race", "--t", "nan"], "--t NaN is not a finite number");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -93,7 +93,7 @@ fn the_water_covers_the_table_to_its_corners_and_stops_at_its_edges() {
     let (with_water, cam) = draw(true);
     let (without, _) = draw(false);
     let map = feed.placement().expect("a prepared frame has a placement");
-    let depth_ar = feed.water().depth_m;
+    let depth_ar = feed.water().depth_m * map.course_to_table;
     let plane = ar::SynthConfig::default().table();
     let half = DVec2::from(plane.extent) / 2.0;
     let centre = DVec3::from(plane.center);
