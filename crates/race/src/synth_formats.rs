@@ -122,22 +122,6 @@ pub fn tcx_log(bytes: usize) -> String {
     s
 }
 
-/// FIT CRC-16 (the FIT SDK's nibble table).
-fn fit_crc(bytes: &[u8]) -> u16 {
-    const T: [u16; 16] = [
-        0x0000, 0xCC01, 0xD801, 0x1400, 0xF001, 0x3C00, 0x2800, 0xE401, 0xA001, 0x6C00, 0x7800,
-        0xB401, 0x5000, 0x9C01, 0x8801, 0x4400,
-    ];
-    let mut crc = 0u16;
-    for &b in bytes {
-        for nibble in [b & 0xF, b >> 4] {
-            let tmp = T[(crc & 0xF) as usize];
-            crc = ((crc >> 4) & 0x0FFF) ^ tmp ^ T[nibble as usize];
-        }
-    }
-    crc
-}
-
 /// A FIT activity of `fixes` records at 1 Hz (FIT timestamps are whole seconds): file_id,
 /// then `record` messages (timestamp, position_lat, position_long in semicircles, speed in
 /// mm/s).
@@ -164,10 +148,10 @@ pub fn fit_log(fixes: usize) -> Vec<u8> {
     f.extend_from_slice(&2132u16.to_le_bytes());
     f.extend_from_slice(&(d.len() as u32).to_le_bytes());
     f.extend_from_slice(b".FIT");
-    let hc = fit_crc(&f);
+    let hc = crate::import::fit_crc(&f);
     f.extend_from_slice(&hc.to_le_bytes());
     f.extend_from_slice(&d);
-    let c = fit_crc(&f);
+    let c = crate::import::fit_crc(&f);
     f.extend_from_slice(&c.to_le_bytes());
     f
 }

@@ -56,7 +56,7 @@ fn field<'a>(fields: &'a [FitDataField], name: &str) -> Option<&'a Value> {
 }
 
 /// FIT CRC-16 (FIT SDK, "FIT File Protocol": the nibble table below, register from 0).
-fn fit_crc(bytes: &[u8]) -> u16 {
+pub(crate) fn fit_crc(bytes: &[u8]) -> u16 {
     const T: [u16; 16] = [
         0x0000, 0xCC01, 0xD801, 0x1400, 0xF001, 0x3C00, 0x2800, 0xE401, 0xA001, 0x6C00, 0x7800,
         0xB401, 0x5000, 0x9C01, 0x8801, 0x4400,

@@ -35,6 +35,7 @@ mod xml_text;
 
 pub(crate) use assemble::assemble;
 pub use detect::Format;
+pub(crate) use fit::fit_crc;
 pub use rules::{MAX_SAILING_SPEED_KN, TIME_OUTLIER_GAP_S};
 pub(crate) use rules::{lines, spike_limit_mps};
 
