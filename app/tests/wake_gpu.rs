@@ -1,16 +1,18 @@
 //! shaders/ocean/wake.wgsl on a real GPU (lavapipe in CI) against its CPU mirror and the f64 terms:
-//! a compute pass sums `wake_source_height`, `wake_source_height_grad` and `wake_source_foam`
-//! over a frame's source buffer at a grid of local points.
+//! a compute pass sums `wake_source_height`, `wake_source_grad_foam`'s gradient (band limited
+//! for points 1.5 m apart at every other point, not limited at the rest) and
+//! `wake_source_foam` over a frame's source buffer at a grid of local points.
 
 use ocean::wake::{
     TrackSample, WGSL_SIN_ERROR, Wake, WakeParams, WakeView, f32_height_error_bound, wake_foam_f32,
-    wake_height_f32, wake_height_grad_f32, wake_wgsl,
+    wake_height_f32, wake_height_grad_sampled_f32, wake_wgsl,
 };
 use wgpu::util::DeviceExt;
 
 const MAIN: &str = r#"
 @group(0) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
-@group(0) @binding(1) var<storage, read> points: array<vec2<f32>>;
+// (x, z, the spacing the point is sampled at, unused).
+@group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read_write> out: array<vec4<f32>>;
 
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -19,13 +21,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if (i >= arrayLength(&points)) {
         return;
     }
-    let p = points[i];
+    let p = points[i].xy;
+    let spacing = points[i].z;
     var h = 0.0;
     var grad = vec3<f32>(0.0);
     var foam = 0.0;
     for (var j = 0u; j < arrayLength(&wake_sources); j++) {
         h += wake_source_height(wake_sources[j], p);
-        grad += wake_source_height_grad(wake_sources[j], p);
+        grad += wake_source_grad_foam(wake_sources[j], p, spacing).xyz;
         foam += wake_source_foam(wake_sources[j], p);
     }
     out[i] = vec4<f32>(h, grad.yz, wake_foam_from_density(foam));
@@ -83,9 +86,12 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
         })
     };
     let sources = storage("sources", frame.bytes());
+    let spacing = |i: usize| if i.is_multiple_of(2) { 0.0f32 } else { 1.5 };
     let point_bytes: Vec<u8> = points
         .iter()
-        .flat_map(|p| p.iter().flat_map(|v| v.to_le_bytes()))
+        .enumerate()
+        .flat_map(|(i, p)| [p[0], p[1], spacing(i), 0.0])
+        .flat_map(|v| v.to_le_bytes())
         .collect();
     let pts = storage("points", &point_bytes);
     let size = (points.len() * 16) as u64;
@@ -112,7 +118,8 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
         .collect();
     let slopes: Vec<[f32; 3]> = points
         .iter()
-        .map(|p| wake_height_grad_f32(&frame.sources, *p))
+        .enumerate()
+        .map(|(i, p)| wake_height_grad_sampled_f32(&frame.sources, *p, spacing(i)))
         .collect();
     let peak_slope = slopes
         .iter()

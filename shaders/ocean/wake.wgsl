@@ -37,7 +37,18 @@ struct WakeSource {
 
 // From the generated prelude (ocean::wake::wgsl, the values of the f32 mirror): WAKE_MIN_R2,
 // the squared distance (m²) below which the term is e^{−k²R²/4} ≈ 0 (skip, never divide by
-// zero); WAKE_GAUSS_CUTOFF, the k²R²/4 beyond which the term is nothing (e^{−40}); WAKE_TAU, 2π.
+// zero); WAKE_GAUSS_CUTOFF, the k²R²/4 beyond which the term is nothing (e^{−40}); WAKE_TAU, 2π;
+// WAKE_BAND_START and WAKE_BAND_END, the k·spacing over which the band limit fades a term out
+// (π/4 to π/2, the sea's rule: a wave shorter than four sample spacings aliases).
+
+// The band limit of a field sampled every `spacing` metres (a clip-map level's vertices): a
+// source's local wavenumber k = q/r² is faded out from k·spacing = π/4 to π/2, as the sea's
+// waves are per pixel (common.wgsl, surface_frame). Height and gradient are faded alike: the
+// fade filters the local wavenumber, and the gradient of a component of wavenumber k has that
+// wavenumber too. spacing = 0: no band limit (the field itself).
+fn wake_band_fade(k: f32, spacing: f32) -> f32 {
+    return 1.0 - smoothstep(WAKE_BAND_START, WAKE_BAND_END, k * spacing);
+}
 
 // The height one source adds at p, m:
 // −strength · (k²/r) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (r̂·ΔX), k = q/r², Φ = q/r.
@@ -68,17 +79,19 @@ fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
 // − (12g + 3) cos Φ/Φ + (4g − 3) sin Φ].
 fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
     let d = p - s.pos;
-    return wake_source_height_grad_at(s, d, dot(d, d));
+    return wake_source_height_grad_at(s, d, dot(d, d), 0.0);
 }
 
-// wake_source_height_grad with the offset d = p − s.pos and r2 = |d|² already formed.
-fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32) -> vec3<f32> {
+// wake_source_height_grad with the offset d = p − s.pos and r2 = |d|² already formed, band
+// limited for points sampled every `spacing` metres (wake_band_fade; 0: not limited). Inside
+// the band limit's radius (k·spacing ≥ π/2) the term is nothing and costs no exp or sin.
+fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, spacing: f32) -> vec3<f32> {
     if (r2 > s.cull_r2 || r2 < WAKE_MIN_R2) {
         return vec3<f32>(0.0);
     }
     let k = s.q / r2;
     let g = k * k * s.gauss;
-    if (!(g <= WAKE_GAUSS_CUTOFF)) {
+    if (!(g <= WAKE_GAUSS_CUTOFF) || !(k * spacing < WAKE_BAND_END)) {
         return vec3<f32>(0.0);
     }
     let r = sqrt(r2);
@@ -86,7 +99,7 @@ fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32) -> vec3<f32>
     let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
     let sn = sin(phi_r);
     let cs = cos(phi_r);
-    let c = -s.strength * k * k / r2 * exp(-g);
+    let c = -s.strength * k * k / r2 * exp(-g) * wake_band_fade(k, spacing);
     let bracket = sn + (4.0 * g - 3.0) / phi * cs;
     let f = c * bracket;
     let df = c / r * ((4.0 * g - 6.0) * bracket - phi * cs - (12.0 * g + 3.0) / phi * cs + (4.0 * g - 3.0) * sn);
@@ -100,13 +113,14 @@ fn wake_source_foam(s: WakeSource, p: vec2<f32>) -> f32 {
     return s.foam * exp(-dot(d, d) / s.foam_w2);
 }
 
-// One source at p: (w, ∂w/∂x, ∂w/∂z) of wake_source_height_grad and the foam density of
-// wake_source_foam, the offset and its squared length formed once for both (what a point
-// sums over its bin's sources).
-fn wake_source_grad_foam(s: WakeSource, p: vec2<f32>) -> vec4<f32> {
+// One source at p: (w, ∂w/∂x, ∂w/∂z) of wake_source_height_grad band limited for points
+// `spacing` metres apart, and the foam density of wake_source_foam (a smooth strip, not
+// limited), the offset and its squared length formed once for both (what a point sums over
+// its bin's sources).
+fn wake_source_grad_foam(s: WakeSource, p: vec2<f32>, spacing: f32) -> vec4<f32> {
     let d = p - s.pos;
     let r2 = dot(d, d);
-    return vec4<f32>(wake_source_height_grad_at(s, d, r2), s.foam * exp(-r2 / s.foam_w2));
+    return vec4<f32>(wake_source_height_grad_at(s, d, r2, spacing), s.foam * exp(-r2 / s.foam_w2));
 }
 
 // Summed foam density → foam strength in [0, 1].

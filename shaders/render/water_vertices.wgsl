@@ -1,9 +1,12 @@
 // Compute stage of the water pass: displaces every clip-map vertex by the sea and the boats'
 // wakes (shaders/ocean/wake.wgsl, bind group 1) once per frame into the vertex buffer the water's
-// vertex shader (water_displaced.wgsl) draws. The CPU bins the wake sources on a grid over
-// where they reach (render::passes::water::WakeBins): a point sums only the sources listed for
-// its bin, which holds every source whose cull circle, grown by the grid's margin, reaches the
-// bin. Appended to common.wgsl, optics.wgsl and wake.wgsl.
+// vertex shader (water_displaced.wgsl) draws. The wake at a vertex is band limited for its
+// level's vertex spacing, as the sea's waves are per level: what the mesh cannot carry (four
+// vertices a wavelength at least) would alias. The CPU bins the wake sources on a grid over
+// where they reach (render::wake_bins): a point sums only the sources listed for its bin,
+// which holds every source whose cull circle, grown by the grid's margin, reaches the bin and
+// whose band-limited term is not zero over the whole bin at the finest spacing sampling it.
+// Appended to common.wgsl, optics.wgsl and wake.wgsl.
 
 struct WakeGrid {
     // Local (x, z) of the grid's corner, m.
@@ -16,6 +19,8 @@ struct WakeGrid {
     nz: u32,
     _pad0: u32,
     _pad1: u32,
+    // Vertex spacing of clip-map level l at [l / 4][l % 4], m.
+    level_spacing: array<vec4<f32>, 4>,
 }
 
 @group(1) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
@@ -33,13 +38,13 @@ fn wake_bin(p: vec2<f32>) -> vec2<u32> {
     return wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
 }
 
-// The wake at local point p: (height m, ∂w/∂x, ∂w/∂z, foam in [0, 1]), one pass over p's bin
-// with each source's closed-form gradient.
-fn wake_at(p: vec2<f32>) -> vec4<f32> {
+// The wake at local point p sampled every `spacing` metres: (height m, ∂w/∂x, ∂w/∂z, foam in
+// [0, 1]), one pass over p's bin with each source's closed-form gradient, band limited.
+fn wake_at(p: vec2<f32>, spacing: f32) -> vec4<f32> {
     let bin = wake_bin(p);
     var sum = vec4<f32>(0.0);
     for (var i = 0u; i < bin.y; i = i + 1u) {
-        sum += wake_source_grad_foam(wake_sources[wake_index[bin.x + i]], p);
+        sum += wake_source_grad_foam(wake_sources[wake_index[bin.x + i]], p, spacing);
     }
     return vec4<f32>(sum.xyz, wake_foam_from_density(sum.w));
 }
@@ -71,7 +76,7 @@ fn cs_displace(@builtin(global_invocation_id) id: vec3<u32>) {
     // The wake is a height at a world point: where this vertex has gone.
     var wake = vec3<f32>(0.0);
     if frame.counts.z > 0u {
-        let w = wake_at(pos.xz);
+        let w = wake_at(pos.xz, wake_grid.level_spacing[v.level / 4u][v.level % 4u]);
         pos.y += w.x;
         wake = w.yzw;
     }

@@ -52,22 +52,14 @@ fn trips(
     wake: &ocean::wake::Wake,
     drawn: [u32; 2],
 ) -> (Trips, f64) {
-    let frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
-    let eye = [scene.camera.eye.x, scene.camera.eye.z];
-    let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
-    let mut wakes = wake.gpu_sources(
-        scene.t,
-        [frame.origin.x, frame.origin.y],
-        &ocean::wake::WakeView::around(eye, reach),
-        render::renderer::WAKE_EPSILON_M,
-    );
-    let half = reach as f32 * 2.0;
-    let (bins, _) = render::wake_bins::fit(
-        &mut wakes,
-        half,
+    let mut frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
+    render::renderer::bin_wakes(
+        wake,
         render::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
         tier.wake_source_budget,
+        &mut frame,
     );
+    let (bins, wakes) = (&frame.wake_bins, &frame.wakes);
     let counts: Vec<f64> = bins
         .bins
         .iter()

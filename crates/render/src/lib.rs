@@ -59,6 +59,7 @@ pub mod scene;
 pub mod shader;
 mod timing;
 pub mod wake_bins;
+pub mod wake_spacing;
 pub mod water_look;
 pub mod water_types;
 pub mod wgsl_accuracy;

@@ -12,8 +12,10 @@
 //! anywhere errs by at most the sum of the dropped sources' peak bounds, and the wake foam by
 //! at most the sum of their peak densities (1 − e^{−Σ} is 1-Lipschitz).
 
-use ocean::wake::{GpuWakeFrame, GpuWakeSource, source_peak_bound};
+use ocean::wake::{GpuWakeFrame, GpuWakeSource, inner_radius2, source_peak_bound};
 use serde::Serialize;
+
+use crate::wake_spacing::SampleSpacing;
 
 /// Memory budget of one frame's wake buffers (sources, bins and indices together): 64 MiB,
 /// half of the common storage-binding limit (`downlevel_defaults`: 128 MiB), about 16 million
@@ -53,7 +55,7 @@ pub struct WakeDrop {
     pub cap_bytes: u64,
 }
 
-/// `WakeGrid` of `shaders/water_vertices.wgsl` (32 bytes).
+/// `WakeGrid` of `shaders/water_vertices.wgsl` (96 bytes).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct WakeGrid {
@@ -63,11 +65,17 @@ pub struct WakeGrid {
     pub nx: u32,
     pub nz: u32,
     pub _pad: [u32; 2],
+    /// Vertex spacing of each clip-map level (16 at most), m: the wake's band limit there.
+    pub level_spacing: [[f32; 4]; 4],
 }
 
 /// The wake sources binned on a grid: a point looks up its bin and sums only the sources
 /// listed there. Every source whose cull circle, grown by `margin`, touches a bin is listed
-/// in it, so a point within `margin` of a bin's points misses no source that reaches it.
+/// in it, unless the whole bin (grown by `margin`) lies inside the source's inner radius for
+/// the finest spacing that samples the bin (`ocean::wake::inner_radius2`: its Gaussian
+/// cut-off or the band limit, where the term is zero), or no vertex can land in the bin. So a
+/// point within `margin` of a bin's points, sampled no finer than the bin's finest spacing,
+/// misses no source that adds to it.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct WakeBins {
     pub grid: WakeGrid,
@@ -76,29 +84,48 @@ pub struct WakeBins {
     pub indices: Vec<u32>,
 }
 
-/// The grid's geometry: corner, bin size and bins per side.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The grid's geometry: corner, bin size and bins per side, and the finest spacing that
+/// samples each bin (none: no vertex lands there).
+#[derive(Debug, Clone, PartialEq)]
 struct Layout {
     lo: [f32; 2],
     cell: f32,
     nx: u32,
     nz: u32,
     margin: f32,
+    finest: Vec<Option<f32>>,
+    level_spacing: [[f32; 4]; 4],
 }
 
 impl Layout {
-    /// Bins of at least 2 m, at most `max_bins` per side, over [lo, hi].
-    fn new(lo: [f32; 2], hi: [f32; 2], max_bins: u32, margin: f32) -> Layout {
+    /// Bins of at least 2 m, at most `max_bins` per side, over [lo, hi], sampled as `spacing`
+    /// says.
+    fn new(
+        lo: [f32; 2],
+        hi: [f32; 2],
+        max_bins: u32,
+        margin: f32,
+        spacing: &SampleSpacing,
+    ) -> Layout {
         let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1.0);
         let cell = (size / max_bins as f32).max(2.0);
         let nx = (((hi[0] - lo[0]) / cell).ceil() as u32).clamp(1, max_bins);
         let nz = (((hi[1] - lo[1]) / cell).ceil() as u32).clamp(1, max_bins);
+        let finest = (0..nz)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let a = [lo[0] + i as f32 * cell, lo[1] + j as f32 * cell];
+                spacing.finest_in(a, [a[0] + cell, a[1] + cell], margin)
+            })
+            .collect();
         Layout {
             lo,
             cell,
             nx,
             nz,
             margin,
+            finest,
+            level_spacing: spacing.per_level(),
         }
     }
 
@@ -138,7 +165,23 @@ impl Layout {
             (a - f64::from(v)).max(f64::from(v) - (a + cell)).max(0.0)
         };
         let (dx, dz) = (gap(s.pos[0], self.lo[0], i), gap(s.pos[1], self.lo[1], j));
-        dx * dx + dz * dz <= r * r
+        if dx * dx + dz * dz > r * r {
+            return false;
+        }
+        // The bin's farthest point from the source (grown by the margin) must lie outside
+        // the source's inner radius for the bin's finest spacing.
+        let Some(spacing) = self.finest[(j * self.nx + i) as usize] else {
+            return false;
+        };
+        let far = |v: f32, lo: f32, k: u32| {
+            let a = f64::from(lo) + f64::from(k) * cell;
+            (f64::from(v) - a)
+                .abs()
+                .max((a + cell - f64::from(v)).abs())
+                + f64::from(self.margin)
+        };
+        let (fx, fz) = (far(s.pos[0], self.lo[0], i), far(s.pos[1], self.lo[1], j));
+        fx * fx + fz * fz >= f64::from(inner_radius2(s, spacing))
     }
 
     /// The bins that list `s` (row-major indices).
@@ -180,15 +223,17 @@ impl WakeBins {
         half: f32,
         max_bins: u32,
         margin: f32,
+        spacing: &SampleSpacing,
     ) -> WakeBins {
         match reach(sources, half, margin) {
-            Some((lo, hi)) => WakeBins::new(sources, lo, hi, max_bins, margin),
+            Some((lo, hi)) => WakeBins::sampled(sources, lo, hi, max_bins, margin, spacing),
             // Nothing reaches the square: one empty bin.
-            None => WakeBins::new(&[], [-half, -half], [half, half], 1, margin),
+            None => WakeBins::sampled(&[], [-half, -half], [half, half], 1, margin, spacing),
         }
     }
 
-    /// Bin `sources` over the local rectangle [lo, hi] with at most `max_bins` per side.
+    /// Bin `sources` over the local rectangle [lo, hi] with at most `max_bins` per side, for
+    /// points evaluated without a band limit.
     pub fn new(
         sources: &[GpuWakeSource],
         lo: [f32; 2],
@@ -196,11 +241,31 @@ impl WakeBins {
         max_bins: u32,
         margin: f32,
     ) -> WakeBins {
-        WakeBins::on(sources, Layout::new(lo, hi, max_bins, margin))
+        WakeBins::sampled(
+            sources,
+            lo,
+            hi,
+            max_bins,
+            margin,
+            &SampleSpacing::uniform(0.0),
+        )
+    }
+
+    /// [`WakeBins::new`] for points sampled as `spacing` says (each band limited for its
+    /// level's spacing).
+    pub fn sampled(
+        sources: &[GpuWakeSource],
+        lo: [f32; 2],
+        hi: [f32; 2],
+        max_bins: u32,
+        margin: f32,
+        spacing: &SampleSpacing,
+    ) -> WakeBins {
+        WakeBins::on(sources, Layout::new(lo, hi, max_bins, margin, spacing))
     }
 
     fn on(sources: &[GpuWakeSource], layout: Layout) -> WakeBins {
-        let Layout { nx, nz, .. } = layout;
+        let (nx, nz) = (layout.nx, layout.nz);
         let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
         for (k, s) in sources.iter().enumerate() {
             for b in layout.bins_of(s) {
@@ -221,6 +286,7 @@ impl WakeBins {
                 nx,
                 nz,
                 _pad: [0; 2],
+                level_spacing: layout.level_spacing,
             },
             bins,
             indices,
@@ -246,17 +312,18 @@ pub fn fit(
     half: f32,
     cap: u64,
     max_sources: usize,
+    spacing: &SampleSpacing,
 ) -> (WakeBins, WakeDrop) {
     let mut drop = WakeDrop {
         cap_bytes: cap,
         ..Default::default()
     };
     let Some((lo, hi)) = reach(&wakes.sources, half, WAKE_MARGIN_M) else {
-        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, WAKE_MARGIN_M);
+        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, WAKE_MARGIN_M, spacing);
         return (bins, drop);
     };
     // The grid stays the one of all sources in reach, so every count below is exact.
-    let layout = Layout::new(lo, hi, WAKE_BINS, WAKE_MARGIN_M);
+    let layout = Layout::new(lo, hi, WAKE_BINS, WAKE_MARGIN_M, spacing);
     let listed: Vec<u64> = wakes.sources.iter().map(|s| layout.listed(s)).collect();
     let mut bytes = SOURCE_BYTES * wakes.sources.len().max(1) as u64
         + BIN_BYTES * u64::from(layout.nx * layout.nz)
@@ -418,7 +485,7 @@ mod tests {
                 }
             })
             .collect();
-        let bins = WakeBins::over_reach(&sources, 2000.0, 128, 0.5);
+        let bins = WakeBins::over_reach(&sources, 2000.0, 128, 0.5, &SampleSpacing::uniform(0.0));
         let whole = WakeBins::new(&sources, [-2000.0; 2], [2000.0; 2], 128, 0.5);
         // The grid spans the reach (≤ 164 m) in the smallest bins (2 m), not the whole
         // square's 31 m bins.
@@ -448,7 +515,7 @@ mod tests {
         assert!(fine * 3 < coarse, "{fine} vs {coarse}");
         assert!(listed_at(&bins, [0.0, 0.0]).is_empty());
         // No source in reach: an empty grid.
-        let none = WakeBins::over_reach(&sources, 100.0, 128, 0.5);
+        let none = WakeBins::over_reach(&sources, 100.0, 128, 0.5, &SampleSpacing::uniform(0.0));
         assert!(none.indices.is_empty() && listed_at(&none, [0.0, 0.0]).is_empty());
     }
 
@@ -479,7 +546,13 @@ mod tests {
             sources: bunched_fleet(),
             ..Default::default()
         };
-        let (_, drop) = fit(&mut frame, 2000.0, u64::MAX, 150);
+        let (_, drop) = fit(
+            &mut frame,
+            2000.0,
+            u64::MAX,
+            150,
+            &SampleSpacing::uniform(0.0),
+        );
         assert_eq!((frame.sources.len(), drop.dropped), (150, 450));
         // The weakest 450 went: the kept ones are sources 450..600.
         let weakest_kept = frame
@@ -494,7 +567,18 @@ mod tests {
             sources: bunched_fleet(),
             ..Default::default()
         };
-        assert_eq!(fit(&mut all, 2000.0, u64::MAX, 600).1.dropped, 0);
+        assert_eq!(
+            fit(
+                &mut all,
+                2000.0,
+                u64::MAX,
+                600,
+                &SampleSpacing::uniform(0.0)
+            )
+            .1
+            .dropped,
+            0
+        );
     }
 
     #[test]
@@ -505,7 +589,13 @@ mod tests {
             sources: sources.clone(),
             ..Default::default()
         };
-        let (bins, drop) = fit(&mut all, 2000.0, u64::MAX, usize::MAX);
+        let (bins, drop) = fit(
+            &mut all,
+            2000.0,
+            u64::MAX,
+            usize::MAX,
+            &SampleSpacing::uniform(0.0),
+        );
         assert_eq!((drop.dropped, all.sources.len()), (0, 600));
         let need = bins.bytes(600);
         let cap = 256 << 10;
@@ -514,7 +604,13 @@ mod tests {
             sources,
             ..Default::default()
         };
-        let (bins, drop) = fit(&mut frame, 2000.0, cap, usize::MAX);
+        let (bins, drop) = fit(
+            &mut frame,
+            2000.0,
+            cap,
+            usize::MAX,
+            &SampleSpacing::uniform(0.0),
+        );
         // Fits, and drops no more than it must (one more source would not fit).
         assert!(bins.bytes(frame.sources.len()) <= cap);
         assert!(drop.dropped > 0 && drop.dropped + frame.sources.len() == 600);

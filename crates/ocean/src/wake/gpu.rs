@@ -189,10 +189,48 @@ pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
     -amp * bracket * (d[0] * s.dx[0] + d[1] * s.dx[1]) / r
 }
 
+/// The band limit of a field sampled every `spacing` metres: a term of local wavenumber k is
+/// faded out from k·spacing = [`BAND_START`] to [`BAND_END`] (π/4 to π/2: a wave shorter than
+/// four sample spacings aliases, the sea's per-pixel rule), f32 exactly as `wake_band_fade`
+/// in WGSL (its `smoothstep`). `spacing` = 0: 1 (no limit).
+pub fn band_fade_f32(k: f32, spacing: f32) -> f32 {
+    let t = ((k * spacing - BAND_START) / (BAND_END - BAND_START)).clamp(0.0, 1.0);
+    1.0 - t * t * (3.0 - 2.0 * t)
+}
+
+/// [`band_fade_f32`] in f64: the reference the f32 mirror and the GPU are held to.
+pub fn band_fade(k: f64, spacing: f64) -> f64 {
+    let (a, b) = (f64::from(BAND_START), f64::from(BAND_END));
+    let t = ((k * spacing - a) / (b - a)).clamp(0.0, 1.0);
+    1.0 - t * t * (3.0 - 2.0 * t)
+}
+
+/// Where the band limit starts and ends, in k·spacing (radians per sample spacing).
+pub const BAND_START: f32 = std::f32::consts::FRAC_PI_4;
+pub const BAND_END: f32 = std::f32::consts::FRAC_PI_2;
+
+/// The squared radius (m²) inside which a source adds nothing at points sampled every
+/// `spacing` metres: its Gaussian cut-off (k²R²/4 > 40, k = q/r², so r² < q·√(R²/4/40)) or
+/// the band limit (k·spacing ≥ π/2, so r² ≤ q·spacing/(π/2)), whichever is larger. Slightly
+/// under the exact value (1 part in 10⁴), so that f32 rounding of a point's r² near it never
+/// drops a source the shader would still add (both fades are e^{−40} or 0 there anyway).
+pub fn inner_radius2(s: &GpuWakeSource, spacing: f32) -> f32 {
+    let q = f64::from(s.q.max(0.0));
+    let hole = q * (f64::from(s.gauss.max(0.0)) / GAUSS_CUTOFF).sqrt();
+    let band = q * f64::from(spacing.max(0.0)) / f64::from(BAND_END);
+    (hole.max(band) * (1.0 - 1e-4)) as f32
+}
+
 /// One source's height term and its gradient at local point `p`, (w, ∂w/∂x, ∂w/∂z) in m and
 /// m/m, f32, exactly as `wake_source_height_grad` in WGSL (the closed-form derivative of
 /// [`source_height_f32`]).
 pub fn source_height_grad_f32(s: &GpuWakeSource, p: [f32; 2]) -> [f32; 3] {
+    source_height_grad_sampled_f32(s, p, 0.0)
+}
+
+/// [`source_height_grad_f32`] band limited for points sampled every `spacing` metres
+/// ([`band_fade_f32`]), exactly as `wake_source_height_grad_at` in WGSL.
+pub fn source_height_grad_sampled_f32(s: &GpuWakeSource, p: [f32; 2], spacing: f32) -> [f32; 3] {
     let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
     let r2 = d[0] * d[0] + d[1] * d[1];
     if r2 > s.cull_r2 || r2 < MIN_R2 {
@@ -200,7 +238,7 @@ pub fn source_height_grad_f32(s: &GpuWakeSource, p: [f32; 2]) -> [f32; 3] {
     }
     let k = s.q / r2;
     let g = k * k * s.gauss;
-    if g.is_nan() || g > GAUSS_CUTOFF as f32 {
+    if g.is_nan() || g > GAUSS_CUTOFF as f32 || k * spacing >= BAND_END || (k * spacing).is_nan() {
         return [0.0; 3];
     }
     let r = r2.sqrt();
@@ -208,7 +246,7 @@ pub fn source_height_grad_f32(s: &GpuWakeSource, p: [f32; 2]) -> [f32; 3] {
     let tau = std::f32::consts::TAU;
     let phi_r = phi - tau * (phi / tau).round_ties_even();
     let (sn, cs) = phi_r.sin_cos();
-    let c = -s.strength * k * k / r2 * (-g).exp();
+    let c = -s.strength * k * k / r2 * (-g).exp() * band_fade_f32(k, spacing);
     let bracket = sn + (4.0 * g - 3.0) / phi * cs;
     let f = c * bracket;
     let df = c / r
@@ -224,8 +262,17 @@ pub fn source_height_grad_f32(s: &GpuWakeSource, p: [f32; 2]) -> [f32; 3] {
 
 /// Wake height and gradient at local point `p`, f32: the mirror of `wake_at` in WGSL.
 pub fn wake_height_grad_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> [f32; 3] {
+    wake_height_grad_sampled_f32(sources, p, 0.0)
+}
+
+/// [`wake_height_grad_f32`] band limited for points sampled every `spacing` metres.
+pub fn wake_height_grad_sampled_f32(
+    sources: &[GpuWakeSource],
+    p: [f32; 2],
+    spacing: f32,
+) -> [f32; 3] {
     sources.iter().fold([0.0; 3], |acc, s| {
-        let g = source_height_grad_f32(s, p);
+        let g = source_height_grad_sampled_f32(s, p, spacing);
         [acc[0] + g[0], acc[1] + g[1], acc[2] + g[2]]
     })
 }
@@ -365,6 +412,91 @@ mod tests {
                 bound < 4.0 * worst,
                 "age {age}: bound {bound} vs peak {worst}"
             );
+        }
+    }
+    fn old_source(age: f64, hull: f64) -> GpuWakeSource {
+        GpuWakeSource {
+            pos: [3.0, -2.0],
+            dx: [0.8, 0.6],
+            q: (9.81 * age * age / 4.0) as f32,
+            strength: 0.02,
+            gauss: (hull * hull / 4.0) as f32,
+            cull_r2: 1e12,
+            ..Default::default()
+        }
+    }
+
+    /// The f32 fade is the f64 smoothstep within a few ulp, 1 below π/4 and 0 from π/2, and
+    /// no fade at spacing 0.
+    #[test]
+    fn the_band_fade_is_the_sea_rule_in_f32_and_f64() {
+        for i in 0..=2000 {
+            let x = f64::from(i) * 1e-3;
+            let (a, b) = (band_fade_f32(x as f32, 1.0), band_fade(x, 1.0));
+            assert!((f64::from(a) - b).abs() < 1e-6, "{x}: {a} vs {b}");
+            if x <= std::f64::consts::FRAC_PI_4 {
+                assert_eq!(b, 1.0);
+            }
+            if x >= std::f64::consts::FRAC_PI_2 {
+                assert_eq!((a, b), (0.0, 0.0));
+            }
+        }
+        assert_eq!(band_fade_f32(1e6, 0.0), 1.0);
+        // Halfway in k·spacing the smoothstep is ½ (the ends are the f32 constants: 1e-7).
+        assert!((band_fade(3.0 * std::f64::consts::PI / 8.0, 1.0) - 0.5).abs() < 1e-7);
+    }
+
+    /// Inside `inner_radius2` a source adds exactly nothing at the spacing it was computed
+    /// for (and at every coarser one); just outside it, something.
+    #[test]
+    fn nothing_inside_the_inner_radius() {
+        for (age, hull) in [(2.0, 1.0), (10.0, 1.5), (40.0, 3.0), (60.0, 1.5)] {
+            let s = old_source(age, hull);
+            for spacing in [0.0f32, 0.5, 1.7, 6.0] {
+                let r_in = inner_radius2(&s, spacing).sqrt();
+                for a in 0..36 {
+                    let th = f64::from(a) * std::f64::consts::TAU / 36.0;
+                    for f in [0.01, 0.3, 0.9, 0.9999] {
+                        let r = f64::from(r_in) * f;
+                        let p = [3.0 + (r * th.cos()) as f32, -2.0 + (r * th.sin()) as f32];
+                        for coarser in [spacing, spacing * 2.0] {
+                            let g = source_height_grad_sampled_f32(&s, p, coarser);
+                            assert_eq!(g, [0.0; 3], "age {age} spacing {coarser} r {r}");
+                        }
+                    }
+                }
+                // Past the band limit's radius by a tenth the term lives (where the hole does
+                // not set the radius).
+                let r = 1.1 * f64::from(r_in);
+                let p = [3.0 + r as f32, -2.0];
+                let hole = f64::from(s.q) * (f64::from(s.gauss) / 40.0).sqrt();
+                if r * r > hole * 1.5 && spacing > 0.0 {
+                    assert_ne!(source_height_grad_sampled_f32(&s, p, spacing)[0], 0.0);
+                }
+            }
+        }
+    }
+
+    /// Band limiting only scales the term: sampled = fade(k·spacing) × unlimited, f32.
+    #[test]
+    fn the_band_limited_term_is_the_faded_term() {
+        let s = old_source(20.0, 1.5);
+        for i in 1..400 {
+            let r = 0.5 * f64::from(i);
+            let p = [3.0 + r as f32, -2.0 + (0.3 * r) as f32];
+            let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
+            let k = s.q / (d[0] * d[0] + d[1] * d[1]);
+            let full = source_height_grad_f32(&s, p);
+            let lim = source_height_grad_sampled_f32(&s, p, 2.0);
+            let fade = band_fade(f64::from(k), 2.0);
+            for c in 0..3 {
+                let want = f64::from(full[c]) * fade;
+                assert!(
+                    (f64::from(lim[c]) - want).abs() <= 1e-6 * f64::from(full[c].abs()) + 1e-30,
+                    "r {r} c {c}: {} vs {want}",
+                    lim[c]
+                );
+            }
         }
     }
 }

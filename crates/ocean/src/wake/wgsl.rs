@@ -4,7 +4,7 @@
 //! the file alone does not compile. (`ocean` sits below `render`, so it writes its own `const`
 //! lines, as `render::shader::wgsl_consts` does.)
 
-use super::gpu::MIN_R2;
+use super::gpu::{BAND_END, BAND_START, MIN_R2};
 use super::kelvin::GAUSS_CUTOFF;
 
 /// The functions that evaluate the source buffer, without their constants.
@@ -12,12 +12,15 @@ const WAKE_FUNCTIONS: &str = include_str!("../../../../shaders/ocean/wake.wgsl")
 
 /// The constants the wake shader shares with its f32 mirror, as WGSL names them: the squared
 /// distance below which a source is skipped, the exponent beyond which its term is nothing,
-/// and the period the phase is reduced by (the mirror's `f32::consts::TAU`).
-pub fn shared_consts() -> [(&'static str, f32); 3] {
+/// the period the phase is reduced by (the mirror's `f32::consts::TAU`), and the band limit's
+/// fade (k·spacing from π/4 to π/2).
+pub fn shared_consts() -> [(&'static str, f32); 5] {
     [
         ("WAKE_MIN_R2", MIN_R2),
         ("WAKE_GAUSS_CUTOFF", GAUSS_CUTOFF as f32),
         ("WAKE_TAU", std::f32::consts::TAU),
+        ("WAKE_BAND_START", BAND_START),
+        ("WAKE_BAND_END", BAND_END),
     ]
 }
 
