@@ -39,11 +39,11 @@ struct WakeSource {
 // the squared distance (m²) below which the term is e^{−k²R²/4} ≈ 0 (skip, never divide by
 // zero); WAKE_GAUSS_CUTOFF, the k²R²/4 beyond which the term is nothing (e^{−40}); WAKE_TAU, 2π;
 // WAKE_BAND_START and WAKE_BAND_END, the k·spacing over which the band limit fades a term out
-// (π/4 to π/2, the sea's rule: a wave shorter than four sample spacings aliases).
+// (1 to 2: a clip-map level drops the sea's waves from k·cell = 2 on).
 
 // The band limit of a field sampled every `spacing` metres (a clip-map level's vertices): a
-// source's local wavenumber k = q/r² is faded out from k·spacing = π/4 to π/2, as the sea's
-// waves are per pixel (common.wgsl, surface_frame). Height and gradient are faded alike: the
+// source's local wavenumber k = q/r² is faded out from k·spacing = 1 to 2, as a clip-map
+// level drops the sea's waves shorter than π cells (render::clipmap::plan). Height and gradient are faded alike: the
 // fade filters the local wavenumber, and the gradient of a component of wavenumber k has that
 // wavenumber too. spacing = 0: no band limit (the field itself).
 fn wake_band_fade(k: f32, spacing: f32) -> f32 {
@@ -84,7 +84,7 @@ fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
 
 // wake_source_height_grad with the offset d = p − s.pos and r2 = |d|² already formed, band
 // limited for points sampled every `spacing` metres (wake_band_fade; 0: not limited). Inside
-// the band limit's radius (k·spacing ≥ π/2) the term is nothing and costs no exp or sin.
+// the band limit's radius (k·spacing ≥ 2) the term is nothing and costs no exp or sin.
 fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, spacing: f32) -> vec3<f32> {
     if (r2 > s.cull_r2 || r2 < WAKE_MIN_R2) {
         return vec3<f32>(0.0);

@@ -1,8 +1,8 @@
 // Compute stage of the water pass: displaces every clip-map vertex by the sea and the boats'
 // wakes (shaders/ocean/wake.wgsl, bind group 1) once per frame into the vertex buffer the water's
 // vertex shader (water_displaced.wgsl) draws. The wake at a vertex is band limited for its
-// level's vertex spacing, as the sea's waves are per level: what the mesh cannot carry (four
-// vertices a wavelength at least) would alias. The CPU bins the wake sources on a grid over
+// level's vertex spacing, as the sea's waves are per level: a level cannot carry a wave
+// shorter than π cells (render::clipmap::plan). The CPU bins the wake sources on a grid over
 // where they reach (render::wake_bins): a point sums only the sources listed for its bin,
 // which holds every source whose cull circle, grown by the grid's margin, reaches the bin and
 // whose band-limited term is not zero over the whole bin at the finest spacing sampling it.

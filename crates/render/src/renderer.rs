@@ -19,11 +19,12 @@ use crate::timing::{GpuTimer, PassStats};
 pub use crate::gpu::DEPTH_FORMAT;
 /// Default screen-space error target of the clip-map, pixels.
 pub const DEFAULT_ERROR_PX: f64 = 1.0;
-/// Wake culling tolerance: height error allowed per left-out wake source, metres (1 mm at the
-/// race's scale). Measured against every source alive (`tests/wake_band_limit.rs`): under
-/// 0.1 px of height and 5·10⁻³ of slope at every vertex; 1e-4 listed 3.3× the (bin, source)
-/// pairs on the sample race for errors nobody sees (docs/wakes.md).
-pub const WAKE_EPSILON_M: f64 = 1e-3;
+/// Wake culling tolerance: height error allowed per left-out wake source, metres (half a
+/// millimetre at the race's scale). Measured against every source alive
+/// (`tests/wake_band_limit.rs`): under 0.04 px of height and 2·10⁻³ of slope (0.1°) at every
+/// vertex of a three-boat frame; 1e-4 listed 1.6× the (bin, source) pairs on the sample race
+/// (docs/wakes.md), 1e-3 erred by 0.3° of slope on a weak wake.
+pub const WAKE_EPSILON_M: f64 = 5e-4;
 
 /// Options of a [`Renderer`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -190,9 +190,10 @@ pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
 }
 
 /// The band limit of a field sampled every `spacing` metres: a term of local wavenumber k is
-/// faded out from k·spacing = [`BAND_START`] to [`BAND_END`] (π/4 to π/2: a wave shorter than
-/// four sample spacings aliases, the sea's per-pixel rule), f32 exactly as `wake_band_fade`
-/// in WGSL (its `smoothstep`). `spacing` = 0: 1 (no limit).
+/// faded out from k·spacing = [`BAND_START`] to [`BAND_END`] (1 to 2: the clip-map's own rule
+/// for the sea's waves, which a level drops from k·cell = 2 on, a wave shorter than π cells
+/// erring by half its amplitude or more when interpolated; the fade spans the octave below),
+/// f32 exactly as `wake_band_fade` in WGSL (its `smoothstep`). `spacing` = 0: 1 (no limit).
 pub fn band_fade_f32(k: f32, spacing: f32) -> f32 {
     let t = ((k * spacing - BAND_START) / (BAND_END - BAND_START)).clamp(0.0, 1.0);
     1.0 - t * t * (3.0 - 2.0 * t)
@@ -206,12 +207,12 @@ pub fn band_fade(k: f64, spacing: f64) -> f64 {
 }
 
 /// Where the band limit starts and ends, in k·spacing (radians per sample spacing).
-pub const BAND_START: f32 = std::f32::consts::FRAC_PI_4;
-pub const BAND_END: f32 = std::f32::consts::FRAC_PI_2;
+pub const BAND_START: f32 = 1.0;
+pub const BAND_END: f32 = 2.0;
 
 /// The squared radius (m²) inside which a source adds nothing at points sampled every
 /// `spacing` metres: its Gaussian cut-off (k²R²/4 > 40, k = q/r², so r² < q·√(R²/4/40)) or
-/// the band limit (k·spacing ≥ π/2, so r² ≤ q·spacing/(π/2)), whichever is larger. Slightly
+/// the band limit (k·spacing ≥ 2, so r² ≤ q·spacing/2), whichever is larger. Slightly
 /// under the exact value (1 part in 10⁴), so that f32 rounding of a point's r² near it never
 /// drops a source the shader would still add (both fades are e^{−40} or 0 there anyway).
 pub fn inner_radius2(s: &GpuWakeSource, spacing: f32) -> f32 {
@@ -426,7 +427,7 @@ mod tests {
         }
     }
 
-    /// The f32 fade is the f64 smoothstep within a few ulp, 1 below π/4 and 0 from π/2, and
+    /// The f32 fade is the f64 smoothstep within a few ulp, 1 below k·spacing = 1 and 0 from 2,
     /// no fade at spacing 0.
     #[test]
     fn the_band_fade_is_the_sea_rule_in_f32_and_f64() {
@@ -434,16 +435,16 @@ mod tests {
             let x = f64::from(i) * 1e-3;
             let (a, b) = (band_fade_f32(x as f32, 1.0), band_fade(x, 1.0));
             assert!((f64::from(a) - b).abs() < 1e-6, "{x}: {a} vs {b}");
-            if x <= std::f64::consts::FRAC_PI_4 {
+            if x <= 1.0 {
                 assert_eq!(b, 1.0);
             }
-            if x >= std::f64::consts::FRAC_PI_2 {
+            if x >= 2.0 {
                 assert_eq!((a, b), (0.0, 0.0));
             }
         }
         assert_eq!(band_fade_f32(1e6, 0.0), 1.0);
-        // Halfway in k·spacing the smoothstep is ½ (the ends are the f32 constants: 1e-7).
-        assert!((band_fade(3.0 * std::f64::consts::PI / 8.0, 1.0) - 0.5).abs() < 1e-7);
+        // Halfway in k·spacing the smoothstep is ½.
+        assert_eq!(band_fade(1.5, 1.0), 0.5);
     }
 
     /// Inside `inner_radius2` a source adds exactly nothing at the spacing it was computed
