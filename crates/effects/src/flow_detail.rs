@@ -240,11 +240,11 @@ mod tests {
 
     #[test]
     fn the_field_tiles_and_its_maxima_bound_it() {
-        let g = detail_gradient_max();
+        let (g, c) = (detail_gradient_max(), detail_curvature_max());
         let m = detail_slope_max();
         let mut seed = 3;
-        let h = 1e-6;
-        let (mut big, mut grad) = (DVec2::ZERO, [[0.0f64; 2]; 2]);
+        let (h, h2) = (1e-6, 1e-4);
+        let (mut big, mut grad, mut curv) = (DVec2::ZERO, [[0.0f64; 2]; 2], [[0.0f64; 2]; 2]);
         for _ in 0..20_000 {
             let uv = DVec2::new(rnd(&mut seed), rnd(&mut seed));
             let s = detail_slope(uv);
@@ -252,22 +252,29 @@ mod tests {
                 assert!((detail_slope(uv + shift) - s).length() < 1e-12, "{uv}");
             }
             big = big.max(s.abs());
-            for a in 0..2 {
-                let e = if a == 0 { DVec2::X } else { DVec2::Y } * h;
+            for (a, axis) in [DVec2::X, DVec2::Y].into_iter().enumerate() {
+                let e = axis * h;
                 let d = (detail_slope(uv + e) - detail_slope(uv - e)) / (2.0 * h);
                 grad[0][a] = grad[0][a].max(d.x.abs());
                 grad[1][a] = grad[1][a].max(d.y.abs());
+                let e = axis * h2;
+                let d2 = (detail_slope(uv + e) - 2.0 * s + detail_slope(uv - e)) / (h2 * h2);
+                curv[0][a] = curv[0][a].max(d2.x.abs());
+                curv[1][a] = curv[1][a].max(d2.y.abs());
             }
         }
         for j in 0..2 {
             assert!(big[j] <= m[j] * (1.0 + 1e-12), "{big} {m}");
             for a in 0..2 {
                 assert!(grad[j][a] <= g[j][a] * (1.0 + 1e-6), "{grad:?} {g:?}");
+                // The central second difference is a weighted mean of the curvature over its
+                // interval (the field is C²), so it never exceeds the maximum.
+                assert!(curv[j][a] <= c[j][a] * (1.0 + 1e-6), "{curv:?} {c:?}");
             }
         }
         // Bounds, not far above what the field reaches (the waves' maxima do not all meet).
         assert!(
-            big.x > 0.5 * m.x && grad[0][0] > 0.5 * g[0][0],
+            big.x > 0.5 * m.x && grad[0][0] > 0.5 * g[0][0] && curv[0][0] > 0.5 * c[0][0],
             "{big} {grad:?}"
         );
     }
