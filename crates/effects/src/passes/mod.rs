@@ -13,8 +13,9 @@
 //! Both share bind group 2 (`shaders/effects_common.wgsl`; group 1 is unused): the [`EffectsUniform`], the camera image (binding 1: an sRGB RGBA view, YUV
 //! 4:2:0 converted into it once per camera frame, [`super::camera_upload`]), the reflection
 //! texture, the caustic map, a sampler, and the flow map's detail texture (binding 5, baked
-//! once from [`super::flow_detail`]) with its wrap-around sampler (binding 6). [`add_effect_passes`] returns an [`EffectsHandle`]
-//! that writes each new camera frame into the same textures. The caustic map is the f64
+//! once from [`super::flow_detail`]) with its wrap-around sampler (binding 6).
+//! [`add_effect_passes`] returns an [`EffectsHandle`] that writes each new camera frame into
+//! the same textures. The caustic map is the f64
 //! area-ratio map of [`super::caustics`] at the frame's race time, uploaded each frame.
 
 mod background;
