@@ -40,6 +40,7 @@ struct Effects {
 @group(2) @binding(2) var reflection_image: texture_2d<f32>;
 @group(2) @binding(3) var caustic_map: texture_2d<f32>;
 @group(2) @binding(4) var linear_clamp: sampler;
+// Bindings 5 and 6 (the flow map's detail texture and its wrap-around sampler): flowmap.wgsl.
 
 struct ScreenOut {
     @builtin(position) clip: vec4<f32>,

@@ -21,17 +21,28 @@ fn refracted_table(p: vec3<f32>, view: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
 // refracted_table with the refracted ray t = refract_dir(view, n, N_AIR, N_WATER) given: the
 // AR water needs t again for the table point the caustics light, and refracts once.
 fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
-    let straight_point = table_point_straight(p, view);
-    let straight = camera_uv(straight_point).xy;
     let hit = ray_plane(p, t.xyz, vec4<f32>(0.0, 1.0, 0.0, fx.table.x));
     // Without a table along the refracted ray (or behind the camera): w = 0, the unrefracted
-    // sample and the ray's path along the view direction (ar_water puts q there). No branch:
-    // one exit per function (see camera_uv in effects_common.wgsl).
+    // sample and the ray's path along the view direction (ar_water puts q there). No early
+    // return: one exit per function (see camera_uv in effects_common.wgsl).
     let found = t.w != 0.0 && hit.w > 0.0;
     let uv = camera_uv(hit.xyz);
     let w = select(0.0, edge_weight(uv.xy) * uv.z, found);
-    let path = select(length(straight_point - p), hit.w, found);
     let refracted = clamp(uv.xy, vec2<f32>(0.0), vec2<f32>(1.0));
-    let at = select(straight, mix(straight, refracted, w), w > 0.0);
+    // At w = 1 (w is 0 where no table is found) the sample is the refracted point and the
+    // path the refracted ray's, as mix(straight, refracted, 1) and the select below give:
+    // the straight table point and its projection (a ray-plane solve and a camera_uv, 70
+    // ALU operations) only where the refracted point is in the fade band, outside it or
+    // missing, under 1 % of the water's pixels in the demo view. (The budget model counts a
+    // branch's costlier side, so it does not see this; a GPU skips the block for each SIMD
+    // group that has w = 1 throughout.)
+    var at = refracted;
+    var path = hit.w;
+    if w < 1.0 {
+        let straight_point = table_point_straight(p, view);
+        let straight = camera_uv(straight_point).xy;
+        at = select(straight, mix(straight, refracted, w), w > 0.0);
+        path = select(length(straight_point - p), hit.w, found);
+    }
     return vec4<f32>(sample_camera(at), path);
 }

@@ -13,6 +13,7 @@
 //! - [`caustics`]: the area-ratio caustics of the actual wave surface at race time t, and the
 //!   source's cheap overhead-sun tier.
 //! - [`flowmap`]: current around a mark and the two-phase flow-map blend with the UV jump.
+//! - [`flow_detail`]: the detail field the flow map advects, its baked texture and its bound.
 //! - [`planner`]: when each effect pass runs, and why it does not.
 
 pub mod camera_frame;
@@ -21,6 +22,7 @@ mod camera_gpu_tests;
 pub mod camera_upload;
 pub mod caustic_map;
 pub mod caustics;
+pub mod flow_detail;
 pub mod flowmap;
 #[cfg(test)]
 mod gpu_tests;

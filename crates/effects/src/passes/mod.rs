@@ -12,8 +12,10 @@
 //!
 //! Both share bind group 2 (`shaders/effects_common.wgsl`; group 1 is unused): the [`EffectsUniform`], the camera image (binding 1: an sRGB RGBA view, YUV
 //! 4:2:0 converted into it once per camera frame, [`super::camera_upload`]), the reflection
-//! texture, the caustic map and a sampler. [`add_effect_passes`] returns an [`EffectsHandle`]
-//! that writes each new camera frame into the same textures. The caustic map is the f64
+//! texture, the caustic map, a sampler, and the flow map's detail texture (binding 5, baked
+//! once from [`super::flow_detail`]) with its wrap-around sampler (binding 6).
+//! [`add_effect_passes`] returns an [`EffectsHandle`] that writes each new camera frame into
+//! the same textures. The caustic map is the f64
 //! area-ratio map of [`super::caustics`] at the frame's race time, uploaded each frame.
 
 mod background;
@@ -37,7 +39,10 @@ pub use background::{BACKGROUND, BackgroundPass};
 pub use config::ArConfig;
 pub use pipelines::{AR_WATER, AR_WATER_PARTS, CAUSTICS, FLOWMAP, REFLECTION, REFRACTION};
 use shared::Shared;
-pub use shared::{EFFECTS_COMMON, EffectsUniform, caustic_region, effect_frame};
+pub use shared::{
+    EFFECTS_COMMON, EffectsUniform, FLOW_DETAIL_FORMAT, caustic_region, effect_frame,
+    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler,
+};
 pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};
 
 /// The camera frame of the effect passes, for their owner to change: from

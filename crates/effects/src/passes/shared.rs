@@ -9,6 +9,7 @@ use crate::camera_frame::{CameraFrame, CameraImage};
 use crate::camera_upload::{CameraTextures, YuvConversion};
 use crate::caustic_map::CAUSTIC_MAP_FORMAT;
 use crate::caustics::CausticRegion;
+use crate::flow_detail::{DETAIL_TEXELS, detail_texture};
 use crate::flowmap::{DEFAULT_JUMP, flow_phases};
 use crate::planner::EffectFrame;
 use render::frame::{FrameContext, Targets};
@@ -103,6 +104,9 @@ pub(super) struct Shared {
     pub(super) caustic_tex: wgpu::Texture,
     pub(super) reflection: Option<(wgpu::Texture, wgpu::Texture)>,
     pub(super) sampler: wgpu::Sampler,
+    /// The flow map's detail texture (made once) and its wrap-around sampler.
+    pub(super) flow_detail: wgpu::Texture,
+    pub(super) repeat_sampler: wgpu::Sampler,
     pub(super) group: Option<wgpu::BindGroup>,
     pub(super) colour_format: wgpu::TextureFormat,
     /// Camera frames set so far: the background pass's revision, so that the renderer draws
@@ -129,6 +133,51 @@ pub(super) fn caustic_map_texture(device: &wgpu::Device, cells: usize) -> wgpu::
     )
 }
 
+/// The flow map's detail texture format: two 16-bit floats, filterable everywhere.
+pub const FLOW_DETAIL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;
+
+/// The flow map's detail texture (`flow_detail` of `shaders/effects/flowmap.wgsl`):
+/// [`crate::flow_detail::detail_texture`] uploaded, [`DETAIL_TEXELS`]² texels.
+pub fn flow_detail_texture(gpu: &Gpu) -> wgpu::Texture {
+    flow_detail_texture_of(gpu, detail_texture(), DETAIL_TEXELS)
+}
+
+/// A detail texture of `texels`² f16 pairs (`texels` rows of `texels`).
+pub fn flow_detail_texture_of(gpu: &Gpu, texture: &[[u16; 2]], texels: u32) -> wgpu::Texture {
+    use wgpu::util::DeviceExt;
+    gpu.device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("flow detail"),
+            size: wgpu::Extent3d {
+                width: texels,
+                height: texels,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FLOW_DETAIL_FORMAT,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(texture),
+    )
+}
+
+/// The flow detail's sampler (`linear_repeat`): bilinear, wrapping around the tile.
+pub fn linear_repeat_sampler(device: &wgpu::Device) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("effects linear repeat"),
+        address_mode_u: wgpu::AddressMode::Repeat,
+        address_mode_v: wgpu::AddressMode::Repeat,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    })
+}
+
 impl Shared {
     pub(super) fn new(
         gpu: &Gpu,
@@ -148,6 +197,8 @@ impl Shared {
                 layout::texture(2, fs),
                 layout::texture(3, fs),
                 layout::sampler(4, fs),
+                layout::texture(5, fs),
+                layout::sampler(6, fs),
             ],
         });
         let room_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -171,6 +222,8 @@ impl Shared {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
+        let flow_detail = flow_detail_texture(gpu);
+        let repeat_sampler = linear_repeat_sampler(device);
         let mut shared = Shared {
             cfg,
             camera,
@@ -183,6 +236,8 @@ impl Shared {
             caustic_tex,
             reflection: None,
             sampler,
+            flow_detail,
+            repeat_sampler,
             group: None,
             colour_format: targets.colour,
             revision: 0,
@@ -253,12 +308,13 @@ impl Shared {
     }
 
     /// Group 2: the uniform, the camera image and the sampler, and unless `room` (the group of
-    /// the reflected room, which draws into the reflection texture) the reflection texture and
-    /// the caustic map.
+    /// the reflected room, which draws into the reflection texture) the reflection texture,
+    /// the caustic map and the flow detail with its sampler.
     pub(super) fn make_group(&self, device: &wgpu::Device, room: bool) -> wgpu::BindGroup {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (main, caustic) = (self.camera_image.sampled_view(), view(&self.caustic_tex));
         let reflection = self.reflection.as_ref().map(|(c, _)| view(c));
+        let detail = view(&self.flow_detail);
         let texture = |binding, v| wgpu::BindGroupEntry {
             binding,
             resource: wgpu::BindingResource::TextureView(v),
@@ -277,6 +333,11 @@ impl Shared {
         if !room && let Some(reflection) = &reflection {
             entries.push(texture(2, reflection));
             entries.push(texture(3, &caustic));
+            entries.push(texture(5, &detail));
+            entries.push(wgpu::BindGroupEntry {
+                binding: 6,
+                resource: wgpu::BindingResource::Sampler(&self.repeat_sampler),
+            });
         }
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(if room { "reflected room" } else { "effects" }),
