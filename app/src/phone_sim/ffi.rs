@@ -139,4 +139,7 @@ impl ArBackend for FfiBackend {
     fn display_rotation(&self) -> Option<i32> {
         ArBackend::display_rotation(&self.core)
     }
+    fn set_camera_budget(&mut self, budget: ar::arcore::ffi::CameraBudget) {
+        ArBackend::set_camera_budget(&mut self.core, budget);
+    }
 }

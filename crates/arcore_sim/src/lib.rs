@@ -22,6 +22,7 @@
 // made by this library, out pointers valid for the writes the header documents.
 #![allow(clippy::missing_safety_doc)]
 
+pub mod camera_config;
 pub mod control;
 pub mod display;
 pub mod feed;

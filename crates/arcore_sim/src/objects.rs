@@ -5,12 +5,15 @@ use std::ffi::c_void;
 use ar::Intrinsics;
 use glam::Mat4;
 
+use crate::camera_config::CameraConfig;
 use crate::feed::PhoneImage;
 
 /// `ArSession`.
 pub struct Session {
     pub light_mode: i32,
     pub resumed: bool,
+    /// The camera config in use (`ArSession_setCameraConfig`; the phone's default until set).
+    pub camera: CameraConfig,
     /// `ArSession_setDisplayGeometry`: rotation and view size (0 × 0: not set).
     pub rotation: i32,
     pub view: (i32, i32),

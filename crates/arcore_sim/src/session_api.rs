@@ -150,6 +150,7 @@ pub unsafe extern "C" fn ArSession_create(
     let session = into_c(Session {
         light_mode: 0,
         resumed: false,
+        camera: s.default_camera_config(),
         rotation: 0,
         view: (0, 0),
     });
@@ -288,7 +289,8 @@ pub unsafe extern "C" fn ArSession_update(session: *mut O, frame: *mut O) -> i32
     if !s.script.camera_available {
         return status::ERROR_CAMERA_NOT_AVAILABLE;
     }
-    if let Err(e) = s.advance() {
+    let image = session.camera.image.map(|v| v.max(0) as u32);
+    if let Err(e) = s.advance(image) {
         log::error!("arcore_sim: {e}");
         s.last_error = e;
         return status::ERROR_FATAL;
