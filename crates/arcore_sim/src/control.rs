@@ -5,7 +5,7 @@
 use std::ffi::{CStr, c_char, c_void};
 use std::path::Path;
 
-use crate::camera_config::{PhoneCameras, phone_configs, single_config};
+use crate::cameras::{PhoneCameras, phone_configs, single_config};
 use crate::feed::Feed;
 use crate::state::{Apk, DESTROY, destroy_gate, sim};
 

@@ -23,6 +23,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 pub mod camera_config;
+pub mod cameras;
 pub mod control;
 pub mod display;
 pub mod feed;

@@ -5,7 +5,7 @@ use std::ffi::c_void;
 use ar::Intrinsics;
 use glam::Mat4;
 
-use crate::camera_config::CameraConfig;
+use crate::cameras::CameraConfig;
 use crate::feed::PhoneImage;
 
 /// `ArSession`.

@@ -8,7 +8,7 @@ use std::sync::{Condvar, LazyLock, Mutex, MutexGuard};
 use ar::CameraFrame;
 use glam::Mat4;
 
-use crate::camera_config::{CameraConfig, PhoneCameras, phone_configs, single_config};
+use crate::cameras::{CameraConfig, PhoneCameras, phone_configs, single_config};
 use crate::feed::{Feed, PhoneImage, default_synth};
 
 /// ARCore's answer to `ArCoreApk_requestInstall` (`RegattaSim_setApk`).
