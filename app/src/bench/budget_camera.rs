@@ -66,7 +66,7 @@ pub(crate) fn camera_table(rows: &[Row]) -> CliResult<Table> {
             "camera_image_max_px",
             "CPU image chosen",
             "camera ms (slow spec)",
-            "share of the tier's frame",
+            "share of the tier's frame (1 / its fps)",
             "model ms with the image",
             "model fps with the image",
         ],
