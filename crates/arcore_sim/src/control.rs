@@ -288,8 +288,8 @@ pub unsafe extern "C" fn RegattaSim_callCount(name: *const c_char) -> u64 {
 }
 
 /// Objects made and not yet released/destroyed, of `kind` (`session`, `frame`, `config`,
-/// `camera`, `image`, `pose`, `intrinsics`, `light`, `list`, `trackable`), or of every kind
-/// when `kind` is null.
+/// `camera`, `image`, `pose`, `intrinsics`, `light`, `list`, `trackable`, `camera_config`,
+/// `camera_config_list`, `camera_config_filter`), or of every kind when `kind` is null.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn RegattaSim_liveObjects(kind: *const c_char) -> i64 {
     let s = sim("RegattaSim_liveObjects");
