@@ -14,6 +14,8 @@ pub struct Session {
     pub resumed: bool,
     /// The camera config in use (`ArSession_setCameraConfig`; the phone's default until set).
     pub camera: CameraConfig,
+    /// The camera config of the last successful resume (`None` before the first).
+    pub resumed_camera: Option<CameraConfig>,
     /// `ArSession_setDisplayGeometry`: rotation and view size (0 × 0: not set).
     pub rotation: i32,
     pub view: (i32, i32),

@@ -151,6 +151,7 @@ pub unsafe extern "C" fn ArSession_create(
         light_mode: 0,
         resumed: false,
         camera: s.default_camera_config(),
+        resumed_camera: None,
         rotation: 0,
         view: (0, 0),
     });
@@ -255,7 +256,14 @@ pub unsafe extern "C" fn ArSession_resume(session: *mut O) -> i32 {
     if !s.script.camera_available {
         return status::ERROR_CAMERA_NOT_AVAILABLE;
     }
+    // A new camera config needs every camera image released first (`arcore_c_api.h`,
+    // `ArSession_setCameraConfig`).
+    let images_held = s.live.get("image").copied().unwrap_or(0) > 0;
+    if session.resumed_camera.is_some_and(|c| c != session.camera) && images_held {
+        return status::ERROR_ILLEGAL_STATE;
+    }
     session.resumed = true;
+    session.resumed_camera = Some(session.camera);
     status::SUCCESS
 }
 
