@@ -257,21 +257,31 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
             invocations: [3.0, px],
         });
     }
-    if let Some(([w, h], per_frame)) = inp.yuv {
-        let px = f64::from(w) * f64::from(h) * per_frame;
-        let src = effects::wgsl::source(&[
-            effects::camera_upload::CAMERA_YUV,
-            "const ENCODED_TARGET: bool = false;",
-        ]);
-        out.push(PassWork {
-            pass: "camera yuv".into(),
-            cost: run(&src, "fs_main", px)?,
-            // Upload (1.5 B per pixel) and the RGBA write.
-            target_bytes: px * (1.5 + 4.0),
-            invocations: [3.0, px],
-        });
+    if let Some((image, per_frame)) = inp.yuv {
+        out.push(camera_yuv_work(image, per_frame, trips)?);
     }
     Ok((out, unmodelled))
+}
+
+/// The camera image's work: its YUV 4:2:0 planes uploaded (1.5 bytes per pixel) and converted
+/// to RGBA (`shaders/effects/camera_yuv.wgsl`, one fragment and a 4-byte write per pixel),
+/// `per_frame` times per drawn frame (1: a new image every frame).
+pub fn camera_yuv_work(
+    [w, h]: [u32; 2],
+    per_frame: f64,
+    trips: &Trips,
+) -> Result<PassWork, String> {
+    let px = f64::from(w) * f64::from(h) * per_frame;
+    let src = effects::wgsl::source(&[
+        effects::camera_upload::CAMERA_YUV,
+        "const ENCODED_TARGET: bool = false;",
+    ]);
+    Ok(PassWork {
+        pass: "camera yuv".into(),
+        cost: entry_cost(&src, "fs_main", trips)?.scaled(px),
+        target_bytes: px * (1.5 + 4.0),
+        invocations: [3.0, px],
+    })
 }
 
 /// Frame milliseconds on `phone`: (at its spec sheets' high rates, at their low rates).

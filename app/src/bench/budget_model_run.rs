@@ -1,11 +1,13 @@
 //! `regatta bench --only budget-model`: the budget's machine-independent model alone (no
 //! timed repetitions, no throughput kernel, no accuracy references), with where the AR water's
-//! work goes per shader function. The model is deterministic: the same commit gives the same
+//! work goes per shader function, and the camera image each tier affords
+//! ([`super::budget_camera`]). The model is deterministic: the same commit gives the same
 //! figures as `budget`'s model columns, in a fraction of its time.
 
 use quality::Tier;
 use serde_json::json;
 
+use super::budget_camera::camera_table;
 use super::budget_model::{PHONES, pass_shaders};
 use super::budget_run::{Row, goal, measure, passes_table};
 use super::shader_cost::{entry_cost, function_costs};
@@ -61,7 +63,12 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         "The budget section's model (budget_passes explains it), without its timed part: same \
          commit, same figures.",
     );
-    Ok(vec![tiers, passes_table(&rows), functions_table(&rows)?])
+    Ok(vec![
+        tiers,
+        passes_table(&rows),
+        functions_table(&rows)?,
+        camera_table(&rows)?,
+    ])
 }
 
 /// The AR water's work per invocation of each stage at `ultra` on the first phone, by shader

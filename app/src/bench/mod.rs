@@ -14,6 +14,7 @@ use crate::error::{CliError, CliResult};
 
 pub mod budget;
 pub mod budget_accuracy;
+pub mod budget_camera;
 pub mod budget_model;
 pub mod budget_model_run;
 pub mod budget_run;

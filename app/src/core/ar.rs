@@ -52,6 +52,9 @@ pub trait ArBackend {
     }
     /// Camera images are kept within `max_side` pixels (the GPU's largest texture).
     fn limit_image_side(&mut self, _max_side: u32) {}
+    /// What the camera image may cost from the next session resume on (the quality tier's
+    /// budget): ARCore's camera config is chosen only while the session is paused.
+    fn set_camera_budget(&mut self, _budget: ar::arcore::ffi::CameraBudget) {}
     /// The display rotation now (`Surface.ROTATION_*`, 0..3), read from the platform; `None`
     /// where it cannot be read (then the window events' rotation stands).
     fn display_rotation(&self) -> Option<i32> {

@@ -36,6 +36,12 @@ impl ArBackend for ArCore {
         ArCore::set_max_image_side(self, max_side);
     }
 
+    /// Set before each resume: the back camera's config with the largest CPU image within
+    /// the budget.
+    fn set_camera_budget(&mut self, budget: ar::arcore::ffi::CameraBudget) {
+        ArCore::set_camera_budget(self, budget);
+    }
+
     /// `Display.getRotation()` on the Activity.
     fn display_rotation(&self) -> Option<i32> {
         ArCore::read_display_rotation(self)

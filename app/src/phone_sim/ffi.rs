@@ -79,6 +79,16 @@ impl SimLibrary {
         }
     }
 
+    /// The synthetic table (`frames` a loop) on a phone listing the back camera's documented
+    /// configs (`RegattaSim_useCameraConfigs`: 0 an OPPO A54 class phone, 30 fps; 1 a Pixel 2
+    /// XL class phone, also 60 fps): the CPU image has the size of the config the app sets.
+    pub fn use_camera_configs(&self, phone: i32, frames: u32) -> Result<(), String> {
+        let f = self.sym::<unsafe extern "C" fn(i32, u32)>("RegattaSim_useCameraConfigs")?;
+        // SAFETY: `void RegattaSim_useCameraConfigs(int32_t, uint32_t)`.
+        unsafe { f(phone, frames) };
+        Ok(())
+    }
+
     /// ARCore installed (0) or installed on an unsupported phone (3).
     pub fn set_availability(&self, a: Availability) {
         self.set_one(
@@ -138,5 +148,8 @@ impl ArBackend for FfiBackend {
     }
     fn display_rotation(&self) -> Option<i32> {
         ArBackend::display_rotation(&self.core)
+    }
+    fn set_camera_budget(&mut self, budget: ar::arcore::ffi::CameraBudget) {
+        ArBackend::set_camera_budget(&mut self.core, budget);
     }
 }

@@ -5,6 +5,7 @@
 use std::ffi::{CStr, c_char, c_void};
 use std::path::Path;
 
+use crate::cameras::{PhoneCameras, phone_configs, single_config};
 use crate::feed::Feed;
 use crate::state::{Apk, DESTROY, destroy_gate, sim};
 
@@ -45,9 +46,9 @@ pub unsafe extern "C" fn RegattaSim_openReplay(dir: *const c_char) -> i32 {
     };
     match Feed::open(Path::new(dir)) {
         Ok(feed) => {
-            s.feed = feed;
-            s.updates = 0;
-            s.shown = None;
+            // A replay was recorded at one size: the simulated phone offers that one.
+            let configs = feed.recorded_size().map(|[w, h]| single_config(w, h));
+            s.use_feed(feed, configs.unwrap_or_default());
             0
         }
         Err(e) => {
@@ -58,18 +59,53 @@ pub unsafe extern "C" fn RegattaSim_openReplay(dir: *const c_char) -> i32 {
 }
 
 /// Plays the synthetic table feed at `width` × `height` pixels, `frames` frames a loop (a
-/// phone camera's full-size image, e.g. 4032 × 3024, for the texture-limit tests).
+/// phone camera's full-size image, e.g. 4032 × 3024, for the texture-limit tests), on a phone
+/// whose camera offers that one size.
 #[unsafe(no_mangle)]
 pub extern "C" fn RegattaSim_useSynth(width: u32, height: u32, frames: u32) {
     let mut s = sim("RegattaSim_useSynth");
-    s.feed = Feed::Synth(ar::SynthConfig {
-        width: width.max(2),
-        height: height.max(2),
+    let (width, height) = (width.max(2), height.max(2));
+    let feed = Feed::Synth(ar::SynthConfig {
+        width,
+        height,
         frames: frames.max(1) as usize,
         ..crate::feed::default_synth()
     });
-    s.updates = 0;
-    s.shown = None;
+    s.use_feed(feed, single_config(width, height));
+}
+
+/// Plays the synthetic table feed (`frames` frames a loop) on a phone offering the camera
+/// configs of `arcore_c_api.h`'s back camera (`camera_config`): 0 an OPPO A54 class phone
+/// (640 × 480, 1280 × 720, 1920 × 1080 CPU images at 30 fps, a 1920 × 1080 texture, and the
+/// front camera's), 1 a Pixel 2 XL class phone (the same, and again at 60 fps). A new session
+/// uses the 640 × 480 config, ARCore's default.
+#[unsafe(no_mangle)]
+pub extern "C" fn RegattaSim_useCameraConfigs(phone: i32, frames: u32) {
+    let mut s = sim("RegattaSim_useCameraConfigs");
+    let phone = match phone {
+        1 => PhoneCameras::SixtyFps,
+        _ => PhoneCameras::ThirtyFps,
+    };
+    let feed = Feed::Synth(ar::SynthConfig {
+        frames: frames.max(1) as usize,
+        ..crate::feed::default_synth()
+    });
+    s.use_feed(feed, phone_configs(phone));
+}
+
+/// The highest capture rate (fps) of the config last set with `ArSession_setCameraConfig`
+/// (0: none set since the reset).
+#[unsafe(no_mangle)]
+pub extern "C" fn RegattaSim_lastCameraConfigFps() -> i32 {
+    sim("RegattaSim_lastCameraConfigFps")
+        .last_camera_set
+        .map_or(0, |c| c.fps[1])
+}
+
+/// The next `ArSession_setCameraConfig` on a paused session returns `status` (0: none).
+#[unsafe(no_mangle)]
+pub extern "C" fn RegattaSim_failCameraConfig(status: i32) {
+    sim("RegattaSim_failCameraConfig").script.fail_camera_config = (status != 0).then_some(status);
 }
 
 /// Copies the last error (UTF-8, NUL-terminated, truncated to `len`) into `buf`; returns its
@@ -252,8 +288,8 @@ pub unsafe extern "C" fn RegattaSim_callCount(name: *const c_char) -> u64 {
 }
 
 /// Objects made and not yet released/destroyed, of `kind` (`session`, `frame`, `config`,
-/// `camera`, `image`, `pose`, `intrinsics`, `light`, `list`, `trackable`), or of every kind
-/// when `kind` is null.
+/// `camera`, `image`, `pose`, `intrinsics`, `light`, `list`, `trackable`, `camera_config`,
+/// `camera_config_list`, `camera_config_filter`), or of every kind when `kind` is null.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn RegattaSim_liveObjects(kind: *const c_char) -> i64 {
     let s = sim("RegattaSim_liveObjects");

@@ -50,10 +50,21 @@ impl Feed {
         }
     }
 
-    pub fn intrinsics(&self) -> Intrinsics {
+    /// The intrinsics of a CPU image of `image` pixels: the synthetic camera keeps its
+    /// horizontal field of view at every size (a 16:9 image is the 4:3 sensor cropped top and
+    /// bottom, as on phones); a replay has its own size only.
+    pub fn intrinsics(&self, image: [u32; 2]) -> Intrinsics {
         match self {
-            Feed::Synth(c) => c.intrinsics(),
+            Feed::Synth(c) => c.at_size(image).intrinsics(),
             Feed::Replay(r) => r.intrinsics,
+        }
+    }
+
+    /// The size of a replay's images (`None` for the synthetic feed, drawn at any size).
+    pub fn recorded_size(&self) -> Option<[u32; 2]> {
+        match self {
+            Feed::Synth(_) => None,
+            Feed::Replay(r) => Some([r.intrinsics.width, r.intrinsics.height]),
         }
     }
 
@@ -65,11 +76,27 @@ impl Feed {
         }
     }
 
-    /// Frame `i` (RGBA image, pose, time).
-    pub fn frame(&self, i: usize) -> Result<CameraFrame, String> {
+    /// Frame `i` (RGBA image, pose, time), the synthetic one drawn at `image` pixels (a
+    /// replay's at its own size).
+    pub fn frame(&self, i: usize, image: [u32; 2]) -> Result<CameraFrame, String> {
         match self {
-            Feed::Synth(c) => Ok(c.frame(i)),
+            Feed::Synth(c) => Ok(c.at_size(image).frame(i)),
             Feed::Replay(r) => r.frame(i).map_err(|e| e.to_string()),
+        }
+    }
+}
+
+/// The synthetic camera at another image size, field of view kept.
+trait AtSize {
+    fn at_size(&self, image: [u32; 2]) -> SynthConfig;
+}
+
+impl AtSize for SynthConfig {
+    fn at_size(&self, [width, height]: [u32; 2]) -> SynthConfig {
+        SynthConfig {
+            width: width.max(2),
+            height: height.max(2),
+            ..*self
         }
     }
 }

@@ -30,7 +30,14 @@ fn raw_pose(m: Mat4) -> [f32; 7] {
 /// The camera of the frame shown now, with the session's display geometry.
 fn camera_now(s: &mut Sim, session: Option<&Session>) -> Camera {
     let tracking = s.script.tracking;
-    let intrinsics = s.feed.intrinsics();
+    // The intrinsics of the CPU image shown (its size is the camera config's).
+    let intrinsics = match (&s.shown, session) {
+        (Some(shown), _) => shown.frame.intrinsics,
+        (None, Some(x)) => s.feed.intrinsics(x.camera.image.map(|v| v.max(0) as u32)),
+        (None, None) => s
+            .feed
+            .intrinsics(s.default_camera_config().image.map(|v| v.max(0) as u32)),
+    };
     let shown_pose = s.shown.as_ref().map(|f| f.frame.camera_to_world);
     let camera_to_world = match (tracking.0, shown_pose) {
         (0, Some(p)) => {

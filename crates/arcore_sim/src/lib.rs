@@ -22,6 +22,8 @@
 // made by this library, out pointers valid for the writes the header documents.
 #![allow(clippy::missing_safety_doc)]
 
+pub mod camera_config;
+pub mod cameras;
 pub mod control;
 pub mod display;
 pub mod feed;

@@ -5,12 +5,17 @@ use std::ffi::c_void;
 use ar::Intrinsics;
 use glam::Mat4;
 
+use crate::cameras::CameraConfig;
 use crate::feed::PhoneImage;
 
 /// `ArSession`.
 pub struct Session {
     pub light_mode: i32,
     pub resumed: bool,
+    /// The camera config in use (`ArSession_setCameraConfig`; the phone's default until set).
+    pub camera: CameraConfig,
+    /// The camera config of the last successful resume (`None` before the first).
+    pub resumed_camera: Option<CameraConfig>,
     /// `ArSession_setDisplayGeometry`: rotation and view size (0 × 0: not set).
     pub rotation: i32,
     pub view: (i32, i32),

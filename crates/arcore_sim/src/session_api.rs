@@ -150,6 +150,8 @@ pub unsafe extern "C" fn ArSession_create(
     let session = into_c(Session {
         light_mode: 0,
         resumed: false,
+        camera: s.default_camera_config(),
+        resumed_camera: None,
         rotation: 0,
         view: (0, 0),
     });
@@ -254,7 +256,14 @@ pub unsafe extern "C" fn ArSession_resume(session: *mut O) -> i32 {
     if !s.script.camera_available {
         return status::ERROR_CAMERA_NOT_AVAILABLE;
     }
+    // A new camera config needs every camera image released first (`arcore_c_api.h`,
+    // `ArSession_setCameraConfig`).
+    let images_held = s.live.get("image").copied().unwrap_or(0) > 0;
+    if session.resumed_camera.is_some_and(|c| c != session.camera) && images_held {
+        return status::ERROR_ILLEGAL_STATE;
+    }
     session.resumed = true;
+    session.resumed_camera = Some(session.camera);
     status::SUCCESS
 }
 
@@ -288,7 +297,8 @@ pub unsafe extern "C" fn ArSession_update(session: *mut O, frame: *mut O) -> i32
     if !s.script.camera_available {
         return status::ERROR_CAMERA_NOT_AVAILABLE;
     }
-    if let Err(e) = s.advance() {
+    let image = session.camera.image.map(|v| v.max(0) as u32);
+    if let Err(e) = s.advance(image) {
         log::error!("arcore_sim: {e}");
         s.last_error = e;
         return status::ERROR_FATAL;

@@ -8,6 +8,7 @@ use std::sync::{Condvar, LazyLock, Mutex, MutexGuard};
 use ar::CameraFrame;
 use glam::Mat4;
 
+use crate::cameras::{CameraConfig, PhoneCameras, phone_configs, single_config};
 use crate::feed::{Feed, PhoneImage, default_synth};
 
 /// ARCore's answer to `ArCoreApk_requestInstall` (`RegattaSim_setApk`).
@@ -53,6 +54,9 @@ pub struct Script {
     /// The next call of this exported function does its work and leaves this Java exception
     /// pending (`RegattaSim_throwAfter`).
     pub throw_after: Option<(String, String)>,
+    /// The next `ArSession_setCameraConfig` of a paused session fails with this status
+    /// (`RegattaSim_failCameraConfig`).
+    pub fail_camera_config: Option<i32>,
 }
 
 impl Default for Script {
@@ -73,6 +77,7 @@ impl Default for Script {
             subsumed_copy: false,
             missing_class: None,
             throw_after: None,
+            fail_camera_config: None,
         }
     }
 }
@@ -88,6 +93,11 @@ pub struct Shown {
 pub struct Sim {
     pub script: Script,
     pub feed: Feed,
+    /// The camera configs the phone offers (`camera_config`), and the one a new session uses.
+    pub camera_configs: Vec<CameraConfig>,
+    pub default_camera: usize,
+    /// The config of the last successful `ArSession_setCameraConfig`.
+    pub last_camera_set: Option<CameraConfig>,
     /// Calls per exported function name.
     pub calls: BTreeMap<&'static str, u64>,
     /// Live objects per kind (`session`, `frame`, `camera`, `image`, `trackable`, …).
@@ -110,26 +120,52 @@ impl Sim {
         let mut sim = Self::new_without_feed();
         if let Some(dir) = std::env::var_os("REGATTA_SIM_REPLAY") {
             match Feed::open(std::path::Path::new(&dir)) {
-                Ok(feed) => sim.feed = feed,
+                Ok(feed) => {
+                    let configs = feed.recorded_size().map(|[w, h]| single_config(w, h));
+                    sim.use_feed(feed, configs.unwrap_or_default());
+                }
                 Err(e) => log::error!("arcore_sim: {e}; playing the synthetic feed"),
             }
         }
         sim
     }
 
-    /// Back to the start of a run (the feed stays).
+    /// Back to the start of a run (the feed and the camera configs that go with it stay).
     pub fn reset(&mut self) {
         let feed = std::mem::replace(&mut self.feed, Feed::Synth(default_synth()));
+        let camera_configs = std::mem::take(&mut self.camera_configs);
         *self = Self {
             feed,
+            camera_configs,
+            default_camera: self.default_camera,
             ..Self::new_without_feed()
         };
     }
 
+    /// The config a new session uses.
+    pub fn default_camera_config(&self) -> CameraConfig {
+        self.camera_configs[self.default_camera.min(self.camera_configs.len() - 1)]
+    }
+
+    /// Plays `feed` on a phone offering `configs` (the first session config at `default`).
+    pub fn use_feed(&mut self, feed: Feed, (configs, default): (Vec<CameraConfig>, usize)) {
+        self.feed = feed;
+        if !configs.is_empty() {
+            self.camera_configs = configs;
+            self.default_camera = default;
+        }
+        self.updates = 0;
+        self.shown = None;
+    }
+
     fn new_without_feed() -> Self {
+        let (camera_configs, default_camera) = phone_configs(PhoneCameras::ThirtyFps);
         Self {
             script: Script::default(),
             feed: Feed::Synth(default_synth()),
+            camera_configs,
+            default_camera,
+            last_camera_set: None,
             calls: BTreeMap::new(),
             live: BTreeMap::new(),
             updates: 0,
@@ -154,8 +190,9 @@ impl Sim {
         *self.live.entry(kind).or_default() -= 1;
     }
 
-    /// Shows the next frame of the feed (looping), unless the script holds the current one.
-    pub fn advance(&mut self) -> Result<(), String> {
+    /// Shows the next frame of the feed (looping) with a CPU image of `image` pixels (the
+    /// session's camera config), unless the script holds the current one.
+    pub fn advance(&mut self, image: [u32; 2]) -> Result<(), String> {
         if self.script.hold_frame && self.shown.is_some() {
             return Ok(());
         }
@@ -163,7 +200,7 @@ impl Sim {
         let index = (self.updates % n) as usize;
         let lap = self.updates / n;
         self.updates += 1;
-        let frame = self.feed.frame(index)?;
+        let frame = self.feed.frame(index, image)?;
         let image = PhoneImage::from_frame(&frame.image)?;
         let t = lap as f64 * self.feed.period() + frame.timestamp;
         self.shown = Some(Shown {

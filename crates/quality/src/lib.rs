@@ -2,8 +2,8 @@
 //!
 //! - [`Tier`] names a documented set of renderer settings ([`TierSettings`]: render scale,
 //!   clip-map error target, which AR effects run and at what resolution, the flow map, the wake
-//!   source spacing and budget, the overlay detail), from `low` (an OPPO A54 at 30 fps) to
-//!   `ultra` (everything at full size).
+//!   source spacing and budget, the overlay detail, the largest camera image), from `low` (an
+//!   OPPO A54 at 30 fps) to `ultra` (everything at full size).
 //! - [`Governor`] watches frame times (GPU timestamps where the adapter has them, else the
 //!   intervals between presents) and moves between tiers to hold a frame-rate target, with
 //!   hysteresis and a minimum dwell so it never oscillates, and never while the user scrubs.
@@ -17,4 +17,4 @@ mod governor;
 mod tier;
 
 pub use governor::{Change, Governor, GovernorConfig, Target};
-pub use tier::{OverlayDetail, Tier, TierSettings};
+pub use tier::{CAMERA_IMAGE_SHARE, OverlayDetail, Tier, TierSettings};

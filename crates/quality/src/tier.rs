@@ -52,7 +52,19 @@ pub struct TierSettings {
     pub wake_source_budget: u32,
     /// How much of the race overlay is drawn.
     pub overlay: OverlayDetail,
+    /// The largest camera CPU image, pixels, the session asks ARCore for: its upload and
+    /// YUV → RGB conversion cost at most [`CAMERA_IMAGE_SHARE`] of the frame of the phone the
+    /// tier is made for (the OPPO A54 at 30 fps for `low` and `medium`, the Pixel 2 XL at
+    /// 60 fps for `high` and `ultra`) on the budget model, rounded down to 1,000 pixels
+    /// (docs/quality.md, "The camera image"; checked against the model by the bench's
+    /// `budget_camera` tests).
+    pub camera_image_max_px: u64,
 }
+
+/// The share of a frame the camera image's upload and conversion may take. 5 %: the governor
+/// steps a tier down only when its median frame exceeds 1.05 × the budget, so a tier that fits
+/// its frame before the camera image cannot be pushed past that threshold by the image alone.
+pub const CAMERA_IMAGE_SHARE: f64 = 0.05;
 
 impl Tier {
     /// Every tier, cheapest first.
@@ -108,6 +120,7 @@ impl Tier {
                 caustic_resolution: (32, 32),
                 wake_spacing_radii: 1.0,
                 wake_source_budget: 512,
+                camera_image_max_px: 925_000,
                 overlay: OverlayDetail::Essential,
             },
             Tier::Medium => TierSettings {
@@ -119,6 +132,7 @@ impl Tier {
                 caustic_resolution: (32, 48),
                 wake_spacing_radii: 0.75,
                 wake_source_budget: 1_024,
+                camera_image_max_px: 925_000,
                 overlay: OverlayDetail::Standard,
             },
             Tier::High => TierSettings {
@@ -130,6 +144,7 @@ impl Tier {
                 caustic_resolution: (48, 64),
                 wake_spacing_radii: 0.5,
                 wake_source_budget: 4_096,
+                camera_image_max_px: 3_333_000,
                 overlay: OverlayDetail::Full,
             },
             Tier::Ultra => TierSettings {
@@ -141,6 +156,7 @@ impl Tier {
                 caustic_resolution: (48, 64),
                 wake_spacing_radii: 0.5,
                 wake_source_budget: 65_536,
+                camera_image_max_px: 3_333_000,
                 overlay: OverlayDetail::Full,
             },
         }
@@ -186,6 +202,7 @@ mod tests {
             assert!(a.wake_spacing_radii >= b.wake_spacing_radii);
             assert!(a.wake_source_budget < b.wake_source_budget);
             assert!(a.overlay <= b.overlay);
+            assert!(a.camera_image_max_px <= b.camera_image_max_px);
             assert!(pair[0].prior_cost() < pair[1].prior_cost());
         }
     }

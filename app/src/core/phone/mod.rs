@@ -233,6 +233,9 @@ impl PhoneApp {
                 // Time in the background does not count.
                 self.back_from_background = true;
                 let loaded = self.backend.is_loaded();
+                // The tier drawn now decides the camera image of this resume (a running
+                // session keeps its camera config: ARCore changes it only while paused).
+                self.backend.set_camera_budget(self.camera_budget());
                 self.session_event(Event::AppResumed {
                     library_loaded: loaded,
                 });

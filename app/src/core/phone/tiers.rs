@@ -5,8 +5,10 @@
 //! view). The tier drawn is applied to the race renderer live, every setting
 //! ([`TierRender::apply_live`]), and again when the renderer or its effect passes are built
 //! anew. The Scene panel's tier control shows the tier; a pin or target set there is answered
-//! here.
+//! here. The tier also bounds the camera image ARCore delivers, from the next resume on
+//! ([`PhoneApp::camera_budget`]).
 
+use ar::arcore::ffi::CameraBudget;
 use quality::Tier;
 
 use super::PhoneApp;
@@ -79,6 +81,17 @@ impl PhoneApp {
             log::warn!("regatta: quality tier {}: {e}", tier.tier);
         }
         g.tier = key;
+    }
+
+    /// What the camera image may cost at the governor's tier: the tier's
+    /// `camera_image_max_px`, and the window's size for the shape tie-break (when there is a
+    /// window).
+    pub(super) fn camera_budget(&self) -> CameraBudget {
+        let screen = self.graphics.as_ref().map(|g| g.window.size());
+        CameraBudget {
+            max_image_px: self.tiers.tier().settings().camera_image_max_px,
+            screen: screen.filter(|s| s[0] > 1 && s[1] > 1),
+        }
     }
 
     /// The tier the race renderer draws at (`None` before the first frame).

@@ -62,6 +62,21 @@ impl Sim {
         unsafe { self.sym::<unsafe extern "C" fn(u32, u32, u32)>(name)(a, b, c) }
     }
 
+    /// `RegattaSim_useCameraConfigs`: the synthetic table on a phone listing the back camera's
+    /// documented configs (0: 30 fps only, 1: also 60 fps), `frames` frames a loop.
+    pub fn use_camera_configs(&self, phone: i32, frames: u32) {
+        // SAFETY: `void RegattaSim_useCameraConfigs(int32_t, uint32_t)`.
+        unsafe {
+            self.sym::<unsafe extern "C" fn(i32, u32)>("RegattaSim_useCameraConfigs")(phone, frames)
+        }
+    }
+
+    /// `RegattaSim_lastCameraConfigFps`: the capture rate of the config last set (0: none).
+    pub fn last_camera_config_fps(&self) -> i32 {
+        // SAFETY: `int32_t RegattaSim_lastCameraConfigFps(void)`.
+        unsafe { self.sym::<unsafe extern "C" fn() -> i32>("RegattaSim_lastCameraConfigFps")() }
+    }
+
     pub fn expect_activity(&self, handle: usize) {
         // SAFETY: `void RegattaSim_expectActivity(void *)`.
         unsafe {

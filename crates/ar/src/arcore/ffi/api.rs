@@ -105,15 +105,40 @@ c_api! {
     }
 }
 
-/// Both tables, pointing into a library that stays loaded for the rest of the process.
+c_api! {
+    /// The camera configs: the CPU image sizes ARCore offers, the one in use, and setting one
+    /// (while the session is paused). Enum arguments (`ArCameraConfigTargetFps` bits,
+    /// `ArCameraConfigFacingDirection`) are `uint32_t` and `int32_t` as in the header.
+    CameraConfigApi {
+        filter_create: fn(S, *mut *mut O) = "ArCameraConfigFilter_create";
+        filter_destroy: fn(*mut O) = "ArCameraConfigFilter_destroy";
+        filter_set_target_fps: fn(S, *mut O, u32) = "ArCameraConfigFilter_setTargetFps";
+        filter_set_facing: fn(S, *mut O, i32) = "ArCameraConfigFilter_setFacingDirection";
+        list_create: fn(S, *mut *mut O) = "ArCameraConfigList_create";
+        list_destroy: fn(*mut O) = "ArCameraConfigList_destroy";
+        list_size: fn(S, S, *mut i32) = "ArCameraConfigList_getSize";
+        list_item: fn(S, S, i32, *mut O) = "ArCameraConfigList_getItem";
+        supported: fn(S, S, *mut O) = "ArSession_getSupportedCameraConfigsWithFilter";
+        config_create: fn(S, *mut *mut O) = "ArCameraConfig_create";
+        config_destroy: fn(*mut O) = "ArCameraConfig_destroy";
+        image_size: fn(S, S, *mut i32, *mut i32) = "ArCameraConfig_getImageDimensions";
+        texture_size: fn(S, S, *mut i32, *mut i32) = "ArCameraConfig_getTextureDimensions";
+        facing: fn(S, S, *mut i32) = "ArCameraConfig_getFacingDirection";
+        session_set: fn(S, S) -> Status = "ArSession_setCameraConfig";
+        session_get: fn(S, *mut O) = "ArSession_getCameraConfig";
+    }
+}
+
+/// The tables, pointing into a library that stays loaded for the rest of the process.
 pub struct Apis {
     pub session: SessionApi,
     pub frame: FrameApi,
+    pub camera_config: CameraConfigApi,
 }
 
 impl Apis {
     /// Loads the library at `path` (a bare file name searches the loader's path, as on
-    /// Android) and every function of both tables.
+    /// Android) and every function of every table.
     ///
     /// The library's handle is leaked on purpose: it is never `dlclose`d. ARCore keeps threads
     /// running for up to 10 s after a pause, and its session is destroyed on a thread of ours
@@ -127,6 +152,7 @@ impl Apis {
         Ok(Self {
             session: SessionApi::load(library)?,
             frame: FrameApi::load(library)?,
+            camera_config: CameraConfigApi::load(library)?,
         })
     }
 }
@@ -154,6 +180,10 @@ pub mod consts {
     pub const PLANE_UP: i32 = 0;
     pub const PLANE_DOWN: i32 = 1;
     pub const PLANE_VERTICAL: i32 = 2;
+    /// `AR_CAMERA_CONFIG_TARGET_FPS_30` (a bit of `ArCameraConfigTargetFps`).
+    pub const CAMERA_TARGET_FPS_30: u32 = 0x0001;
+    /// `AR_CAMERA_CONFIG_FACING_DIRECTION_BACK`.
+    pub const CAMERA_FACING_BACK: i32 = 0;
     /// Android API level from which `AR_TEXTURE_UPDATE_MODE_EXPOSE_HARDWARE_BUFFER` works
     /// (Android 8.1: `AHardwareBuffer`).
     pub const HARDWARE_BUFFER_MIN_API: u32 = 27;

@@ -6,19 +6,24 @@
 //!   libloading;
 //! - [`frame`]: one frame read into an [`crate::CameraFrame`] and a [`DisplayCamera`];
 //! - [`session`]: [`ArCore`], which carries out the session machine's commands;
+//! - [`camera_config`]: the camera config with the largest CPU image the budget affords, set
+//!   before a resume ([`CameraBudget`]);
 //! - [`jni`]: the Java calls behind one trait ([`Jni`]), with the host's scripted fake;
 //! - [`intent`]: the file an "Open with" or "Share" intent carries, read through the
 //!   ContentResolver ([`IntentJni`]; the scripted fake plays the content provider).
 //!
-//! `session` imports `frame` and `api`; `frame` imports only `api` (no module cycle).
+//! `session` imports `frame`, `camera_config` and `api`; `frame` and `camera_config` import
+//! only `api` (no module cycle).
 
 pub mod api;
+pub mod camera_config;
 pub mod frame;
 pub mod intent;
 mod intent_file;
 pub mod jni;
 pub mod session;
 
+pub use camera_config::{CameraBudget, CameraConfigOutcome};
 pub use frame::{DisplayCamera, FAR_M, NEAR_M};
 pub use intent::{IntentFile, IntentJni};
 pub use jni::{JavaObject, JavaScript, Jni, ScriptedJni};

@@ -6,8 +6,10 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 
 use super::api::{Apis, O, S, consts};
+use super::camera_config::{self, CameraBudget, CameraConfigOutcome};
 use super::frame::{DisplayCamera, ReadOptions, read_frame};
 use super::jni::{CAMERA_PERMISSION, CAMERA_REQUEST_CODE, JavaObject, Jni};
+use crate::arcore::CameraConfigSize;
 use crate::arcore::session::status;
 use crate::arcore::{Command, Event, LightMode, SessionState, Unavailable};
 use crate::{ArError, CameraFrame, FrameSource};
@@ -60,6 +62,8 @@ pub struct ArCore {
     last_timestamp_ns: Option<i64>,
     /// The GPU's largest texture side: camera images are halved to fit it.
     max_image_side: Option<u32>,
+    /// What the camera image may cost (the quality tier's); applied before each resume.
+    camera_budget: Option<CameraBudget>,
     /// What the last [`FrameSource::next_frame`] read besides the camera frame.
     pub view: Option<DisplayCamera>,
 }
@@ -92,8 +96,39 @@ impl ArCore {
             resumed: false,
             last_timestamp_ns: None,
             max_image_side: None,
+            camera_budget: None,
             view: None,
         }
+    }
+
+    /// The camera image the session may afford from now on: before each `ArSession_resume`
+    /// (the first, and after every pause) the back camera's config with the largest CPU image
+    /// of at most `budget.max_image_px` pixels is set, if not already in use. A running
+    /// session keeps its camera config until it is paused and resumed (ARCore takes a config
+    /// only while paused). Without a budget ARCore's default config stays (640 × 480 on most
+    /// phones).
+    pub fn set_camera_budget(&mut self, budget: CameraBudget) {
+        self.camera_budget = Some(budget);
+    }
+
+    /// The camera config the session uses now, as ARCore reports it.
+    pub fn camera_config(&self) -> Option<CameraConfigSize> {
+        let (apis, session) = (self.apis.as_ref()?, self.live_session()?);
+        // SAFETY: a live session.
+        unsafe { camera_config::current(&apis.camera_config, session as S) }
+    }
+
+    /// Chooses and sets the camera config for the budget now (logged in one line); `None`
+    /// without a session or a budget. [`ArCore::drive`] calls it before each resume; called
+    /// while the session runs, ARCore refuses (`AR_ERROR_SESSION_NOT_PAUSED`) and the config
+    /// in use stays.
+    pub fn apply_camera_budget(&mut self) -> Option<CameraConfigOutcome> {
+        let budget = self.camera_budget?;
+        let (apis, session) = (self.apis.as_ref()?, self.live_session()?);
+        // SAFETY: a live session; a refusal is an answer, not a failure.
+        let outcome = unsafe { camera_config::apply(&apis.camera_config, session, budget) };
+        camera_config::log_outcome(&outcome, budget);
+        Some(outcome)
     }
 
     /// Camera images wider or taller than `max_side` pixels (the device's
@@ -273,6 +308,10 @@ impl ArCore {
             })),
             Command::Resume => {
                 let session = self.live_session().ok_or(no_session)?;
+                if !self.resumed {
+                    // The only moment ARCore takes a camera config: paused, before resuming.
+                    self.apply_camera_budget();
+                }
                 // SAFETY: a live session.
                 let st = unsafe { (api.session_resume)(session) };
                 self.resumed = st == status::SUCCESS;
