@@ -149,7 +149,9 @@ impl Tier {
             },
             Tier::Ultra => TierSettings {
                 render_scale: 1.0,
-                error_px: 1.0,
+                // The mesh's error on the screen as `high`'s (1 px at ¾ scale): the finer
+                // mesh of 1 px cost the A54 a quarter more wake work for a third of a pixel.
+                error_px: 4.0 / 3.0,
                 effects: ALL_FX,
                 reflection_fraction: 0.5,
                 cheap_caustics: false,
@@ -195,7 +197,8 @@ mod tests {
                 pair[0],
                 pair[1]
             );
-            assert!(a.error_px >= b.error_px);
+            // The mesh's error in screen pixels (the drawn frame's over the render scale).
+            assert!(a.error_px / a.render_scale >= b.error_px / b.render_scale - 1e-12);
             assert!(a.effects.len() <= b.effects.len());
             assert!(a.effects.iter().all(|e| b.effects.contains(e)));
             assert!(a.reflection_fraction <= b.reflection_fraction);
