@@ -22,8 +22,8 @@ pub const DEFAULT_ERROR_PX: f64 = 1.0;
 /// Wake culling tolerance: height error allowed per left-out wake source, metres (half a
 /// millimetre at the race's scale). Measured against every source alive
 /// (`tests/wake_band_limit.rs`): under 0.04 px of height and 2·10⁻³ of slope (0.1°) at every
-/// vertex of a three-boat frame; 1e-4 listed 1.6× the (bin, source) pairs on the sample race
-/// (docs/wakes.md), 1e-3 erred by 0.3° of slope on a weak wake.
+/// vertex of a three-boat frame; 1 mm erred there by 4.6·10⁻³ of slope, 14 % of that weak
+/// wake's steepest (docs/wakes.md).
 pub const WAKE_EPSILON_M: f64 = 5e-4;
 
 /// Options of a [`Renderer`].
