@@ -170,11 +170,17 @@ pub fn texels_for(fraction: f64) -> u32 {
 /// The texture of `texels`² texels: texel (i, j) (row j) holds the f16 bits of the slopes at
 /// its centre ((i + ½)/N, (j + ½)/N), as `Rg16Float` lays them out.
 pub fn bake_detail(texels: u32) -> Vec<[u16; 2]> {
+    bake_detail_at(texels, 0.5)
+}
+
+/// [`bake_detail`] with texel (i, j) holding the slopes at ((i + o)/N, (j + o)/N): o = ½ is the
+/// texture; any other offset is a wrongly baked one, for the tests that must catch it.
+pub fn bake_detail_at(texels: u32, o: f64) -> Vec<[u16; 2]> {
     let n = f64::from(texels);
     (0..texels * texels)
         .map(|k| {
             let (i, j) = (f64::from(k % texels), f64::from(k / texels));
-            let s = detail_slope(DVec2::new((i + 0.5) / n, (j + 0.5) / n));
+            let s = detail_slope(DVec2::new((i + o) / n, (j + o) / n));
             [
                 half::f16::from_f64(s.x).to_bits(),
                 half::f16::from_f64(s.y).to_bits(),
@@ -340,16 +346,7 @@ mod tests {
         // Texel centres at i/N instead of (i + ½)/N: the bilinear then errs by up to
         // max|∇f| h/2, far past the bound.
         let n = DETAIL_TEXELS;
-        let shifted: Vec<[u16; 2]> = (0..n * n)
-            .map(|k| {
-                let uv = DVec2::new(f64::from(k % n), f64::from(k / n)) / f64::from(n);
-                let s = detail_slope(uv);
-                [
-                    half::f16::from_f64(s.x).to_bits(),
-                    half::f16::from_f64(s.y).to_bits(),
-                ]
-            })
-            .collect();
+        let shifted = bake_detail_at(n, 0.0);
         let bound = detail_texture_error(n, 1.0).total();
         let mut seed = 5;
         let broken = (0..10_000).any(|_| {

@@ -293,6 +293,21 @@ impl WakeBins {
         }
     }
 
+    /// The sources local point `p` sums: its bin's list, or none outside the grid, exactly as
+    /// `wake_bin` in `shaders/render/water_vertices.wgsl` looks it up (f32).
+    pub fn listed_at(&self, p: [f32; 2]) -> &[u32] {
+        let g = self.grid;
+        let (x, z) = (
+            (p[0] - g.origin[0]) * g.inv_cell,
+            (p[1] - g.origin[1]) * g.inv_cell,
+        );
+        if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
+            return &[];
+        }
+        let [first, count] = self.bins[(z as u32 * g.nx + x as u32) as usize];
+        &self.indices[first as usize..(first + count) as usize]
+    }
+
     /// Bytes of the three buffers with `sources` sources (each at least one entry: the
     /// buffers are never empty).
     pub fn bytes(&self, sources: usize) -> u64 {
@@ -458,18 +473,8 @@ mod tests {
         assert!((big_bins as f64) < 0.82 * square, "{big_bins} of {square}");
     }
 
-    /// The sources a point sums: its bin's list, or none outside the grid (as `wake_bin`).
     fn listed_at(bins: &WakeBins, p: [f32; 2]) -> &[u32] {
-        let g = bins.grid;
-        let (x, z) = (
-            (p[0] - g.origin[0]) * g.inv_cell,
-            (p[1] - g.origin[1]) * g.inv_cell,
-        );
-        if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
-            return &[];
-        }
-        let [first, count] = bins.bins[(z as u32 * g.nx + x as u32) as usize];
-        &bins.indices[first as usize..(first + count) as usize]
+        bins.listed_at(p)
     }
 
     #[test]

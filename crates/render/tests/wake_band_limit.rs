@@ -35,28 +35,31 @@ fn fleet_wake() -> (Wake, f64) {
     (Wake::new(&refs, WakeParams::default()).unwrap(), t_end)
 }
 
-fn bin_of(bins: &WakeBins, p: [f32; 2]) -> &[u32] {
-    let g = bins.grid;
-    let x = (p[0] - g.origin[0]) * g.inv_cell;
-    let z = (p[1] - g.origin[1]) * g.inv_cell;
-    if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
-        return &[];
-    }
-    let [first, count] = bins.bins[(z as u32 * g.nx + x as u32) as usize];
-    &bins.indices[first as usize..(first + count) as usize]
-}
-
-#[test]
-fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
-    let (wake, t) = fleet_wake();
+/// The fleet's water at race time `t` through a camera 70 m up.
+fn fleet_scene(t: f64) -> render::Scene {
     let mut scene = render::golden::test_scene(t, Vec::new());
     scene.camera = Camera::look_at(
         DVec3::new(-60.0, 70.0, 120.0),
         DVec3::new(-40.0, 0.0, 40.0),
         5000.0,
     );
-    let mut frame = FrameContext::new(&scene, [360, 640], 1.0);
-    render::renderer::bin_wakes(&wake, WAKE_BUFFER_BUDGET_BYTES, usize::MAX, &mut frame);
+    scene
+}
+
+/// The scene's frame, its wakes binned as the renderer bins them.
+fn fleet_frame<'a>(scene: &'a render::Scene, wake: &Wake) -> FrameContext<'a> {
+    let mut frame = FrameContext::new(scene, SIZE, 1.0);
+    render::renderer::bin_wakes(wake, WAKE_BUFFER_BUDGET_BYTES, usize::MAX, &mut frame);
+    frame
+}
+
+const SIZE: [u32; 2] = [360, 640];
+
+#[test]
+fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
+    let (wake, t) = fleet_wake();
+    let scene = fleet_scene(t);
+    let frame = fleet_frame(&scene, &wake);
     let (sources, bins) = (&frame.wakes.sources, &frame.wake_bins);
     assert!(sources.len() > 500, "{}", sources.len());
     assert_eq!(frame.wake_drop.dropped, 0);
@@ -69,7 +72,7 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
             .displace([f64::from(v.rest[0]) + o.x, f64::from(v.rest[1]) + o.y], t);
         let p = [(d[0] - o.x) as f32, (d[2] - o.y) as f32];
         let spacing = frame.clipmap.cell(v.level) as f32;
-        let listed = bin_of(bins, p);
+        let listed = bins.listed_at(p);
         let mut binned = [0.0f32; 3];
         for &k in listed {
             let g = source_height_grad_sampled_f32(&sources[k as usize], p, spacing);
@@ -101,14 +104,8 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
 #[test]
 fn the_band_limit_lists_fewer_pairs_and_drops_only_sub_mesh_waves() {
     let (wake, t) = fleet_wake();
-    let mut scene = render::golden::test_scene(t, Vec::new());
-    scene.camera = Camera::look_at(
-        DVec3::new(-60.0, 70.0, 120.0),
-        DVec3::new(-40.0, 0.0, 40.0),
-        5000.0,
-    );
-    let mut frame = FrameContext::new(&scene, [360, 640], 1.0);
-    render::renderer::bin_wakes(&wake, WAKE_BUFFER_BUDGET_BYTES, usize::MAX, &mut frame);
+    let scene = fleet_scene(t);
+    let frame = fleet_frame(&scene, &wake);
     let limited = frame.wake_bins.indices.len();
     let g = frame.wake_bins.grid;
     let lo = g.origin;
@@ -148,15 +145,9 @@ fn the_band_limit_lists_fewer_pairs_and_drops_only_sub_mesh_waves() {
 #[test]
 fn culling_errs_by_less_than_the_screen_shows() {
     let (wake, t) = fleet_wake();
-    let mut scene = render::golden::test_scene(t, Vec::new());
-    scene.camera = Camera::look_at(
-        DVec3::new(-60.0, 70.0, 120.0),
-        DVec3::new(-40.0, 0.0, 40.0),
-        5000.0,
-    );
-    let size = [360u32, 640u32];
-    let mut frame = FrameContext::new(&scene, size, 1.0);
-    render::renderer::bin_wakes(&wake, WAKE_BUFFER_BUDGET_BYTES, usize::MAX, &mut frame);
+    let scene = fleet_scene(t);
+    let frame = fleet_frame(&scene, &wake);
+    let size = SIZE;
     let eye = DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
     let view = ocean::wake::WakeView::around(
         [eye.x, eye.y],
