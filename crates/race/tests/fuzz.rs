@@ -5,6 +5,9 @@
 //! `REGATTA_FUZZ_SEED` / `REGATTA_FUZZ_CASES` for long random runs (scripts/fuzz.sh).
 
 mod common;
+mod mutation;
+
+use mutation::{apply, edit};
 use proptest::prelude::*;
 use proptest::test_runner::TestRunner;
 use race::Race;
@@ -90,106 +93,21 @@ fn exercise(files: &[(&str, &[u8])]) -> bool {
 const RANDOM_BYTES_SEED: u64 = 0x5EED_0017_0001;
 const MUTATIONS_SEED: u64 = 0x5EED_0017_0002;
 
-#[derive(Debug, Clone)]
-enum Edit {
-    Flip(usize, u8),
-    Delete(usize, usize),
-    Insert(usize, Vec<u8>),
-    Truncate(usize),
-    Duplicate(usize, usize),
-    /// Change one digit to another: keeps the syntax, moves a point or a time.
-    Digit(usize, u8),
-    /// Swap two lines: out-of-order samples, misplaced elements.
-    SwapLines(usize, usize),
-    /// Repeat a line: duplicate timestamps, frozen fixes.
-    RepeatLine(usize),
-}
-
-fn edit() -> impl Strategy<Value = Edit> {
-    prop_oneof![
-        (any::<usize>(), any::<u8>()).prop_map(|(i, b)| Edit::Flip(i, b)),
-        (any::<usize>(), 1usize..40).prop_map(|(i, n)| Edit::Delete(i, n)),
-        (
-            any::<usize>(),
-            prop_oneof![
-                prop::collection::vec(any::<u8>(), 1..8),
-                prop::sample::select(vec![
-                    b"NaN".to_vec(),
-                    b"-".to_vec(),
-                    b"1e999".to_vec(),
-                    b",".to_vec(),
-                    b"<".to_vec(),
-                    b"\"".to_vec(),
-                    b"]".to_vec(),
-                    b"\n".to_vec(),
-                    b"<trkpt lat=\"1\" lon=\"2\">".to_vec(),
-                    b"9".to_vec(),
-                    b"0".to_vec(),
-                    b"}".to_vec(),
-                ]),
-            ]
-        )
-            .prop_map(|(i, v)| Edit::Insert(i, v)),
-        any::<usize>().prop_map(Edit::Truncate),
-        (any::<usize>(), 1usize..200).prop_map(|(i, n)| Edit::Duplicate(i, n)),
-        (any::<usize>(), 0u8..10).prop_map(|(i, d)| Edit::Digit(i, d)),
-        (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::SwapLines(i, j)),
-        any::<usize>().prop_map(Edit::RepeatLine),
-        (any::<usize>(), 0u8..10).prop_map(|(i, d)| Edit::Digit(i, d)),
-        (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::SwapLines(i, j)),
-    ]
-}
-
-fn apply(mut b: Vec<u8>, edits: &[Edit]) -> Vec<u8> {
-    for e in edits {
-        let n = b.len().max(1);
-        match e {
-            Edit::Flip(i, x) => {
-                if !b.is_empty() {
-                    b[i % n] = *x;
-                }
-            }
-            Edit::Delete(i, k) => {
-                let s = (i % n).min(b.len());
-                let e = (s + k).min(b.len());
-                b.drain(s..e);
-            }
-            Edit::Insert(i, v) => {
-                let s = (i % n).min(b.len());
-                b.splice(s..s, v.iter().copied());
-            }
-            Edit::Truncate(i) => b.truncate(i % n),
-            Edit::Duplicate(i, k) => {
-                let s = (i % n).min(b.len());
-                let e = (s + k).min(b.len());
-                let piece = b[s..e].to_vec();
-                b.splice(e..e, piece);
-            }
-            Edit::Digit(i, d) => {
-                let digits: Vec<usize> = (0..b.len()).filter(|&k| b[k].is_ascii_digit()).collect();
-                if !digits.is_empty() {
-                    b[digits[i % digits.len()]] = b'0' + d;
-                }
-            }
-            Edit::SwapLines(i, j) => {
-                let mut lines: Vec<Vec<u8>> =
-                    b.split(|&c| c == b'\n').map(|l| l.to_vec()).collect();
-                let k = lines.len();
-                lines.swap(i % k, j % k);
-                b = lines.join(&b'\n');
-            }
-            Edit::RepeatLine(i) => {
-                let mut lines: Vec<Vec<u8>> =
-                    b.split(|&c| c == b'\n').map(|l| l.to_vec()).collect();
-                let k = i % lines.len();
-                let l = lines[k].clone();
-                lines.insert(k, l);
-                b = lines.join(&b'\n');
-            }
-        }
-    }
-    b
-}
+/// What the insertions put into a file: this test's formats' syntax.
+const SYNTAX: &[&[u8]] = &[
+    b"NaN",
+    b"-",
+    b"1e999",
+    b",",
+    b"<",
+    b"\"",
+    b"]",
+    b"\n",
+    b"<trkpt lat=\"1\" lon=\"2\">",
+    b"9",
+    b"0",
+    b"}",
+];
 
 #[test]
 fn random_bytes_never_panic() {
@@ -238,7 +156,7 @@ fn mutated_real_files_never_panic() {
             &(
                 0usize..seeds.len(),
                 prop::option::of(0usize..seeds.len()),
-                prop::collection::vec(edit(), 1..4),
+                prop::collection::vec(edit(SYNTAX), 1..4),
             ),
             |(which, also, edits)| {
                 let (name, bytes) = &seeds[which];
