@@ -10,6 +10,7 @@
 use quick_xml::XmlVersion;
 use quick_xml::events::{BytesStart, Event};
 
+use super::xml_text::{line_of, next_event};
 use super::{Coords, RawCourseMark, RawMark, Source, Times, epoch_seconds, q};
 use crate::course::MarkKind;
 use crate::error::{RaceError, RaceResult};
@@ -17,16 +18,6 @@ use crate::error::{RaceError, RaceResult};
 struct Compound {
     id: String,
     marks: Vec<String>,
-}
-
-/// 1-based line of a byte offset.
-fn line_of(text: &str, pos: u64) -> u64 {
-    let end = (pos as usize).min(text.len());
-    text.as_bytes()[..end]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count() as u64
-        + 1
 }
 
 fn attr(e: &BytesStart, name: &str) -> Option<String> {
@@ -52,13 +43,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let mut opened_at: Vec<u64> = Vec::new();
     loop {
         let pos = r.buffer_position();
-        let ev = r.read_event().map_err(|e| {
-            RaceError::at_line(
-                file,
-                line_of(text, r.error_position()),
-                format!("not valid XML ({})", crate::text::cut(&e.to_string(), 80)),
-            )
-        })?;
+        let ev = next_event(&mut r, file, text)?;
         let line = || line_of(text, pos);
         let num = |e: &BytesStart, name: &str| -> RaceResult<f64> {
             let v = attr(e, name).ok_or_else(|| {

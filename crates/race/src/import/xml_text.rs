@@ -44,14 +44,33 @@ impl Path {
     }
 }
 
-/// 1-based line of a byte offset.
-fn line_of(text: &str, pos: u64) -> u64 {
+/// 1-based line of a byte offset (every XML reader's error names its line).
+pub(crate) fn line_of(text: &str, pos: u64) -> u64 {
     let end = (pos as usize).min(text.len());
     text.as_bytes()[..end]
         .iter()
         .filter(|&&b| b == b'\n')
         .count() as u64
         + 1
+}
+
+/// The next event of `r` (reading `text`), or one error naming `file` and the line where the
+/// XML breaks (the parser's message escaped and cut to 80 characters).
+pub(crate) fn next_event<'a>(
+    r: &mut quick_xml::Reader<&'a [u8]>,
+    file: &str,
+    text: &str,
+) -> RaceResult<quick_xml::events::Event<'a>> {
+    r.read_event().map_err(|e| {
+        RaceError::at_line(
+            file,
+            line_of(text, r.error_position()),
+            format!(
+                "not valid XML ({})",
+                crate::text::cut(&crate::text::escape(&e.to_string()), 80)
+            ),
+        )
+    })
 }
 
 /// Walk `text`, calling `visit` for each node; `visit` returns an error message to stop at
@@ -69,16 +88,7 @@ pub(crate) fn walk(
     let mut attrs: Vec<(String, String)> = Vec::new();
     loop {
         let pos = r.buffer_position();
-        let ev = r.read_event().map_err(|e| {
-            RaceError::at_line(
-                file,
-                line_of(text, r.error_position()),
-                format!(
-                    "not valid XML ({})",
-                    crate::text::cut(&crate::text::escape(&e.to_string()), 80)
-                ),
-            )
-        })?;
+        let ev = next_event(&mut r, file, text)?;
         let at = |m: String| RaceError::at_line(file, line_of(text, pos), m);
         match ev {
             Event::Start(ref e) | Event::Empty(ref e) => {
