@@ -76,26 +76,48 @@ impl Trips {
     }
 }
 
+/// A WGSL module parsed and validated, with the index of one entry point.
+struct Parsed {
+    module: Module,
+    info: naga::valid::ModuleInfo,
+    index: usize,
+}
+
+impl Parsed {
+    fn new(source: &str, entry: &str) -> Result<Parsed, String> {
+        let module = naga::front::wgsl::parse_str(source)
+            .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
+        let info = Validator::new(ValidationFlags::all(), Capabilities::all())
+            .validate(&module)
+            .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
+        let index = module
+            .entry_points
+            .iter()
+            .position(|e| e.name == entry)
+            .ok_or_else(|| format!("no entry point {entry}"))?;
+        Ok(Parsed {
+            module,
+            info,
+            index,
+        })
+    }
+
+    /// The entry's work per invocation, with function `without`'s body counted as nothing.
+    fn cost(&self, trips: &Trips, without: Option<&str>) -> Cost {
+        let ep = &self.module.entry_points[self.index];
+        Walker {
+            module: &self.module,
+            info: &self.info,
+            trips,
+            without,
+        }
+        .function(&ep.function, self.info.get_entry_point(self.index), "entry")
+    }
+}
+
 /// The per-invocation work of entry point `entry` of the WGSL `source`.
 pub fn entry_cost(source: &str, entry: &str, trips: &Trips) -> Result<Cost, String> {
-    let module = naga::front::wgsl::parse_str(source)
-        .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
-    let info = Validator::new(ValidationFlags::all(), Capabilities::all())
-        .validate(&module)
-        .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
-    let index = module
-        .entry_points
-        .iter()
-        .position(|e| e.name == entry)
-        .ok_or_else(|| format!("no entry point {entry}"))?;
-    let walker = Walker {
-        module: &module,
-        info: &info,
-        trips,
-        without: None,
-    };
-    let ep = &module.entry_points[index];
-    Ok(walker.function(&ep.function, info.get_entry_point(index), "entry"))
+    Ok(Parsed::new(source, entry)?.cost(trips, None))
 }
 
 /// Where the work of one invocation of `entry` goes: for each function it calls (directly or
@@ -109,26 +131,9 @@ pub fn function_costs(
     entry: &str,
     trips: &Trips,
 ) -> Result<Vec<(String, Cost)>, String> {
-    let module = naga::front::wgsl::parse_str(source)
-        .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
-    let info = Validator::new(ValidationFlags::all(), Capabilities::all())
-        .validate(&module)
-        .map_err(|e| format!("{entry}: {}", input::one_line(&e.emit_to_string(source))))?;
-    let index = module
-        .entry_points
-        .iter()
-        .position(|e| e.name == entry)
-        .ok_or_else(|| format!("no entry point {entry}"))?;
-    let ep = &module.entry_points[index];
-    let cost_without = |without: Option<&str>| {
-        Walker {
-            module: &module,
-            info: &info,
-            trips,
-            without,
-        }
-        .function(&ep.function, info.get_entry_point(index), "entry")
-    };
+    let parsed = Parsed::new(source, entry)?;
+    let cost_without = |without: Option<&str>| parsed.cost(trips, without);
+    let module = &parsed.module;
     let total = cost_without(None);
     let mut out: Vec<(String, Cost)> = module
         .functions
