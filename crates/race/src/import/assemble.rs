@@ -25,9 +25,66 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
         return Err(RaceError::new("no race files were given"));
     }
     let mut warnings: Vec<String> = Vec::new();
+    check_boats(&sources)?;
+    refuse_lost_reading(&sources, opts, &mut warnings)?;
+    for s in &mut sources {
+        merge_duplicate_tracks(s);
+    }
+    pick_sessions(&mut sources);
+    let null_island = drop_null_island(&mut sources);
+    let place = Placement::of(&sources)?;
+    let (start, start_how) = race_start(&sources, &mut warnings);
+    if let Some(st) = start {
+        check_one_time(&sources, st, &start_how)?;
+    }
+    let (boats, reports, series) = build_boats(
+        &mut sources,
+        &place,
+        start,
+        &null_island,
+        opts,
+        &mut warnings,
+    )?;
+    let (mut marks, mut mark_of) = build_marks(&sources, &place, &mut warnings);
+    let course = build_course(&sources, opts, &mut marks, &mut mark_of, &boats)?;
+    let course = if sources.iter().any(|s| s.repeat_laps) && opts.course.is_none() {
+        repeat_laps(&boats, &marks, course)
+    } else {
+        course
+    };
+
+    let name = sources
+        .iter()
+        .find_map(|s| s.name.clone())
+        .unwrap_or_else(|| race_name(&sources));
+    let wind = sources.iter().find_map(|s| s.wind);
+    let time_of_day = sources.iter().any(|s| s.time_of_day);
+    let (start_time, start_text) = start_words(start, time_of_day);
+    let boundary: Vec<[f64; 2]> = sources
+        .iter()
+        .flat_map(|s| s.boundary.iter().map(|c| place.to_race(s, *c)))
+        .collect();
+    let origin = place.origin();
+    let report = LoadReport {
+        files: sources.iter().map(|s| s.file.clone()).collect(),
+        origin,
+        start_time: start_text,
+        start_from: start_how,
+        boats: reports,
+        file_reports: sources.iter().map(|s| s.report.clone()).collect(),
+        warnings,
+    };
+    let mut race = Race::new(name, origin, start_time, boats, marks, course, wind, report);
+    race.series = series;
+    race.boundary = boundary;
+    Ok(race)
+}
+
+/// Every boat id once across the files, and some boat at all.
+fn check_boats(sources: &[Source]) -> RaceResult<()> {
     // Unique boat ids across all files (a map: fleets of 40,000 boats are read).
     let mut seen: HashMap<&str, &str> = HashMap::new();
-    for s in &sources {
+    for s in sources {
         for b in &s.boats {
             if let Some(other) = seen.insert(&b.id, &s.file) {
                 return Err(RaceError::new(format!(
@@ -56,13 +113,13 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             files.join(", ")
         )));
     }
-    refuse_lost_reading(&sources, opts, &mut warnings)?;
-    for s in &mut sources {
-        merge_duplicate_tracks(s);
-    }
-    pick_sessions(&mut sources);
-    // Fixes at exactly (0, 0): a receiver's "no fix", never a race (counted, then dropped).
-    let null_island: Vec<Vec<usize>> = sources
+    Ok(())
+}
+
+/// Fixes at exactly (0, 0): a receiver's "no fix", never a race. Dropped; the count per file
+/// and boat is returned for the boats' reports.
+fn drop_null_island(sources: &mut [Source]) -> Vec<Vec<usize>> {
+    sources
         .iter_mut()
         .map(|s| {
             let geo = s.coords == Coords::Geo;
@@ -77,33 +134,50 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
                 })
                 .collect()
         })
-        .collect();
+        .collect()
+}
 
-    // --- origin: the first file that states one, else the course centre -------------------
-    let any_geo = sources.iter().any(|s| s.coords == Coords::Geo);
-    let stated = sources.iter().find_map(|s| s.origin);
-    let origin = match stated {
-        Some(o) => Some(o),
-        None if any_geo => Some(geo_centre(&sources)?),
-        None => None,
-    };
-    if origin.is_some()
-        && let Some(s) = sources
-            .iter()
-            .find(|s| s.coords == Coords::Local && s.origin.is_none())
-        && sources.len() > 1
-    {
-        return Err(RaceError::in_file(
-            &s.file,
-            "has no \"origin\", so its metres cannot be placed beside GPS tracks; add an origin",
-        ));
+/// Where the race's metres are: the origin (the first file that states one, else the centre
+/// of the GPS tracks) and each file's coordinates carried into that frame.
+struct Placement {
+    frame: Option<LocalFrame>,
+}
+
+impl Placement {
+    fn of(sources: &[Source]) -> RaceResult<Placement> {
+        let any_geo = sources.iter().any(|s| s.coords == Coords::Geo);
+        let stated = sources.iter().find_map(|s| s.origin);
+        let origin = match stated {
+            Some(o) => Some(o),
+            None if any_geo => Some(geo_centre(sources)?),
+            None => None,
+        };
+        if origin.is_some()
+            && let Some(s) = sources
+                .iter()
+                .find(|s| s.coords == Coords::Local && s.origin.is_none())
+            && sources.len() > 1
+        {
+            return Err(RaceError::in_file(
+                &s.file,
+                "has no \"origin\", so its metres cannot be placed beside GPS tracks; add an origin",
+            ));
+        }
+        if let Some(o) = origin {
+            check_racing_area(sources, o)?;
+        }
+        Ok(Placement {
+            frame: origin.map(LocalFrame::new),
+        })
     }
-    if let Some(o) = origin {
-        check_racing_area(&sources, o)?;
+
+    fn origin(&self) -> Option<GeoPoint> {
+        self.frame.as_ref().map(LocalFrame::origin)
     }
-    let frame = origin.map(LocalFrame::new);
-    let to_race = |s: &Source, c: [f64; 2]| -> [f64; 2] {
-        match (s.coords, &frame) {
+
+    /// A point of file `s` (its own coordinates) in the race's metres.
+    fn to_race(&self, s: &Source, c: [f64; 2]) -> [f64; 2] {
+        match (s.coords, &self.frame) {
             (Coords::Geo, Some(f)) => f.to_local(GeoPoint::new(c[0], c[1])),
             (Coords::Local, Some(f)) => match s.origin {
                 Some(o) if o == f.origin() => c,
@@ -112,14 +186,21 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             },
             _ => c,
         }
-    };
-
-    let (start, start_how) = race_start(&sources, &mut warnings);
-    if let Some(st) = start {
-        check_one_time(&sources, st, &start_how)?;
     }
+}
 
-    // --- boats -------------------------------------------------------------------------------
+type Boats = (Vec<Boat>, Vec<BoatReport>, Vec<crate::Series>);
+
+/// Each file's boats in the race's metres and seconds from `start`, cleaned (the silent-loss
+/// rule), with their reports, and the files' instrument series on the same clock.
+fn build_boats(
+    sources: &mut [Source],
+    place: &Placement,
+    start: Option<f64>,
+    null_island: &[Vec<usize>],
+    opts: &LoadOptions,
+    warnings: &mut Vec<String>,
+) -> RaceResult<Boats> {
     let mut boats = Vec::new();
     let mut reports: Vec<BoatReport> = Vec::new();
     let mut series = Vec::new();
@@ -146,7 +227,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             let raw: Vec<RawSample> = points
                 .into_iter()
                 .map(|p| {
-                    let xz = to_race(s, p.c);
+                    let xz = place.to_race(s, p.c);
                     RawSample {
                         t: p.t + shift,
                         x: xz[0],
@@ -162,7 +243,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
                 raw,
                 b.max_speed_mps,
                 null_island[si][bi],
-                &mut warnings,
+                warnings,
             );
             if c.report.lost_most() {
                 let what = format!(
@@ -201,14 +282,22 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             reports.push(c.report);
         }
     }
+    Ok((boats, reports, series))
+}
 
-    // --- marks and course ---------------------------------------------------------------------
+/// The files' marks in the race's metres (a name given twice keeps its first position) and
+/// their gates and lines, with each name's index.
+fn build_marks(
+    sources: &[Source],
+    place: &Placement,
+    warnings: &mut Vec<String>,
+) -> (Vec<Mark>, HashMap<String, usize>) {
     let mut marks: Vec<Mark> = Vec::new();
     // Mark name → index in `marks` (100,000 marks were quadratic by scanning).
     let mut mark_of: HashMap<String, usize> = HashMap::new();
-    for s in &sources {
+    for s in sources {
         for m in &s.marks {
-            let position = to_race(s, m.c);
+            let position = place.to_race(s, m.c);
             match mark_of.get(&m.name).map(|&i| &marks[i]) {
                 Some(k) if dist(k.position, position) > 1.0 => {
                     warnings.push(format!(
@@ -226,7 +315,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             }
         }
     }
-    for s in &sources {
+    for s in sources {
         let by_name: HashMap<&str, &super::RawMark> =
             s.marks.iter().rev().map(|m| (m.name.as_str(), m)).collect();
         for cm in &s.compound {
@@ -241,7 +330,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
                 .marks
                 .iter()
                 .filter_map(|n| by_name.get(n.as_str()))
-                .map(|m| to_race(s, m.c))
+                .map(|m| place.to_race(s, m.c))
                 .collect();
             mark_of.insert(cm.name.clone(), marks.len());
             marks.push(compound_mark(
@@ -252,19 +341,12 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
             ));
         }
     }
-    let course = build_course(&sources, opts, &mut marks, &mut mark_of, &boats)?;
-    let course = if sources.iter().any(|s| s.repeat_laps) && opts.course.is_none() {
-        repeat_laps(&boats, &marks, course)
-    } else {
-        course
-    };
+    (marks, mark_of)
+}
 
-    let name = sources
-        .iter()
-        .find_map(|s| s.name.clone())
-        .unwrap_or_else(|| race_name(&sources));
-    let wind = sources.iter().find_map(|s| s.wind);
-    let time_of_day = sources.iter().any(|s| s.time_of_day);
+/// The start as a UTC time (none when only the time of day is known) and as the report's
+/// words.
+fn start_words(start: Option<f64>, time_of_day: bool) -> (Option<OffsetDateTime>, Option<String>) {
     let start_time = start.filter(|_| !time_of_day).and_then(|s| {
         let whole = s.floor();
         // To the microsecond: an f64 of ~1e8 s holds 3e-8 s, so finer digits are noise.
@@ -289,23 +371,7 @@ pub(crate) fn assemble(mut sources: Vec<Source>, opts: &LoadOptions) -> RaceResu
         }
         _ => None,
     };
-    let boundary: Vec<[f64; 2]> = sources
-        .iter()
-        .flat_map(|s| s.boundary.iter().map(move |c| to_race(s, *c)))
-        .collect();
-    let report = LoadReport {
-        files: sources.iter().map(|s| s.file.clone()).collect(),
-        origin,
-        start_time: start_text,
-        start_from: start_how,
-        boats: reports,
-        file_reports: sources.iter().map(|s| s.report.clone()).collect(),
-        warnings,
-    };
-    let mut race = Race::new(name, origin, start_time, boats, marks, course, wind, report);
-    race.series = series;
-    race.boundary = boundary;
-    Ok(race)
+    (start_time, start_text)
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
