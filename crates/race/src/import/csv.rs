@@ -282,26 +282,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             Some(&k) => k,
             None => {
                 track_of.insert(id.to_string(), tracks.len());
-                tracks.push(Track {
-                    id: id.to_string(),
-                    points: Vec::new(),
-                    series: channels
-                        .iter()
-                        .filter(|(_, c)| c.is_some())
-                        .map(|(name, _)| Series {
-                            boat: None,
-                            channel: name.to_string(),
-                            unit: if matches!(*name, "bsp" | "tws") {
-                                "m/s"
-                            } else {
-                                "deg"
-                            }
-                            .into(),
-                            t: Vec::new(),
-                            v: Vec::new(),
-                        })
-                        .collect(),
-                });
+                tracks.push(Track::new(id, &channels));
                 tracks.len() - 1
             }
         };
@@ -333,6 +314,56 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             "the log has a header but no rows with a position: a boat needs points",
         ));
     }
+    let wind = (n_wind > 0).then(|| Wind {
+        from_deg: wind_e.atan2(wind_n).to_degrees().rem_euclid(360.0),
+        speed_mps: tws_sum / n_wind as f64,
+    });
+    Ok(into_source(
+        file,
+        &cols,
+        tracks,
+        times,
+        wind,
+        [rows, blank, no_fix],
+    ))
+}
+
+impl Track {
+    /// A boat's track with one empty series per instrument channel the log has.
+    fn new(id: &str, channels: &[(&str, Col)]) -> Track {
+        Track {
+            id: id.to_string(),
+            points: Vec::new(),
+            series: channels
+                .iter()
+                .filter(|(_, c)| c.is_some())
+                .map(|(name, _)| Series {
+                    boat: None,
+                    channel: name.to_string(),
+                    unit: if matches!(*name, "bsp" | "tws") {
+                        "m/s"
+                    } else {
+                        "deg"
+                    }
+                    .into(),
+                    t: Vec::new(),
+                    v: Vec::new(),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The file's source from its tracks: the report's counts (`[rows, blank, without a
+/// position]`), channels and date source, the mean wind, and the boats with their series.
+fn into_source(
+    file: &str,
+    cols: &Columns,
+    tracks: Vec<Track>,
+    times: Option<Times>,
+    wind: Option<Wind>,
+    [rows, blank, no_fix]: [usize; 3],
+) -> Source {
     let mut s = Source::new(file, Coords::Geo, times.unwrap_or(Times::Absolute));
     s.report.records_read = rows;
     s.drop_rule("blank rows", blank);
@@ -355,12 +386,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         .filter(|f| f.1)
         .map(|f| f.0.to_string())
         .collect();
-    if n_wind > 0 {
-        s.wind = Some(Wind {
-            from_deg: wind_e.atan2(wind_n).to_degrees().rem_euclid(360.0),
-            speed_mps: tws_sum / n_wind as f64,
-        });
-    }
+    s.wind = wind;
     if tracks.len() > 1 {
         s.warnings.push(format!(
             "{file}: the boat column names {} boats; the rows were split by boat",
@@ -380,7 +406,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             points: tr.points,
         });
     }
-    Ok(s)
+    s
 }
 
 /// A numeric cell of a log (CSV export or Expedition): NaN when empty (a sparse row), else the
