@@ -94,7 +94,64 @@ pub(crate) fn clean(
             "{file}: boat {id} had {out_of_order} samples out of time order; they were sorted"
         ));
     }
-    // Merge equal timestamps into their mean (in place: logs hold millions of samples).
+    let duplicates_merged = merge_repeated_times(&mut s);
+    if duplicates_merged > 0 {
+        warnings.push(format!(
+            "{file}: boat {id} had {duplicates_merged} samples with a repeated timestamp; they were merged"
+        ));
+    }
+    let frozen_removed = remove_frozen(&mut s);
+    let (acc, spikes) = remove_spikes(&s, max_speed_mps);
+    drop(s);
+    if frozen_removed > 0 {
+        warnings.push(format!(
+            "{file}: boat {id} had {frozen_removed} frozen fixes (a moving boat's position repeated); they were removed"
+        ));
+    }
+    if !spikes.is_empty() {
+        warnings.push(format!(
+            "{file}: boat {id} had {} fixes implying over {:.0} kn; they were removed as spikes",
+            spikes.len(),
+            max_speed_mps / MPS_PER_KNOT
+        ));
+    }
+    let (gap_limit_s, gaps, gap_after) = find_gaps(&acc);
+    let max_step = acc
+        .windows(2)
+        .map(|w| speed(&w[0], &w[1]))
+        .fold(0.0, f64::max);
+    Cleaned {
+        fixes: acc
+            .iter()
+            .map(|p| Fix {
+                t: p.t,
+                x: p.x,
+                z: p.z,
+            })
+            .collect(),
+        logged: acc.iter().map(|p| p.logged).collect(),
+        gap_after,
+        report: BoatReport {
+            id: id.to_string(),
+            file: file.to_string(),
+            samples_read,
+            samples_kept: acc.len(),
+            out_of_order,
+            duplicates_merged,
+            frozen_removed,
+            null_island_removed,
+            max_speed_kn: max_speed_mps / MPS_PER_KNOT,
+            spikes,
+            gap_limit_s,
+            gaps,
+            max_step_speed_kn: max_step / MPS_PER_KNOT,
+        },
+    }
+}
+
+/// Equal timestamps merged into their mean position, in place (logs hold millions of
+/// samples); how many samples were merged away.
+fn merge_repeated_times(s: &mut Vec<RawSample>) -> usize {
     let mut duplicates_merged = 0;
     let mut w = 0;
     let mut i = 0;
@@ -115,13 +172,12 @@ pub(crate) fn clean(
         i = j;
     }
     s.truncate(w);
-    if duplicates_merged > 0 {
-        warnings.push(format!(
-            "{file}: boat {id} had {duplicates_merged} samples with a repeated timestamp; they were merged"
-        ));
-    }
-    // Frozen fixes: the exact position of the previous fix while the boat is moving (by its
-    // logged speed, else by its previous step). In place, like the merge.
+    duplicates_merged
+}
+
+/// Frozen fixes removed in place: the exact position of the previous fix while the boat is
+/// moving (by its logged speed, else by its previous step); how many.
+fn remove_frozen(s: &mut Vec<RawSample>) -> usize {
     let mut frozen_removed = 0;
     let n = s.len();
     let mut w = 0;
@@ -145,10 +201,14 @@ pub(crate) fn clean(
         w += 1;
     }
     s.truncate(w);
-    let kept = s;
-    // Spikes: keep a stack of accepted fixes. A fix too fast from the last accepted one is
-    // either itself a spike (dropped) or proves the last accepted one was (popped, when the
-    // fix is reachable from the one before it and the next fix does not vindicate the popped).
+    frozen_removed
+}
+
+/// The fixes kept after removing speed spikes (`max_speed_mps`), and the spikes in time order.
+/// A stack of accepted fixes: a fix too fast from the last accepted one is either itself a
+/// spike (dropped) or proves the last accepted one was (popped, when the fix is reachable from
+/// the one before it and the next fix does not vindicate the popped).
+fn remove_spikes(kept: &[RawSample], max_speed_mps: f64) -> (Vec<RawSample>, Vec<Spike>) {
     let mut spikes = Vec::new();
     let mut acc: Vec<RawSample> = Vec::with_capacity(kept.len());
     for (i, p) in kept.iter().enumerate() {
@@ -194,20 +254,13 @@ pub(crate) fn clean(
             });
         }
     }
-    drop(kept);
     spikes.sort_by(|a, b| a.t.total_cmp(&b.t));
-    if frozen_removed > 0 {
-        warnings.push(format!(
-            "{file}: boat {id} had {frozen_removed} frozen fixes (a moving boat's position repeated); they were removed"
-        ));
-    }
-    if !spikes.is_empty() {
-        warnings.push(format!(
-            "{file}: boat {id} had {} fixes implying over {:.0} kn; they were removed as spikes",
-            spikes.len(),
-            max_speed_mps / MPS_PER_KNOT
-        ));
-    }
+    (acc, spikes)
+}
+
+/// The track's gap limit ([`gap_limit`]), its gaps ([start, end] race seconds) and, per fix,
+/// whether a gap follows it.
+fn find_gaps(acc: &[RawSample]) -> (f64, Vec<[f64; 2]>, Vec<bool>) {
     let ts: Vec<f64> = acc.iter().map(|p| p.t).collect();
     let gap_limit_s = gap_limit(&ts);
     let mut gaps = Vec::new();
@@ -218,37 +271,7 @@ pub(crate) fn clean(
             gaps.push([acc[i].t, acc[i + 1].t]);
         }
     }
-    let max_step = acc
-        .windows(2)
-        .map(|w| speed(&w[0], &w[1]))
-        .fold(0.0, f64::max);
-    Cleaned {
-        fixes: acc
-            .iter()
-            .map(|p| Fix {
-                t: p.t,
-                x: p.x,
-                z: p.z,
-            })
-            .collect(),
-        logged: acc.iter().map(|p| p.logged).collect(),
-        gap_after,
-        report: BoatReport {
-            id: id.to_string(),
-            file: file.to_string(),
-            samples_read,
-            samples_kept: acc.len(),
-            out_of_order,
-            duplicates_merged,
-            frozen_removed,
-            null_island_removed,
-            max_speed_kn: max_speed_mps / MPS_PER_KNOT,
-            spikes,
-            gap_limit_s,
-            gaps,
-            max_step_speed_kn: max_step / MPS_PER_KNOT,
-        },
-    }
+    (gap_limit_s, gaps, gap_after)
 }
 
 impl BoatReport {
