@@ -12,7 +12,7 @@
 //! anywhere errs by at most the sum of the dropped sources' peak bounds, and the wake foam by
 //! at most the sum of their peak densities (1 − e^{−Σ} is 1-Lipschitz).
 
-use ocean::wake::{GpuWakeFrame, GpuWakeSource, inner_radius2, source_peak_bound};
+use ocean::wake::{GpuWakeFrame, GpuWakeSource, foam_radius2, inner_radius2, source_peak_bound};
 use serde::Serialize;
 
 use crate::wake_spacing::SampleSpacing;
@@ -132,7 +132,7 @@ impl Layout {
     /// The bins [i0, i1] × [j0, j1] whose lists hold `s` (its cull circle grown by the
     /// margin touches them), or none.
     fn span(&self, s: &GpuWakeSource) -> Option<[u32; 4]> {
-        let r = s.cull_r2.max(0.0).sqrt() + self.margin;
+        let r = reach_r2(s).sqrt() + self.margin;
         let (x0, x1) = (s.pos[0] - r, s.pos[0] + r);
         let (z0, z1) = (s.pos[1] - r, s.pos[1] + r);
         let (lo, cell) = (self.lo, self.cell);
@@ -165,14 +165,20 @@ impl Layout {
             (a - f64::from(v)).max(f64::from(v) - (a + cell)).max(0.0)
         };
         let (dx, dz) = (gap(s.pos[0], self.lo[0], i), gap(s.pos[1], self.lo[1], j));
-        if dx * dx + dz * dz > r * r {
-            return false;
-        }
-        // The bin's farthest point from the source (grown by the margin) must lie outside
-        // the source's inner radius for the bin's finest spacing.
+        let near2 = dx * dx + dz * dz;
         let Some(spacing) = self.finest[(j * self.nx + i) as usize] else {
             return false;
         };
+        // Its foam strip reaches the bin (whatever its height term does there).
+        let foam_r = f64::from(foam_radius2(s)).sqrt() + f64::from(self.margin);
+        if near2 <= foam_r * foam_r {
+            return true;
+        }
+        if near2 > r * r {
+            return false;
+        }
+        // The height term: the bin's farthest point from the source (grown by the margin)
+        // must lie outside the source's inner radius for the bin's finest spacing.
         let far = |v: f32, lo: f32, k: u32| {
             let a = f64::from(lo) + f64::from(k) * cell;
             (f64::from(v) - a)
@@ -200,12 +206,17 @@ impl Layout {
     }
 }
 
+/// The squared radius within which a source adds height or foam, m².
+fn reach_r2(s: &GpuWakeSource) -> f32 {
+    s.cull_r2.max(foam_radius2(s)).max(0.0)
+}
+
 /// The rectangle the sources' cull circles (grown by `margin`) cover, clipped to the square
 /// [−half, half]²; none when nothing reaches the square.
 fn reach(sources: &[GpuWakeSource], half: f32, margin: f32) -> Option<([f32; 2], [f32; 2])> {
     let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
     for s in sources {
-        let r = s.cull_r2.max(0.0).sqrt() + margin;
+        let r = reach_r2(s).sqrt() + margin;
         for a in 0..2 {
             lo[a] = lo[a].min(s.pos[a] - r);
             hi[a] = hi[a].max(s.pos[a] + r);

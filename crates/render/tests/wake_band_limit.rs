@@ -6,7 +6,8 @@
 
 use glam::{DVec2, DVec3};
 use ocean::wake::{
-    TrackSample, Wake, WakeParams, source_height_grad_f32, source_height_grad_sampled_f32,
+    FOAM_EPSILON, TrackSample, Wake, WakeParams, source_height_grad_f32,
+    source_height_grad_sampled_f32,
 };
 use render::Camera;
 use render::frame::FrameContext;
@@ -64,7 +65,7 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
     assert!(sources.len() > 500, "{}", sources.len());
     assert_eq!(frame.wake_drop.dropped, 0);
     let o = frame.origin;
-    let (mut checked, mut nonzero) = (0usize, 0usize);
+    let (mut checked, mut nonzero, mut foamy) = (0usize, 0usize, 0usize);
     for v in frame.mesh.vertices.iter().step_by(3) {
         // Where the compute stage evaluates it: the vertex displaced by the sea.
         let d = scene
@@ -92,6 +93,19 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
         }
         // Terms left out are exact zeros, and x + 0 = x: the sums agree bit for bit.
         assert_eq!(binned, every, "{p:?}");
+        // Foam (not band limited): every strip denser than FOAM_EPSILON at p is listed,
+        // near the track too, where the height term is nothing.
+        for (k, s) in sources.iter().enumerate() {
+            let d2 = (p[0] - s.pos[0]).powi(2) + (p[1] - s.pos[1]).powi(2);
+            let density = s.foam * (-d2 / s.foam_w2).exp();
+            if density > FOAM_EPSILON {
+                assert!(
+                    listed.contains(&(k as u32)),
+                    "source {k}'s foam {density} at {p:?} but not in its bin"
+                );
+                foamy += 1;
+            }
+        }
         checked += 1;
         nonzero += usize::from(every[0] != 0.0);
     }
@@ -99,6 +113,7 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
         checked > 1000 && nonzero > checked / 10,
         "{checked} {nonzero}"
     );
+    assert!(foamy > 0, "the frame's vertices see some foam");
 }
 
 #[test]

@@ -222,6 +222,20 @@ pub fn inner_radius2(s: &GpuWakeSource, spacing: f32) -> f32 {
     (hole.max(band) * (1.0 - 1e-4)) as f32
 }
 
+/// The foam density below which a source's foam strip is left out of a point's sum: the
+/// foam coverage 1 − e^{−Σ} is 1-Lipschitz in the density, so each left-out source errs by
+/// less than this.
+pub const FOAM_EPSILON: f32 = 1e-4;
+
+/// The squared distance (m²) beyond which a source's foam density `foam · e^{−r²/w²}` is
+/// below [`FOAM_EPSILON`] (0 for a source with less foam than that at its centre).
+pub fn foam_radius2(s: &GpuWakeSource) -> f32 {
+    if !(s.foam > FOAM_EPSILON && s.foam_w2 > 0.0) {
+        return 0.0;
+    }
+    (f64::from(s.foam_w2) * (f64::from(s.foam) / f64::from(FOAM_EPSILON)).ln()) as f32
+}
+
 /// One source's height term and its gradient at local point `p`, (w, ∂w/∂x, ∂w/∂z) in m and
 /// m/m, f32, exactly as `wake_source_height_grad` in WGSL (the closed-form derivative of
 /// [`source_height_f32`]).
