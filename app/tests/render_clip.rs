@@ -20,8 +20,11 @@ fn tmp_dir(name: &str) -> PathBuf {
 
 const SIZE: &str = "48x32";
 
-/// The GIF's frames as RGBA, with their delays (centiseconds) and canvas size.
-fn decode_gif(path: &Path) -> (Vec<(Vec<u8>, u16)>, (u16, u16)) {
+/// One decoded frame: RGBA pixels and its delay, centiseconds.
+type DecodedFrame = (Vec<u8>, u16);
+
+/// The GIF's frames with their canvas size.
+fn decode_gif(path: &Path) -> (Vec<DecodedFrame>, (u16, u16)) {
     let mut options = gif::DecodeOptions::new();
     options.set_color_output(gif::ColorOutput::RGBA);
     let mut decoder = options

@@ -114,6 +114,18 @@ impl ClipTimes {
         })
     }
 
+    /// The app's "Share clip": the `seconds` of race time up to `playhead`, cut at the race's
+    /// start (a playhead too near the start to leave one frame step is refused).
+    pub fn before_playhead(
+        playhead: f64,
+        seconds: f64,
+        fps: f64,
+        race_span: (f64, f64),
+    ) -> CliResult<ClipTimes> {
+        let to = playhead.clamp(race_span.0, race_span.1);
+        ClipTimes::new((to - seconds).max(race_span.0), to, fps, race_span)
+    }
+
     /// Race time of frame `i`, seconds.
     pub fn time(&self, i: usize) -> f64 {
         self.from + i as f64 / self.fps
@@ -167,47 +179,18 @@ pub fn run(a: &RenderArgs, format: ClipFormat) -> CliResult {
         a.fps.unwrap_or(DEFAULT_FPS),
         world.race.time_span(),
     )?;
-    let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
-    let mut renderer = Renderer::new(
-        &gpu,
-        render::OFFSCREEN_FORMAT,
-        RenderOptions {
-            error_px: a.error_px,
-            ..Default::default()
-        },
-    );
-    if !a.no_wakes {
-        renderer.set_wake(Some(world.wake()?));
-    }
-    let handle = render::passes::overlay::OverlayHandle::default();
+    let look = ClipLook {
+        size,
+        camera,
+        overlays,
+        wakes: !a.no_wakes,
+        error_px: a.error_px,
+    };
     let progress_every = times.count.div_ceil(10).max(1);
-    super::super::output::write_atomically(&a.out, |tmp| {
-        let file = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
-        let mut gif = GifWriter::new(std::io::BufWriter::new(file), size)?;
-        for i in 0..times.count {
-            let scene = world.scene_at(times.time(i), camera);
-            let (img, _) = crate::scene_overlay::render_headless_with(
-                &gpu,
-                &mut renderer,
-                &handle,
-                &world.race,
-                &scene,
-                size,
-                &overlays,
-            )
-            .map_err(|e| format!("cannot render frame {i}: {e}"))?;
-            gif.push(img, times.delay_cs(i))?;
-            if (i + 1) % progress_every == 0 || i + 1 == times.count {
-                eprintln!(
-                    "regatta render: frame {}/{} (t = {:.2} s)",
-                    i + 1,
-                    times.count,
-                    times.time(i)
-                );
-            }
+    write_gif(&world, &times, &look, &a.out, &mut |done, total, t| {
+        if done % progress_every == 0 || done == total {
+            eprintln!("regatta render: frame {done}/{total} (t = {t:.2} s)");
         }
-        gif.finish()
     })?;
     let summary = serde_json::json!({
         "out": a.out.display().to_string(),
@@ -218,7 +201,69 @@ pub fn run(a: &RenderArgs, format: ClipFormat) -> CliResult {
         "to": times.time(times.count - 1),
         "size": size,
     });
-    super::super::output::print_stdout("the clip summary", &summary)
+    crate::cli::output::print_stdout("the clip summary", &summary)
+}
+
+/// How a clip draws each frame: what `regatta render` takes besides the times.
+#[derive(Debug, Clone)]
+pub struct ClipLook {
+    /// Frame size, pixels.
+    pub size: [u32; 2],
+    /// A fixed camera; `None` frames the fleet at each frame's time, as the still does.
+    pub camera: Option<render::Camera>,
+    pub overlays: crate::scene_overlay::OverlaySettings,
+    pub wakes: bool,
+    /// Clip-map screen-space error target, pixels.
+    pub error_px: f64,
+}
+
+/// Draws `world` at each of `times` headless, as the still render does (overlays included),
+/// and writes the GIF to `out` atomically (nothing left on error). `progress(done, total, t)`
+/// is called after each frame: the CLI prints it, an app can show it from a worker thread
+/// (everything here owns its own headless GPU device).
+pub fn write_gif(
+    world: &RaceWorld,
+    times: &ClipTimes,
+    look: &ClipLook,
+    out: &Path,
+    progress: &mut dyn FnMut(usize, usize, f64),
+) -> CliResult {
+    let gpu = render::Gpu::headless(wgpu::Backends::all())
+        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    let mut renderer = Renderer::new(
+        &gpu,
+        render::OFFSCREEN_FORMAT,
+        RenderOptions {
+            error_px: look.error_px,
+            ..Default::default()
+        },
+    );
+    if look.wakes {
+        renderer.set_wake(Some(world.wake()?));
+    }
+    // The overlay passes keep the handle they were added with: one for every frame.
+    let handle = render::passes::overlay::OverlayHandle::default();
+    crate::cli::output::write_atomically(out, |tmp| {
+        let file = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+        let mut gif = GifWriter::new(std::io::BufWriter::new(file), look.size)?;
+        for i in 0..times.count {
+            let t = times.time(i);
+            let scene = world.scene_at(t, look.camera);
+            let (img, _) = crate::scene_overlay::render_headless_with(
+                &gpu,
+                &mut renderer,
+                &handle,
+                &world.race,
+                &scene,
+                look.size,
+                &look.overlays,
+            )
+            .map_err(|e| format!("cannot render frame {i}: {e}"))?;
+            gif.push(img, times.delay_cs(i))?;
+            progress(i + 1, times.count, t);
+        }
+        gif.finish()
+    })
 }
 
 /// An animated GIF being written: one palette per frame, looping forever.
@@ -322,6 +367,15 @@ mod tests {
             assert!(e.contains(needle), "{from} {to} {fps}: {e}");
         }
         assert_eq!(ClipTimes::new(0.0, 199.9, 15.0, RACE).unwrap().count, 2999);
+    }
+
+    #[test]
+    fn the_share_button_span_ends_at_the_playhead_and_stops_at_the_start() {
+        let t = ClipTimes::before_playhead(700.0, 20.0, 15.0, RACE).unwrap();
+        assert_eq!((t.from, t.count, t.time(t.count - 1)), (680.0, 301, 700.0));
+        let t = ClipTimes::before_playhead(5.0, 20.0, 15.0, RACE).unwrap();
+        assert_eq!((t.from, t.count), (0.0, 76));
+        assert!(ClipTimes::before_playhead(0.0, 20.0, 15.0, RACE).is_err());
     }
 
     #[test]
