@@ -3,10 +3,11 @@
 //! animated GIF by the `gif` crate (image-rs's maintained encoder; its NeuQuant palette per
 //! frame through `color_quant`).
 //!
-//! MP4 is refused with one line: no maintained pure-Rust H.264 encoder fits the build (openh264
-//! compiles its C++ from source, minutes on a 2-core CI; rav1e writes AV1, not H.264, and is a
-//! large build of its own; less-avc writes lossless intra-only H.264, files hundreds of times a
-//! GIF's), so the clip is a GIF, which every share sheet and chat app takes.
+//! MP4 is refused with one line: no maintained pure-Rust H.264 encoder fits the build. openh264
+//! (0.9) binds Cisco's C++ encoder, compiled from source by its -sys crate (or a binary fetched at
+//! run time); rav1e (0.8) writes AV1, not H.264, and is a large build of its own; less-avc (0.1)
+//! stores every macroblock uncompressed (I_PCM), so its files are as large as the raw frames.
+//! So the clip is a GIF, which share sheets and chat apps take.
 //!
 //! Frames: `n = floor((T1 − T0) · fps) + 1` frames at `T0 + i / fps`, i = 0 … n − 1 (both ends
 //! included when the span is a whole number of frame steps). GIF delays are whole centiseconds:
