@@ -87,9 +87,11 @@ fn quantised(rgba: &[u8]) -> Vec<u8> {
 }
 
 /// Palette error: NeuQuant learns 256 colours from each frame and has no worst-case bound (a
-/// rare colour, a boat's hull, can land on a far palette entry: 78/255 at 48x32), so the bound
-/// is on the mean over RGB, 0–255: 2.76 measured on these 48x32 frames, 4 allowed.
-const MEAN_QUANT_ERROR: f64 = 4.0;
+/// rare colour, a boat's hull, can land on a far palette entry: up to 81/255 at 48x32), so the
+/// bound is on the mean over RGB, 0–255: 2.76, 2.94 and 3.40 measured on these three 48x32
+/// frames on lavapipe; 5 allowed, for another adapter's slightly different frames. The exact
+/// check above is what proves the frame is the still; this one bounds what the GIF shows.
+const MEAN_QUANT_ERROR: f64 = 5.0;
 
 #[test]
 fn a_clip_is_its_stills_at_each_frame_time_with_the_asked_count_size_and_delays() {
@@ -105,21 +107,23 @@ fn a_clip_is_its_stills_at_each_frame_time_with_the_asked_count_size_and_delays(
         "--from",
         "700",
         "--to",
-        "701",
+        "720",
         "--fps",
-        "4",
+        "0.2",
         "--size",
         SIZE,
     ]);
     assert_eq!(summary["frames"], 5);
     let (frames, size) = decode_gif(&out);
-    // (701 − 700) · 4 + 1: both ends included.
+    // (720 − 700) · 0.2 + 1: both ends included. Frames 5 s of race time apart, so the boats,
+    // their trails and labels move by pixels between frames: a frame drawing an earlier
+    // frame's overlays (the overlay passes fed through a stale handle) differs from its still.
     assert_eq!(frames.len(), 5);
     assert_eq!(size, (48, 32));
-    assert!(frames.iter().all(|(_, delay)| *delay == 25), "1/4 s each");
+    assert!(frames.iter().all(|(_, delay)| *delay == 500), "5 s each");
     // The first, a middle (after two frames drawn by the same renderer: nothing leaks from
     // one frame into the next) and the last frame against fresh stills at their times.
-    for (i, t) in [(0, "700"), (2, "700.5"), (4, "701")] {
+    for (i, t) in [(0, "700"), (2, "710"), (4, "720")] {
         let still = still(&dir, t);
         // Rendering: the frame is the still put through the same palette step exactly, so
         // the pixels the clip quantised were the still's, to the bit.
@@ -129,6 +133,7 @@ fn a_clip_is_its_stills_at_each_frame_time_with_the_asked_count_size_and_delays(
             "frame {i} (t = {t}) was not drawn as the still at {t}"
         );
         let (mean, max) = rgb_error(&frames[i].0, &still);
+        eprintln!("frame {i}: palette error {mean:.3} mean, {max} max (RGB, 0-255)");
         assert!(
             mean <= MEAN_QUANT_ERROR,
             "frame {i} (t = {t}) differs from its still by {mean:.3} mean, {max} max"

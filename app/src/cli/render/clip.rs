@@ -35,7 +35,8 @@ pub const MAX_FPS: f64 = 50.0;
 /// message to share, and each frame is a full render.
 pub const MAX_FRAMES: usize = 3000;
 /// NeuQuant's sampling factor (1 best … 30 fastest): 1, every pixel; `gif`'s default 10 more
-/// than doubled the mean palette error on small frames (6.3 against 2.8 per channel at 48x32).
+/// than doubled the mean palette error on small frames (6.3 against 2.8 per channel, 0–255, at
+/// 48x32).
 pub const QUANT_SPEED: i32 = 1;
 
 /// The file kind a clip's `--out` names.
