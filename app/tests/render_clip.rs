@@ -9,7 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{fails_with, ok_json, regatta};
-use regatta::cli::render::clip::QUANT_SPEED;
+use regatta::cli::render::clip::quant_speed;
 
 fn tmp_dir(name: &str) -> PathBuf {
     let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
@@ -74,7 +74,7 @@ fn rgb_error(a: &[u8], b: &[u8]) -> (f64, u8) {
 /// `rgba` through the clip's palette step (`gif`'s NeuQuant at the clip's speed), back to RGBA.
 fn quantised(rgba: &[u8]) -> Vec<u8> {
     let mut pixels = rgba.to_vec();
-    let frame = gif::Frame::from_rgba_speed(48, 32, &mut pixels, QUANT_SPEED);
+    let frame = gif::Frame::from_rgba_speed(48, 32, &mut pixels, quant_speed([48, 32]));
     let palette = frame.palette.as_ref().expect("a local palette");
     frame
         .buffer

@@ -22,8 +22,8 @@ pub struct ClipRequest {
 }
 
 impl ClipRequest {
-    /// The button's clip: 20 s at 15 fps, 640x360 (301 frames; about 3.5 minutes on lavapipe's
-    /// 2 CPU cores, seconds on a GPU).
+    /// The button's clip: 20 s at 15 fps, 640x360 (301 frames; about 3 minutes on lavapipe's
+    /// 2 CPU cores).
     pub const DESKTOP: ClipRequest = ClipRequest {
         seconds: 20.0,
         fps: 15.0,
