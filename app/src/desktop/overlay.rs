@@ -233,11 +233,6 @@ impl Overlay {
         let (share, mut share_pressed) = (&self.share_clip, false);
         let platform = self.painter.paint(device, queue, texture, size, raw, |ui| {
             scene.paint(ui.ctx(), size);
-            egui::Area::new(egui::Id::unique("share-clip"))
-                .anchor(egui::Align2::RIGHT_BOTTOM, egui::vec2(-8.0, -8.0))
-                .show(ui.ctx(), |ui| {
-                    egui::Frame::popup(ui.style()).show(ui, |ui| share_pressed = share.ui(ui));
-                });
             response = Some(crate::overlay::race_panels(
                 ui,
                 panels,
@@ -248,6 +243,13 @@ impl Overlay {
                 &scene.settings.selected,
                 Some(races),
             ));
+            // Bottom right, above the timeline's panel (about 92 points tall in a 1280x720
+            // window; a window narrow enough to wrap the panel's rows makes it taller).
+            egui::Area::new(egui::Id::unique("share-clip"))
+                .anchor(egui::Align2::RIGHT_BOTTOM, egui::vec2(-8.0, -100.0))
+                .show(ui.ctx(), |ui| {
+                    egui::Frame::popup(ui.style()).show(ui, |ui| share_pressed = share.ui(ui));
+                });
         });
         self.input.handle_platform_output(window, platform);
         self.share_requested |= share_pressed;
