@@ -29,6 +29,7 @@ pub mod feed;
 pub mod overlay;
 pub mod phone;
 pub mod pool;
+pub mod share_clip;
 pub mod smoke;
 
 #[derive(Debug, Args, Default)]
@@ -334,6 +335,14 @@ impl App {
                 size,
                 race,
             );
+            if std::mem::take(&mut o.share_requested) {
+                let folder = std::env::current_dir().unwrap_or_default();
+                let t = o.panels.clock.time();
+                let request = share_clip::ClipRequest::DESKTOP;
+                if let Err(e) = o.share_clip.start(&self.world, t, &folder, request) {
+                    o.share_clip.set_failed(e);
+                }
+            }
         }
         st.window.pre_present_notify();
         st.target.present(&st.gpu, frame);

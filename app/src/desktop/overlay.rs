@@ -40,6 +40,10 @@ pub struct Overlay {
     format: wgpu::TextureFormat,
     /// The race overlays in the scene (labels, trails, course, lines, wind).
     pub scene_overlays: crate::scene_overlay::live::LiveOverlays,
+    /// The "Share clip" button and its worker (`share_clip.rs`).
+    pub share_clip: super::share_clip::ShareClip,
+    /// The button was pressed this frame: the app starts the clip (it holds the world).
+    pub share_requested: bool,
 }
 
 /// The window's first size: 1280×720 points, or `REGATTA_WINDOW_SIZE=WxH` (physical pixels;
@@ -103,6 +107,8 @@ impl Overlay {
             format,
             exit_after: super::smoke::ExitAfter::from_env(),
             scene_overlays,
+            share_clip: Default::default(),
+            share_requested: false,
         }
     }
 
@@ -224,6 +230,7 @@ impl Overlay {
             ..Default::default()
         };
         let mut response = None;
+        let (share, mut share_pressed) = (&self.share_clip, false);
         let platform = self.painter.paint(device, queue, texture, size, raw, |ui| {
             scene.paint(ui.ctx(), size);
             response = Some(crate::overlay::race_panels(
@@ -236,8 +243,16 @@ impl Overlay {
                 &scene.settings.selected,
                 Some(races),
             ));
+            // Bottom right, above the timeline's panel (about 92 points tall in a 1280x720
+            // window; a window narrow enough to wrap the panel's rows makes it taller).
+            egui::Area::new(egui::Id::unique("share-clip"))
+                .anchor(egui::Align2::RIGHT_BOTTOM, egui::vec2(-8.0, -100.0))
+                .show(ui.ctx(), |ui| {
+                    egui::Frame::popup(ui.style()).show(ui, |ui| share_pressed = share.ui(ui));
+                });
         });
         self.input.handle_platform_output(window, platform);
+        self.share_requested |= share_pressed;
         if let Some(r) = response {
             if let Some(b) = r.clicked_boat {
                 ui::toggle_selection(&mut self.scene_overlays.settings.selected, b);

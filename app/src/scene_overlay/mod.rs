@@ -293,11 +293,33 @@ pub fn render_headless(
     size: [u32; 2],
     settings: &OverlaySettings,
 ) -> Result<(image::RgbaImage, render::FrameReport), render::GpuError> {
-    let handle = OverlayHandle::default();
-    render::passes::overlay::add_overlay_passes(renderer, gpu, &handle);
+    render_headless_with(
+        gpu,
+        renderer,
+        &OverlayHandle::default(),
+        race,
+        scene,
+        size,
+        settings,
+    )
+}
+
+/// [`render_headless`] through `handle`, for a renderer that draws frame after frame (a clip):
+/// the overlay passes are added once and keep the handle they were added with, so every frame
+/// must push its overlays through that same handle, not a fresh one.
+pub fn render_headless_with(
+    gpu: &render::Gpu,
+    renderer: &mut render::Renderer,
+    handle: &OverlayHandle,
+    race: &race::Race,
+    scene: &render::Scene,
+    size: [u32; 2],
+    settings: &OverlaySettings,
+) -> Result<(image::RgbaImage, render::FrameReport), render::GpuError> {
+    render::passes::overlay::add_overlay_passes(renderer, gpu, handle);
     let ppp = paint::headless_pixels_per_point(size);
     let f = frame(race, scene, size, ppp, settings);
-    f.push(&handle);
+    f.push(handle);
     let (img, report, _) = paint::render_with_overlays(gpu, renderer, scene, size, &f, ppp)?;
     Ok((img, report))
 }

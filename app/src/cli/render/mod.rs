@@ -11,13 +11,15 @@ use render::{Camera, RenderOptions, Renderer};
 use crate::cli::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
 use crate::cli::output::{ImageOut, write_text};
 
+pub mod clip;
 pub mod replay;
 use crate::core::scene::{FAR_M, RaceWorld};
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// Image file to write: .png or .jpg (written whole or not at all).
+    /// Image file to write: .png or .jpg; or a clip, .gif, with --from and --to (written whole
+    /// or not at all; .mp4 is refused: no encoder in this build).
     #[arg(long)]
     pub out: PathBuf,
     /// Race files (native JSON, GPX, CSV logs, NMEA 0183, Expedition, race XML; several combine
@@ -74,6 +76,15 @@ pub struct RenderArgs {
     /// error target, AR effects and their sizes, wake spacing and budget.
     #[arg(long, conflicts_with_all = ["effects", "error_px"])]
     pub tier: Option<String>,
+    /// A clip's first race time, seconds since the start (with --to and a .gif --out).
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub from: Option<f64>,
+    /// A clip's last race time, seconds since the start.
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub to: Option<f64>,
+    /// A clip's frames per second of race time (0.1 to 50; 15 without it).
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    pub fps: Option<f64>,
 }
 
 /// Finest clip-map error target `--error-px` accepts, pixels. Finer targets are invisible
@@ -172,6 +183,14 @@ pub fn parse_camera(s: &str, far: f64) -> CliResult<Camera> {
 }
 
 pub fn run(a: RenderArgs) -> CliResult {
+    if let Some(format) = clip::clip_format(&a.out) {
+        return clip::run(&a, format);
+    }
+    if a.from.is_some() || a.to.is_some() || a.fps.is_some() {
+        return Err(CliError::new(
+            "--from, --to and --fps make a clip: --out must name a .gif file",
+        ));
+    }
     let size = parse_size(&a.size)?;
     let out = ImageOut::new(&a.out, "--out")?;
     let effects = a
