@@ -8,6 +8,7 @@ use egui::{Align2, Color32, Frame, RichText, Ui};
 
 use crate::events::event_list_ui;
 use crate::leaderboard::{LeaderboardRow, leaderboard_ui, parse_hex_color};
+use crate::manoeuvres::{ManoeuvreStarts, manoeuvre_jump_ui};
 use crate::open::{OpenRequest, RacesPanel, races_ui};
 use crate::perf::{PerfStats, perf_ui};
 use crate::plots::{PlotCache, compare_ui, speed_plot_ui};
@@ -97,6 +98,8 @@ pub struct RegattaUi {
     /// The orbit camera follows the first selected boat.
     pub follow: bool,
     pub plots: PlotCache,
+    /// Each boat's tack and gybe starts for the timeline's jump buttons (once per race).
+    pub manoeuvres: ManoeuvreStarts,
     /// Points at the top of the screen kept free for the platform's own bar (the phone's
     /// Race | Pool | Record bar).
     pub top_inset: f32,
@@ -115,6 +118,7 @@ impl RegattaUi {
             show_races: false,
             follow: false,
             plots: PlotCache::default(),
+            manoeuvres: ManoeuvreStarts::default(),
             top_inset: 0.0,
         }
     }
@@ -227,6 +231,17 @@ impl RegattaUi {
                     });
                 }
                 out.clock_changed = timeline_ui(ui, &mut self.clock, frame.events);
+                if let (Some(race), Some(&boat)) = (frame.race, frame.selection.first())
+                    && let Some(b) = race.boats.get(boat)
+                {
+                    self.manoeuvres.update(race);
+                    let starts = self.manoeuvres.of(boat);
+                    ui.horizontal(|ui| {
+                        out.clock_changed |=
+                            manoeuvre_jump_ui(ui, &mut self.clock, &b.name, starts);
+                        ui.label(format!("{}: {} tacks and gybes", b.name, starts.len()));
+                    });
+                }
             });
         let sides: Vec<Side> = [Side::Boats, Side::Events, Side::Scene, Side::Races]
             .into_iter()
