@@ -192,6 +192,24 @@ impl RegattaUi {
     /// Lays out the panels over the scene (see the module docs), inside the screen's safe area
     /// (`Context::content_rect`: the screen minus the phone's status and navigation bars).
     /// Translucent frames keep the scene visible behind them.
+    /// The first selected boat's previous/next tack or gybe buttons (and, with `count`, how
+    /// many it made); nothing without a race and a selection. True when race time moved.
+    fn tack_jumps(&mut self, ui: &mut Ui, frame: &UiFrame<'_>, count: bool) -> bool {
+        let (Some(race), Some(&boat)) = (frame.race, frame.selection.first()) else {
+            return false;
+        };
+        let Some(b) = race.boats.get(boat) else {
+            return false;
+        };
+        self.manoeuvres.update(race);
+        let starts = self.manoeuvres.of(boat);
+        let moved = manoeuvre_jump_ui(ui, &mut self.clock, &b.name, starts);
+        if count {
+            ui.label(format!("{}: {} tacks and gybes", b.name, starts.len()));
+        }
+        moved
+    }
+
     pub fn show(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
         let safe = ui.ctx().content_rect();
         ui.scope_builder(egui::UiBuilder::new().max_rect(safe), |ui| {
@@ -230,18 +248,8 @@ impl RegattaUi {
                         });
                     });
                 }
-                out.clock_changed = timeline_ui(ui, &mut self.clock, frame.events);
-                if let (Some(race), Some(&boat)) = (frame.race, frame.selection.first())
-                    && let Some(b) = race.boats.get(boat)
-                {
-                    self.manoeuvres.update(race);
-                    let starts = self.manoeuvres.of(boat);
-                    ui.horizontal(|ui| {
-                        out.clock_changed |=
-                            manoeuvre_jump_ui(ui, &mut self.clock, &b.name, starts);
-                        ui.label(format!("{}: {} tacks and gybes", b.name, starts.len()));
-                    });
-                }
+                out.clock_changed |= timeline_ui(ui, &mut self.clock, frame.events);
+                ui.horizontal(|ui| out.clock_changed |= self.tack_jumps(ui, frame, true));
             });
         let sides: Vec<Side> = [Side::Boats, Side::Events, Side::Scene, Side::Races]
             .into_iter()
