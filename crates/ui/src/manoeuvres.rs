@@ -9,8 +9,9 @@ use crate::clock::RaceClock;
 /// Each boat's manoeuvre starts (race seconds, sorted), indexed like `race.boats`.
 #[derive(Clone, Debug, Default)]
 pub struct ManoeuvreStarts {
-    /// The race this was worked out for (its name and boat count): a new race recomputes.
-    key: Option<(String, usize)>,
+    /// The race this was worked out for (its name, boat ids and time span's bits): another
+    /// race recomputes, even one of the same name.
+    key: Option<(String, Vec<String>, [u64; 2])>,
     pub per_boat: Vec<Vec<f64>>,
 }
 
@@ -35,7 +36,9 @@ impl ManoeuvreStarts {
     /// Runs the debrief when `race` is not the one last seen (once per loaded race, not per
     /// frame: the debrief samples every track).
     pub fn update(&mut self, race: &race::Race) {
-        let key = (race.name.clone(), race.boats.len());
+        let (a, b) = race.time_span();
+        let ids = race.boats.iter().map(|boat| boat.id.clone()).collect();
+        let key = (race.name.clone(), ids, [a.to_bits(), b.to_bits()]);
         if self.key.as_ref() == Some(&key) {
             return;
         }
