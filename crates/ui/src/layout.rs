@@ -8,6 +8,7 @@ use egui::{Align2, Color32, Frame, RichText, Ui};
 
 use crate::events::event_list_ui;
 use crate::leaderboard::{LeaderboardRow, leaderboard_ui, parse_hex_color};
+use crate::manoeuvres::{ManoeuvreStarts, manoeuvre_jump_ui};
 use crate::open::{OpenRequest, RacesPanel, races_ui};
 use crate::perf::{PerfStats, perf_ui};
 use crate::plots::{PlotCache, compare_ui, speed_plot_ui};
@@ -97,6 +98,8 @@ pub struct RegattaUi {
     /// The orbit camera follows the first selected boat.
     pub follow: bool,
     pub plots: PlotCache,
+    /// Each boat's tack and gybe starts for the timeline's jump buttons (once per race).
+    pub manoeuvres: ManoeuvreStarts,
     /// Points at the top of the screen kept free for the platform's own bar (the phone's
     /// Race | Pool | Record bar).
     pub top_inset: f32,
@@ -115,6 +118,7 @@ impl RegattaUi {
             show_races: false,
             follow: false,
             plots: PlotCache::default(),
+            manoeuvres: ManoeuvreStarts::default(),
             top_inset: 0.0,
         }
     }
@@ -188,6 +192,24 @@ impl RegattaUi {
     /// Lays out the panels over the scene (see the module docs), inside the screen's safe area
     /// (`Context::content_rect`: the screen minus the phone's status and navigation bars).
     /// Translucent frames keep the scene visible behind them.
+    /// The first selected boat's previous/next tack or gybe buttons (and, with `count`, how
+    /// many it made); nothing without a race and a selection. True when race time moved.
+    fn tack_jumps(&mut self, ui: &mut Ui, frame: &UiFrame<'_>, count: bool) -> bool {
+        let (Some(race), Some(&boat)) = (frame.race, frame.selection.first()) else {
+            return false;
+        };
+        let Some(b) = race.boats.get(boat) else {
+            return false;
+        };
+        self.manoeuvres.update(race);
+        let starts = self.manoeuvres.of(boat);
+        let moved = manoeuvre_jump_ui(ui, &mut self.clock, &b.name, starts);
+        if count {
+            ui.label(format!("{}: {} tacks and gybes", b.name, starts.len()));
+        }
+        moved
+    }
+
     pub fn show(&mut self, ui: &mut Ui, frame: &UiFrame<'_>) -> UiResponse {
         let safe = ui.ctx().content_rect();
         ui.scope_builder(egui::UiBuilder::new().max_rect(safe), |ui| {
@@ -226,7 +248,8 @@ impl RegattaUi {
                         });
                     });
                 }
-                out.clock_changed = timeline_ui(ui, &mut self.clock, frame.events);
+                out.clock_changed |= timeline_ui(ui, &mut self.clock, frame.events);
+                ui.horizontal(|ui| out.clock_changed |= self.tack_jumps(ui, frame, true));
             });
         let sides: Vec<Side> = [Side::Boats, Side::Events, Side::Scene, Side::Races]
             .into_iter()
