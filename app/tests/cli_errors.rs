@@ -6,10 +6,9 @@
 mod common;
 
 use std::path::PathBuf;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
 
-use common::{fails_with, regatta, temp_file};
+use common::{fails_with, regatta, regatta_within_a_minute, temp_file};
 
 /// The 41010 buoy files of ../shared/data/waves.
 fn buoy(name: &str) -> String {
@@ -18,31 +17,6 @@ fn buoy(name: &str) -> String {
         .join(name)
         .display()
         .to_string()
-}
-
-/// Runs the binary; a run that has not ended after 60 s (a read that never ends) is killed and
-/// fails the test. Returns (exit code, stdout, stderr).
-fn regatta_within_a_minute(args: &[&str]) -> (i32, String, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_regatta"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > Duration::from_secs(60) {
-            let _ = child.kill();
-            panic!("{args:?} still ran after 60 s");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    let o = child.wait_with_output().unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
 }
 
 /// One line on stderr with no control character in it.
@@ -236,7 +210,7 @@ fn endless_inputs_are_refused_at_once() {
             "/dev/zero is not an NDBC spectral file: byte 0 is NUL",
         ),
     ] {
-        let (code, out, err) = regatta_within_a_minute(&args);
+        let (code, out, err) = regatta_within_a_minute(&args, &[], &[]);
         assert_ne!(code, 0);
         assert!(
             out.is_empty() && err.lines().count() == 1 && err.contains(needle),

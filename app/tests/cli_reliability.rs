@@ -7,41 +7,12 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
 
-use common::{fails_with, regatta, temp_file};
+use common::{fails_with, regatta, regatta_within_a_minute, temp_file};
 
 fn tmp(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name)
-}
-
-/// Runs the binary with `env` set (and `unset` removed); a run still going after 60 s (an open
-/// that blocks) is killed and fails the test. Returns (exit code, stdout, stderr).
-fn run_env(args: &[&str], env: &[(&str, &str)], unset: &[&str]) -> (i32, String, String) {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_regatta"));
-    cmd.args(args).stdout(Stdio::piped()).stderr(Stdio::piped());
-    for (k, v) in env {
-        cmd.env(k, v);
-    }
-    for k in unset {
-        cmd.env_remove(k);
-    }
-    let mut child = cmd.spawn().unwrap();
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > Duration::from_secs(60) {
-            let _ = child.kill();
-            panic!("{args:?} still ran after 60 s");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    let o = child.wait_with_output().unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
 }
 
 #[test]
@@ -144,7 +115,7 @@ fn render_refuses_one_path_for_image_and_record_and_caps_camera_and_time() {
 fn scripts_are_capped_and_named_pipes_refused_before_they_block() {
     let out = tmp("cli_rel_sim");
     if Path::new("/dev/zero").exists() {
-        let (code, stdout, err) = run_env(
+        let (code, stdout, err) = regatta_within_a_minute(
             &[
                 "phone-sim",
                 "--script",
@@ -179,12 +150,12 @@ fn scripts_are_capped_and_named_pipes_refused_before_they_block() {
         vec!["sea", "--ndbc", f],
         vec!["phone-sim", "--script", f, "--out", out.to_str().unwrap()],
     ] {
-        let (code, _, err) = run_env(&args, &[], &[]);
+        let (code, _, err) = regatta_within_a_minute(&args, &[], &[]);
         assert_ne!(code, 0, "{args:?}");
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.contains("is a named pipe (FIFO)"), "{args:?}: {err}");
     }
-    let (code, _, err) = run_env(&["race", "--t", "0", "--race", f], &[], &[]);
+    let (code, _, err) = regatta_within_a_minute(&["race", "--t", "0", "--race", f], &[], &[]);
     assert_ne!(code, 0);
     assert!(err.contains("is not a regular file"), "{err}");
     std::fs::remove_file(&fifo).unwrap();
@@ -193,7 +164,8 @@ fn scripts_are_capped_and_named_pipes_refused_before_they_block() {
 #[test]
 fn an_invalid_exit_after_frames_is_refused_before_a_window_opens() {
     for v in ["-1", "abc", "1e30", "", "0"] {
-        let (code, out, err) = run_env(&["run"], &[("REGATTA_EXIT_AFTER_FRAMES", v)], &[]);
+        let (code, out, err) =
+            regatta_within_a_minute(&["run"], &[("REGATTA_EXIT_AFTER_FRAMES", v)], &[]);
         assert_ne!(code, 0, "{v:?}");
         assert!(out.is_empty());
         assert_eq!(err.lines().count(), 1, "{v:?}: {err}");
@@ -208,7 +180,7 @@ fn an_invalid_exit_after_frames_is_refused_before_a_window_opens() {
 
 #[test]
 fn run_without_a_display_names_no_source_path() {
-    let (code, _, err) = run_env(
+    let (code, _, err) = regatta_within_a_minute(
         &["run"],
         &[("REGATTA_EXIT_AFTER_FRAMES", "1")],
         &["DISPLAY", "WAYLAND_DISPLAY"],
