@@ -47,25 +47,37 @@ fn points() -> Vec<[f32; 2]> {
         .collect()
 }
 
+/// The worst of a set of cases, each an error against its own bound: the largest error, the
+/// largest bound and the largest error/bound ratio.
+#[derive(Default)]
+struct Worst {
+    error: f64,
+    bound: f64,
+    ratio: f64,
+}
+
+impl Worst {
+    fn add(&mut self, error: f64, bound: f64) {
+        self.error = self.error.max(error);
+        self.bound = self.bound.max(bound);
+        if error != 0.0 {
+            self.ratio = self.ratio.max(error / bound);
+        }
+    }
+}
+
 /// The GPU weights against `effects::refraction::edge_weight`, each point against its own
 /// bound (`bounds::edge_weight`): the largest error, the largest bound and the largest
 /// error/bound ratio.
 fn worst_edge_weight_error(got: &[f32], points: &[[f32; 2]]) -> (f64, f64, f64) {
-    let (mut worst, mut largest_bound, mut ratio) = (0.0f64, 0.0f64, 0.0f64);
+    let mut worst = Worst::default();
     for (g, p) in got.iter().zip(points) {
         let want = effects::refraction::edge_weight(DVec2::new(f64::from(p[0]), f64::from(p[1])));
         let bound = bounds::edge_weight([Inexact::of(p[0]), Inexact::of(p[1])]);
         assert!((bound.value - want).abs() < 1e-12, "{p:?}");
-        let error = (f64::from(*g) - want).abs();
-        worst = worst.max(error);
-        largest_bound = largest_bound.max(bound.error);
-        ratio = ratio.max(if error == 0.0 {
-            0.0
-        } else {
-            error / bound.error
-        });
+        worst.add((f64::from(*g) - want).abs(), bound.error);
     }
-    (worst, largest_bound, ratio)
+    (worst.error, worst.bound, worst.ratio)
 }
 
 #[test]
@@ -164,7 +176,7 @@ fn sun_normals() -> Vec<[f32; 4]> {
 /// error, the largest bound, the largest error/bound ratio and the normals at the critical
 /// angle that a conforming GPU may put on either side of it (not bounded).
 fn worst_sun_error(got: &[f32], normals: &[[f32; 4]]) -> (f64, f64, f64, usize) {
-    let (mut worst, mut largest_bound, mut ratio, mut undecided) = (0.0f64, 0.0f64, 0.0f64, 0);
+    let (mut worst, mut undecided) = (Worst::default(), 0);
     for (g, n4) in got.iter().zip(normals) {
         let n = dvec(*n4);
         let want = overhead_sun(n, CHEAP_SUN_RADIUS);
@@ -177,16 +189,9 @@ fn worst_sun_error(got: &[f32], normals: &[[f32; 4]]) -> (f64, f64, f64, usize) 
             "{n4:?}: {} {want}",
             bound.value
         );
-        let error = (f64::from(*g) - want).abs();
-        worst = worst.max(error);
-        largest_bound = largest_bound.max(bound.error);
-        ratio = ratio.max(if error == 0.0 {
-            0.0
-        } else {
-            error / bound.error
-        });
+        worst.add((f64::from(*g) - want).abs(), bound.error);
     }
-    (worst, largest_bound, ratio, undecided)
+    (worst.error, worst.bound, worst.ratio, undecided)
 }
 
 #[test]
