@@ -153,12 +153,12 @@ impl Layout {
         ])
     }
 
-    /// Does bin (i, j) list `s`: does its cull circle, grown by the margin, reach the bin's
-    /// square? (Its bounding square reaches about 4/π as many bins: a bin in a corner of that
-    /// square is out of reach of every point of the circle, and listing it would only add
-    /// loop turns to the bin's points.)
-    fn reaches(&self, s: &GpuWakeSource, i: u32, j: u32) -> bool {
-        let r = f64::from(s.cull_r2.max(0.0)).sqrt() + f64::from(self.margin);
+    /// Does bin (i, j) list `s`, whose cull circle and foam strip reach `radii` (m, grown by the
+    /// margin): does its foam reach the bin's square, or its cull circle with some point of the
+    /// square outside the source's inner radius for the bin's finest spacing? (A bin in a
+    /// corner of the circle's bounding square is out of reach of every point of the circle,
+    /// and listing it would only add loop turns to the bin's points.)
+    fn reaches(&self, s: &GpuWakeSource, radii: Radii, i: u32, j: u32) -> bool {
         let cell = f64::from(self.cell);
         let gap = |v: f32, lo: f32, k: u32| {
             let a = f64::from(lo) + f64::from(k) * cell;
@@ -170,11 +170,10 @@ impl Layout {
             return false;
         };
         // Its foam strip reaches the bin (whatever its height term does there).
-        let foam_r = f64::from(foam_radius2(s)).sqrt() + f64::from(self.margin);
-        if near2 <= foam_r * foam_r {
+        if near2 <= radii.foam * radii.foam {
             return true;
         }
-        if near2 > r * r {
+        if near2 > radii.cull * radii.cull {
             return false;
         }
         // The height term: the bin's farthest point from the source (grown by the margin)
@@ -193,9 +192,15 @@ impl Layout {
     /// The bins that list `s` (row-major indices).
     fn bins_of<'a>(&'a self, s: &'a GpuWakeSource) -> impl Iterator<Item = u32> + 'a {
         let [i0, i1, j0, j1] = self.span(s).unwrap_or([1, 0, 1, 0]);
+        // Once per source, not per bin of its span.
+        let margin = f64::from(self.margin);
+        let radii = Radii {
+            cull: f64::from(s.cull_r2.max(0.0)).sqrt() + margin,
+            foam: f64::from(foam_radius2(s)).sqrt() + margin,
+        };
         (j0..=j1).flat_map(move |j| {
             (i0..=i1)
-                .filter(move |&i| self.reaches(s, i, j))
+                .filter(move |&i| self.reaches(s, radii, i, j))
                 .map(move |i| j * self.nx + i)
         })
     }
@@ -204,6 +209,13 @@ impl Layout {
     fn listed(&self, s: &GpuWakeSource) -> u64 {
         self.bins_of(s).count() as u64
     }
+}
+
+/// How far a source's cull circle and foam strip reach, grown by the grid's margin, m.
+#[derive(Debug, Clone, Copy)]
+struct Radii {
+    cull: f64,
+    foam: f64,
 }
 
 /// The squared radius within which a source adds height or foam, m².
