@@ -16,7 +16,8 @@ struct Wave {
     // k·a, and (k·a)²/2 (a cos wave's mean square slope), formed on the CPU.
     slope: f32,
     half_slope2: f32,
-    _pad: f32,
+    // Σ half_slope2 of this wave and every later one (ocean::GpuWave::tail_half_slope2).
+    tail_half_slope2: f32,
 }
 
 // Per-frame values (render::frame::FrameUniform).
@@ -100,6 +101,13 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
         // Band-limit: a wave whose phase changes by more than π/2 across the pixel's footprint
         // (wavelength under four footprints) aliases into moiré; fade it out from k·footprint
         // = π/4 to π/2 and keep its slope variance (a cos wave's mean square slope is (ka)²/2).
+        // The frame's waves are sorted by k (render::frame): from the first one faded out
+        // entirely, every later one is too, and adds its variance and nothing else (the
+        // same sums as running on, to the rounding of the variance).
+        if w.k * footprint >= 0.5 * PI {
+            variance += w.tail_half_slope2;
+            break;
+        }
         let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, w.k * footprint);
         variance += (1.0 - fade * fade) * w.half_slope2;
         let theta = wave_phase(w, p);

@@ -6,6 +6,9 @@
 //   cs_sea_displaced: (rest x, rest z, fade, level as bits) → (sea_displaced(), 0), the drawn
 //                     vertex path with its level masks and fade (render::clipmap::ClipVertex)
 //   cs_foam:          (rest x, rest z, wake foam, -) → (foam as the water pass draws it, J, 0, 0)
+//   cs_surface_frame: (rest x, rest z, footprint m, 0 or 1) → (n.x / n.y, n.z / n.y, J, slope
+//                     variance) of surface_frame (w = 0), or of the same sums over every
+//                     wave without its early stop (w = 1: surface_frame_every_wave)
 
 @group(1) @binding(0) var<storage, read> points: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> displaced: array<vec4<f32>>;
@@ -44,4 +47,52 @@ fn cs_foam(@builtin(global_invocation_id) id: vec3<u32>) {
     // A footprint of 0: no wave is band-limited away (the f64 reference keeps every wave).
     let sf = surface_frame(v.xy, frame.counts.x, 0.0);
     displaced[i] = vec4<f32>(foam_coverage(foam_from_jacobian(sf.jacobian), v.z), sf.jacobian, 0.0, 0.0);
+}
+
+// surface_frame's sums with no early stop: every wave runs, a faded one adding zero slope
+// (the reference its early stop must equal; the frame's waves are sorted by k).
+fn surface_frame_every_wave(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
+    var dxdx = 1.0;
+    var dxdz = 0.0;
+    var dzdz = 1.0;
+    var dydx = 0.0;
+    var dydz = 0.0;
+    var variance = 0.0;
+    for (var i = 0u; i < n; i = i + 1u) {
+        let w = waves[i];
+        let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, w.k * footprint);
+        variance += (1.0 - fade * fade) * w.half_slope2;
+        let theta = wave_phase(w, p);
+        let fka = fade * w.slope;
+        let s = sin(theta) * fka;
+        let c = cos(theta) * fka;
+        let d = w.direction;
+        let dxs = d.x * s;
+        dxdx -= d.x * dxs;
+        dxdz -= d.y * dxs;
+        dzdz -= d.y * d.y * s;
+        dydx += d.x * c;
+        dydz += d.y * c;
+    }
+    let tx = vec3<f32>(dxdx, dydx, dxdz);
+    let tz = vec3<f32>(dxdz, dydz, dzdz);
+    var out: SurfaceFrame;
+    out.normal = normalize(cross(tz, tx));
+    out.jacobian = dxdx * dzdz - dxdz * dxdz;
+    out.slope_variance = variance;
+    return out;
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_surface_frame(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&points) {
+        return;
+    }
+    let v = points[i];
+    var sf = surface_frame(v.xy, frame.counts.x, v.z);
+    if v.w != 0.0 {
+        sf = surface_frame_every_wave(v.xy, frame.counts.x, v.z);
+    }
+    displaced[i] = vec4<f32>(sf.normal.x / sf.normal.y, sf.normal.z / sf.normal.y, sf.jacobian, sf.slope_variance);
 }

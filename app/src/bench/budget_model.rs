@@ -115,6 +115,8 @@ pub struct FrameInputs<'a> {
     pub trips: Trips,
     /// The frame's wake buffers (sources, bins, indices), bytes.
     pub wake_buffer_bytes: f64,
+    /// The clip-map's vertices: the water's compute stage runs once per vertex.
+    pub clipmap_vertices: f64,
     /// Target (screen) size, pixels; the drawn frame is `report.size`.
     pub screen: [u32; 2],
     /// A YUV camera image converted every frame: its size and the camera's rate over the
@@ -196,15 +198,8 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
         cost.add(run(&src, fs, f)?);
         let mut target_bytes = f * FRAGMENT_BYTES + v * VERTEX_BYTES;
         if inv.pass == "water" || inv.pass == "ar_water" {
-            // The compute stage displaces every clip-map vertex (about half the triangles of
-            // a regular grid) by the sea and the wakes.
-            let triangles = inp
-                .report
-                .passes
-                .iter()
-                .find(|p| p.name == inv.pass)
-                .map_or(0, |p| p.triangles) as f64;
-            let vertices = triangles / 2.0;
+            // The compute stage displaces every clip-map vertex by the sea and the wakes.
+            let vertices = inp.clipmap_vertices;
             let cs = shader::source(&[&shader::wake(), shader::WATER_VERTICES]);
             cost.add(run(&cs, "cs_displace", vertices)?);
             target_bytes += vertices * (16.0 + VERTEX_BYTES) + inp.wake_buffer_bytes;
@@ -326,11 +321,20 @@ mod tests {
             ar: &t.ar,
             trips: Trips {
                 waves: scene.sea.waves.len() as f64,
-                wake_sources_per_bin: 4.0,
+                waves_in_pixel: scene.sea.waves.len() as f64,
+                wake_sources_per_vertex: 4.0,
                 marks: scene.marks.len() as f64,
             },
             screen: size,
             wake_buffer_bytes: 1e6,
+            clipmap_vertices: render::frame::FrameContext::new(
+                &scene,
+                report.size,
+                t.options.error_px,
+            )
+            .mesh
+            .vertices
+            .len() as f64,
             yuv: None,
         };
         let (work, unmodelled) = frame_work(&inputs, false).expect("model");

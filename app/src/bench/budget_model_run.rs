@@ -35,7 +35,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
             "model fps (slow spec, the phone's HSR)",
             "model fps range",
             "AR water GFLOP",
-            "wake sources per bin",
+            "wake sources per vertex",
             "wake height bound of dropped sources m",
             "goal met",
         ],
@@ -54,7 +54,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
                 1e3 / r.model_range.0
             )),
             json!(water.map(|w| w.cost.alu * 1e-9)),
-            json!(r.trips.wake_sources_per_bin),
+            json!(r.trips.wake_sources_per_vertex),
             json!(r.report.wakes.as_ref().map_or(0.0, |w| w.drop_bound_m)),
             json!(goal(r.phone, r.tier).map(|(g, _)| fps >= g)),
         ]);
@@ -119,7 +119,7 @@ fn functions_table(rows: &[Row]) -> CliResult<Table> {
     t.note(
         "A function's share: the stage's work less its work with that function's body counted \
          as nothing (its calls, in loops times their trips, with what it calls); nested \
-         functions' shares overlap. Trip counts: the frame's (waves, wake sources per bin, \
+         functions' shares overlap. Trip counts: the frame's (waves, wake sources per vertex, \
          marks).",
     );
     Ok(t)

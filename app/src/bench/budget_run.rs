@@ -43,15 +43,16 @@ fn median_iqr(v: &[f64]) -> (f64, f64) {
     (m, (q(0.75) - q(0.25)) / m)
 }
 
-/// Trip counts of the frame's loops: the sea's waves, the marks, and the wake sources listed
-/// per non-empty bin of the frame's wake grid (binned as the renderer bins them); and the
-/// bytes of the frame's wake buffers.
+/// Trip counts of the frame's loops: the sea's waves (all of them, and a fragment's), the
+/// marks, and the wake sources a clip-map vertex sums (binned as the renderer bins them); the
+/// bytes of the frame's wake buffers; and the clip-map's vertices (the compute stage's
+/// invocations).
 fn trips(
     scene: &render::Scene,
     tier: &TierRender,
     wake: &ocean::wake::Wake,
     drawn: [u32; 2],
-) -> (Trips, f64) {
+) -> (Trips, f64, f64) {
     let mut frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
     render::renderer::bin_wakes(
         wake,
@@ -59,19 +60,70 @@ fn trips(
         tier.wake_source_budget,
         &mut frame,
     );
-    let (bins, wakes) = (&frame.wake_bins, &frame.wakes);
-    let counts: Vec<f64> = bins
-        .bins
-        .iter()
-        .filter(|b| b[1] > 0)
-        .map(|b| f64::from(b[1]))
-        .collect();
     let trips = Trips {
         waves: scene.sea.waves.len() as f64,
-        wake_sources_per_bin: counts.iter().sum::<f64>() / counts.len().max(1) as f64,
+        waves_in_pixel: waves_in_pixel(&frame),
+        wake_sources_per_vertex: wake_sources_per_vertex(&frame),
         marks: scene.marks.len() as f64,
     };
-    (trips, bins.bytes(wakes.sources.len()) as f64)
+    let bytes = frame.wake_bins.bytes(frame.wakes.sources.len()) as f64;
+    (trips, bytes, frame.mesh.vertices.len() as f64)
+}
+
+/// The wake sources the compute stage sums per clip-map vertex, the mean over the vertices:
+/// each sums the sources listed in the bin its displaced position falls in (`wake_at` in
+/// `shaders/render/water_vertices.wgsl`), none outside the grid or in an empty bin. The
+/// position is the f64 sea's displacement (the shader's f32 one can fall in a neighbouring bin
+/// within a few millimetres of a bin's edge).
+fn wake_sources_per_vertex(frame: &render::frame::FrameContext) -> f64 {
+    let bins = &frame.wake_bins;
+    let g = &bins.grid;
+    let (o, sea, t) = (frame.origin, &frame.scene.sea, frame.scene.t);
+    let vertices = &frame.mesh.vertices;
+    let listed: f64 = vertices
+        .iter()
+        .map(|v| {
+            let d = sea.displace([f64::from(v.rest[0]) + o.x, f64::from(v.rest[1]) + o.y], t);
+            let gx = ((d[0] - o.x) as f32 - g.origin[0]) * g.inv_cell;
+            let gz = ((d[2] - o.y) as f32 - g.origin[1]) * g.inv_cell;
+            let inside = gx >= 0.0 && gz >= 0.0 && gx < g.nx as f32 && gz < g.nz as f32;
+            let bin = (gz as usize) * g.nx as usize + gx as usize;
+            match bins.bins.get(bin) {
+                Some(b) if inside && frame.uniform.counts[2] > 0 => f64::from(b[1]),
+                _ => 0.0,
+            }
+        })
+        .sum();
+    listed / vertices.len().max(1) as f64
+}
+
+/// The waves a water fragment's `surface_frame` sums, the mean over the fragments a GPU
+/// shading 2×2 quads runs for the frame's clip-map: the loop runs the waves sorted by
+/// wavenumber up to the first with k·footprint ≥ π/2 (fully faded by the pixel filter).
+fn waves_in_pixel(frame: &render::frame::FrameContext) -> f64 {
+    let (o, sea, t) = (frame.origin, &frame.scene.sea, frame.scene.t);
+    let footprints = frame.mesh.footprints(frame.view_proj, frame.size, |p| {
+        let d = sea.displace([p[0] + o.x, p[1] + o.y], t);
+        [d[0] - o.x, d[1], d[2] - o.y]
+    });
+    let limit = 0.5 * std::f64::consts::PI;
+    let (mut turns, mut fragments) = (0.0, 0.0);
+    for (footprint, n) in footprints {
+        let kept = frame
+            .waves
+            .iter()
+            .take_while(|w| f64::from(w.k) * footprint < limit)
+            .count();
+        // The turn that finds the first faded wave runs its test too: counted as a turn.
+        let run = (kept + 1).min(frame.waves.len());
+        turns += run as f64 * n as f64;
+        fragments += n as f64;
+    }
+    if fragments == 0.0 {
+        frame.waves.len() as f64
+    } else {
+        turns / fragments
+    }
 }
 
 /// The fragments a GPU shading 2×2 quads runs for the frame's clip-map at `drawn` pixels:
@@ -155,7 +207,7 @@ pub(crate) fn measure(
         timed_ms.push(here * gflops / phone.gflops[1]);
     }
     let wake = t.race_wake(&race)?;
-    let (trips, wake_buffer_bytes) = trips(&scene, &t, &wake, report.size);
+    let (trips, wake_buffer_bytes, clipmap_vertices) = trips(&scene, &t, &wake, report.size);
     let shaded = as_phone_shades(&report, &scene, &t);
     let inputs = FrameInputs {
         report: &shaded,
@@ -163,6 +215,7 @@ pub(crate) fn measure(
         ar: &t.ar,
         trips,
         wake_buffer_bytes,
+        clipmap_vertices,
         screen: size,
         yuv: None,
     };
@@ -470,7 +523,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
         let (mut all, fx) = ultra.renderer(gpu, Some(&race), &scene, size)?;
         let all_report = all.render(gpu, &view, size, &scene).map_err(failed)?;
         let all_report = as_phone_shades(&all_report, &scene, &ultra);
-        let (trips, wake_buffer_bytes) = trips(&scene, &ultra, &wake, size);
+        let (trips, wake_buffer_bytes, clipmap_vertices) = trips(&scene, &ultra, &wake, size);
         let none = effects::passes::ArConfig {
             effects: effects::EffectSet::NONE,
             ..ultra.ar.clone()
@@ -486,6 +539,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
                 ar,
                 trips,
                 wake_buffer_bytes,
+                clipmap_vertices,
                 screen: size,
                 yuv,
             };

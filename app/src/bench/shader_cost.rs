@@ -57,18 +57,28 @@ impl Cost {
 pub struct Trips {
     /// Waves of the sea the shaders sum (`frame.counts.x`).
     pub waves: f64,
-    /// Wake sources listed per bin, the mean over the bins a vertex falls in.
-    pub wake_sources_per_bin: f64,
+    /// Waves a fragment's `surface_frame` sums, the mean over the water's fragments: its
+    /// loop stops at the first wave its pixel filter fades out (the frame's waves are sorted
+    /// by wavenumber), so a fragment sums the waves longer than about four of its
+    /// footprints. Counted on the CPU from each clip-map triangle's footprint
+    /// (`render::clipmap::ClipMesh::footprints`).
+    pub waves_in_pixel: f64,
+    /// Wake sources a clip-map vertex sums (those listed in the bin it falls in), the mean
+    /// over the vertices (0 for a vertex in an empty bin).
+    pub wake_sources_per_vertex: f64,
     /// Course marks the flow map loops over (at most 8).
     pub marks: f64,
 }
 
 impl Trips {
-    /// The trip count of a loop in function `name` (by what that function loops over).
-    fn of(&self, name: &str) -> f64 {
+    /// The trip count of a loop in function `name` (by what that function loops over) in an
+    /// entry point of `stage`.
+    fn of(&self, name: &str, stage: naga::ShaderStage) -> f64 {
         match name {
+            // Only a fragment has a footprint; elsewhere the loop runs every wave.
+            "surface_frame" if stage == naga::ShaderStage::Fragment => self.waves_in_pixel,
             "surface_frame" | "sea_displaced" | "grid_point" | "wave_height" => self.waves,
-            "wake_at" => self.wake_sources_per_bin,
+            "wake_at" => self.wake_sources_per_vertex,
             "current_at" => self.marks.min(8.0),
             // caustic_scatter's splat: a landed triangle covers about one map cell.
             _ => 1.0,
@@ -109,6 +119,7 @@ impl Parsed {
             module: &self.module,
             info: &self.info,
             trips,
+            stage: ep.stage,
             without,
         }
         .function(&ep.function, self.info.get_entry_point(self.index), "entry")
@@ -157,6 +168,8 @@ struct Walker<'a> {
     module: &'a Module,
     info: &'a naga::valid::ModuleInfo,
     trips: &'a Trips,
+    /// The entry point's stage (some loops run fewer turns in a fragment: [`Trips::of`]).
+    stage: naga::ShaderStage,
     /// A function whose body counts as no work ([`function_costs`]).
     without: Option<&'a str>,
 }
@@ -213,7 +226,7 @@ impl Walker<'_> {
                 } => {
                     let mut once = self.block(f, fi, name, body, known);
                     once.add(self.block(f, fi, name, continuing, known));
-                    c.add(once.scaled(self.trips.of(name)));
+                    c.add(once.scaled(self.trips.of(name, self.stage)));
                 }
                 Statement::Call {
                     function,
@@ -412,12 +425,14 @@ mod tests {
 
     const TRIPS: Trips = Trips {
         waves: 10.0,
-        wake_sources_per_bin: 3.0,
+        waves_in_pixel: 4.0,
+        wake_sources_per_vertex: 3.0,
         marks: 2.0,
     };
 
-    /// Hand-counted: a vec4 fma (8), a scalar add in a loop of `waves` turns in a function
-    /// called `surface_frame` (10 × 1), one texture sample, a storage load of a vec4 (16 B).
+    /// Hand-counted: a vec4 fma (8), a scalar add in a loop of `waves_in_pixel` turns in a
+    /// function called `surface_frame` in a fragment stage (4 × 1), one texture sample, a
+    /// storage load of a vec4 (16 B).
     #[test]
     fn a_small_shader_counts_as_by_hand() {
         let src = r#"
@@ -439,11 +454,32 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
 }
 "#;
         let c = entry_cost(src, "fs", &TRIPS).unwrap();
-        // Loop: the add, the compare, the increment per turn (3 × 10); the entry: fma 8,
+        // Loop: the add, the compare, the increment per turn (3 × 4); the entry: fma 8,
         // u32(p.x) 1, three vec4 adds 12, the splat 0.
         assert_eq!(c.tex, 1.0);
         assert_eq!(c.storage_bytes, 16.0);
-        assert_eq!(c.alu, 8.0 + 1.0 + 12.0 + 30.0, "{c:?}");
+        assert_eq!(c.alu, 8.0 + 1.0 + 12.0 + 12.0, "{c:?}");
+    }
+
+    /// The same loop in a compute stage runs every wave (no footprint there): 3 × 10.
+    #[test]
+    fn surface_frame_runs_every_wave_outside_a_fragment() {
+        let src = r#"
+@group(0) @binding(0) var<storage, read_write> out: array<f32>;
+fn surface_frame(n: u32) -> f32 {
+    var x = 0.0;
+    for (var i = 0u; i < n; i = i + 1u) { x = x + 1.5; }
+    return x;
+}
+const WG: u32 = 1u;
+@compute @workgroup_size(WG)
+fn cs(@builtin(global_invocation_id) id: vec3<u32>) {
+    out[0] = surface_frame(id.x);
+}
+"#;
+        let c = entry_cost(src, "cs", &TRIPS).unwrap();
+        // The loop 3 × 10; the entry: nothing but the call (the store is storage bytes).
+        assert_eq!(c.alu, 30.0, "{c:?}");
     }
 
     /// The hand-counted shader above by function: `surface_frame`'s loop (3 × 10 turns) is
@@ -465,11 +501,11 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
         let total = entry_cost(src, "fs", &TRIPS).unwrap();
         let shares = function_costs(src, "fs", &TRIPS).unwrap();
         let share = |name: &str| shares.iter().find(|(n, _)| n == name).unwrap().1.alu;
-        // double_up: 2 per call, 10 calls in the loop and 1 in the entry; the loop's compare and
-        // increment 2 per turn; the entry: u32(p.x) and the add.
-        assert_eq!(share("double_up"), 2.0 * 11.0);
-        assert_eq!(share("surface_frame"), (2.0 + 2.0) * 10.0);
-        assert_eq!(total.alu, 40.0 + 2.0 + 2.0, "{total:?}");
+        // double_up: 2 per call, 4 calls in the loop (a fragment's waves) and 1 in the entry;
+        // the loop's compare and increment 2 per turn; the entry: u32(p.x) and the add.
+        assert_eq!(share("double_up"), 2.0 * 5.0);
+        assert_eq!(share("surface_frame"), (2.0 + 2.0) * 4.0);
+        assert_eq!(total.alu, 16.0 + 2.0 + 2.0, "{total:?}");
         assert_eq!(shares[0].0, "surface_frame");
     }
 

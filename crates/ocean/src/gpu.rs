@@ -34,13 +34,19 @@ pub struct GpuWave {
     pub slope: f32,
     /// (k·A)²/2, its mean square slope (the slope variance a shader keeps for a faded wave).
     pub half_slope2: f32,
-    pub _pad: f32,
+    /// Σ of `half_slope2` over this wave and every wave after it in the list (formed in f64):
+    /// in a list sorted by wavenumber ([`sort_by_wavenumber`]) a shader whose pixel filter has
+    /// faded this wave out has faded all the rest too, stops there and keeps their variance
+    /// in one addition.
+    pub tail_half_slope2: f32,
 }
 
 impl WaveSet {
     /// The waves as f32-safe GPU inputs at race time `t` for local origin `origin` (x, z).
+    /// `tail_half_slope2` is summed in the list's order (the sea's).
     pub fn gpu_waves(&self, t: f64, origin: [f64; 2]) -> Vec<GpuWave> {
-        self.waves
+        let mut waves: Vec<GpuWave> = self
+            .waves
             .iter()
             .map(|w| {
                 let theta0 = reduce_phase(self.phase_at(w, origin, t));
@@ -51,11 +57,45 @@ impl WaveSet {
                     phase0: theta0 as f32,
                     slope: (w.k() * w.amplitude()) as f32,
                     half_slope2: (0.5 * (w.k() * w.amplitude()).powi(2)) as f32,
-                    _pad: 0.0,
+                    tail_half_slope2: 0.0,
                 }
             })
-            .collect()
+            .collect();
+        let half_slope2: Vec<f64> = self
+            .waves
+            .iter()
+            .map(|w| 0.5 * (w.k() * w.amplitude()).powi(2))
+            .collect();
+        set_tails(&mut waves, &half_slope2);
+        waves
     }
+}
+
+/// Fill `tail_half_slope2` from the f64 mean square slopes, in `waves`' order.
+fn set_tails(waves: &mut [GpuWave], half_slope2: &[f64]) {
+    let mut tail = 0.0f64;
+    for (w, h) in waves.iter_mut().zip(half_slope2).rev() {
+        tail += h;
+        w.tail_half_slope2 = tail as f32;
+    }
+}
+
+/// Sort `waves` by wavenumber, longest first (a stable sort: equal k keep their order), and
+/// refill the tail sums for the new order. Returns, for each slot of the sorted list, the
+/// index the wave had before, so per-wave masks built on the old order can follow.
+///
+/// Why: a pixel's filter (`surface_frame` in `shaders/render/common.wgsl`) fades waves by
+/// k·footprint, so in this order the waves it still sees are a prefix of the list and its
+/// loop stops at the first faded one.
+pub fn sort_by_wavenumber(waves: &mut Vec<GpuWave>) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..waves.len()).collect();
+    order.sort_by(|&a, &b| waves[a].k.total_cmp(&waves[b].k));
+    let sorted: Vec<GpuWave> = order.iter().map(|&i| waves[i]).collect();
+    // Each term as the shader's own half_slope2 (the f64 value rounded once), summed in f64.
+    let half_slope2: Vec<f64> = sorted.iter().map(|w| f64::from(w.half_slope2)).collect();
+    *waves = sorted;
+    set_tails(waves, &half_slope2);
+    order
 }
 
 /// The displacement (dx, y, dz) at local rest point `p` in f32, exactly as the WGSL does it.
@@ -103,6 +143,34 @@ pub fn f32_error_bound(waves: &[GpuWave], radius: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The sort is a permutation that orders by k and says where each wave came from; the tail
+    /// sums are the f64 suffix sums of (k a)²/2 in the new order.
+    #[test]
+    fn sorting_by_wavenumber_keeps_every_wave_and_its_tail() {
+        let mut sea = WaveSet::default_sea();
+        sea.waves.swap(0, 4);
+        sea.waves.swap(1, 5);
+        let before = sea.gpu_waves(12.5, [300.0, -40.0]);
+        let mut sorted = before.clone();
+        let order = sort_by_wavenumber(&mut sorted);
+        assert!(sorted.windows(2).all(|p| p[0].k <= p[1].k));
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..before.len()).collect::<Vec<_>>());
+        for (slot, &i) in order.iter().enumerate() {
+            let (a, b) = (sorted[slot], before[i]);
+            assert_eq!((a.k, a.phase0, a.direction), (b.k, b.phase0, b.direction));
+            let tail: f64 = order[slot..]
+                .iter()
+                .map(|&j| {
+                    let w = &sea.waves[j];
+                    0.5 * (w.k() * w.amplitude()).powi(2)
+                })
+                .sum();
+            assert!((f64::from(a.tail_half_slope2) - tail).abs() <= 1e-6 * tail);
+        }
+    }
 
     #[test]
     fn reduce_phase_stays_in_range() {

@@ -21,7 +21,7 @@ pub use cull::Culled;
 pub use gerstner::{
     FOAM_ONSET_JACOBIAN, SurfacePoint, Wave, WaveSet, foam_coverage, foam_from_jacobian,
 };
-pub use gpu::{GpuWave, displace_f32, f32_error_bound, reduce_phase};
+pub use gpu::{GpuWave, displace_f32, f32_error_bound, reduce_phase, sort_by_wavenumber};
 pub use inverse::{DEFAULT_TOLERANCE, InverseError, RestPoint, WorldSample};
 pub use sea_file::SeaError;
 

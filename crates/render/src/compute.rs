@@ -116,6 +116,29 @@ pub fn vertex_positions(gpu: &Gpu, frame: &FrameContext) -> Result<Vec<[f32; 3]>
     Ok(out.iter().map(|d| [d[0], d[1], d[2]]).collect())
 }
 
+/// `surface_frame` of the frame's waves (sorted by wavenumber) at local rest points with a
+/// pixel footprint (m): (slope x, slope z, Jacobian, slope variance) per point; with
+/// `every_wave`, the same sums run over every wave without the early stop.
+pub fn gpu_surface_frames(
+    gpu: &Gpu,
+    frame: &FrameContext,
+    points: &[([f32; 2], f32)],
+    every_wave: bool,
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    let flag = if every_wave { 1.0 } else { 0.0 };
+    let inputs: Vec<[f32; 4]> = points
+        .iter()
+        .map(|(p, fp)| [p[0], p[1], *fp, flag])
+        .collect();
+    evaluate(
+        gpu,
+        &frame.uniform,
+        &frame.waves,
+        "cs_surface_frame",
+        &inputs,
+    )
+}
+
 /// The foam the water pass draws (footprint 0: no wave band-limited) at local rest points
 /// (metres from `origin`) with the given wake foam, at race time `t`: (foam, Jacobian).
 pub fn gpu_foam(

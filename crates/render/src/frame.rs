@@ -46,7 +46,8 @@ pub struct FrameContext<'a> {
     pub error_target: ErrorTarget,
     pub levels: Vec<LevelPlan>,
     pub mesh: ClipMesh,
-    /// The sea's waves as the GPU gets them, sorted as `scene.sea.waves` (at most 64).
+    /// The sea's waves as the GPU gets them (the first 64 of `scene.sea.waves`), sorted by
+    /// wavenumber, longest first (`ocean::sort_by_wavenumber`).
     pub waves: Vec<ocean::GpuWave>,
     pub uniform: FrameUniform,
     /// The wake sources that can reach the view (empty without wakes); the renderer fills
@@ -95,11 +96,19 @@ impl<'a> FrameContext<'a> {
             );
             waves.truncate(MAX_WAVES);
         }
+        // Longest first, so that a pixel's wave loop stops at its first filtered-out wave;
+        // `slot_of` maps the sea's wave index to its place in the GPU's list.
+        let order = ocean::sort_by_wavenumber(&mut waves);
+        let mut slot_of = vec![usize::MAX; scene.sea.waves.len()];
+        for (slot, &i) in order.iter().enumerate() {
+            slot_of[i] = slot;
+        }
         let mut level_masks = [[0u32; 4]; 8];
         for (l, p) in levels.iter().enumerate() {
             for &i in p.kept.iter().filter(|&&i| i < MAX_WAVES) {
-                let word = (l % 2) * 2 + i / 32;
-                level_masks[l / 2][word] |= 1 << (i % 32);
+                let slot = slot_of[i];
+                let word = (l % 2) * 2 + slot / 32;
+                level_masks[l / 2][word] |= 1 << (slot % 32);
             }
         }
         let eye = cam.eye - DVec3::new(origin.x, 0.0, origin.y);

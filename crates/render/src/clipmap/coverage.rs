@@ -61,6 +61,87 @@ impl ClipMesh {
         size: [u32; 2],
         surface: impl Fn([f64; 2]) -> [f64; 3],
     ) -> ScreenCoverage {
+        let w = i64::from(size[0]);
+        let mut covered = vec![false; (w * i64::from(size[1])).max(0) as usize];
+        let mut out = ScreenCoverage::default();
+        let (mut quads, mut blocks) = (Vec::new(), Vec::new());
+        out.behind_eye = self.rasterise(view_proj, size, surface, |tri| {
+            quads.clear();
+            blocks.clear();
+            for &(x, y) in tri.pixels {
+                covered[(y * w + x) as usize] = true;
+                quads.push((x / 2, y / 2));
+                blocks.push((x / 4, y / 4));
+            }
+            for cells in [&mut quads, &mut blocks] {
+                cells.sort_unstable();
+                cells.dedup();
+            }
+            let n = tri.pixels.len() as u64;
+            out.fragments += n;
+            if tri.back_facing {
+                out.back_facing_fragments += n;
+            }
+            out.quad_fragments += 4 * quads.len() as u64;
+            out.block_fragments += 16 * blocks.len() as u64;
+        });
+        out.pixels = covered.iter().filter(|&&c| c).count() as u64;
+        out
+    }
+
+    /// Each triangle's pixel footprint on the rest plane, with the fragments a GPU shading
+    /// 2×2 quads runs for it: (footprint, quad fragments) for every triangle that covers a
+    /// pixel. The footprint is what a fragment shader's `max(length(dpdx(rest)),
+    /// length(dpdy(rest)))` gives inside the triangle (metres of rest plane per pixel): the
+    /// larger column of the Jacobian of the triangle's screen → rest map (constant over the
+    /// triangle: it ignores the perspective change within it, under a part in a thousand for
+    /// triangles of a pixel or two).
+    pub fn footprints(
+        &self,
+        view_proj: DMat4,
+        size: [u32; 2],
+        surface: impl Fn([f64; 2]) -> [f64; 3],
+    ) -> Vec<(f64, u64)> {
+        let mut out = Vec::new();
+        let mut quads = Vec::new();
+        self.rasterise(view_proj, size, surface, |tri| {
+            quads.clear();
+            quads.extend(tri.pixels.iter().map(|&(x, y)| (x / 2, y / 2)));
+            quads.sort_unstable();
+            quads.dedup();
+            let [a, b, c] = tri.screen;
+            let [ra, rb, rc] = tri.rest;
+            // J = R S⁻¹ with S = [b − a, c − a] on screen and R the same edges on the rest plane.
+            let s = [[b[0] - a[0], c[0] - a[0]], [b[1] - a[1], c[1] - a[1]]];
+            let det = s[0][0] * s[1][1] - s[0][1] * s[1][0];
+            let inv = [
+                [s[1][1] / det, -s[0][1] / det],
+                [-s[1][0] / det, s[0][0] / det],
+            ];
+            let r = [
+                [rb[0] - ra[0], rc[0] - ra[0]],
+                [rb[1] - ra[1], rc[1] - ra[1]],
+            ];
+            let column = |j: usize| {
+                let x = r[0][0] * inv[0][j] + r[0][1] * inv[1][j];
+                let z = r[1][0] * inv[0][j] + r[1][1] * inv[1][j];
+                x.hypot(z)
+            };
+            out.push((column(0).max(column(1)), 4 * quads.len() as u64));
+        });
+        out
+    }
+
+    /// Rasterise the mesh as a GPU does (pixel centres, the top-left rule of [`inside_edge`])
+    /// and hand each triangle that covers a pixel to `each`; returns the triangles left out
+    /// for a vertex at or behind the eye's plane.
+    fn rasterise(
+        &self,
+        view_proj: DMat4,
+        size: [u32; 2],
+        surface: impl Fn([f64; 2]) -> [f64; 3],
+        mut each: impl FnMut(&TriangleOnScreen),
+    ) -> u64 {
         let (w, h) = (i64::from(size[0]), i64::from(size[1]));
         let on_screen: Vec<Option<ScreenPoint>> = self
             .vertices
@@ -76,29 +157,30 @@ impl ClipMesh {
                 })
             })
             .collect();
-        let mut covered = vec![false; (w * h).max(0) as usize];
-        let mut out = ScreenCoverage::default();
-        let (mut quads, mut blocks) = (Vec::new(), Vec::new());
+        let mut behind_eye = 0;
+        let mut pixels = Vec::new();
         for tri in self.indices.chunks_exact(3) {
             let corners = [0, 1, 2].map(|k| on_screen[tri[k] as usize]);
-            let [Some(a), Some(b), Some(c)] = corners else {
-                out.behind_eye += 1;
+            let [Some(a0), Some(b0), Some(c0)] = corners else {
+                behind_eye += 1;
                 continue;
             };
             // Twice the signed area, y down: negative for counter-clockwise on screen (front).
-            let area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+            let area = (b0[0] - a0[0]) * (c0[1] - a0[1]) - (b0[1] - a0[1]) * (c0[0] - a0[0]);
             if area == 0.0 {
                 continue;
             }
             // Ordered so that the inside is where every edge function is positive.
-            let [a, b, c] = if area < 0.0 { [a, b, c] } else { [a, c, b] };
+            let [a, b, c] = if area < 0.0 {
+                [a0, b0, c0]
+            } else {
+                [a0, c0, b0]
+            };
             let x0 = a[0].min(b[0]).min(c[0]).floor().max(0.0) as i64;
             let x1 = (a[0].max(b[0]).max(c[0]).ceil() as i64).min(w - 1);
             let y0 = a[1].min(b[1]).min(c[1]).floor().max(0.0) as i64;
             let y1 = (a[1].max(b[1]).max(c[1]).ceil() as i64).min(h - 1);
-            quads.clear();
-            blocks.clear();
-            let mut n = 0;
+            pixels.clear();
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     let p = [x as f64 + 0.5, y as f64 + 0.5];
@@ -106,27 +188,35 @@ impl ClipMesh {
                         .iter()
                         .all(|&(from, to)| inside_edge(from, to, p))
                     {
-                        n += 1;
-                        covered[(y * w + x) as usize] = true;
-                        quads.push((x / 2, y / 2));
-                        blocks.push((x / 4, y / 4));
+                        pixels.push((x, y));
                     }
                 }
             }
-            for cells in [&mut quads, &mut blocks] {
-                cells.sort_unstable();
-                cells.dedup();
+            if pixels.is_empty() {
+                continue;
             }
-            out.fragments += n;
-            if area > 0.0 {
-                out.back_facing_fragments += n;
-            }
-            out.quad_fragments += 4 * quads.len() as u64;
-            out.block_fragments += 16 * blocks.len() as u64;
+            let rest = [0, 1, 2].map(|k| {
+                let r = self.vertices[tri[k] as usize].rest;
+                [f64::from(r[0]), f64::from(r[1])]
+            });
+            each(&TriangleOnScreen {
+                pixels: &pixels,
+                back_facing: area > 0.0,
+                screen: [a0, b0, c0],
+                rest,
+            });
         }
-        out.pixels = covered.iter().filter(|&&c| c).count() as u64;
-        out
+        behind_eye
     }
+}
+
+/// One rasterised triangle: the pixels whose centres it covers, and its corners on screen
+/// and on the rest plane (local metres), in the mesh's order.
+struct TriangleOnScreen<'a> {
+    pixels: &'a [(i64, i64)],
+    back_facing: bool,
+    screen: [ScreenPoint; 3],
+    rest: [[f64; 2]; 3],
 }
 
 /// Is `p` on the inner side of the edge `from` → `to` of a triangle ordered so that its inside
