@@ -8,10 +8,10 @@
 // effects::refraction::EDGE_FADE (effects::wgsl::prelude).
 
 struct Effects {
-    // Local world -> camera of the physical camera (right-handed, looking down -z, y up).
-    camera_view: mat4x4<f32>,
-    // Intrinsics as fractions of the image: fx/W, fy/H, cx/W, cy/H (image v grows downwards).
-    intrinsics: vec4<f32>,
+    // Local world -> camera image of the physical camera, its intrinsics folded in on the CPU
+    // (render::optics::PinholeCamera::image_projection): (p, 1) -> (u w, v w, w), w the
+    // depth in front of the camera, uv as fractions of the image (v grows downwards).
+    camera_projection: mat4x3<f32>,
     // The display's UV transform: screen uv -> camera-image uv, rows of a 2x3 affine map.
     display_u: vec4<f32>,
     display_v: vec4<f32>,
@@ -66,10 +66,9 @@ fn ndc_to_uv(ndc: vec2<f32>) -> vec2<f32> {
 fn camera_uv(p: vec3<f32>) -> vec3<f32> {
     // One exit, no early return: Mesa 22.3's lavapipe crashed drawing some AR water pipelines
     // that inlined this function with an early return (see ar_water.wgsl).
-    let c = fx.camera_view * vec4<f32>(p, 1.0);
-    let q = c.xy / -c.z;
-    let uv = vec3<f32>(fx.intrinsics.z + fx.intrinsics.x * q.x, fx.intrinsics.w - fx.intrinsics.y * q.y, 1.0);
-    return select(uv, vec3<f32>(0.5, 0.5, 0.0), c.z >= 0.0);
+    let h = fx.camera_projection * vec4<f32>(p, 1.0);
+    let uv = vec3<f32>(h.xy / h.z, 1.0);
+    return select(uv, vec3<f32>(0.5, 0.5, 0.0), h.z <= 0.0);
 }
 
 // 1 inside the image, falling to 0 at EDGE_FADE outside it (effects::refraction::edge_weight).

@@ -257,13 +257,10 @@ fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
 /// the passes fill them (local origin 0); the rest zero.
 fn effects_uniform(camera: &PinholeCamera, table: [f64; 4]) -> EffectsUniform {
     let mut fx: EffectsUniform = bytemuck::Zeroable::zeroed();
-    fx.camera_view = camera.pose.inverse().as_mat4().to_cols_array_2d();
-    fx.intrinsics = [
-        (camera.fx / camera.width) as f32,
-        (camera.fy / camera.height) as f32,
-        (camera.cx / camera.width) as f32,
-        (camera.cy / camera.height) as f32,
-    ];
+    fx.camera_projection = camera
+        .image_projection(camera.pose.inverse())
+        .as_mat4()
+        .to_cols_array_2d();
     fx.table = table.map(|v| v as f32);
     fx
 }

@@ -305,6 +305,23 @@ impl PinholeCamera {
             .map(|px| DVec2::new(px.x / self.width, px.y / self.height))
     }
 
+    /// The image projection as one matrix for points in the frame of `view` (world → camera,
+    /// e.g. with a local origin folded in): rows 0–2 map (p, 1) to (u·w, v·w, w), with (u, v)
+    /// `project_uv`'s and w = −z in the camera (> 0 in front of it); row 3 is zero. A shader
+    /// projects with one matrix product and one division per coordinate, the intrinsics
+    /// folded in here in f64 instead of applied to every pixel.
+    pub fn image_projection(&self, view: DMat4) -> DMat4 {
+        let (fx, fy) = (self.fx / self.width, self.fy / self.height);
+        let (cx, cy) = (self.cx / self.width, self.cy / self.height);
+        let k = DMat4::from_cols(
+            DVec4::new(fx, 0.0, 0.0, 0.0),
+            DVec4::new(0.0, -fy, 0.0, 0.0),
+            DVec4::new(-cx, -cy, -1.0, 0.0),
+            DVec4::ZERO,
+        );
+        k * view
+    }
+
     /// The unit world-space direction of the ray through pixel `px` (inverse of `project`).
     pub fn pixel_ray(&self, px: DVec2) -> DVec3 {
         let c = DVec3::new(
@@ -324,6 +341,39 @@ mod tests {
     use glam::dcamera::rh::view::look_at_mat4;
 
     const EPS: f64 = 1e-12;
+
+    /// The folded projection gives `project_uv`'s uv (and w > 0 exactly where it has one).
+    #[test]
+    fn the_image_projection_is_project_uv() {
+        let cam = PinholeCamera {
+            fx: 510.0,
+            fy: 498.0,
+            cx: 322.5,
+            cy: 236.0,
+            width: 640.0,
+            height: 480.0,
+            pose: look_at_mat4(DVec3::new(0.3, 1.2, 0.8), DVec3::new(-0.1, 0.0, 0.2), DVec3::Y)
+                .inverse(),
+        };
+        let view = cam.pose.inverse();
+        let m = cam.image_projection(view);
+        for p in [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(0.4, -0.1, -0.3),
+            DVec3::new(-2.0, 0.5, 1.0),
+            DVec3::new(5.0, 3.0, 9.0),
+        ] {
+            let h = m * p.extend(1.0);
+            assert_eq!(h.w, 0.0);
+            match cam.project_uv(p) {
+                Some(uv) => {
+                    assert!(h.z > 0.0);
+                    assert!((DVec2::new(h.x / h.z, h.y / h.z) - uv).length() < EPS, "{p}");
+                }
+                None => assert!(h.z <= 0.0, "{p}"),
+            }
+        }
+    }
 
     #[test]
     fn normal_incidence_matches_closed_form() {

@@ -23,8 +23,9 @@ pub const EFFECTS_COMMON: &str = include_str!("../../../../shaders/effects/effec
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct EffectsUniform {
-    pub camera_view: [[f32; 4]; 4],
-    pub intrinsics: [f32; 4],
+    /// `PinholeCamera::image_projection` for local points: columns of WGSL's mat4x3 (each
+    /// padded to 4).
+    pub camera_projection: [[f32; 4]; 4],
     pub display_u: [f32; 4],
     pub display_v: [f32; 4],
     pub table: [f32; 4],
@@ -367,7 +368,10 @@ impl Shared {
         let o = frame.origin;
         let cam = &self.camera.camera;
         let f = |v: f64| v as f32;
-        let view = self.camera.view_local(o).as_mat4().to_cols_array_2d();
+        let projection = cam
+            .image_projection(self.camera.view_local(o))
+            .as_mat4()
+            .to_cols_array_2d();
         let d = self.camera.display;
         let ring = self.cfg.ring_radius_for(s.play_area);
         let [ax, az, bx, bz] = s.play_area;
@@ -383,13 +387,7 @@ impl Shared {
             *slot = [f(p.x), f(p.y), 0.0, 0.0];
         }
         EffectsUniform {
-            camera_view: view,
-            intrinsics: [
-                f(cam.fx / cam.width),
-                f(cam.fy / cam.height),
-                f(cam.cx / cam.width),
-                f(cam.cy / cam.height),
-            ],
+            camera_projection: projection,
             display_u: [f(d[0][0]), f(d[0][1]), f(d[0][2]), 0.0],
             display_v: [f(d[1][0]), f(d[1][1]), f(d[1][2]), 0.0],
             table: [f(self.cfg.table_depth), f(ring), f(centre.x), f(centre.y)],

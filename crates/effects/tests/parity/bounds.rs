@@ -24,24 +24,17 @@ fn vec3(v: [f32; 4]) -> [Inexact; 3] {
     [Inexact::of(v[0]), Inexact::of(v[1]), Inexact::of(v[2])]
 }
 
-/// The effects' uniform as the GPU holds it: the camera's view matrix (columns) and the
-/// intrinsics, each entry the f32 of the reference's f64.
+/// The effects' uniform as the GPU holds it: the camera's image projection (columns), each
+/// entry the f32 of the reference's f64.
 pub struct CameraBound {
-    view: [[Inexact; 4]; 4],
-    intrinsics: [Inexact; 4],
+    projection: [[Inexact; 4]; 4],
 }
 
 impl CameraBound {
     pub fn new(camera: &PinholeCamera) -> Self {
-        let m = camera.pose.inverse().to_cols_array_2d();
+        let m = camera.image_projection(camera.pose.inverse()).to_cols_array_2d();
         Self {
-            view: m.map(|col| col.map(input)),
-            intrinsics: [
-                input(camera.fx / camera.width),
-                input(camera.fy / camera.height),
-                input(camera.cx / camera.width),
-                input(camera.cy / camera.height),
-            ],
+            projection: m.map(|col| col.map(input)),
         }
     }
 
@@ -49,22 +42,18 @@ impl CameraBound {
     fn uv(&self, p: [Inexact; 3]) -> Bounded<Option<[Inexact; 2]>> {
         let row = |i: usize| {
             let terms = [
-                self.view[0][i] * p[0],
-                self.view[1][i] * p[1],
-                self.view[2][i] * p[2],
-                self.view[3][i],
+                self.projection[0][i] * p[0],
+                self.projection[1][i] * p[1],
+                self.projection[2][i] * p[2],
+                self.projection[3][i],
             ];
             render::wgsl_accuracy::sum(&terms)
         };
-        let c = [row(0), row(1), row(2)];
-        match c[2].above(0.0) {
+        let h = [row(0), row(1), row(2)];
+        match h[2].above(0.0) {
             None => Bounded::Undecided,
-            Some(true) => Bounded::Decided(None),
-            Some(false) => {
-                let q = [c[0] / -c[2], c[1] / -c[2]];
-                let [ix, iy, iz, iw] = self.intrinsics;
-                Bounded::Decided(Some([iz + ix * q[0], iw - iy * q[1]]))
-            }
+            Some(false) => Bounded::Decided(None),
+            Some(true) => Bounded::Decided(Some([h[0] / h[2], h[1] / h[2]])),
         }
     }
 }
