@@ -97,7 +97,7 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     // The real sea's water by optical similarity (water_look.wgsl): the table through the
     // sea's depth and the column's own backscattered light. The room's radiance is the
     // camera's white (the assumption that makes the table's colour its albedo).
-    let transmitted = water_transmitted(table.rgb * light, vec3<f32>(1.0), table.w * fx.water_b.x, fx.water_a, fx.water_c, fx.water_d);
+    let transmitted = water_transmitted(table.rgb * light, vec3<f32>(1.0), table.w * fx.water.down_scale.w, fx.water);
     var colour = r * reflected + (1.0 - r) * transmitted;
     // Foam of breaking crests (Jacobian) and of the boats' wakes, as the water pass draws it.
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);

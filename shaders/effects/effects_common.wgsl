@@ -27,12 +27,8 @@ struct Effects {
     // y = marks; x, z, w unused (which effects run is each pipeline's constant, FX_MASK).
     flags: vec4<u32>,
     marks: array<vec4<f32>, 8>,
-    // The sea's water (water_look.wgsl): T_d.rgb (the way down to the table); x of water_b:
-    // metres of real sea per scene metre; κ.rgb (1/m); R∞.rgb.
-    water_a: vec4<f32>,
-    water_b: vec4<f32>,
-    water_c: vec4<f32>,
-    water_d: vec4<f32>,
+    // The sea's water over the table (water_look.wgsl).
+    water: WaterOptics,
 }
 
 @group(2) @binding(0) var<uniform> fx: Effects;

@@ -1,19 +1,29 @@
 // The real sea's water over a table by optical similarity (render::water_look is its f64
 // reference; docs/water-look.md): the light that leaves the water from the table and from
 // the water column, before the view direction's Fresnel transmittance 1 − R(θ). Constants
-// (WATER_*) come from the generated prelude; per frame, from the effects' uniform:
-//   water_a = (T_d.rgb: the room light's way down to the table, unused)
-//   water_c = (κ.rgb = a + b_b of the real sea, 1/m, unused)
-//   water_d = (R∞.rgb: the deep water's irradiance reflectance f·b_b/(a + b_b), unused)
+// (WATER_*) come from the generated prelude; per frame, from the effects' uniform, the
+// optics of the chosen sea (render::water_look::WaterLook::gpu_optics):
 //   table  = the dry table's linear colour (also its albedo), room = the room's radiance,
 //   path_m = the view ray's path in the water, metres of real sea.
-// One vec3 exponential per pixel (the way down is the uniform's).
-fn water_transmitted(table: vec3<f32>, room: vec3<f32>, path_m: f32, water_a: vec4<f32>, water_c: vec4<f32>, water_d: vec4<f32>) -> vec3<f32> {
-    let td = water_a.xyz;
-    let deep = water_d.xyz;
-    let t = td * exp(-water_c.xyz * path_m);
+// L = (1 − R̄)[table T_d T_v + room R∞ (1 − T_d T_v)] / (n² (1 − r̄ (ρ T_d² + R∞ (1 − T_d²)))):
+// the denominator is A − B ρ with A and B per-frame constants (formed in f64 on the CPU),
+// one vec3 exponential per pixel (the way down is the uniform's).
+struct WaterOptics {
+    // T_d.rgb: the room light's way down to the table; w: metres of real sea per scene metre.
+    down_scale: vec4<f32>,
+    // −κ.rgb, κ = a + b_b of the real sea, 1/m.
+    neg_attenuation: vec4<f32>,
+    // R∞.rgb: the deep water's irradiance reflectance f·b_b/(a + b_b).
+    deep: vec4<f32>,
+    // A.rgb = n² (1 − r̄ R∞ (1 − T_d²)) / (1 − R̄).
+    denominator: vec4<f32>,
+    // B.rgb = n² r̄ T_d² / (1 − R̄): the table albedo's weight in the denominator.
+    albedo_weight: vec4<f32>,
+}
+
+fn water_transmitted(table: vec3<f32>, room: vec3<f32>, path_m: f32, w: WaterOptics) -> vec3<f32> {
+    let t = w.down_scale.xyz * exp(w.neg_attenuation.xyz * path_m);
     let rho = clamp(table, vec3<f32>(0.0), vec3<f32>(1.0));
-    let seen = table * t + room * deep * (vec3<f32>(1.0) - t);
-    let albedo = rho * td * td + deep * (vec3<f32>(1.0) - td * td);
-    return seen * WATER_DIFFUSE_ENTRY / (WATER_N2 * (vec3<f32>(1.0) - albedo * WATER_INTERNAL_REFLECTANCE));
+    let seen = table * t + room * w.deep.xyz * (vec3<f32>(1.0) - t);
+    return seen / (w.denominator.xyz - w.albedo_weight.xyz * rho);
 }

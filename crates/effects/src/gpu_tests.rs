@@ -510,9 +510,7 @@ fn wgsl_current_matches_the_f64_potential_flow() {
     let points: Vec<[f32; 2]> = (0..41 * 41)
         .map(|k| [(k % 41) as f32 - 20.0, (k / 41) as f32 - 15.0 + 0.37])
         .collect();
-    let prelude = crate::wgsl::prelude();
-    let src = render::shader::source(&[
-        &prelude,
+    let src = crate::wgsl::source(&[
         super::passes::EFFECTS_COMMON,
         super::passes::FLOWMAP,
         r#"

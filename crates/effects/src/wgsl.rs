@@ -48,11 +48,13 @@ pub fn prelude() -> String {
     )
 }
 
-/// An effects shader's source: the core's prelude and shared files, this crate's prelude, then
-/// `parts` ([`render::shader::source`]).
+/// An effects shader's source: the core's prelude and shared files, this crate's prelude, the
+/// sea's optics (`shaders/render/water_look.wgsl`: the `Effects` uniform holds a
+/// `WaterOptics`), then `parts` ([`render::shader::source`]).
 pub fn source(parts: &[&str]) -> String {
     let prelude = prelude();
-    let all: Vec<&str> = std::iter::once(prelude.as_str())
+    let all: Vec<&str> = [prelude.as_str(), render::water_look::WATER_LOOK_WGSL]
+        .into_iter()
         .chain(parts.iter().copied())
         .collect();
     render::shader::source(&all)

@@ -31,7 +31,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 "#;
-    let src = render::shader::source(&[prelude, effects::passes::EFFECTS_COMMON, kernel]);
+    let src = render::shader::source(&[
+        prelude,
+        render::water_look::WATER_LOOK_WGSL,
+        effects::passes::EFFECTS_COMMON,
+        kernel,
+    ]);
     let bytes = render::compute::run_kernel(gpu, "edge weight parity", &src, points, 4)
         .expect("the kernel runs");
     bytemuck::cast_slice(&bytes).to_vec()
@@ -143,6 +148,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 "#;
     let src = render::shader::source(&[
         prelude,
+        render::water_look::WATER_LOOK_WGSL,
         effects::passes::EFFECTS_COMMON,
         effects::passes::CAUSTICS,
         kernel,

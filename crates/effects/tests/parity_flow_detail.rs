@@ -32,9 +32,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 "#;
-    let prelude = effects::wgsl::prelude();
-    let src = render::shader::source(&[
-        &prelude,
+    let src = effects::wgsl::source(&[
         effects::passes::EFFECTS_COMMON,
         effects::passes::FLOWMAP,
         kernel,

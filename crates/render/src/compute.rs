@@ -234,7 +234,7 @@ pub fn run_kernel_with<In: bytemuck::Pod>(
 
 /// The AR water's transmitted light (`shaders/water_look.wgsl`'s `water_transmitted`) on the
 /// GPU, per item: (dry table colour, room radiance, view path in metres of real sea) for
-/// `look`, its uniform made as the effects make it (`WaterLook::gpu_uniform`, a scene in real
+/// `look`, its uniform made as the effects make it (`WaterLook::gpu_optics`, a scene in real
 /// metres). The parity test's GPU side of `water_look::transmitted`.
 pub fn gpu_water_transmitted(
     gpu: &Gpu,
@@ -242,7 +242,7 @@ pub fn gpu_water_transmitted(
     items: &[([f32; 3], [f32; 3], f32)],
 ) -> Result<Vec<[f32; 3]>, GpuError> {
     const ENTRY: &str = "
-@group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 5>>;
+@group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 7>>;
 @group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -250,22 +250,25 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if i >= arrayLength(&input) { return; }
     let a = input[i][0];
     let b = input[i][1];
-    output[i] = vec4<f32>(water_transmitted(a.xyz, b.xyz, a.w * b.w, input[i][2], input[i][3], input[i][4]), 0.0);
+    let w = WaterOptics(input[i][2], input[i][3], input[i][4], input[i][5], input[i][6]);
+    output[i] = vec4<f32>(water_transmitted(a.xyz, b.xyz, a.w * w.down_scale.w, w), 0.0);
 }";
     if items.is_empty() {
         return Ok(Vec::new());
     }
     // The scene in real metres: the table lies the water's depth down.
-    let [water_a, water_b, water_c, water_d] = look.gpu_uniform(look.depth_m);
-    let inputs: Vec<[[f32; 4]; 5]> = items
+    let [down, neg_k, deep, a, b] = look.gpu_optics(look.depth_m);
+    let inputs: Vec<[[f32; 4]; 7]> = items
         .iter()
         .map(|(t, r, path)| {
             [
                 [t[0], t[1], t[2], *path],
-                [r[0], r[1], r[2], water_b[0]],
-                water_a,
-                water_c,
-                water_d,
+                [r[0], r[1], r[2], 0.0],
+                down,
+                neg_k,
+                deep,
+                a,
+                b,
             ]
         })
         .collect();

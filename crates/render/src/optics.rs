@@ -352,8 +352,12 @@ mod tests {
             cy: 236.0,
             width: 640.0,
             height: 480.0,
-            pose: look_at_mat4(DVec3::new(0.3, 1.2, 0.8), DVec3::new(-0.1, 0.0, 0.2), DVec3::Y)
-                .inverse(),
+            pose: look_at_mat4(
+                DVec3::new(0.3, 1.2, 0.8),
+                DVec3::new(-0.1, 0.0, 0.2),
+                DVec3::Y,
+            )
+            .inverse(),
         };
         let view = cam.pose.inverse();
         let m = cam.image_projection(view);
@@ -368,7 +372,10 @@ mod tests {
             match cam.project_uv(p) {
                 Some(uv) => {
                     assert!(h.z > 0.0);
-                    assert!((DVec2::new(h.x / h.z, h.y / h.z) - uv).length() < EPS, "{p}");
+                    assert!(
+                        (DVec2::new(h.x / h.z, h.y / h.z) - uv).length() < EPS,
+                        "{p}"
+                    );
                 }
                 None => assert!(h.z <= 0.0, "{p}"),
             }

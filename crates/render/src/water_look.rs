@@ -209,21 +209,32 @@ fn mean_cosine() -> f64 {
 }
 
 impl WaterLook {
-    /// The per-frame shader inputs (`water_a`, `water_b`, `water_c` of the effects' uniform)
-    /// for a scene whose table lies `table_depth` scene metres down: [T_d (R, G, B): the room
-    /// light's way down to the table, 0], [metres of real sea per scene metre, 0, 0, 0],
-    /// [κ (R, G, B) of the real sea, 1/m, 0], [R∞ (R, G, B), 0]. A table scene in race metres
-    /// has 1 real metre per scene metre: optical similarity needs no scale on the GPU.
-    pub fn gpu_uniform(&self, table_depth: f64) -> [[f32; 4]; 4] {
+    /// The per-frame shader inputs (`WaterOptics` of `shaders/render/water_look.wgsl`, in the
+    /// effects' uniform) for a scene whose table lies `table_depth` scene metres down:
+    /// [T_d (R, G, B): the room light's way down to the table, metres of real sea per scene
+    /// metre], [−κ (R, G, B) of the real sea, 1/m, 0], [R∞ (R, G, B), 0], [A (R, G, B), 0],
+    /// [B (R, G, B), 0], where the transmitted light's denominator
+    /// n² (1 − r̄ (ρ T_d² + R∞ (1 − T_d²))) / (1 − R̄) is A − B ρ for a table albedo ρ: the
+    /// parts that do not change within a frame formed here in f64, not per pixel. A table
+    /// scene in race metres has 1 real metre per scene metre: optical similarity needs no scale
+    /// on the GPU.
+    pub fn gpu_optics(&self, table_depth: f64) -> [[f32; 4]; 5] {
         let w = self.on_table(1.0);
         let mu = diffuse_mean_cosine();
-        let td = w.attenuation.map(|k| (-k * w.depth_m / mu).exp() as f32);
-        let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
+        let td = w.attenuation.map(|k| (-k * w.depth_m / mu).exp());
+        let (entry, r_int) = (diffuse_entry(), diffuse_internal_reflectance());
+        let n2 = (N_WATER / N_AIR).powi(2);
+        let a: [f64; 3] = std::array::from_fn(|i| {
+            n2 * (1.0 - r_int * w.deep_reflectance[i] * (1.0 - td[i] * td[i])) / entry
+        });
+        let b = td.map(|t| n2 * r_int * t * t / entry);
+        let f = |v: [f64; 3], last: f64| [v[0] as f32, v[1] as f32, v[2] as f32, last as f32];
         [
-            [td[0], td[1], td[2], 0.0],
-            [(self.depth_m / table_depth) as f32, 0.0, 0.0, 0.0],
-            f(w.attenuation),
-            f(w.deep_reflectance),
+            f(td, self.depth_m / table_depth),
+            f(w.attenuation.map(|k| -k), 0.0),
+            f(w.deep_reflectance, 0.0),
+            f(a, 0.0),
+            f(b, 0.0),
         ]
     }
 }

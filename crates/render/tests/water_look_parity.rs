@@ -8,17 +8,18 @@
 //! The bound. Let u = 2⁻²³ (one ULP relative to an f32 in [1, 2)). The shader computes
 //! x = −κ·l (κ and l rounded to f32 and one product: |Δx| ≤ 1.5 u |x|), e = exp(x), whose
 //! WGSL accuracy is 3 + 2|x| ULP (relative error ≤ (3 + 2|x|) u), and t = T_d·e (T_d rounded,
-//! one product: u); so t carries a relative error ε_t = (4 + 3.5|x|) u. The rest is a rational
-//! function of t, T_d, R∞, the table and room colours and three constants, each rounded to f32
-//! (½ u relative) and combined by + − × (correctly rounded, ½ u each) and one division
-//! (2.5 ULP): twelve operations, none of them cancelling worse than 1 − A r̄_int ≥ 0.52 (a
-//! factor 2). With g = (1 − R̄)/(n²(1 − A r̄_int)), the output's sensitivity to t is
-//! g·|table − room·R∞| ≤ g·(table + room·R∞), so per channel
+//! one product: u); so t carries a relative error ε_t = (4 + 3.5|x|) u. The rest is
+//! [table t + room R∞ (1 − t)] / (A − B ρ), with R∞, A and B formed in f64 and rounded to f32
+//! (½ u relative each) and combined by + − × (correctly rounded, ½ u each) and one division
+//! (2.5 ULP): eight operations. The denominator A − B ρ = n²(1 − r̄_int albedo)/(1 − R̄) is at
+//! least 0.52 n²/(1 − R̄) while A + B ρ is at most 1.48 n²/(1 − R̄), so A's and B's roundings
+//! grow by at most a factor 3 there. With g = (1 − R̄)/(n²(1 − A r̄_int)), the output's
+//! sensitivity to t is g·|table − room·R∞| ≤ g·(table + room·R∞), so per channel
 //!
 //!   |GPU − f64| ≤ g (table + room R∞) t ε_t + 32 u (out + g room R∞) + 10⁻⁹,
 //!
-//! the 32 u covering the rational part's rounding (at most 2 × 12 half-ULPs plus the
-//! division's 2.5, rounded up), and 10⁻⁹ the f32 denormal range of outputs near zero.
+//! the 32 u covering the rational part's rounding (at most 2 × 8 half-ULPs, A's and B's 3 × ½,
+//! and the division's 2.5: 20 u, rounded up), and 10⁻⁹ the f32 denormal range of outputs near zero.
 
 use render::gpu::test_gpu;
 use render::water_look::{

@@ -18,14 +18,13 @@ pub const AR_WATER: &str = include_str!("../../../../shaders/effects/ar_water.wg
 /// The AR water's shader after its vertex stage and before its pipeline's `FX_MASK` /
 /// `FX_CHEAP_CAUSTICS` constants: the water pass's shading, then every effect. One list for
 /// the pipelines and for the budget model, which counts the same shader's work.
-pub const AR_WATER_PARTS: [&str; 8] = [
+pub const AR_WATER_PARTS: [&str; 7] = [
     shader::WATER,
     EFFECTS_COMMON,
     REFLECTION,
     REFRACTION,
     CAUSTICS,
     FLOWMAP,
-    render::water_look::WATER_LOOK_WGSL,
     AR_WATER,
 ];
 

@@ -35,12 +35,8 @@ pub struct EffectsUniform {
     pub current: [f32; 4],
     pub flags: [u32; 4],
     pub marks: [[f32; 4]; 8],
-    /// `WaterLook::gpu_uniform`: the way down to the table; real metres per scene metre; the
-    /// sea's κ; its R∞.
-    pub water_a: [f32; 4],
-    pub water_b: [f32; 4],
-    pub water_c: [f32; 4],
-    pub water_d: [f32; 4],
+    /// `WaterLook::gpu_optics`: the sea's water over the table (`WaterOptics`).
+    pub water: [[f32; 4]; 5],
 }
 
 /// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
@@ -378,7 +374,7 @@ impl Shared {
         let centre = DVec2::new(ax + bx, az + bz) / 2.0 - o;
         let region = self.caustic_region(frame);
         let [a, b] = flow_phases(s.t, self.cfg.flow_period, DEFAULT_JUMP);
-        let [water_a, water_b, water_c, water_d] = self.cfg.water.gpu_uniform(self.cfg.table_depth);
+        let water = self.cfg.water.gpu_optics(self.cfg.table_depth);
         let mut marks = [[0.0f32; 4]; 8];
         let mut near: Vec<DVec2> = s.marks.iter().map(|m| m.position - o).collect();
         let target = DVec2::new(s.camera.target.x, s.camera.target.z) - o;
@@ -407,10 +403,7 @@ impl Shared {
             ],
             flags: [0, near.len().min(8) as u32, 0, 0],
             marks,
-            water_a,
-            water_b,
-            water_c,
-            water_d,
+            water,
         }
     }
 

@@ -32,7 +32,9 @@ pub struct CameraBound {
 
 impl CameraBound {
     pub fn new(camera: &PinholeCamera) -> Self {
-        let m = camera.image_projection(camera.pose.inverse()).to_cols_array_2d();
+        let m = camera
+            .image_projection(camera.pose.inverse())
+            .to_cols_array_2d();
         Self {
             projection: m.map(|col| col.map(input)),
         }
