@@ -20,14 +20,29 @@
 // flickering between them as the camera moves.
 const TEXEL_ROUGHNESS: f32 = 2e-4;
 
+// The ray of each texel as a varying: with far = inv_view_proj·(ndc, ½, 1) the texel's ray
+// is (far.xyz/far.w − eye), whose direction is that of (far.xyz − eye·far.w)·far.w, and both
+// far.xyz − eye·far.w and far.w are affine in ndc: interpolated across the full-screen
+// triangle (w = 1 at its corners: linear in the screen) they are exact, and a texel only
+// normalises (ray_dir's matrix product and division once per corner, not per texel).
+struct RoomOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) ray_w: vec4<f32>,
+}
+
 @vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> ScreenOut {
-    return full_screen(i, 1.0);
+fn vs_main(@builtin(vertex_index) i: u32) -> RoomOut {
+    let corner = full_screen(i, 1.0);
+    let far = frame.inv_view_proj * vec4<f32>(corner.ndc, 0.5, 1.0);
+    var out: RoomOut;
+    out.clip = corner.clip;
+    out.ray_w = vec4<f32>(far.xyz - frame.eye.xyz * far.w, far.w);
+    return out;
 }
 
 @fragment
-fn fs_main(in: ScreenOut) -> @location(0) vec4<f32> {
-    let r = ray_dir(in.ndc);
+fn fs_main(in: RoomOut) -> @location(0) vec4<f32> {
+    let r = normalize(in.ray_w.xyz * in.ray_w.w);
     let eye = frame.eye.xyz;
     // Where the ray crosses the water (it rises from the mirrored eye below).
     let s = -eye.y / max(r.y, 1e-6);

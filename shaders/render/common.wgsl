@@ -18,6 +18,11 @@ struct Wave {
     half_slope2: f32,
     // Σ half_slope2 of this wave and every later one (ocean::GpuWave::tail_half_slope2).
     tail_half_slope2: f32,
+    // D_x², D_x D_z, D_z² (formed on the CPU).
+    direction_xx: f32,
+    direction_xz: f32,
+    direction_zz: f32,
+    _pad: f32,
 }
 
 // Per-frame values (render::frame::FrameUniform).
@@ -115,13 +120,11 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
         let fka = fade * w.slope;
         let s = sin(theta) * fka;
         let c = cos(theta) * fka;
-        let d = w.direction;
-        let dxs = d.x * s;
-        dxdx -= d.x * dxs;
-        dxdz -= d.y * dxs;
-        dzdz -= d.y * d.y * s;
-        dydx += d.x * c;
-        dydz += d.y * c;
+        dxdx -= w.direction_xx * s;
+        dxdz -= w.direction_xz * s;
+        dzdz -= w.direction_zz * s;
+        dydx += w.direction.x * c;
+        dydz += w.direction.y * c;
     }
     let tx = vec3<f32>(dxdx, dydx, dxdz);
     let tz = vec3<f32>(dxdz, dydz, dzdz);

@@ -3,9 +3,10 @@
 // vertex shader (water_displaced.wgsl) draws. The wake at a vertex is band limited for its
 // level's vertex spacing, as the sea's waves are per level: a level cannot carry a wave
 // shorter than π cells (render::clipmap::plan). The CPU bins the wake sources on a grid over
-// where they reach (render::wake_bins): a point sums only the sources listed for its bin,
-// which holds every source whose cull circle, grown by the grid's margin, reaches the bin and
-// whose band-limited term is not zero over the whole bin at the finest spacing sampling it.
+// where they reach (render::wake_bins): a point sums only the sources listed for its bin, in
+// two lists: for the height, every source whose cull circle, grown by the grid's margin,
+// reaches the bin and whose band-limited term is not zero over the whole bin at the finest
+// spacing sampling it; for the foam, every source whose foam strip reaches the bin.
 // Appended to common.wgsl, optics.wgsl and wake.wgsl.
 
 struct WakeGrid {
@@ -25,15 +26,16 @@ struct WakeGrid {
 
 @group(1) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
 // Per bin: (first index into wake_index, count).
-@group(1) @binding(1) var<storage, read> wake_bins: array<vec2<u32>>;
+// Per bin: the height list's first index and count, then the foam list's.
+@group(1) @binding(1) var<storage, read> wake_bins: array<vec4<u32>>;
 @group(1) @binding(2) var<storage, read> wake_index: array<u32>;
 @group(1) @binding(3) var<uniform> wake_grid: WakeGrid;
 
 // The (first, count) of the sources that can reach local point p.
-fn wake_bin(p: vec2<f32>) -> vec2<u32> {
+fn wake_bin(p: vec2<f32>) -> vec4<u32> {
     let g = (p - wake_grid.origin) * wake_grid.inv_cell;
     if frame.counts.z == 0u || g.x < 0.0 || g.y < 0.0 || g.x >= f32(wake_grid.nx) || g.y >= f32(wake_grid.nz) {
-        return vec2<u32>(0u, 0u);
+        return vec4<u32>(0u);
     }
     return wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
 }
@@ -42,11 +44,22 @@ fn wake_bin(p: vec2<f32>) -> vec2<u32> {
 // [0, 1]), one pass over p's bin with each source's closed-form gradient, band limited.
 fn wake_at(p: vec2<f32>, spacing: f32) -> vec4<f32> {
     let bin = wake_bin(p);
-    var sum = vec4<f32>(0.0);
+    var grad = vec3<f32>(0.0);
     for (var i = 0u; i < bin.y; i = i + 1u) {
-        sum += wake_source_grad_foam(wake_sources[wake_index[bin.x + i]], p, spacing);
+        let s = wake_sources[wake_index[bin.x + i]];
+        let d = p - s.pos;
+        grad += wake_source_height_grad_at(s, d, dot(d, d), spacing);
     }
-    return vec4<f32>(sum.xyz, wake_foam_from_density(sum.w));
+    return vec4<f32>(grad, wake_foam_from_density(wake_foam_at(p, bin)));
+}
+
+// The foam density at local point p: the sources of its bin's foam list (`bin` from wake_bin).
+fn wake_foam_at(p: vec2<f32>, bin: vec4<u32>) -> f32 {
+    var density = 0.0;
+    for (var i = 0u; i < bin.w; i = i + 1u) {
+        density += wake_source_foam(wake_sources[wake_index[bin.z + i]], p);
+    }
+    return density;
 }
 
 // A clip-map vertex as the CPU builds it (render::clipmap::ClipVertex, 16 bytes).

@@ -66,13 +66,11 @@ fn surface_frame_every_wave(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFram
         let fka = fade * w.slope;
         let s = sin(theta) * fka;
         let c = cos(theta) * fka;
-        let d = w.direction;
-        let dxs = d.x * s;
-        dxdx -= d.x * dxs;
-        dxdz -= d.y * dxs;
-        dzdz -= d.y * d.y * s;
-        dydx += d.x * c;
-        dydz += d.y * c;
+        dxdx -= w.direction_xx * s;
+        dxdz -= w.direction_xz * s;
+        dzdz -= w.direction_zz * s;
+        dydx += w.direction.x * c;
+        dydz += w.direction.y * c;
     }
     let tx = vec3<f32>(dxdx, dydx, dxdz);
     let tz = vec3<f32>(dxdz, dydz, dzdz);

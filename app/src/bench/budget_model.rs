@@ -323,6 +323,7 @@ mod tests {
                 waves: scene.sea.waves.len() as f64,
                 waves_in_pixel: scene.sea.waves.len() as f64,
                 wake_sources_per_vertex: 4.0,
+                wake_foam_sources_per_vertex: 1.0,
                 marks: scene.marks.len() as f64,
             },
             screen: size,

@@ -63,7 +63,8 @@ fn trips(
     let trips = Trips {
         waves: scene.sea.waves.len() as f64,
         waves_in_pixel: waves_in_pixel(&frame),
-        wake_sources_per_vertex: wake_sources_per_vertex(&frame),
+        wake_sources_per_vertex: wake_sources_per_vertex(&frame, 1),
+        wake_foam_sources_per_vertex: wake_sources_per_vertex(&frame, 3),
         marks: scene.marks.len() as f64,
     };
     let bytes = frame.wake_bins.bytes(frame.wakes.sources.len()) as f64;
@@ -71,11 +72,11 @@ fn trips(
 }
 
 /// The wake sources the compute stage sums per clip-map vertex, the mean over the vertices:
-/// each sums the sources listed in the bin its displaced position falls in (`wake_at` in
-/// `shaders/render/water_vertices.wgsl`), none outside the grid or in an empty bin. The
-/// position is the f64 sea's displacement (the shader's f32 one can fall in a neighbouring bin
-/// within a few millimetres of a bin's edge).
-fn wake_sources_per_vertex(frame: &render::frame::FrameContext) -> f64 {
+/// each sums the sources of one list (`count` 1: the height list, 3: the foam list) of the bin
+/// its displaced position falls in (`wake_at` in `shaders/render/water_vertices.wgsl`), none
+/// outside the grid or in an empty bin. The position is the f64 sea's displacement (the
+/// shader's f32 one can fall in a neighbouring bin within a few millimetres of a bin's edge).
+fn wake_sources_per_vertex(frame: &render::frame::FrameContext, count: usize) -> f64 {
     let bins = &frame.wake_bins;
     let g = &bins.grid;
     let (o, sea, t) = (frame.origin, &frame.scene.sea, frame.scene.t);
@@ -89,7 +90,7 @@ fn wake_sources_per_vertex(frame: &render::frame::FrameContext) -> f64 {
             let inside = gx >= 0.0 && gz >= 0.0 && gx < g.nx as f32 && gz < g.nz as f32;
             let bin = (gz as usize) * g.nx as usize + gx as usize;
             match bins.bins.get(bin) {
-                Some(b) if inside && frame.uniform.counts[2] > 0 => f64::from(b[1]),
+                Some(b) if inside && frame.uniform.counts[2] > 0 => f64::from(b[count]),
                 _ => 0.0,
             }
         })

@@ -63,9 +63,11 @@ pub struct Trips {
     /// footprints. Counted on the CPU from each clip-map triangle's footprint
     /// (`render::clipmap::ClipMesh::footprints`).
     pub waves_in_pixel: f64,
-    /// Wake sources a clip-map vertex sums (those listed in the bin it falls in), the mean
+    /// Wake sources whose height a clip-map vertex sums (its bin's height list), the mean
     /// over the vertices (0 for a vertex in an empty bin).
     pub wake_sources_per_vertex: f64,
+    /// Wake sources whose foam a clip-map vertex sums (its bin's foam list), the same mean.
+    pub wake_foam_sources_per_vertex: f64,
     /// Course marks the flow map loops over (at most 8).
     pub marks: f64,
 }
@@ -79,6 +81,7 @@ impl Trips {
             "surface_frame" if stage == naga::ShaderStage::Fragment => self.waves_in_pixel,
             "surface_frame" | "sea_displaced" | "grid_point" | "wave_height" => self.waves,
             "wake_at" => self.wake_sources_per_vertex,
+            "wake_foam_at" => self.wake_foam_sources_per_vertex,
             "current_at" => self.marks.min(8.0),
             // caustic_scatter's splat: a landed triangle covers about one map cell.
             _ => 1.0,
@@ -427,6 +430,7 @@ mod tests {
         waves: 10.0,
         waves_in_pixel: 4.0,
         wake_sources_per_vertex: 3.0,
+        wake_foam_sources_per_vertex: 1.0,
         marks: 2.0,
     };
 

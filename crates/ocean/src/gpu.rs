@@ -18,7 +18,7 @@ pub fn reduce_phase(theta: f64) -> f64 {
     if r >= TAU { 0.0 } else { r }
 }
 
-/// One wave as a shader reads it (std430/uniform layout: 32 bytes, 16-byte aligned).
+/// One wave as a shader reads it (std430/uniform layout: 48 bytes, 16-byte aligned).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuWave {
@@ -39,6 +39,12 @@ pub struct GpuWave {
     /// faded this wave out has faded all the rest too, stops there and keeps their variance
     /// in one addition.
     pub tail_half_slope2: f32,
+    /// The direction's products D_x², D_x D_z, D_z² (formed in f64): the horizontal map's
+    /// Jacobian terms of the wave, which every pixel's `surface_frame` needs.
+    pub direction_xx: f32,
+    pub direction_xz: f32,
+    pub direction_zz: f32,
+    pub _pad: f32,
 }
 
 impl WaveSet {
@@ -58,6 +64,10 @@ impl WaveSet {
                     slope: (w.k() * w.amplitude()) as f32,
                     half_slope2: (0.5 * (w.k() * w.amplitude()).powi(2)) as f32,
                     tail_half_slope2: 0.0,
+                    direction_xx: (w.direction[0] * w.direction[0]) as f32,
+                    direction_xz: (w.direction[0] * w.direction[1]) as f32,
+                    direction_zz: (w.direction[1] * w.direction[1]) as f32,
+                    _pad: 0.0,
                 }
             })
             .collect();
@@ -188,7 +198,7 @@ mod tests {
         let s = WaveSet::default_sea();
         let (t, o) = (9.5e6, [-8000.0, 7000.0]);
         let g = s.gpu_waves(t, o);
-        assert_eq!(std::mem::size_of::<GpuWave>(), 32);
+        assert_eq!(std::mem::size_of::<GpuWave>(), 48);
         for w in &g {
             assert!((0.0..=TAU as f32).contains(&w.phase0));
         }

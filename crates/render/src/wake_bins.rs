@@ -31,7 +31,7 @@ pub(crate) const WAKE_MARGIN_M: f32 = 0.5;
 
 /// Bytes of one source in the buffer, one bin entry and one index.
 const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
-const BIN_BYTES: u64 = 8;
+const BIN_BYTES: u64 = 16;
 const INDEX_BYTES: u64 = 4;
 
 /// The cap on one frame's wake buffers, bytes: `budget` within the device's limits for one
@@ -79,8 +79,11 @@ pub struct WakeGrid {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct WakeBins {
     pub grid: WakeGrid,
-    /// Per bin, row-major (x fastest): first index into `indices` and count.
-    pub bins: Vec<[u32; 2]>,
+    /// Per bin, row-major (x fastest): the first index into `indices` and the count of its
+    /// height list (the sources whose height term can be non-zero there), then of its foam
+    /// list (the sources whose foam strip reaches it): few sources' foam reaches a point, so
+    /// a point pays a foam exponential only for those.
+    pub bins: Vec<[u32; 4]>,
     pub indices: Vec<u32>,
 }
 
@@ -153,12 +156,17 @@ impl Layout {
         ])
     }
 
-    /// Does bin (i, j) list `s`, whose cull circle and foam strip reach `radii` (m, grown by the
-    /// margin): does its foam reach the bin's square, or its cull circle with some point of the
-    /// square outside the source's inner radius for the bin's finest spacing? (A bin in a
-    /// corner of the circle's bounding square is out of reach of every point of the circle,
-    /// and listing it would only add loop turns to the bin's points.)
-    fn reaches(&self, s: &GpuWakeSource, radii: Radii, i: u32, j: u32) -> bool {
+    /// Which of bin (i, j)'s two lists hold `s`, whose cull circle and foam strip reach
+    /// `radii` (m, grown by the margin): the foam list when its foam strip reaches the bin's
+    /// square; the height list when its cull circle does with some point of the square outside
+    /// the source's inner radius for the bin's finest spacing. (A bin in a corner of the
+    /// circle's bounding square is out of reach of every point of the circle, and listing it
+    /// would only add loop turns to the bin's points.)
+    fn reaches(&self, s: &GpuWakeSource, radii: Radii, i: u32, j: u32) -> Listing {
+        let none = Listing {
+            height: false,
+            foam: false,
+        };
         let cell = f64::from(self.cell);
         let gap = |v: f32, lo: f32, k: u32| {
             let a = f64::from(lo) + f64::from(k) * cell;
@@ -167,14 +175,11 @@ impl Layout {
         let (dx, dz) = (gap(s.pos[0], self.lo[0], i), gap(s.pos[1], self.lo[1], j));
         let near2 = dx * dx + dz * dz;
         let Some(spacing) = self.finest[(j * self.nx + i) as usize] else {
-            return false;
+            return none;
         };
-        // Its foam strip reaches the bin (whatever its height term does there).
-        if near2 <= radii.foam * radii.foam {
-            return true;
-        }
+        let foam = near2 <= radii.foam * radii.foam;
         if near2 > radii.cull * radii.cull {
-            return false;
+            return Listing { foam, ..none };
         }
         // The height term: the bin's farthest point from the source (grown by the margin)
         // must lie outside the source's inner radius for the bin's finest spacing.
@@ -186,11 +191,12 @@ impl Layout {
                 + f64::from(self.margin)
         };
         let (fx, fz) = (far(s.pos[0], self.lo[0], i), far(s.pos[1], self.lo[1], j));
-        fx * fx + fz * fz >= f64::from(inner_radius2(s, spacing))
+        let height = fx * fx + fz * fz >= f64::from(inner_radius2(s, spacing));
+        Listing { height, foam }
     }
 
-    /// The bins that list `s` (row-major indices).
-    fn bins_of<'a>(&'a self, s: &'a GpuWakeSource) -> impl Iterator<Item = u32> + 'a {
+    /// The bins that list `s` (row-major indices) and in which of their lists.
+    fn bins_of<'a>(&'a self, s: &'a GpuWakeSource) -> impl Iterator<Item = (u32, Listing)> + 'a {
         let [i0, i1, j0, j1] = self.span(s).unwrap_or([1, 0, 1, 0]);
         // Once per source, not per bin of its span.
         let margin = f64::from(self.margin);
@@ -200,15 +206,27 @@ impl Layout {
         };
         (j0..=j1).flat_map(move |j| {
             (i0..=i1)
-                .filter(move |&i| self.reaches(s, radii, i, j))
-                .map(move |i| j * self.nx + i)
+                .map(move |i| (j * self.nx + i, self.reaches(s, radii, i, j)))
+                .filter(|(_, l)| l.height || l.foam)
         })
     }
 
-    /// How many bins list `s`.
+    /// How many list entries `s` takes (a bin that lists it for height and foam: two).
     fn listed(&self, s: &GpuWakeSource) -> u64 {
-        self.bins_of(s).count() as u64
+        self.bins_of(s)
+            .map(|(_, l)| u64::from(l.height) + u64::from(l.foam))
+            .sum()
     }
+}
+
+/// The lists of one bin that hold a source.
+#[derive(Debug, Clone, Copy)]
+struct Listing {
+    /// Its height term can be non-zero at a point of the bin sampled no finer than the bin's
+    /// finest spacing.
+    height: bool,
+    /// Its foam strip reaches the bin.
+    foam: bool,
 }
 
 /// How far a source's cull circle and foam strip reach, grown by the grid's margin, m.
@@ -289,17 +307,26 @@ impl WakeBins {
 
     fn on(sources: &[GpuWakeSource], layout: Layout) -> WakeBins {
         let (nx, nz) = (layout.nx, layout.nz);
-        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
+        let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
+        let mut foams: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
         for (k, s) in sources.iter().enumerate() {
-            for b in layout.bins_of(s) {
-                lists[b as usize].push(k as u32);
+            for (b, l) in layout.bins_of(s) {
+                if l.height {
+                    heights[b as usize].push(k as u32);
+                }
+                if l.foam {
+                    foams[b as usize].push(k as u32);
+                }
             }
         }
-        let mut bins = Vec::with_capacity(lists.len());
+        let mut bins = Vec::with_capacity(heights.len());
         let mut indices = Vec::new();
-        for l in &lists {
-            bins.push([indices.len() as u32, l.len() as u32]);
-            indices.extend_from_slice(l);
+        for (h, f) in heights.iter().zip(&foams) {
+            let first = indices.len() as u32;
+            indices.extend_from_slice(h);
+            let foam_first = indices.len() as u32;
+            indices.extend_from_slice(f);
+            bins.push([first, h.len() as u32, foam_first, f.len() as u32]);
         }
         WakeBins {
             grid: WakeGrid {
@@ -316,19 +343,33 @@ impl WakeBins {
         }
     }
 
-    /// The sources local point `p` sums: its bin's list, or none outside the grid, exactly as
-    /// `wake_bin` in `shaders/render/water_vertices.wgsl` looks it up (f32).
+    /// The sources whose height local point `p` sums: its bin's height list, or none outside
+    /// the grid, exactly as `wake_bin` in `shaders/render/water_vertices.wgsl` looks it up
+    /// (f32).
     pub fn listed_at(&self, p: [f32; 2]) -> &[u32] {
+        self.bin_at(p).map_or(&[], |[first, count, _, _]| {
+            &self.indices[first as usize..(first + count) as usize]
+        })
+    }
+
+    /// The sources whose foam local point `p` sums: its bin's foam list.
+    pub fn foam_listed_at(&self, p: [f32; 2]) -> &[u32] {
+        self.bin_at(p).map_or(&[], |[_, _, first, count]| {
+            &self.indices[first as usize..(first + count) as usize]
+        })
+    }
+
+    /// The bin of local point `p` as the shader finds it, or none outside the grid.
+    pub fn bin_at(&self, p: [f32; 2]) -> Option<[u32; 4]> {
         let g = self.grid;
         let (x, z) = (
             (p[0] - g.origin[0]) * g.inv_cell,
             (p[1] - g.origin[1]) * g.inv_cell,
         );
         if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
-            return &[];
+            return None;
         }
-        let [first, count] = self.bins[(z as u32 * g.nx + x as u32) as usize];
-        &self.indices[first as usize..(first + count) as usize]
+        Some(self.bins[(z as u32 * g.nx + x as u32) as usize])
     }
 
     /// Bytes of the three buffers with `sources` sources (each at least one entry: the
@@ -414,7 +455,7 @@ mod tests {
                 let p = [-249.0 + a as f32 * 5.13, -249.0 + b as f32 * 5.59];
                 let i = ((p[0] - g.origin[0]) * g.inv_cell) as u32;
                 let j = ((p[1] - g.origin[1]) * g.inv_cell) as u32;
-                let [first, count] = bins.bins[(j * g.nx + i) as usize];
+                let [first, count, _, _] = bins.bins[(j * g.nx + i) as usize];
                 let list = &bins.indices[first as usize..(first + count) as usize];
                 listed += list.len();
                 // Any stencil point within the margin: every source whose cull circle holds
@@ -462,7 +503,7 @@ mod tests {
         let mut big_bins = 0usize;
         for j in 0..g.nz {
             for i in 0..g.nx {
-                let [first, count] = bins.bins[(j * g.nx + i) as usize];
+                let [first, count, _, _] = bins.bins[(j * g.nx + i) as usize];
                 let list = &bins.indices[first as usize..(first + count) as usize];
                 let (x0, z0) = (
                     f64::from(g.origin[0]) + f64::from(i) * cell,

@@ -93,19 +93,30 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
         }
         // Terms left out are exact zeros, and x + 0 = x: the sums agree bit for bit.
         assert_eq!(binned, every, "{p:?}");
-        // Foam (not band limited): every strip denser than FOAM_EPSILON at p is listed,
-        // near the track too, where the height term is nothing.
+        // Foam (not band limited): every strip denser than FOAM_EPSILON at p is in the
+        // bin's foam list, near the track too, where the height term is nothing; and what
+        // the list leaves out is under FOAM_EPSILON per source.
+        let foam_listed = bins.foam_listed_at(p);
+        let (mut listed_foam, mut every_foam) = (0.0f64, 0.0f64);
         for (k, s) in sources.iter().enumerate() {
             let d2 = (p[0] - s.pos[0]).powi(2) + (p[1] - s.pos[1]).powi(2);
             let density = s.foam * (-d2 / s.foam_w2).exp();
+            every_foam += f64::from(density);
+            if foam_listed.contains(&(k as u32)) {
+                listed_foam += f64::from(density);
+            }
             if density > FOAM_EPSILON {
                 assert!(
-                    listed.contains(&(k as u32)),
-                    "source {k}'s foam {density} at {p:?} but not in its bin"
+                    foam_listed.contains(&(k as u32)),
+                    "source {k}'s foam {density} at {p:?} but not in its bin's foam list"
                 );
                 foamy += 1;
             }
         }
+        assert!(
+            every_foam - listed_foam <= f64::from(FOAM_EPSILON) * sources.len() as f64,
+            "{every_foam} vs {listed_foam}"
+        );
         checked += 1;
         nonzero += usize::from(every[0] != 0.0);
     }
