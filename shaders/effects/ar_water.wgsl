@@ -58,10 +58,12 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     let p = in.world;
     let view = normalize(p - frame.eye.xyz);
     let screen_uv = in.clip.xy * frame.viewport.zw;
-    let footprint = max(length(dpdx(rest)), length(dpdy(rest)));
+    let across = dpdx(rest);
+    let down = dpdy(rest);
+    let footprint = sqrt(max(dot(across, across), dot(down, down)));
     let sf = surface_frame(rest, frame.counts.x, footprint);
     // Sea and wake slopes add, as in water.wgsl: the wake's (∂w/∂x, ∂w/∂z) is in.wake.xy.
-    var n = normalize(vec3<f32>(sf.normal.x / sf.normal.y - in.wake.x, 1.0, sf.normal.z / sf.normal.y - in.wake.y));
+    var n = normalize(vec3<f32>(sf.up.x / sf.up.y - in.wake.x, 1.0, sf.up.z / sf.up.y - in.wake.y));
     if fx_on(FX_FLOWMAP) {
         n = flow_normal(p.xz, in.rest_current.zw, n);
     }

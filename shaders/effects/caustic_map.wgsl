@@ -50,7 +50,7 @@ fn grid_point(v: u32) -> GridPoint {
     for (var i = 0u; i < frame.counts.x; i = i + 1u) {
         s += gerstner(waves[i], rest);
     }
-    let n = surface_frame(rest, frame.counts.x, 0.0).normal;
+    let n = normalize(surface_frame(rest, frame.counts.x, 0.0).up);
     let l = grid.light.xyz;
     // Light goes from air into water: no total internal reflection is possible.
     let t = refract_dir(l, n, N_AIR, N_WATER);

@@ -73,10 +73,11 @@ fn edge_weight(uv: vec2<f32>) -> f32 {
     return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);
 }
 
-// Linear RGB of the camera image at uv (clamped to the image), filtered by the sampler, which
-// decodes the sRGB texture: the RGBA image as it came, or the YUV planes converted once per
-// camera frame (camera_yuv.wgsl).
+// Linear RGB of the camera image at uv, filtered by the sampler, which decodes the sRGB
+// texture: the RGBA image as it came, or the YUV planes converted once per camera frame
+// (camera_yuv.wgsl). Outside the image the sampler's clamp-to-edge gives the edge texel, what
+// clamping uv to [0, 1] first gave (at uv = 1 the linear filter already reads the edge texel
+// only).
 fn sample_camera(uv: vec2<f32>) -> vec3<f32> {
-    let c = clamp(uv, vec2<f32>(0.0), vec2<f32>(1.0));
-    return textureSampleLevel(camera_image, linear_clamp, c, 0.0).rgb;
+    return textureSampleLevel(camera_image, linear_clamp, uv, 0.0).rgb;
 }

@@ -103,7 +103,7 @@ fn water_at(rest: vec2<f32>) -> WaterPoint {
     for (var i = 0u; i < pool.counts.z; i = i + 1u) {
         p += gerstner(waves[i], rest);
     }
-    let g = surface_frame(rest, pool.counts.z, 0.0).normal;
+    let g = normalize(surface_frame(rest, pool.counts.z, 0.0).up);
     let rip = ripples(p.xz);
     let slope = -g.xz / g.y + rip.yz;
     var out: WaterPoint;

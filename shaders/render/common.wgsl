@@ -75,7 +75,9 @@ fn gerstner(w: Wave, p: vec2<f32>) -> vec3<f32> {
 // The surface's analytic derivatives at a rest point, summed over waves 0..n, each wave
 // weighted by weight(i) (used to fade out waves finer than a pixel).
 struct SurfaceFrame {
-    normal: vec3<f32>,
+    // The surface's upward normal, not normalised: cross(∂X/∂z, ∂X/∂x); its y is the Jacobian.
+    // Callers that need the unit normal normalise it; slopes are up.xz / up.y.
+    up: vec3<f32>,
     // Determinant of the horizontal map's Jacobian: < 1 where crests bunch up (foam).
     jacobian: f32,
     // Slope variance of the faded-out waves, Σ (1 − fade²)·(k a)²/2 (LEAN/Toksvig): the
@@ -129,7 +131,7 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
     let tx = vec3<f32>(dxdx, dydx, dxdz);
     let tz = vec3<f32>(dxdz, dydz, dzdz);
     var out: SurfaceFrame;
-    out.normal = normalize(cross(tz, tx));
+    out.up = cross(tz, tx);
     out.jacobian = dxdx * dzdz - dxdz * dxdz;
     out.slope_variance = variance;
     return out;

@@ -27,10 +27,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         discard;
     }
     // Footprint of this pixel on the rest plane, metres: waves shorter than four footprints fade.
-    let footprint = max(length(dpdx(in.rest)), length(dpdy(in.rest)));
+    let across = dpdx(in.rest);
+    let down = dpdy(in.rest);
+    let footprint = sqrt(max(dot(across, across), dot(down, down)));
     let sf = surface_frame(in.rest, frame.counts.x, footprint);
     // Total surface y = h_sea(X) + w(X): add the wake's slope to the sea's.
-    let n = normalize(vec3<f32>(sf.normal.x / sf.normal.y - in.wake.x, 1.0, sf.normal.z / sf.normal.y - in.wake.y));
+    let n = normalize(vec3<f32>(sf.up.x / sf.up.y - in.wake.x, 1.0, sf.up.z / sf.up.y - in.wake.y));
     let wfoam = in.wake.z;
     let to_eye = normalize(frame.eye.xyz - in.world);
     let cos_i = max(dot(n, to_eye), 0.0);

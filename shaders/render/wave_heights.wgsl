@@ -75,7 +75,7 @@ fn surface_frame_every_wave(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFram
     let tx = vec3<f32>(dxdx, dydx, dxdz);
     let tz = vec3<f32>(dxdz, dydz, dzdz);
     var out: SurfaceFrame;
-    out.normal = normalize(cross(tz, tx));
+    out.up = cross(tz, tx);
     out.jacobian = dxdx * dzdz - dxdz * dxdz;
     out.slope_variance = variance;
     return out;
@@ -92,5 +92,5 @@ fn cs_surface_frame(@builtin(global_invocation_id) id: vec3<u32>) {
     if v.w != 0.0 {
         sf = surface_frame_every_wave(v.xy, frame.counts.x, v.z);
     }
-    displaced[i] = vec4<f32>(sf.normal.x / sf.normal.y, sf.normal.z / sf.normal.y, sf.jacobian, sf.slope_variance);
+    displaced[i] = vec4<f32>(sf.up.x / sf.up.y, sf.up.z / sf.up.y, sf.jacobian, sf.slope_variance);
 }
