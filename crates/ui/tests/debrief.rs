@@ -107,15 +107,22 @@ fn manoeuvre_harness<'a>(
 
 #[test]
 fn the_manoeuvre_table_shows_the_debriefs_figures() {
-    let race = race::Race::sample();
-    let debrief = race::Debrief::of(&race);
+    // The generated sample (8 boats) and the embedded real race (Valencia 2025-06-21 P01, two
+    // dinghies, a wind the metadata state).
+    for race in [race::Race::sample(), race::Race::valencia()] {
+        manoeuvre_table_matches(&race);
+    }
+}
+
+fn manoeuvre_table_matches(race: &race::Race) {
+    let debrief = race::Debrief::of(race);
     let bm = debrief
         .manoeuvres
         .iter()
         .max_by_key(|b| b.manoeuvres.len())
         .unwrap();
-    assert!(bm.manoeuvres.len() >= 2, "the sample's boats tack");
-    let mut h = manoeuvre_harness(&race, &debrief, Some(bm.boat));
+    assert!(bm.manoeuvres.len() >= 2, "{}: its boats tack", race.name);
+    let mut h = manoeuvre_harness(race, &debrief, Some(bm.boat));
     h.run();
     let all = texts(&h);
     // The wind it depends on, and its source (the sample's file states it).
