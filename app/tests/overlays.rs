@@ -197,6 +197,14 @@ fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
     for (kind, layer) in &f.layers {
         assert!(matches!(layer, Layer::Draw(_)), "{kind:?}: {layer:?}");
     }
+    // The race's file states its wind: the label says it is the race's data.
+    assert!(
+        f.texts
+            .iter()
+            .any(|t| t.text.ends_with("(from the race's data)")),
+        "{:?}",
+        f.texts
+    );
     let mut no_wind = race.clone();
     no_wind.wind = None;
     let calm = Scene {
@@ -221,10 +229,17 @@ fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
             .clone()
     };
     // No wind in the race's files and a calm sea: the wind drawn is the fleet's estimate
-    // (race::debrief::wind; its label says "estimated", tested in scene_overlay).
+    // (race::debrief::wind), and its label on the water says so, with its uncertainty.
     assert!(
         matches!(layer(OverlayKind::Wind), Layer::Draw(_)),
         "the estimated wind is drawn"
+    );
+    let sigma = no_wind.wind_model().unwrap().uncertainty_deg;
+    let said = format!("(estimated from the fleet ±{sigma:.1}°)");
+    assert!(
+        f.texts.iter().any(|t| t.text.ends_with(&said)),
+        "no wind label ending {said}: {:?}",
+        f.texts
     );
     assert_eq!(layer(OverlayKind::Trails), Layer::Off);
     assert!(f.labels.is_empty(), "labels off: none placed");

@@ -155,18 +155,26 @@ pub struct WindInfo {
     /// Metres per second, where known.
     pub speed_mps: Option<f64>,
     pub source: WindSource,
+    /// One sigma of the direction, degrees, where estimated.
+    pub uncertainty_deg: Option<f64>,
 }
 
 impl WindInfo {
-    /// "8.7 kn from 0°", or "from 225° (sea)" without a speed.
+    /// Every wind label names its source: "wind 8.7 kn from 0° (from the race's data)",
+    /// "wind from 59° (estimated from the fleet ±2.0°)", "wind from 225° (the sea's waves)".
     pub fn text(&self) -> String {
-        let from = format!("from {:.0}°", self.from_deg);
-        match (self.speed_mps, self.source) {
-            (Some(v), _) => format!("wind {:.1} kn {from}", v * 3600.0 / 1852.0),
-            (None, WindSource::Sea) => format!("wind {from} (the sea's waves)"),
-            (None, WindSource::Estimated) => format!("wind {from} (estimated)"),
-            (None, WindSource::Race) => format!("wind {from}"),
-        }
+        let speed = self
+            .speed_mps
+            .map_or(String::new(), |v| format!("{:.1} kn ", v * 3600.0 / 1852.0));
+        let source = match self.source {
+            WindSource::Race => ui::wind_source_text(race::debrief::WindSource::Data, 0.0),
+            WindSource::Estimated => ui::wind_source_text(
+                race::debrief::WindSource::Estimated,
+                self.uncertainty_deg.unwrap_or(f64::NAN),
+            ),
+            WindSource::Sea => "the sea's waves".to_string(),
+        };
+        format!("wind {speed}from {:.0}° ({source})", self.from_deg)
     }
 }
 
@@ -179,6 +187,7 @@ pub fn wind_of(race: &race::Race, sea: &ocean::WaveSet) -> Option<WindInfo> {
             from_deg: w.from_deg,
             speed_mps: Some(w.speed_mps),
             source: WindSource::Race,
+            uncertainty_deg: None,
         });
     }
     if let Some(w) = race.wind_model() {
@@ -189,6 +198,7 @@ pub fn wind_of(race: &race::Race, sea: &ocean::WaveSet) -> Option<WindInfo> {
                 race::debrief::WindSource::Data => WindSource::Race,
                 race::debrief::WindSource::Estimated => WindSource::Estimated,
             },
+            uncertainty_deg: Some(w.uncertainty_deg),
         });
     }
     let amplitude = |w: &ocean::Wave| w.steepness * w.wavelength / std::f64::consts::TAU;
@@ -202,6 +212,7 @@ pub fn wind_of(race: &race::Race, sea: &ocean::WaveSet) -> Option<WindInfo> {
         from_deg: race::track::bearing_deg([-d[0], -d[1]]),
         speed_mps: None,
         source: WindSource::Sea,
+        uncertainty_deg: None,
     })
 }
 
@@ -371,6 +382,8 @@ mod tests {
         let race = race::Race::sample();
         let w = wind_of(&race, &ocean::WaveSet::default_sea()).unwrap();
         assert_eq!((w.from_deg, w.speed_mps), (0.0, Some(4.5)));
+        // Every label names its source: the sample's file states its wind.
+        assert_eq!(w.text(), "wind 8.7 kn from 0° (from the race's data)");
         // Without a stated wind, the fleet's estimate, said so: the generated breeze blows from
         // 0° (oscillating by a few degrees).
         let mut no_wind = race::Race::sample();
@@ -381,7 +394,14 @@ mod tests {
             race::debrief::wind::angle_diff(w.from_deg, 0.0).abs() < 5.0,
             "{w:?}"
         );
-        assert!(w.text().contains("estimated"), "{}", w.text());
+        let sigma = no_wind.wind_model().unwrap().uncertainty_deg;
+        assert_eq!(
+            w.text(),
+            format!(
+                "wind from {:.0}° (estimated from the fleet ±{sigma:.1}°)",
+                w.from_deg
+            )
+        );
         // A race with too little sailing to estimate: one boat, three fixes.
         let gpx = r#"<?xml version="1.0"?><gpx version="1.1" creator="t" xmlns="http://www.topografix.com/GPX/1/1"><trk><trkseg>
 <trkpt lat="39.40" lon="-0.30"><time>2025-06-21T11:00:00Z</time></trkpt>
@@ -403,6 +423,7 @@ mod tests {
         };
         let w = wind_of(&no_wind, &sea).unwrap();
         assert!((w.from_deg - 270.0).abs() < 1e-9 && w.speed_mps.is_none());
+        assert_eq!(w.text(), "wind from 270° (the sea's waves)");
         let calm = ocean::WaveSet {
             waves: Vec::new(),
             ..sea

@@ -6,9 +6,13 @@
 
 use egui::{Align2, Color32, Frame, RichText, Ui};
 
+use crate::debrief::{
+    BoatsView, DebriefView, boats_view_tabs, legs::legs_ui, manoeuvre_table::manoeuvre_table_ui,
+    start::start_ui,
+};
 use crate::events::event_list_ui;
 use crate::leaderboard::{LeaderboardRow, leaderboard_ui, parse_hex_color};
-use crate::manoeuvres::{ManoeuvreStarts, manoeuvre_jump_ui};
+use crate::manoeuvres::manoeuvre_jump_ui;
 use crate::open::{OpenRequest, RacesPanel, races_ui};
 use crate::perf::{PerfStats, perf_ui};
 use crate::plots::{PlotCache, compare_ui, speed_plot_ui};
@@ -98,8 +102,11 @@ pub struct RegattaUi {
     /// The orbit camera follows the first selected boat.
     pub follow: bool,
     pub plots: PlotCache,
-    /// Each boat's tack and gybe starts for the timeline's jump buttons (once per race).
-    pub manoeuvres: ManoeuvreStarts,
+    /// The race's debrief (once per race): the timeline's tack jumps and the Boats panel's
+    /// Manoeuvres, Start and Legs views.
+    pub debrief: DebriefView,
+    /// Which view the Boats panel shows under its boat chips.
+    pub boats_view: BoatsView,
     /// Points at the top of the screen kept free for the platform's own bar (the phone's
     /// Race | Pool | Record bar).
     pub top_inset: f32,
@@ -118,7 +125,8 @@ impl RegattaUi {
             show_races: false,
             follow: false,
             plots: PlotCache::default(),
-            manoeuvres: ManoeuvreStarts::default(),
+            debrief: DebriefView::default(),
+            boats_view: BoatsView::default(),
             top_inset: 0.0,
         }
     }
@@ -201,8 +209,8 @@ impl RegattaUi {
         let Some(b) = race.boats.get(boat) else {
             return false;
         };
-        self.manoeuvres.update(race);
-        let starts = self.manoeuvres.of(boat);
+        self.debrief.update(race);
+        let starts = self.debrief.starts_of(boat);
         let moved = manoeuvre_jump_ui(ui, &mut self.clock, &b.name, starts);
         if count {
             ui.label(format!("{}: {} tacks and gybes", b.name, starts.len()));
@@ -337,7 +345,8 @@ impl RegattaUi {
         }
     }
 
-    /// Selection (every boat as a chip), follow, the speed plot and the comparison.
+    /// Selection (every boat as a chip), follow, and one view: the speed plot and the
+    /// comparison, the manoeuvres, the start or the legs.
     fn boats_ui(&mut self, ui: &mut Ui, frame: &UiFrame<'_>, out: &mut UiResponse) {
         let Some(race) = frame.race else {
             ui.label(RichText::new("No race").weak());
@@ -366,12 +375,42 @@ impl RegattaUi {
         )
         .on_hover_text("The camera orbits the first selected boat (F)")
         .on_disabled_hover_text("Select a boat to follow it");
-        self.plots.update(race, frame.selection);
-        let t = self.clock.time();
-        ui.label(RichText::new("Speed").strong());
-        let mut scrub = speed_plot_ui(ui, race, &self.plots, t);
-        ui.label(RichText::new("Compare").strong());
-        scrub = scrub.or(compare_ui(ui, race, &self.plots, frame.selection, t));
+        boats_view_tabs(ui, &mut self.boats_view);
+        let mut scrub = None;
+        match self.boats_view {
+            BoatsView::Speed => {
+                self.plots.update(race, frame.selection);
+                let t = self.clock.time();
+                ui.label(RichText::new("Speed").strong());
+                scrub = speed_plot_ui(ui, race, &self.plots, t);
+                ui.label(RichText::new("Compare").strong());
+                scrub = scrub.or(compare_ui(ui, race, &self.plots, frame.selection, t));
+            }
+            BoatsView::Manoeuvres => {
+                self.debrief.update(race);
+                if let Some(d) = self.debrief.debrief() {
+                    out.clock_changed |= manoeuvre_table_ui(
+                        ui,
+                        race,
+                        d,
+                        frame.selection.first().copied(),
+                        &mut self.clock,
+                    );
+                }
+            }
+            BoatsView::Start => {
+                self.debrief.update(race);
+                if let Some(d) = self.debrief.debrief() {
+                    start_ui(ui, race, d);
+                }
+            }
+            BoatsView::Legs => {
+                self.debrief.update(race);
+                if let Some(d) = self.debrief.debrief() {
+                    legs_ui(ui, race, &d.legs);
+                }
+            }
+        }
         if let Some(t) = scrub {
             self.clock.pause();
             self.clock.scrub_to(t);

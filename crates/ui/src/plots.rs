@@ -79,9 +79,7 @@ pub fn speed_plot_ui(ui: &mut Ui, race: &race::Race, cache: &PlotCache, t: f64) 
         ui.label(RichText::new("Select a boat (click its row) to plot its speed").weak());
         return None;
     }
-    if race.wind.is_none() {
-        ui.label(RichText::new("No wind in the race: speed only, no VMG").weak());
-    }
+    ui.label(RichText::new(vmg_wind_note(race)).weak());
     let plot = time_axis(Plot::new("speed-plot")).y_axis_label("kn");
     let r = plot.show(ui, |p| {
         for s in &cache.speed {
@@ -104,6 +102,19 @@ pub fn speed_plot_ui(ui: &mut Ui, race: &race::Race, cache: &PlotCache, t: f64) 
         clicked_time(p)
     });
     r.inner
+}
+
+/// Where the speed plot's VMG comes from: the wind the race's files state (never the fleet's
+/// estimate, whose direction error would show as a VMG error), or that there is none.
+pub fn vmg_wind_note(race: &race::Race) -> String {
+    match race.wind {
+        Some(w) => format!(
+            "VMG (dashed): wind {:.0}° {}",
+            w.from_deg,
+            crate::debrief::wind_source_text(race::debrief::WindSource::Data, 0.0)
+        ),
+        None => "No wind in the race's data: speed only, no VMG".to_string(),
+    }
 }
 
 fn clicked_time(p: &egui_plot::PlotUi<'_>) -> Option<f64> {

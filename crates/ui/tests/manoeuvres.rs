@@ -4,7 +4,7 @@
 use egui::Vec2;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use ui::{ManoeuvreStarts, RaceClock, manoeuvre_jump_ui};
+use ui::{DebriefView, RaceClock, manoeuvre_jump_ui};
 
 #[test]
 fn tack_buttons_move_the_playhead_to_the_debriefs_manoeuvre_starts() {
@@ -21,7 +21,7 @@ fn tack_buttons_move_the_playhead_to_the_debriefs_manoeuvre_starts() {
     assert!(truth.len() >= 2, "the sample race's boats tack: {truth:?}");
     let boat = bm.boat;
     let name = race.boats[boat].name.clone();
-    let mut starts = ManoeuvreStarts::default();
+    let mut starts = DebriefView::default();
     starts.update(&race);
     let span = race.time_span();
     let mut clock = RaceClock::new(span);
@@ -30,7 +30,7 @@ fn tack_buttons_move_the_playhead_to_the_debriefs_manoeuvre_starts() {
         .with_size(Vec2::new(400.0, 60.0))
         .build_ui_state(
             |ui, clock: &mut RaceClock| {
-                ui.horizontal(|ui| manoeuvre_jump_ui(ui, clock, &name, starts.of(boat)));
+                ui.horizontal(|ui| manoeuvre_jump_ui(ui, clock, &name, starts.starts_of(boat)));
             },
             clock,
         );

@@ -5,7 +5,8 @@
 //! screen must lie inside the screen minus the insets: reachable by a finger and not cut off.
 //! The event list is the one scrolled list: its rows may run above or below its window (they
 //! are reached by scrolling), but never off the sides, and a screenful of them is visible.
-//! A snapshot of the A54 with the Boats panel is kept for looking at.
+//! The selected boat's manoeuvre list in the Boats panel is scrolled likewise.
+//! Snapshots of the A54 with the Boats panel's views are kept for looking at.
 
 use egui::accesskit::Role;
 use egui::{Rect, Vec2};
@@ -207,6 +208,45 @@ fn every_control_is_inside_the_safe_area_on_phones() {
                 }
             }
         }
+        // The Boats panel's debrief views, each in turn: their controls inside the safe area
+        // too (the fleet's manoeuvre table and the selected boat's list are buttons).
+        if !h.state().ui.show_boats {
+            h.get_by_label("Boats").click();
+            h.run();
+        }
+        for tab in ["Manoeuvres", "Start", "Legs", "Speed"] {
+            h.get_by_label(tab).click();
+            h.run();
+            assert_eq!(h.state().ui.boats_view.label(), tab);
+            // The selected boat's manoeuvres (rows labelled by their race time, "12:04") are
+            // a list the panel scrolls to, as the events are: below the screen is allowed,
+            // off the sides is not, and a screenful shows.
+            let (rows, all): (Vec<_>, Vec<_>) = controls(&h).into_iter().partition(|(l, _)| {
+                l.contains(':') && l.chars().all(|c| c.is_ascii_digit() || c == ':')
+            });
+            assert!(all.len() > 12, "{} {tab}: {all:?}", p.name);
+            for (label, r) in &rows {
+                assert!(
+                    r.left() >= safe.left() && r.right() <= safe.right(),
+                    "{} manoeuvre row \"{label}\" at {r:?} runs off the side",
+                    p.name
+                );
+            }
+            if tab == "Manoeuvres" {
+                let visible = rows.iter().filter(|(_, r)| safe.contains_rect(*r)).count();
+                assert!(visible >= 3, "{}: {visible} manoeuvre rows visible", p.name);
+            }
+            for (label, r) in &all {
+                assert!(
+                    safe.contains_rect(*r),
+                    "{} with the Boats panel's {tab}: \"{label}\" at {r:?} is outside the safe area {safe:?}",
+                    p.name
+                );
+            }
+        }
+        // Back to one other panel, so the Boats heading no longer shares its switch's label.
+        h.get_by_label("Perf").click();
+        h.run();
         // The panels' own controls are among them.
         for (switch, control) in [
             ("Boats", "Follow the selected boat"),
@@ -239,4 +279,41 @@ fn snapshot_a54_boats() {
     h.get_by_label("Boats").click();
     h.run();
     h.snapshot("phone_a54_boats");
+}
+
+/// The A54 with one of the Boats panel's debrief views (the sample with a start line), for
+/// looking at: nothing may run off the 360 dp (720 px) width.
+fn snapshot_a54_view(tab: &str) {
+    let race = common::sample_with_a_start_line();
+    let ev = timeline_events(&race);
+    let entries = sample_entries();
+    let perf = ui::PerfStats::default();
+    let p = &PHONES[0];
+    let Some(b) = common::gpu_builder(p.size) else {
+        return;
+    };
+    let b = b.with_pixels_per_point(p.pixels_per_point);
+    let mut h = phone_harness(b, &race, &ev, &entries, &perf);
+    set_insets(&mut h, p);
+    h.run();
+    h.get_by_label("Boats").click();
+    h.run();
+    h.get_by_label(tab).click();
+    h.run();
+    h.snapshot(format!("phone_a54_{}", tab.to_lowercase()));
+}
+
+#[test]
+fn snapshot_a54_manoeuvres() {
+    snapshot_a54_view("Manoeuvres");
+}
+
+#[test]
+fn snapshot_a54_start() {
+    snapshot_a54_view("Start");
+}
+
+#[test]
+fn snapshot_a54_legs() {
+    snapshot_a54_view("Legs");
 }

@@ -26,3 +26,18 @@ pub fn snapshot(name: &str, size: Vec2, app: impl FnMut(&mut egui::Ui) + 'static
     h.run();
     h.snapshot(name);
 }
+
+/// The sample race with its start mark made a 120 m line, skewed 5° off east-west with its west
+/// end (the pin, looking upwind into the sample's wind from the north) upwind.
+pub fn sample_with_a_start_line() -> race::Race {
+    let mut race = race::Race::sample();
+    let start = &mut race.marks[race.course[0]];
+    let p = start.position;
+    let (dx, dz) = (
+        60.0 * 5f64.to_radians().cos(),
+        60.0 * 5f64.to_radians().sin(),
+    );
+    start.kind = race::MarkKind::StartLine;
+    start.ends = Some([[p[0] - dx, p[1] - dz], [p[0] + dx, p[1] + dz]]);
+    race
+}
