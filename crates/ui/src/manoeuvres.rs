@@ -13,6 +13,9 @@ pub struct ManoeuvreStarts {
     /// race recomputes, even one of the same name.
     key: Option<(String, Vec<String>, [u64; 2])>,
     pub per_boat: Vec<Vec<f64>>,
+    /// The whole debrief [`ManoeuvreStarts::update`] worked out (the scene's manoeuvre marks
+    /// read it too: one computation per race).
+    debrief: Option<race::Debrief>,
 }
 
 impl ManoeuvreStarts {
@@ -30,6 +33,7 @@ impl ManoeuvreStarts {
         Self {
             key: None,
             per_boat,
+            debrief: None,
         }
     }
 
@@ -42,8 +46,15 @@ impl ManoeuvreStarts {
         if self.key.as_ref() == Some(&key) {
             return;
         }
-        *self = Self::from_debrief(&race::Debrief::of(race), race.boats.len());
+        let debrief = race::Debrief::of(race);
+        *self = Self::from_debrief(&debrief, race.boats.len());
+        self.debrief = Some(debrief);
         self.key = Some(key);
+    }
+
+    /// The debrief of the race last given to [`ManoeuvreStarts::update`]; `None` before.
+    pub fn debrief(&self) -> Option<&race::Debrief> {
+        self.debrief.as_ref()
     }
 
     /// `boat`'s manoeuvre starts; empty for an unknown boat.

@@ -341,8 +341,10 @@ impl PhoneApp {
     /// their layers into `g.race`'s overlay passes; the labels are painted in the egui pass.
     fn prepare_overlays(&mut self, g: &mut Graphics, scene: &render::Scene, size: [u32; 2]) {
         let ppp = f64::from(self.touch.pixels_per_point);
+        let race = &self.world.race;
+        let debrief = self.overlays.debrief(&mut self.panels.manoeuvres, race);
         self.overlays
-            .prepare(&g.gpu, &mut g.race, &self.world.race, scene, size, ppp);
+            .prepare(&g.gpu, &mut g.race, (race, debrief), scene, size, ppp);
     }
 
     fn draw_pool(
