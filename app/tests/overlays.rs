@@ -55,7 +55,7 @@ fn every_label_anchor_is_within_two_pixels_of_its_masthead() {
         (600.0, [1280, 720], orbit_scene(&race, 600.0)),
         (300.0, [720, 1600], framing(300.0)),
     ] {
-        let f = scene_overlay::frame(&race, &scene, size, 1.0, &OverlaySettings::default());
+        let f = scene_overlay::frame(&race, &scene, size, 1.0, &OverlaySettings::default(), None);
         assert!(
             f.hulls.len() >= 2,
             "t = {t}: {} boats on screen",
@@ -83,7 +83,7 @@ fn the_sample_fleets_labels_never_overlap_and_the_leader_is_labelled() {
     for t in [0.0, 60.0, 600.0] {
         let scene = orbit_scene(&race, t);
         let size = [1280, 720];
-        let f = scene_overlay::frame(&race, &scene, size, 1.0, &OverlaySettings::default());
+        let f = scene_overlay::frame(&race, &scene, size, 1.0, &OverlaySettings::default(), None);
         let placed = labels::place(&f.labels, [1280.0, 720.0], 1.0, &measure);
         for (i, a) in placed.iter().enumerate() {
             for b in &placed[i + 1..] {
@@ -118,7 +118,7 @@ fn a_selected_boat_gets_a_white_ring_and_its_label_first() {
             selected,
             ..Default::default()
         };
-        let f = scene_overlay::frame(&race, &scene, [1280, 720], 1.0, &settings);
+        let f = scene_overlay::frame(&race, &scene, [1280, 720], 1.0, &settings, None);
         let (_, layer) = f
             .layers
             .into_iter()
@@ -193,7 +193,14 @@ fn trails_break_at_the_gaps_of_a_real_garmin_track() {
 fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
     let race = race::Race::sample();
     let scene = orbit_scene(&race, 600.0);
-    let f = scene_overlay::frame(&race, &scene, [640, 360], 1.0, &OverlaySettings::default());
+    let f = scene_overlay::frame(
+        &race,
+        &scene,
+        [640, 360],
+        1.0,
+        &OverlaySettings::default(),
+        None,
+    );
     for (kind, layer) in &f.layers {
         assert!(matches!(layer, Layer::Draw(_)), "{kind:?}: {layer:?}");
     }
@@ -219,7 +226,7 @@ fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
         set: OverlaySet::parse("wind,lines").unwrap(),
         ..Default::default()
     };
-    let f = scene_overlay::frame(&no_wind, &calm, [640, 360], 1.0, &settings);
+    let f = scene_overlay::frame(&no_wind, &calm, [640, 360], 1.0, &settings, None);
     let layer = |k| {
         f.layers
             .iter()
@@ -308,7 +315,9 @@ fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaI
         set,
         ..Default::default()
     };
-    scene_overlay::render_headless(&gpu, &mut renderer, race, &scene, GOLDEN_SIZE, &settings)
+    // The goldens show the overlays without the manoeuvre marks (tests/manoeuvre_marks.rs).
+    let drawn = (race, None);
+    scene_overlay::render_headless(&gpu, &mut renderer, drawn, &scene, GOLDEN_SIZE, &settings)
         .unwrap()
         .0
 }

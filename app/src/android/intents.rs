@@ -19,7 +19,7 @@ const BLOCK: usize = 64 * 1024;
 
 /// `body`, with a Java exception it left pending caught and cleared: the error then carries
 /// the exception's class and message.
-fn caught<'local, T>(
+pub(super) fn caught<'local, T>(
     env: &mut Env<'local>,
     body: impl FnOnce(&mut Env<'local>) -> jni::errors::Result<T>,
 ) -> jni::errors::Result<T> {
@@ -40,7 +40,10 @@ fn string(env: &mut Env<'_>, obj: JObject<'_>) -> jni::errors::Result<Option<Str
 }
 
 /// `Uri.parse(uri)`.
-fn parse_uri<'local>(env: &mut Env<'local>, uri: &str) -> jni::errors::Result<JObject<'local>> {
+pub(super) fn parse_uri<'local>(
+    env: &mut Env<'local>,
+    uri: &str,
+) -> jni::errors::Result<JObject<'local>> {
     let text = env.new_string(uri)?;
     env.call_static_method(
         jni_str!("android/net/Uri"),
@@ -52,7 +55,7 @@ fn parse_uri<'local>(env: &mut Env<'local>, uri: &str) -> jni::errors::Result<JO
 }
 
 /// `receiver.getContentResolver()`.
-fn resolver<'local>(
+pub(super) fn resolver<'local>(
     env: &mut Env<'local>,
     receiver: &JObject<'_>,
 ) -> jni::errors::Result<JObject<'local>> {

@@ -21,6 +21,7 @@ use crate::wall_clock::Ticker;
 
 mod intents;
 mod jni_calls;
+mod share;
 
 // std's `_Unwind_*` come from the `unwinding` crate (see app/Cargo.toml); naming the crate links it.
 use unwinding as _;
@@ -39,6 +40,8 @@ fn android_main(app: AndroidApp) {
         Err(e) => return log::error!("regatta: {e}"),
     };
     phone.data_dir = app.internal_data_path();
+    // "Share clip" needs the media store's API 29 columns; below, the phone says so.
+    phone.android_sdk = Some(jni.sdk_int());
     // Where `adb push` can put races without root (docs/panels.md).
     phone.set_races_dir(app.external_data_path().map(|d| d.join("races")));
     // A race file from "Open with" or "Share": each such intent starts a new Activity (a
@@ -57,6 +60,8 @@ fn android_main(app: AndroidApp) {
         });
         input_events(&app, &mut phone);
         phone.frame(ticker.tick());
+        // A clip written by the "Share clip" worker goes to the share sheet from this thread.
+        phone.poll_share(&jni);
     }
     log::info!("regatta: android_main ends");
 }

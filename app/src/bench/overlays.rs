@@ -1,6 +1,7 @@
 //! `regatta bench --only overlays`: what the race overlays cost. The frame `regatta render`
 //! draws by default (the sample race at t = 600 s framed from above, sky, water, boats, no
-//! wakes) against the same frame with every overlay: the overlay passes (trails, course,
+//! wakes) against the same frame with every overlay: the overlay passes (trails with their
+//! manoeuvre marks, course,
 //! ahead/behind lines, wind, team rings), the CPU work that builds them (sea heights under
 //! every point, the standings, the label projection) and egui's labels painted over the frame.
 //! The two cases are interleaved frame by frame in one run, so a busy moment of the machine
@@ -31,6 +32,8 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let size = [1280u32, 720];
     let frames = if ctx.quick { 6 } else { 20 };
     let race = race::Race::sample();
+    // Worked out once per race, as the windows do (not a per-frame cost).
+    let debrief = race::Debrief::of(&race);
     let sea = crate::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let options = RenderOptions::default();
     let mut plain = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
@@ -63,7 +66,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         gpu.wait();
         let water_s = t0.elapsed().as_secs_f64();
         let t0 = Instant::now();
-        let f = scene_overlay::frame(&race, &scene, size, ppp, &settings);
+        let f = scene_overlay::frame(&race, &scene, size, ppp, &settings, Some(&debrief));
         f.push(&handle);
         let all = with.render(&gpu, &view, size, &scene).map_err(fail)?;
         scene_overlay::paint::paint_over(&mut painter, &gpu, &texture, size, &f, ppp);

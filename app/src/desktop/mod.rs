@@ -291,8 +291,9 @@ impl App {
             }
             let ppp = st.window.scale_factor();
             let (race, r) = (&self.world.race, &mut st.renderer);
+            let debrief = o.scene_overlays.debrief(&mut o.panels.debrief, race);
             o.scene_overlays
-                .prepare(&st.gpu, r, race, &scene, size, ppp);
+                .prepare(&st.gpu, r, (race, debrief), &scene, size, ppp);
             // The tier drawn, every setting, live (the governor's or the panel's pin).
             let applied = Some((self.tiers.tier(), handle.is_some()));
             if self.tier_applied != applied {
@@ -339,7 +340,9 @@ impl App {
                 let folder = std::env::current_dir().unwrap_or_default();
                 let t = o.panels.clock.time();
                 let request = share_clip::ClipRequest::DESKTOP;
-                if let Err(e) = o.share_clip.start(&self.world, t, &folder, request) {
+                let debrief = o.scene_overlays.debrief(&mut o.panels.debrief, race);
+                let world = (&self.world, debrief);
+                if let Err(e) = o.share_clip.start(world, t, &folder, request) {
                     o.share_clip.set_failed(e);
                 }
             }

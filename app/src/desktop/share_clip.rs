@@ -64,11 +64,12 @@ impl ShareClip {
             .unwrap_or(ClipStatus::Idle)
     }
 
-    /// Starts writing the clip of `request` ending at `playhead` into `folder/clips/`; the
-    /// path it will have, or why not (a clip already being written, a span the race lacks).
+    /// Starts writing the clip of `request` ending at `playhead` into `folder/clips/`, with
+    /// the race's `debrief` (the trails' manoeuvre marks) where the window has it; the path it
+    /// will have, or why not (a clip already being written, a span the race lacks).
     pub fn start(
         &mut self,
-        world: &RaceWorld,
+        (world, debrief): (&RaceWorld, Option<&race::Debrief>),
         playhead: f64,
         folder: &Path,
         request: ClipRequest,
@@ -90,6 +91,7 @@ impl ShareClip {
             size: request.size,
             camera: None,
             overlays: Default::default(),
+            debrief: debrief.cloned(),
             wakes: true,
             error_px: render::renderer::DEFAULT_ERROR_PX,
         };
@@ -183,7 +185,7 @@ mod tests {
             fps: 2.0,
             size: [32, 24],
         };
-        let out = clip.start(&world, 700.0, &folder, request).unwrap();
+        let out = clip.start((&world, None), 700.0, &folder, request).unwrap();
         clip.wait();
         assert_eq!(clip.status(), ClipStatus::Written(out.clone()));
         assert_eq!(out, folder.join("clips").join("regatta-699-700s.gif"));
@@ -199,7 +201,9 @@ mod tests {
         }
         assert_eq!(frames, 3);
         // A playhead at the start leaves no span: refused, nothing started.
-        let e = clip.start(&world, -1e6, &folder, request).unwrap_err();
+        let e = clip
+            .start((&world, None), -1e6, &folder, request)
+            .unwrap_err();
         assert!(e.contains("--from"), "{e}");
         let _ = std::fs::remove_dir_all(&folder);
     }

@@ -232,16 +232,19 @@ pub struct PhoneBar {
     /// pressed.
     pub banner_button: Option<egui::Rect>,
     pub banner_pressed: bool,
+    /// The "Share clip" button, where shown, and whether it was pressed.
+    pub share_button: Option<egui::Rect>,
+    pub share_pressed: bool,
 }
 
 /// The phone's bar along the top: the scene toggle (race | pool), the record button, and
 /// under them the session's banner ([`banner::banner`]), if any, with its button
 /// (`banner_button`: the label). Laid out inside egui's content rect, below the status bar and
-/// the cutout.
+/// the cutout. `share`: the "Share clip" button after Record, enabled or not; `None` hides it.
 pub fn phone_bar(
     ctx: &egui::Context,
     scene: &mut SceneChoice,
-    recording: bool,
+    (recording, share): (bool, Option<bool>),
     banner: Option<&(String, banner::Tone)>,
     banner_button: Option<&str>,
 ) -> PhoneBar {
@@ -256,14 +259,17 @@ pub fn phone_bar(
                     // Long banners wrap inside the screen rather than run off its edges.
                     ui.set_max_width((ctx.content_rect().width() - 40.0).max(120.0));
                     let big = |s: &str| egui::RichText::new(s).size(18.0);
-                    let (race, pool, record) = ui
+                    let (race, pool, record, share) = ui
                         .horizontal(|ui| {
                             let race = ui.selectable_value(scene, SceneChoice::Race, big("Race"));
                             let pool = ui.selectable_value(scene, SceneChoice::Pool, big("Pool"));
                             ui.separator();
                             let label = if recording { "⏹ Stop" } else { "⏺ Record" };
                             let record = ui.button(big(label));
-                            (race, pool, record)
+                            let share = share.map(|enabled| {
+                                ui.add_enabled(enabled, egui::Button::new(big("Share clip")))
+                            });
+                            (race, pool, record, share)
                         })
                         .inner;
                     if let Some((text, tone)) = banner {
@@ -284,6 +290,8 @@ pub fn phone_bar(
                         record_button: record.rect,
                         banner_button: button.as_ref().map(|b| b.rect),
                         banner_pressed: button.is_some_and(|b| b.clicked()),
+                        share_button: share.as_ref().map(|b| b.rect),
+                        share_pressed: share.is_some_and(|b| b.clicked()),
                     }
                 })
                 .inner
@@ -311,7 +319,7 @@ mod tests {
             let mut bar = None;
             let mut free = egui::Rect::NOTHING;
             let out = ctx.run_ui(touch.take_raw_input([1080, 2340], now), |ui| {
-                bar = Some(phone_bar(ui.ctx(), scene, false, Some(&note), None));
+                bar = Some(phone_bar(ui.ctx(), scene, (false, None), Some(&note), None));
                 free = ui.available_rect_before_wrap();
             });
             out.drop_without_applying_deltas();
@@ -407,7 +415,13 @@ mod tests {
             for i in 0..10 {
                 let raw = touch.take_raw_input(size, 0.1 * f64::from(i));
                 painter.paint(&gpu.device, &gpu.queue, &texture, size, raw, |ui| {
-                    bar = Some(phone_bar(ui.ctx(), &mut scene, false, Some(&note), None));
+                    bar = Some(phone_bar(
+                        ui.ctx(),
+                        &mut scene,
+                        (false, None),
+                        Some(&note),
+                        None,
+                    ));
                 });
             }
             let img = gpu.read_texture(&texture).unwrap();

@@ -427,6 +427,7 @@ pub fn ahead_behind(v: &View, texts: &mut Vec<SceneText>) -> Layer {
         };
         texts.push(SceneText {
             at: v.on_water(p + across * half),
+            offset_pt: [0.0, 0.0],
             text,
             colour: b.colour,
         });
@@ -474,6 +475,7 @@ pub fn wind_arrow(v: &View, wind: Option<WindInfo>, texts: &mut Vec<SceneText>) 
     }
     texts.push(SceneText {
         at: v.on_water(tail),
+        offset_pt: [0.0, 0.0],
         text: w.text(),
         colour: WHITE,
     });

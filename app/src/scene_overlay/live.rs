@@ -2,7 +2,7 @@
 //! settings, the overlay passes' handle, this frame's overlay and the labels as last painted,
 //! so a click or tap picks what the user saw.
 
-use render::passes::overlay::{OverlayHandle, add_overlay_passes};
+use render::passes::overlay::{OverlayHandle, OverlayKind, add_overlay_passes};
 
 use super::labels::{PlacedLabel, pick};
 use super::{OverlayFrame, OverlaySettings, WindInfo};
@@ -31,18 +31,35 @@ impl LiveOverlays {
         self.frame.as_ref().and_then(|f| f.wind)
     }
 
+    /// The debrief the trails' manoeuvre marks read, from the panels' once-per-race cache
+    /// (`cache`, which the timeline's tack jumps share): worked out on the first frame that
+    /// shows the trails after a race is opened; `None` while the trails are off.
+    pub fn debrief<'a>(
+        &self,
+        cache: &'a mut ui::DebriefView,
+        race: &race::Race,
+    ) -> Option<&'a race::Debrief> {
+        if !self.settings.set.is_on(OverlayKind::Trails) {
+            return None;
+        }
+        cache.update(race);
+        cache.debrief()
+    }
+
     /// Before the renderer draws `scene`: makes sure it has the overlay passes and feeds them.
+    /// `race` comes with its debrief where the window has it (the panels' `DebriefView`,
+    /// once per race): the trails' manoeuvre marks.
     pub fn prepare(
         &mut self,
         gpu: &render::Gpu,
         renderer: &mut render::Renderer,
-        race: &race::Race,
+        (race, debrief): (&race::Race, Option<&race::Debrief>),
         scene: &render::Scene,
         size: [u32; 2],
         pixels_per_point: f64,
     ) {
         add_overlay_passes(renderer, gpu, &self.handle);
-        let f = super::frame(race, scene, size, pixels_per_point, &self.settings);
+        let f = super::frame(race, scene, size, pixels_per_point, &self.settings, debrief);
         f.push(&self.handle);
         self.frame = Some(f);
     }

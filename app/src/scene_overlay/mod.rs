@@ -10,6 +10,7 @@
 pub mod geometry;
 pub mod labels;
 pub mod live;
+pub mod manoeuvres;
 pub mod paint;
 
 use render::passes::overlay::{Layer, OverlayHandle, OverlayKind};
@@ -88,6 +89,8 @@ pub use ui::MAX_SELECTED;
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneText {
     pub at: glam::DVec3,
+    /// Where the text starts from `at`'s pixel, points (right, down): clear of a mark there.
+    pub offset_pt: [f64; 2],
     pub text: String,
     /// Linear RGB.
     pub colour: [f32; 3],
@@ -241,13 +244,15 @@ impl OverlayFrame {
 }
 
 /// The overlays of `race` over `scene` (its camera, time and boats as drawn) on a `size`
-/// pixel frame at `pixels_per_point`.
+/// pixel frame at `pixels_per_point`; with the race's `debrief` (worked out once per race by
+/// the caller) the trails carry its tacks and gybes ([`manoeuvres`]).
 pub fn frame(
     race: &race::Race,
     scene: &render::Scene,
     size: [u32; 2],
     pixels_per_point: f64,
     settings: &OverlaySettings,
+    debrief: Option<&race::Debrief>,
 ) -> OverlayFrame {
     let view = geometry::View::new(race, scene, size, pixels_per_point);
     let wind = wind_of(race, &scene.sea);
@@ -259,7 +264,19 @@ pub fn frame(
         } else {
             match kind {
                 OverlayKind::Labels => geometry::rings(&view, settings),
-                OverlayKind::Trails => geometry::trails(&view, settings.trail_s),
+                OverlayKind::Trails => {
+                    let trails = geometry::trails(&view, settings.trail_s);
+                    let marks = debrief.map_or_else(Vec::new, |d| {
+                        manoeuvres::marks(
+                            &view,
+                            d,
+                            settings.trail_s,
+                            &settings.selected,
+                            &mut texts,
+                        )
+                    });
+                    with_marks(trails, marks)
+                }
                 OverlayKind::Course => geometry::course(&view, settings.rhumb_lines, wind),
                 OverlayKind::Lines => geometry::ahead_behind(&view, &mut texts),
                 OverlayKind::Wind => geometry::wind_arrow(&view, wind, &mut texts),
@@ -276,8 +293,9 @@ pub fn frame(
     let texts = texts
         .into_iter()
         .filter_map(|t| {
-            let (pos, _) = view.project(t.at)?;
-            view.on_screen(pos).then_some(paint::ScreenText {
+            let (at, _) = view.project(t.at)?;
+            let pos = [0, 1].map(|k| at[k] + t.offset_pt[k] * pixels_per_point);
+            view.on_screen(at).then_some(paint::ScreenText {
                 pos,
                 text: t.text,
                 colour: t.colour,
@@ -293,13 +311,26 @@ pub fn frame(
     }
 }
 
+/// The trails' layer with the manoeuvre marks drawn over it.
+fn with_marks(trails: Layer, marks: Vec<render::passes::overlay::Segment>) -> Layer {
+    match trails {
+        Layer::Draw(mut segments) => {
+            segments.extend(marks);
+            Layer::Draw(segments)
+        }
+        other if marks.is_empty() => other,
+        _ => Layer::Draw(marks),
+    }
+}
+
 /// Draws `scene` headless with the overlays of `settings` (`regatta render`): adds the
 /// overlay passes to `renderer`, feeds them, draws, and paints the labels and texts with egui
-/// over the frame, at the pixel scale [`paint::headless_pixels_per_point`] gives `size`.
+/// over the frame, at the pixel scale [`paint::headless_pixels_per_point`] gives `size`. The
+/// race comes with its debrief, where the caller worked it out (the trails' manoeuvre marks).
 pub fn render_headless(
     gpu: &render::Gpu,
     renderer: &mut render::Renderer,
-    race: &race::Race,
+    race: (&race::Race, Option<&race::Debrief>),
     scene: &render::Scene,
     size: [u32; 2],
     settings: &OverlaySettings,
@@ -322,14 +353,14 @@ pub fn render_headless_with(
     gpu: &render::Gpu,
     renderer: &mut render::Renderer,
     handle: &OverlayHandle,
-    race: &race::Race,
+    (race, debrief): (&race::Race, Option<&race::Debrief>),
     scene: &render::Scene,
     size: [u32; 2],
     settings: &OverlaySettings,
 ) -> Result<(image::RgbaImage, render::FrameReport), render::GpuError> {
     render::passes::overlay::add_overlay_passes(renderer, gpu, handle);
     let ppp = paint::headless_pixels_per_point(size);
-    let f = frame(race, scene, size, ppp, settings);
+    let f = frame(race, scene, size, ppp, settings, debrief);
     f.push(handle);
     let (img, report, _) = paint::render_with_overlays(gpu, renderer, scene, size, &f, ppp)?;
     Ok((img, report))

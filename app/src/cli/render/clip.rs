@@ -193,6 +193,7 @@ pub fn run(a: &RenderArgs, format: ClipFormat) -> CliResult {
     let look = ClipLook {
         size,
         camera,
+        debrief: crate::scene_overlay::manoeuvres::debrief_if_shown(&world.race, &overlays),
         overlays,
         wakes: !a.no_wakes,
         error_px: a.error_px,
@@ -223,6 +224,9 @@ pub struct ClipLook {
     /// A fixed camera; `None` frames the fleet at each frame's time, as the still does.
     pub camera: Option<render::Camera>,
     pub overlays: crate::scene_overlay::OverlaySettings,
+    /// The race's debrief for the trails' manoeuvre marks (worked out once, before the clip),
+    /// or `None` for trails without them.
+    pub debrief: Option<race::Debrief>,
     pub wakes: bool,
     /// Clip-map screen-space error target, pixels.
     pub error_px: f64,
@@ -264,7 +268,7 @@ pub fn write_gif(
                 &gpu,
                 &mut renderer,
                 &handle,
-                &world.race,
+                (&world.race, look.debrief.as_ref()),
                 &scene,
                 look.size,
                 &look.overlays,

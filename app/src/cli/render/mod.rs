@@ -295,8 +295,10 @@ fn finish(
     size: [u32; 2],
     overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
+    let debrief = crate::scene_overlay::manoeuvres::debrief_if_shown(race, overlays);
+    let drawn = (race, debrief.as_ref());
     let (img, report) =
-        crate::scene_overlay::render_headless(gpu, renderer, race, scene, size, overlays)
+        crate::scene_overlay::render_headless(gpu, renderer, drawn, scene, size, overlays)
             .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     note_unmet_error(&report);

@@ -139,7 +139,11 @@ impl TableFrame<'_> {
             Some(overlays) => crate::scene_overlay::render_headless(
                 gpu,
                 renderer,
-                &self.world.race,
+                (
+                    &self.world.race,
+                    crate::scene_overlay::manoeuvres::debrief_if_shown(&self.world.race, overlays)
+                        .as_ref(),
+                ),
                 &scene,
                 self.size,
                 overlays,

@@ -341,8 +341,10 @@ impl PhoneApp {
     /// their layers into `g.race`'s overlay passes; the labels are painted in the egui pass.
     fn prepare_overlays(&mut self, g: &mut Graphics, scene: &render::Scene, size: [u32; 2]) {
         let ppp = f64::from(self.touch.pixels_per_point);
+        let race = &self.world.race;
+        let debrief = self.overlays.debrief(&mut self.panels.debrief, race);
         self.overlays
-            .prepare(&g.gpu, &mut g.race, &self.world.race, scene, size, ppp);
+            .prepare(&g.gpu, &mut g.race, (race, debrief), scene, size, ppp);
     }
 
     fn draw_pool(
@@ -385,6 +387,9 @@ impl PhoneApp {
         let banner_button = crate::overlay::banner::button(self.ar.session);
         let raw = self.touch.take_raw_input(size, self.now);
         let recording = self.ar.recorder.is_some();
+        // "Share clip" in the race scene; off while a clip is drawn.
+        let share = (self.scene == SceneChoice::Race).then(|| !self.clip_share.busy());
+        let mut share_pressed = false;
         let mut choice = self.scene;
         let mut record = false;
         let mut free = self.ui_free;
@@ -418,11 +423,12 @@ impl PhoneApp {
                 let laid = phone_bar(
                     ui.ctx(),
                     &mut choice,
-                    recording,
+                    (recording, share),
                     message.as_ref(),
                     banner_button,
                 );
                 record |= laid.record_toggled;
+                share_pressed |= laid.share_pressed;
                 bar = Some(laid);
                 // The scene's part of the screen: what the panels left, else what the bar left.
                 free = scene_rect.unwrap_or_else(|| ui.available_rect_before_wrap());
@@ -440,6 +446,9 @@ impl PhoneApp {
         }
         if record {
             self.record_button();
+        }
+        if share_pressed {
+            self.share_clip();
         }
         self.races_panel_opened();
         self.races_request(open);

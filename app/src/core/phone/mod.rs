@@ -8,6 +8,7 @@
 //! surface is dropped before the event returns. In the background nothing is drawn and time
 //! stops. A lost device is rebuilt on OpenGL ES on the next frame.
 
+mod clip_share;
 mod draw;
 mod input;
 mod races;
@@ -29,6 +30,7 @@ use crate::overlay::banner::{ArStatus, Tone, banner};
 use crate::overlay::touch::{Touch, TouchInput};
 use crate::pool_play::PoolPlay;
 
+pub use clip_share::{ClipShare, PhoneClip, ShareState, hand_off};
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
 pub use races::{RACES_DIR_ENV, host_races_dir};
@@ -149,6 +151,12 @@ pub struct PhoneApp {
     /// What the last shared file did (opened, boats added, or why not), shown on the banner
     /// until the app time given (`shared.rs`).
     notice: Option<(String, Tone, f64)>,
+    /// "Share clip": the clip's worker and what it says (`clip_share.rs`).
+    pub clip_share: ClipShare,
+    /// `Build.VERSION.SDK_INT` on Android (the adapter sets it); `None` on the host.
+    pub android_sdk: Option<u32>,
+    /// What the button's clip covers ([`PhoneClip::BUTTON`]; tests draw smaller ones).
+    pub clip_request: PhoneClip,
 }
 
 impl PhoneApp {
@@ -192,6 +200,9 @@ impl PhoneApp {
             races: Default::default(),
             tiers: tiers::phone_tiers(),
             notice: None,
+            clip_share: ClipShare::default(),
+            android_sdk: None,
+            clip_request: PhoneClip::BUTTON,
         }
     }
 
@@ -338,6 +349,12 @@ impl PhoneApp {
 
     /// The banner's text and tone now.
     pub fn banner(&self) -> Option<(String, Tone)> {
+        // A clip being drawn says how far it is.
+        if self.clip_share.busy()
+            && let Some(line) = self.clip_share.line()
+        {
+            return Some((line, Tone::Hint));
+        }
         // A shared file's outcome, for a few seconds, before the session's message.
         if let Some((text, tone, until)) = &self.notice
             && self.now < *until
@@ -435,5 +452,45 @@ impl PhoneApp {
     /// Starts or stops recording (the bar's button).
     pub fn record_button(&mut self) {
         self.toggle_recording();
+    }
+
+    /// The "Share clip" button: the last [`PhoneApp::clip_request`] seconds of race time from where
+    /// the phone looks now (the AR camera once the course is placed, else the fleet framed),
+    /// drawn into the app's files folder on a worker thread; [`PhoneApp::poll_share`] hands it
+    /// to Android when written.
+    pub fn share_clip(&mut self) {
+        let t = self.race_time();
+        let camera = self
+            .course
+            .zip(self.ar.view())
+            .map(|(p, (view, _))| table::display_camera(&p, view));
+        let folder = self.data_dir.clone().unwrap_or_else(std::env::temp_dir);
+        let sdk = self.android_sdk.unwrap_or(u32::MAX);
+        let debrief = self
+            .overlays
+            .debrief(&mut self.panels.debrief, &self.world.race);
+        let clip = self.clip_request;
+        self.clip_share
+            .start((&self.world, debrief), camera, t, &folder, clip, sdk);
+        self.notice_share();
+    }
+
+    /// Each frame, from the adapter that holds the Java calls: a written clip goes into the
+    /// media store and to the share sheet; its outcome shows on the banner for a while.
+    pub fn poll_share(&mut self, jni: &dyn ar::arcore::ffi::ShareJni) {
+        self.clip_share.poll(jni);
+        self.notice_share();
+    }
+
+    /// A finished share's line onto the banner (a few seconds), and the share back to idle.
+    fn notice_share(&mut self) {
+        let tone = match self.clip_share.state() {
+            ShareState::Shared(_) => Tone::Hint,
+            ShareState::Failed(_) => Tone::Warning,
+            _ => return,
+        };
+        if let Some(line) = self.clip_share.line() {
+            self.notice = Some((line, tone, self.now + shared::NOTICE_S));
+        }
     }
 }

@@ -10,7 +10,9 @@
 //!   before a resume ([`CameraBudget`]);
 //! - [`jni`]: the Java calls behind one trait ([`Jni`]), with the host's scripted fake;
 //! - [`intent`]: the file an "Open with" or "Share" intent carries, read through the
-//!   ContentResolver ([`IntentJni`]; the scripted fake plays the content provider).
+//!   ContentResolver ([`IntentJni`]; the scripted fake plays the content provider);
+//! - [`share`]: a file into the media store and to the share sheet ([`ShareJni`]; the
+//!   scripted fake plays the media store and records the chooser).
 //!
 //! `session` imports `frame`, `camera_config` and `api`; `frame` and `camera_config` import
 //! only `api` (no module cycle).
@@ -22,9 +24,11 @@ pub mod intent;
 mod intent_file;
 pub mod jni;
 pub mod session;
+pub mod share;
 
 pub use camera_config::{CameraBudget, CameraConfigOutcome};
 pub use frame::{DisplayCamera, FAR_M, NEAR_M};
 pub use intent::{IntentFile, IntentJni};
 pub use jni::{JavaObject, JavaScript, Jni, ScriptedJni};
 pub use session::{ARCORE_LIBRARY, ArCore, LIBRARY_ENV, Told, library_path};
+pub use share::{MediaItem, ShareJni};
