@@ -1,6 +1,8 @@
 // The boats pass: instanced procedural hulls, sails and buoys, each placed by a model matrix
 // in local metres that the CPU built from the race (position, heading) and the sea (float
-// height, pitch, roll). Phong-style lighting under the sun. Appended to common.wgsl.
+// height, pitch, roll). In the open sea, Phong-style lighting under the sun and sky; over the
+// camera image (frame.light.w = 1), the room's light that the water takes (view_light.rs's
+// boat_in_room, its f64 reference). Appended to common.wgsl.
 
 struct MeshVertex {
     @location(0) position: vec3<f32>,
@@ -48,6 +50,11 @@ fn fs_main(in: BoatOut, @builtin(front_facing) front: bool) -> @location(0) vec4
     // Sails are single sheets: light both faces.
     let n = select(-in.normal, in.normal, front);
     let l = frame.sun.xyz;
+    if frame.light.w > 0.5 {
+        // The room's diffuse radiance, as the water takes it: hemisphere plus main light.
+        let shade = (1.0 - ROOM_DIRECTIONAL_SHARE) * 0.5 * (1.0 + n.y) + ROOM_DIRECTIONAL_SHARE * max(dot(n, l), 0.0);
+        return vec4<f32>(in.colour * frame.light.rgb * shade, 1.0);
+    }
     let v = normalize(frame.eye.xyz - in.world);
     let diffuse = max(dot(n, l), 0.0);
     let h = normalize(l + v);

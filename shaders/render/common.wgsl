@@ -37,6 +37,11 @@ struct Frame {
     // that level): bit i of the 64-bit mask (lo, hi) = level_masks[l / 2][2 (l % 2) + 0/1].
     // Level l + 1's mask is always a subset of level l's.
     level_masks: array<vec4<u32>, 8>,
+    // The diffuse radiance the view's water takes (rgb); w = 0: the open sea under the sun and
+    // sky, 1: a room's light over the camera image (the boats take it too). view_light.rs.
+    light: vec4<f32>,
+    // R∞ of the chosen water type (rgb) and the open sea's exposure (w).
+    water_body: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -17,3 +17,10 @@ fn water_transmitted(table: vec3<f32>, room: vec3<f32>, path_m: f32, water_a: ve
     let albedo = rho * td * td + deep * (vec3<f32>(1.0) - td * td);
     return seen * WATER_DIFFUSE_ENTRY / (WATER_N2 * (vec3<f32>(1.0) - albedo * WATER_INTERNAL_REFLECTANCE));
 }
+
+// Infinitely deep water under diffuse light `room` (the open sea: no bottom the camera sees):
+// water_transmitted with no table (T_d = T_v = 0), f64 reference water_look::deep_body.
+// `deep` = (R∞.rgb, unused).
+fn water_deep_body(room: vec3<f32>, deep: vec4<f32>) -> vec3<f32> {
+    return water_transmitted(vec3<f32>(0.0), room, 0.0, vec4<f32>(0.0), vec4<f32>(0.0), deep);
+}

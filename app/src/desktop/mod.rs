@@ -283,6 +283,8 @@ impl App {
             let handle = self.feed.as_ref().and_then(|f| f.effects_handle()).cloned();
             let handle = handle.as_ref();
             o.apply_effects(&mut st.renderer, handle);
+            // The open sea's body colour follows the Scene panel's water type.
+            st.renderer.set_water_look(o.water_look());
             if let Some(feed) = self.feed.as_mut() {
                 let look = o.water_look();
                 if feed.water() != look {

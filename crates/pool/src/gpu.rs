@@ -247,6 +247,9 @@ impl PoolFrame {
             ],
             counts: [waves.len() as u32, 0, 0, 0],
             level_masks: [[0; 4]; 8],
+            // The pool draws no boats and no open-sea body: the renderer's defaults.
+            light: [1.0, 1.0, 1.0, 0.0],
+            water_body: [0.0; 4],
         };
         PoolFrame {
             t,

@@ -30,6 +30,13 @@ pub struct FrameUniform {
     pub viewport: [f32; 4],
     pub counts: [u32; 4],
     pub level_masks: [[u32; 4]; 8],
+    /// The diffuse radiance the view's water takes, per band (rgb); w = 0: the open sea under
+    /// the sun and sky (`view_light::open_sea_light`), 1: a room's light (the table, over the
+    /// camera image), which the boats take too.
+    pub light: [f32; 4],
+    /// R∞ of the chosen water type per band (rgb) and the open sea's exposure (w)
+    /// (`view_light::water_body_uniform`).
+    pub water_body: [f32; 4],
 }
 
 /// Everything the passes of one frame share, computed once on the CPU.
@@ -127,6 +134,13 @@ impl<'a> FrameContext<'a> {
             ],
             counts: [waves.len() as u32, levels.len() as u32, 0, 0],
             level_masks,
+            light: {
+                let l = crate::view_light::open_sea_light(scene.sun, 1.0);
+                [l[0] as f32, l[1] as f32, l[2] as f32, 0.0]
+            },
+            water_body: crate::view_light::water_body_uniform(
+                &crate::water_look::WaterLook::default(),
+            ),
         };
         FrameContext {
             scene,
