@@ -51,9 +51,7 @@ fn fs_main(in: BoatOut, @builtin(front_facing) front: bool) -> @location(0) vec4
     let n = select(-in.normal, in.normal, front);
     let l = frame.sun.xyz;
     if frame.light.w > 0.5 {
-        // The room's diffuse radiance, as the water takes it: hemisphere plus main light.
-        let shade = (1.0 - ROOM_DIRECTIONAL_SHARE) * 0.5 * (1.0 + n.y) + ROOM_DIRECTIONAL_SHARE * max(dot(n, l), 0.0);
-        return vec4<f32>(in.colour * frame.light.rgb * shade, 1.0);
+        return vec4<f32>(boat_in_room(in.colour, n, l, frame.light.rgb), 1.0);
     }
     let v = normalize(frame.eye.xyz - in.world);
     let diffuse = max(dot(n, l), 0.0);
@@ -61,4 +59,11 @@ fn fs_main(in: BoatOut, @builtin(front_facing) front: bool) -> @location(0) vec4
     let specular = pow(max(dot(n, h), 0.0), 32.0) * 0.3;
     let ambient = 0.35 * sky_colour(normalize(vec3<f32>(n.x, abs(n.y) + 0.2, n.z)));
     return vec4<f32>(in.colour * (ambient + 0.8 * diffuse * frame.sun.w) + specular * frame.sun.w, 1.0);
+}
+
+// A boat's colour in a room of diffuse radiance `room` (what the water over the camera image
+// takes), `l` the room's main light: hemisphere plus main light (view_light::boat_in_room).
+fn boat_in_room(albedo: vec3<f32>, n: vec3<f32>, l: vec3<f32>, room: vec3<f32>) -> vec3<f32> {
+    let shade = (1.0 - ROOM_DIRECTIONAL_SHARE) * 0.5 * (1.0 + n.y) + ROOM_DIRECTIONAL_SHARE * max(dot(n, l), 0.0);
+    return albedo * room * shade;
 }
