@@ -1,7 +1,7 @@
 // The boats pass: instanced procedural hulls, sails and buoys, each placed by a model matrix
 // in local metres that the CPU built from the race (position, heading) and the sea (float
 // height, pitch, roll). In the open sea, Phong-style lighting under the sun and sky; over the
-// camera image (frame.light.w = 1), the room's light that the water takes (view_light.rs's
+// camera image (frame.room_light.w = 1), the room's light that the water takes (view_light.rs's
 // boat_in_room, its f64 reference). Appended to common.wgsl.
 
 struct MeshVertex {
@@ -50,8 +50,8 @@ fn fs_main(in: BoatOut, @builtin(front_facing) front: bool) -> @location(0) vec4
     // Sails are single sheets: light both faces.
     let n = select(-in.normal, in.normal, front);
     let l = frame.sun.xyz;
-    if frame.light.w > 0.5 {
-        return vec4<f32>(boat_in_room(in.colour, n, l, frame.light.rgb), 1.0);
+    if frame.room_light.w > 0.5 {
+        return vec4<f32>(boat_in_room(in.colour, n, l, frame.room_light.rgb), 1.0);
     }
     let v = normalize(frame.eye.xyz - in.world);
     let diffuse = max(dot(n, l), 0.0);

@@ -37,9 +37,10 @@ struct Frame {
     // that level): bit i of the 64-bit mask (lo, hi) = level_masks[l / 2][2 (l % 2) + 0/1].
     // Level l + 1's mask is always a subset of level l's.
     level_masks: array<vec4<u32>, 8>,
-    // The diffuse radiance the view's water takes (rgb); w = 0: the open sea under the sun and
-    // sky, 1: a room's light over the camera image (the boats take it too). view_light.rs.
+    // The sun's and sky's diffuse radiance that the open sea's body takes (rgb). view_light.rs.
     light: vec4<f32>,
+    // Over the camera image (w = 1): the room's radiance the AR water takes, the boats' light.
+    room_light: vec4<f32>,
     // R∞ of the chosen water type (rgb) and the open sea's exposure (w).
     water_body: vec4<f32>,
 }

@@ -431,7 +431,7 @@ impl Renderer {
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
         frame.uniform.water_body = crate::view_light::water_body_uniform(&self.water_look);
         if let Some(l) = self.room_light {
-            frame.uniform.light = [l[0] as f32, l[1] as f32, l[2] as f32, 1.0];
+            frame.uniform.room_light = [l[0] as f32, l[1] as f32, l[2] as f32, 1.0];
         }
         if let Some(w) = &self.wake {
             gather_wakes(gpu, w, (self.wake_budget, self.wake_sources), &mut frame);
