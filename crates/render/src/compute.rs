@@ -289,13 +289,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     Ok(out.iter().map(|o| [o[0], o[1], o[2]]).collect())
 }
 
-/// The boats' room lighting (`boats.wgsl`'s `boat_in_room`) on the GPU, per item: (albedo,
-/// unit normal, unit direction to the main light, room radiance). The parity test's GPU side
+/// One case of [`gpu_boat_in_room`]: albedo, unit normal, unit direction to the room's main
+/// light, room radiance.
+pub type BoatLightCase = ([f32; 3], [f32; 3], [f32; 3], [f32; 3]);
+
+/// The boats' room lighting (`boats.wgsl`'s `boat_in_room`) on the GPU, per item
+/// ([`BoatLightCase`]). The parity test's GPU side
 /// of `view_light::boat_in_room`.
-pub fn gpu_boat_in_room(
-    gpu: &Gpu,
-    items: &[([f32; 3], [f32; 3], [f32; 3], [f32; 3])],
-) -> Result<Vec<[f32; 3]>, GpuError> {
+pub fn gpu_boat_in_room(gpu: &Gpu, items: &[BoatLightCase]) -> Result<Vec<[f32; 3]>, GpuError> {
     const ENTRY: &str = "
 @group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 4>>;
 @group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;

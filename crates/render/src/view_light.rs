@@ -56,7 +56,7 @@ fn hand_picked_blue(sun: DVec3) -> f64 {
 /// body's blue to the physical default's (oceanic IB under the default sun) in blue. The
 /// renderer's sky is a display's (its zenith is 0.62 in blue where a real clear sky is some
 /// 20–50 times the deep sea's water-leaving radiance), so the physical body, in the sky's units,
-/// is about 10× darker than the picture was tuned to; the factor keeps the default sea's
+/// is about 13× darker than the picture was tuned to; the factor keeps the default sea's
 /// brightness and lets the type set its colour.
 pub fn open_sea_exposure() -> f64 {
     let sun = crate::Scene::default_sun();
@@ -234,6 +234,7 @@ mod tests {
         assert!((200.0..240.0).contains(&hue), "{hue} {body:?}");
         // The exposure is one factor, order 10 (module docs).
         let k = open_sea_exposure();
+        eprintln!("open sea: exposure {k:.2}, default body {body:?}");
         assert!(k > 3.0 && k < 30.0, "{k}");
     }
 
