@@ -1,6 +1,8 @@
 // The boats pass: instanced procedural hulls, sails and buoys, each placed by a model matrix
 // in local metres that the CPU built from the race (position, heading) and the sea (float
-// height, pitch, roll). Phong-style lighting under the sun. Appended to common.wgsl.
+// height, pitch, roll). In the open sea, Phong-style lighting under the sun and sky; over the
+// camera image (frame.room_light.w = 1), the room's light that the water takes (view_light.rs's
+// boat_in_room, its f64 reference). Appended to common.wgsl.
 
 struct MeshVertex {
     @location(0) position: vec3<f32>,
@@ -48,10 +50,20 @@ fn fs_main(in: BoatOut, @builtin(front_facing) front: bool) -> @location(0) vec4
     // Sails are single sheets: light both faces.
     let n = select(-in.normal, in.normal, front);
     let l = frame.sun.xyz;
+    if frame.room_light.w > 0.5 {
+        return vec4<f32>(boat_in_room(in.colour, n, l, frame.room_light.rgb), 1.0);
+    }
     let v = normalize(frame.eye.xyz - in.world);
     let diffuse = max(dot(n, l), 0.0);
     let h = normalize(l + v);
     let specular = pow(max(dot(n, h), 0.0), 32.0) * 0.3;
     let ambient = 0.35 * sky_colour(normalize(vec3<f32>(n.x, abs(n.y) + 0.2, n.z)));
     return vec4<f32>(in.colour * (ambient + 0.8 * diffuse * frame.sun.w) + specular * frame.sun.w, 1.0);
+}
+
+// A boat's colour in a room of diffuse radiance `room` (what the water over the camera image
+// takes), `l` the room's main light: hemisphere plus main light (view_light::boat_in_room).
+fn boat_in_room(albedo: vec3<f32>, n: vec3<f32>, l: vec3<f32>, room: vec3<f32>) -> vec3<f32> {
+    let shade = (1.0 - ROOM_DIRECTIONAL_SHARE) * 0.5 * (1.0 + n.y) + ROOM_DIRECTIONAL_SHARE * max(dot(n, l), 0.0);
+    return albedo * room * shade;
 }

@@ -43,6 +43,12 @@ struct Frame {
     // that level): bit i of the 64-bit mask (lo, hi) = level_masks[l / 2][2 (l % 2) + 0/1].
     // Level l + 1's mask is always a subset of level l's.
     level_masks: array<vec4<u32>, 8>,
+    // The sun's and sky's diffuse radiance that the open sea's body takes (rgb). view_light.rs.
+    light: vec4<f32>,
+    // Over the camera image (w = 1): the room's radiance the AR water takes, the boats' light.
+    room_light: vec4<f32>,
+    // R∞ of the chosen water type (rgb) and the open sea's exposure (w).
+    water_body: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -15,9 +15,6 @@ struct VertexOut {
     @location(2) wake: vec3<f32>,
 }
 
-// Colour of light scattered up out of the water body (what refraction shows in open water).
-const DEEP_WATER: vec3<f32> = vec3<f32>(0.004, 0.035, 0.07);
-const SHALLOW_SCATTER: vec3<f32> = vec3<f32>(0.02, 0.16, 0.17);
 const FOAM: vec3<f32> = vec3<f32>(0.85, 0.88, 0.9);
 
 @fragment
@@ -38,9 +35,10 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let cos_i = max(dot(n, to_eye), 0.0);
     let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);
     let reflected = sky_colour_rough(reflect_dir(-to_eye, n), sf.slope_variance);
-    // Light from the water body: more scatter where the sun lights a facet facing the eye.
+    // Light from the water body: infinitely deep water of the chosen type (water_look.wgsl)
+    // under the sky's and sun's diffuse light (frame.light), times the open sea's exposure.
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);
-    let body = DEEP_WATER + SHALLOW_SCATTER * (0.25 + 0.75 * sun_in) * (1.0 - cos_i * 0.5);
+    let body = water_deep_body(frame.light.rgb, frame.water_body) * frame.water_body.w;
     var colour = r * reflected + (1.0 - r) * body;
     // Foam where the horizontal map compresses, with the wake's: ocean's rule (common.wgsl).
     let foam = foam_coverage(foam_from_jacobian(sf.jacobian), wfoam);

@@ -27,3 +27,10 @@ fn water_transmitted(table: vec3<f32>, room: vec3<f32>, path_m: f32, w: WaterOpt
     let seen = table * t + room * w.deep.xyz * (vec3<f32>(1.0) - t);
     return seen / (w.denominator.xyz - w.albedo_weight.xyz * rho);
 }
+
+// Infinitely deep water under diffuse light `room` (the open sea: no bottom the camera sees):
+// water_transmitted with no table (T_d = T_v = 0), f64 reference water_look::deep_body.
+// `deep` = (R∞.rgb, unused).
+fn water_deep_body(room: vec3<f32>, deep: vec4<f32>) -> vec3<f32> {
+    return water_transmitted(vec3<f32>(0.0), room, 0.0, vec4<f32>(0.0), vec4<f32>(0.0), deep);
+}

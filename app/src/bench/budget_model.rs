@@ -133,7 +133,11 @@ pub(crate) fn pass_shaders(
     Some(match name {
         "sky" => (shader::source(&[shader::SKY]), "vs_main", "fs_main"),
         "water" => (
-            shader::source(&[shader::WATER_DISPLACED, shader::WATER]),
+            shader::source(&[
+                shader::WATER_DISPLACED,
+                shader::WATER,
+                render::water_look::WATER_LOOK_WGSL,
+            ]),
             "vs_main",
             "fs_main",
         ),

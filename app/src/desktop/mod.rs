@@ -90,11 +90,13 @@ pub fn run(a: RunArgs) -> CliResult {
     let race = load_race(&a.race)?;
     // A bad feed is refused before a window opens (file and line named).
     let mut feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
-    if let Some(f) = feed.as_mut() {
-        f.set_water(a.water.look(f.water())?);
-    } else {
-        a.water.look(render::water_look::WaterLook::default())?;
-    }
+    let water = match feed.as_mut() {
+        Some(f) => {
+            f.set_water(a.water.look(f.water())?);
+            f.water()
+        }
+        None => a.water.look(render::water_look::WaterLook::default())?,
+    };
     let pinned = a
         .tier
         .as_deref()
@@ -119,6 +121,7 @@ pub fn run(a: RunArgs) -> CliResult {
         },
         pool,
         feed,
+        water,
         world: RaceWorld::new(race, sea),
         state: None,
         clock,
@@ -158,6 +161,9 @@ struct App {
     pool: Option<pool::PoolMode>,
     /// `Some` with `--replay`: the feed's camera and image replace the orbit and the sky.
     feed: Option<feed::FeedView>,
+    /// The water the command line chose (the Scene panel starts there; its type colours the
+    /// open sea too).
+    water: render::water_look::WaterLook,
     world: RaceWorld,
     state: Option<State>,
     orbit: OrbitCamera,
@@ -283,6 +289,8 @@ impl App {
             let handle = self.feed.as_ref().and_then(|f| f.effects_handle()).cloned();
             let handle = handle.as_ref();
             o.apply_effects(&mut st.renderer, handle);
+            // The open sea's body colour follows the Scene panel's water type.
+            st.renderer.set_water_look(o.water_look());
             if let Some(feed) = self.feed.as_mut() {
                 let look = o.water_look();
                 if feed.water() != look {
@@ -395,8 +403,9 @@ impl ApplicationHandler for App {
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
                 let wake = gfx::wake_or_none(&self.world);
-                let renderer =
+                let mut renderer =
                     gfx::race_renderer(&gpu, surface.config.format, wake, Profile::Desktop);
+                renderer.set_water_look(self.water);
                 // The tier is applied before the first frame is drawn (`draw`).
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {
@@ -411,11 +420,9 @@ impl ApplicationHandler for App {
                         fx,
                     );
                     // The sliders start at the water the command line chose.
-                    if let Some(feed) = &self.feed {
-                        o.panels.settings.water_type = feed.water().water_type.name().to_string();
-                        o.panels.settings.water_depth_m = feed.water().depth_m;
-                        o.panels.settings.turbidity = feed.water().turbidity_ntu;
-                    }
+                    o.panels.settings.water_type = self.water.water_type.name().to_string();
+                    o.panels.settings.water_depth_m = self.water.depth_m;
+                    o.panels.settings.turbidity = self.water.turbidity_ntu;
                     o
                 });
                 let mut target = gfx::Window::default();

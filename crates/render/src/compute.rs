@@ -281,3 +281,68 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let out: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
     Ok(out.iter().map(|o| [o[0], o[1], o[2]]).collect())
 }
+
+/// The open sea's water body (`water_look.wgsl`'s `water_deep_body`) on the GPU, per item:
+/// (diffuse radiance per band, the frame uniform's `water_body`: R∞ and the exposure). The
+/// parity test's GPU side of `water_look::deep_body`.
+pub fn gpu_water_deep_body(
+    gpu: &Gpu,
+    items: &[([f32; 3], [f32; 4])],
+) -> Result<Vec<[f32; 3]>, GpuError> {
+    const ENTRY: &str = "
+@group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 2>>;
+@group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&input) { return; }
+    output[i] = vec4<f32>(water_deep_body(input[i][0].xyz, input[i][1]), 0.0);
+}";
+    if items.is_empty() {
+        return Ok(Vec::new());
+    }
+    let inputs: Vec<[[f32; 4]; 2]> = items
+        .iter()
+        .map(|(l, w)| [[l[0], l[1], l[2], 0.0], *w])
+        .collect();
+    let src = format!(
+        "{}{}\n{ENTRY}",
+        shader::prelude(),
+        crate::water_look::WATER_LOOK_WGSL
+    );
+    let bytes = run_kernel(gpu, "water deep body", &src, &inputs, 16)?;
+    let out: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+    Ok(out.iter().map(|o| [o[0], o[1], o[2]]).collect())
+}
+
+/// One case of [`gpu_boat_in_room`]: albedo, unit normal, unit direction to the room's main
+/// light, room radiance.
+pub type BoatLightCase = ([f32; 3], [f32; 3], [f32; 3], [f32; 3]);
+
+/// The boats' room lighting (`boats.wgsl`'s `boat_in_room`) on the GPU, per item
+/// ([`BoatLightCase`]). The parity test's GPU side
+/// of `view_light::boat_in_room`.
+pub fn gpu_boat_in_room(gpu: &Gpu, items: &[BoatLightCase]) -> Result<Vec<[f32; 3]>, GpuError> {
+    const ENTRY: &str = "
+@group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 4>>;
+@group(0) @binding(11) var<storage, read_write> output: array<vec4<f32>>;
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&input) { return; }
+    let v = input[i];
+    output[i] = vec4<f32>(boat_in_room(v[0].xyz, v[1].xyz, v[2].xyz, v[3].xyz), 0.0);
+}";
+    if items.is_empty() {
+        return Ok(Vec::new());
+    }
+    let v4 = |a: [f32; 3]| [a[0], a[1], a[2], 0.0];
+    let inputs: Vec<[[f32; 4]; 4]> = items
+        .iter()
+        .map(|(c, n, l, r)| [v4(*c), v4(*n), v4(*l), v4(*r)])
+        .collect();
+    let src = format!("{}\n{ENTRY}", shader::source(&[shader::BOATS]));
+    let bytes = run_kernel(gpu, "boat in room", &src, &inputs, 16)?;
+    let out: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
+    Ok(out.iter().map(|o| [o[0], o[1], o[2]]).collect())
+}

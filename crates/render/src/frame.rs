@@ -30,6 +30,15 @@ pub struct FrameUniform {
     pub viewport: [f32; 4],
     pub counts: [u32; 4],
     pub level_masks: [[u32; 4]; 8],
+    /// The diffuse radiance of the sun and sky that the open sea's body takes, per band (rgb;
+    /// `view_light::open_sea_light`), w unused.
+    pub light: [f32; 4],
+    /// Over the camera image, the room's diffuse radiance that the AR water takes (rgb), which
+    /// the boats take too; w = 1 then, 0 in the open sea (the boats keep the sun and sky).
+    pub room_light: [f32; 4],
+    /// R∞ of the chosen water type per band (rgb) and the open sea's exposure (w)
+    /// (`view_light::water_body_uniform`).
+    pub water_body: [f32; 4],
 }
 
 /// Everything the passes of one frame share, computed once on the CPU.
@@ -136,6 +145,14 @@ impl<'a> FrameContext<'a> {
             ],
             counts: [waves.len() as u32, levels.len() as u32, 0, 0],
             level_masks,
+            light: {
+                let l = crate::view_light::open_sea_light(scene.sun, 1.0);
+                [l[0] as f32, l[1] as f32, l[2] as f32, 0.0]
+            },
+            room_light: [0.0; 4],
+            water_body: crate::view_light::water_body_uniform(
+                &crate::water_look::WaterLook::default(),
+            ),
         };
         FrameContext {
             scene,

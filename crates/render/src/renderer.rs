@@ -176,6 +176,11 @@ pub struct Renderer {
     wake_budget: u64,
     /// Most wake sources a frame draws (a quality tier's budget; default unlimited).
     wake_sources: usize,
+    /// The real sea's water (its type colours the open sea's body).
+    water_look: crate::water_look::WaterLook,
+    /// The room's diffuse radiance over the camera image (the AR water's and the boats'), or
+    /// none: the open sea under the sun and sky.
+    room_light: Option<[f64; 3]>,
 }
 
 impl Renderer {
@@ -214,6 +219,8 @@ impl Renderer {
             upscale: None,
             wake_budget: crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
             wake_sources: usize::MAX,
+            water_look: Default::default(),
+            room_light: None,
         }
     }
 
@@ -245,6 +252,22 @@ impl Renderer {
     /// visible are left out, with the error bound in the frame report (`wake_bins::fit`).
     pub fn set_wake_source_budget(&mut self, sources: usize) {
         self.wake_sources = sources;
+        self.invalidate();
+    }
+
+    /// The real sea's water: its type sets the open sea's body colour (`view_light`).
+    /// Unchanged, nothing happens (callers may hand it every frame).
+    pub fn set_water_look(&mut self, look: crate::water_look::WaterLook) {
+        if self.water_look != look {
+            self.water_look = look;
+            self.invalidate();
+        }
+    }
+
+    /// The room's diffuse radiance per band that the water over the camera image takes, so the
+    /// boats take it too (`view_light::boat_in_room`); none: the open sea's sun and sky.
+    pub fn set_room_light(&mut self, radiance: Option<[f64; 3]>) {
+        self.room_light = radiance;
         self.invalidate();
     }
 
@@ -406,6 +429,10 @@ impl Renderer {
         }
         let scene = raised.as_ref().map_or(scene, |(s, _)| s);
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
+        frame.uniform.water_body = crate::view_light::water_body_uniform(&self.water_look);
+        if let Some(l) = self.room_light {
+            frame.uniform.room_light = [l[0] as f32, l[1] as f32, l[2] as f32, 1.0];
+        }
         if let Some(w) = &self.wake {
             gather_wakes(gpu, w, (self.wake_budget, self.wake_sources), &mut frame);
         }

@@ -92,6 +92,7 @@ pub fn shared_consts() -> Vec<(&'static str, WgslValue)> {
     .chain(
         crate::water_look::wgsl_values()
             .into_iter()
+            .chain(crate::view_light::wgsl_values())
             .map(|(name, v)| (name, WgslValue::F32(v))),
     )
     .collect()

@@ -239,6 +239,19 @@ impl WaterLook {
     }
 }
 
+/// The light that leaves infinitely deep water of `look`'s type under diffuse light of
+/// radiance `room` per band, before the view direction's 1 − R(θ): [`transmitted_on`] with no
+/// bottom (T_d = T_v = 0), i.e. (1 − R̄) R∞ L / (n² (1 − R∞ r̄_int)). The open sea's water body
+/// (`shaders/render/water.wgsl` calls the same WGSL, `water_deep_body`).
+pub fn deep_body(room: [f64; 3], look: &WaterLook) -> [f64; 3] {
+    let w = look.on_table(1.0);
+    let no_bottom = TableWater {
+        depth_m: f64::INFINITY,
+        ..w
+    };
+    transmitted_on([0.0; 3], room, f64::INFINITY, &no_bottom)
+}
+
 /// The water's constants as WGSL needs them (name, value), for the generated prelude
 /// (`crate::shader::shared_consts`): the diffuse entry share, the mean internal reflectance
 /// and n².

@@ -269,6 +269,8 @@ pub fn run(a: RenderArgs) -> CliResult {
     }
     let fx = effects::passes::ArConfig::default();
     let water = a.water.look(fx.water)?;
+    // The open sea's body takes the water type's colour (`render::view_light`).
+    renderer.set_water_look(a.water.look(render::water_look::WaterLook::default())?);
     if let Some(effects) = effects {
         let h = effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
         // The synthetic table stays where its image shows it; the water's optics are asked.

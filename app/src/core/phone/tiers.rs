@@ -54,10 +54,14 @@ impl PhoneApp {
         let Some(g) = self.graphics.as_mut() else {
             return;
         };
+        let look = crate::panels::water_look(&self.panels.settings);
+        // The open (orbit) sea's body colour follows the water type too.
+        if look.check().is_ok() {
+            g.race.set_water_look(look);
+        }
         let Some(fx) = g.race_effects.as_ref() else {
             return;
         };
-        let look = crate::panels::water_look(&self.panels.settings);
         if g.water != Some(look) && look.check().is_ok() {
             fx.set_water(look, crate::core::table::table_depth());
             g.water = Some(look);

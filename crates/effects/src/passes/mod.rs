@@ -149,6 +149,10 @@ pub struct OffscreenSizes {
     pub caustic_map_cells: Option<u32>,
 }
 
+/// The room's diffuse radiance the AR water takes, per band: the camera's white (the
+/// `vec3(1.0)` room of `ar_water.wgsl`, which makes the table's camera colour its albedo).
+pub const AR_ROOM_RADIANCE: [f64; 3] = [1.0; 3];
+
 /// Add the background pass for `cfg` over `camera`'s frame to `renderer` and put the AR
 /// water pass in the water pass's place. Effects that are not in `cfg.effects` never run (the
 /// passes report "not requested"). Later frames go in through the returned handle
@@ -160,6 +164,7 @@ pub fn add_effect_passes(
     camera: CameraFrame,
 ) -> EffectsHandle {
     let targets = renderer.targets;
+    let feed = cfg.effects.contains(crate::Effect::Background);
     let (image, camera) = camera.split();
     let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera, &image)));
     let handle = EffectsHandle {
@@ -169,6 +174,9 @@ pub fn add_effect_passes(
     let background = BackgroundPass::new(gpu, &frame_layout, targets, shared.clone());
     let water = ArWaterPass::new(gpu, frame_layout, targets, shared);
     renderer.add_pass(Box::new(background));
+    // Over the camera image the AR water takes the room's radiance as the camera's white
+    // (`ar_water.wgsl`'s room): the boats take the same light. Without it, sun and sky.
+    renderer.set_room_light(feed.then_some(AR_ROOM_RADIANCE));
     if !renderer.replace_pass("water", Box::new(water)) {
         log::warn!("no water pass to shade with the effects: the renderer has none");
     }

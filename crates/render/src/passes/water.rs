@@ -110,7 +110,11 @@ impl WaterPass {
             }
         });
         let (stage, buffer) = vertex_stage(wakes);
-        let module = shader::module(device, "water", &[stage, shader::WATER]);
+        let module = shader::module(
+            device,
+            "water",
+            &[stage, shader::WATER, crate::water_look::WATER_LOOK_WGSL],
+        );
         let spec = PipelineSpec {
             label: "water",
             module: &module,

@@ -1,0 +1,123 @@
+//! The open sea's colour follows the water type (docs/water-look.md, "The open sea's colour"):
+//! `regatta render` (the orbit view, no `--replay`) with `--water-type pure`, `IB` and `5C`,
+//! read back as PNGs. The water body's pixels are those where the three pictures differ (the
+//! sky, the boats and the foam do not change with the type). Over them the mean colour's hue
+//! moves from blue (pure, oceanic IB) to blue-green (coastal 5), as R∞'s blue/green ratio
+//! falls. On a GPU (lavapipe in CI); skipped without one unless REGATTA_REQUIRE_GPU=true.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::regatta;
+
+/// Hue of the water's mean colour per type, degrees (blue is 240°, cyan 180°), and its HSV
+/// saturation: pure water and oceanic IB deep blue, coastal 5 blue-green.
+const PURE_HUE: std::ops::RangeInclusive<f64> = 215.0..=240.0;
+const IB_HUE: std::ops::RangeInclusive<f64> = 210.0..=235.0;
+const COASTAL5_HUE: std::ops::RangeInclusive<f64> = 170.0..=205.0;
+const SATURATION: std::ops::RangeInclusive<f64> = 0.35..=0.95;
+
+fn render(out: &Path, water_type: &str) -> image::RgbImage {
+    let args = [
+        "render",
+        "--t",
+        "600",
+        "--size",
+        "480x270",
+        "--overlays",
+        "none",
+        "--water-type",
+        water_type,
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, err) = regatta(&args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    image::open(out).unwrap().to_rgb8()
+}
+
+/// Hue (degrees) and saturation of an sRGB colour (0–255 per channel).
+fn hue_saturation(c: [f64; 3]) -> (f64, f64) {
+    let max = c[0].max(c[1]).max(c[2]);
+    let min = c[0].min(c[1]).min(c[2]);
+    let d = max - min;
+    let s = if max > 0.0 { d / max } else { 0.0 };
+    let h = if d == 0.0 {
+        0.0
+    } else if max == c[0] {
+        60.0 * ((c[1] - c[2]) / d).rem_euclid(6.0)
+    } else if max == c[1] {
+        60.0 * ((c[2] - c[0]) / d + 2.0)
+    } else {
+        60.0 * ((c[0] - c[1]) / d + 4.0)
+    };
+    (h, s)
+}
+
+#[test]
+fn the_open_seas_hue_follows_the_water_type() {
+    if render::gpu::test_gpu().is_none() {
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("open_sea_screenshot");
+    std::fs::create_dir_all(&dir).unwrap();
+    let pics: Vec<image::RgbImage> = ["pure", "IB", "5C"]
+        .iter()
+        .map(|t| render(&dir.join(format!("{t}.png")), t))
+        .collect();
+    let (w, h) = pics[0].dimensions();
+    // The water body: where pure water and coastal 5 differ by more than 30 levels summed.
+    let water: Vec<(u32, u32)> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let (a, b) = (pics[0].get_pixel(x, y), pics[2].get_pixel(x, y));
+            (0..3)
+                .map(|c| (f64::from(a[c]) - f64::from(b[c])).abs())
+                .sum::<f64>()
+                > 30.0
+        })
+        .collect();
+    assert!(
+        water.len() as f64 > 0.3 * f64::from(w * h),
+        "only {} water pixels",
+        water.len()
+    );
+    let mean = |img: &image::RgbImage| {
+        let mut m = [0.0; 3];
+        for &(x, y) in &water {
+            let p = img.get_pixel(x, y);
+            for c in 0..3 {
+                m[c] += f64::from(p[c]) / water.len() as f64;
+            }
+        }
+        m
+    };
+    let got: Vec<(f64, f64, [f64; 3])> = pics
+        .iter()
+        .map(|p| {
+            let m = mean(p);
+            let (h, s) = hue_saturation(m);
+            (h, s, m)
+        })
+        .collect();
+    eprintln!(
+        "open sea (hue°, saturation, mean sRGB): pure {:?}, IB {:?}, 5C {:?}",
+        got[0], got[1], got[2]
+    );
+    for ((h, s, m), (name, range)) in
+        got.iter()
+            .zip([("pure", PURE_HUE), ("IB", IB_HUE), ("5C", COASTAL5_HUE)])
+    {
+        assert!(
+            range.contains(h),
+            "{name}: hue {h} outside {range:?} ({m:?})"
+        );
+        assert!(SATURATION.contains(s), "{name}: saturation {s} ({m:?})");
+    }
+    // The hue moves towards green in Jerlov's order.
+    assert!(
+        got[0].0 >= got[1].0 && got[1].0 > got[2].0 + 15.0,
+        "{got:?}"
+    );
+}
