@@ -29,8 +29,9 @@ fn water_transmitted(table: vec3<f32>, room: vec3<f32>, path_m: f32, w: WaterOpt
 }
 
 // Infinitely deep water under diffuse light `room` (the open sea: no bottom the camera sees):
-// water_transmitted with no table (T_d = T_v = 0), f64 reference water_look::deep_body.
-// `deep` = (R∞.rgb, unused).
+// water_transmitted with no table (T_d = T_v = 0: the column's albedo is R∞), f64 reference
+// water_look::deep_body. `deep` = (R∞.rgb, unused).
 fn water_deep_body(room: vec3<f32>, deep: vec4<f32>) -> vec3<f32> {
-    return water_transmitted(vec3<f32>(0.0), room, 0.0, vec4<f32>(0.0), vec4<f32>(0.0), deep);
+    let r = deep.xyz;
+    return room * r * WATER_DIFFUSE_ENTRY / (WATER_N2 * (vec3<f32>(1.0) - r * WATER_INTERNAL_REFLECTANCE));
 }
