@@ -9,7 +9,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::regatta;
+use common::{hsv, regatta};
 
 /// Hue of the water's mean colour per type, degrees (blue is 240°, cyan 180°), and its HSV
 /// saturation: pure water and oceanic IB deep blue, coastal 5 blue-green.
@@ -35,24 +35,6 @@ fn render(out: &Path, water_type: &str) -> image::RgbImage {
     let (code, _, err) = regatta(&args);
     assert_eq!(code, 0, "{args:?}: {err}");
     image::open(out).unwrap().to_rgb8()
-}
-
-/// Hue (degrees) and saturation of an sRGB colour (0–255 per channel).
-fn hue_saturation(c: [f64; 3]) -> (f64, f64) {
-    let max = c[0].max(c[1]).max(c[2]);
-    let min = c[0].min(c[1]).min(c[2]);
-    let d = max - min;
-    let s = if max > 0.0 { d / max } else { 0.0 };
-    let h = if d == 0.0 {
-        0.0
-    } else if max == c[0] {
-        60.0 * ((c[1] - c[2]) / d).rem_euclid(6.0)
-    } else if max == c[1] {
-        60.0 * ((c[2] - c[0]) / d + 2.0)
-    } else {
-        60.0 * ((c[0] - c[1]) / d + 4.0)
-    };
-    (h, s)
 }
 
 #[test]
@@ -97,7 +79,7 @@ fn the_open_seas_hue_follows_the_water_type() {
         .iter()
         .map(|p| {
             let m = mean(p);
-            let (h, s) = hue_saturation(m);
+            let (h, s, _) = hsv(m);
             (h, s, m)
         })
         .collect();

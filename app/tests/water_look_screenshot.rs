@@ -8,7 +8,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::regatta;
+use common::{hsv, regatta};
 
 /// Hue of the water's mean colour, degrees: blue-green (cyan is 180°; green 120°, blue 240°).
 const HUE_DEG: std::ops::RangeInclusive<f64> = 160.0..=200.0;
@@ -48,24 +48,6 @@ fn render(out: &Path, extra: &[&str]) -> image::RgbImage {
     let (code, _, err) = regatta(&args);
     assert_eq!(code, 0, "{args:?}: {err}");
     image::open(out).unwrap().to_rgb8()
-}
-
-/// Hue (degrees), saturation and value of an sRGB colour (0–255 per channel).
-fn hsv(c: [f64; 3]) -> (f64, f64, f64) {
-    let max = c[0].max(c[1]).max(c[2]);
-    let min = c[0].min(c[1]).min(c[2]);
-    let d = max - min;
-    let s = if max > 0.0 { d / max } else { 0.0 };
-    let h = if d == 0.0 {
-        0.0
-    } else if max == c[0] {
-        60.0 * ((c[1] - c[2]) / d).rem_euclid(6.0)
-    } else if max == c[1] {
-        60.0 * ((c[2] - c[0]) / d + 2.0)
-    } else {
-        60.0 * ((c[0] - c[1]) / d + 4.0)
-    };
-    (h, s, max / 255.0)
 }
 
 fn luma(p: &image::Rgb<u8>) -> f64 {

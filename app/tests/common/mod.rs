@@ -124,3 +124,21 @@ pub fn regatta_within_a_minute(
         String::from_utf8_lossy(&o.stderr).into_owned(),
     )
 }
+
+/// Hue (degrees), saturation and value of an sRGB colour (0–255 per channel).
+pub fn hsv(c: [f64; 3]) -> (f64, f64, f64) {
+    let max = c[0].max(c[1]).max(c[2]);
+    let min = c[0].min(c[1]).min(c[2]);
+    let d = max - min;
+    let s = if max > 0.0 { d / max } else { 0.0 };
+    let h = if d == 0.0 {
+        0.0
+    } else if max == c[0] {
+        60.0 * ((c[1] - c[2]) / d).rem_euclid(6.0)
+    } else if max == c[1] {
+        60.0 * ((c[2] - c[0]) / d + 2.0)
+    } else {
+        60.0 * ((c[0] - c[1]) / d + 4.0)
+    };
+    (h, s, max / 255.0)
+}

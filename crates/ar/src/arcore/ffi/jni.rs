@@ -150,8 +150,8 @@ pub struct ScriptedJni {
     state: Mutex<(JavaScript, Vec<JavaCall>, bool)>,
     /// The Activity's intent and the content provider behind it ([`super::intent_file`]).
     pub(super) content: Mutex<super::intent_file::ContentScript>,
-    /// The media store and the share sheet ([`super::share`]).
-    pub(super) media: Mutex<super::share::MediaScript>,
+    /// The media store and the share sheet ([`super::share_media`]).
+    pub(super) media: Mutex<super::share_media::MediaScript>,
     /// Boxed: C calls keep its address for the call's length.
     env: Mutex<Option<Box<HostEnv>>>,
 }

@@ -25,6 +25,7 @@ mod intent_file;
 pub mod jni;
 pub mod session;
 pub mod share;
+mod share_media;
 
 pub use camera_config::{CameraBudget, CameraConfigOutcome};
 pub use frame::{DisplayCamera, FAR_M, NEAR_M};

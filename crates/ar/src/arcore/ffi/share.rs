@@ -10,6 +10,7 @@
 use std::sync::MutexGuard;
 
 use super::jni::{JavaObject, ScriptedJni};
+pub use super::share_media::{Chooser, MediaItem, MediaScript, NO_SPACE, StoredMedia};
 
 /// The first Android with `MediaStore.MediaColumns.RELATIVE_PATH` and `IS_PENDING` (10, Q).
 pub const MEDIA_STORE_MIN_SDK: u32 = 29;
@@ -22,17 +23,6 @@ pub const IS_PENDING: &str = "is_pending";
 pub const EXTRA_STREAM: &str = "android.intent.extra.STREAM";
 /// `Intent.FLAG_GRANT_READ_URI_PERMISSION`.
 pub const FLAG_GRANT_READ_URI_PERMISSION: i32 = 0x0000_0001;
-
-/// What the media store item is called and where it goes.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct MediaItem {
-    /// `DISPLAY_NAME`, e.g. `regatta-580-600s.gif`.
-    pub display_name: String,
-    /// `MIME_TYPE`, e.g. `image/gif`.
-    pub mime: String,
-    /// `RELATIVE_PATH`, e.g. `Pictures/Regatta`.
-    pub relative_path: String,
-}
 
 /// The Java calls that share a file.
 pub trait ShareJni {
@@ -58,41 +48,6 @@ pub trait ShareJni {
         title: &str,
     ) -> Result<(), String>;
 }
-
-/// One item the host's media store holds.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct StoredMedia {
-    pub uri: String,
-    pub item: MediaItem,
-    pub bytes: Vec<u8>,
-    /// `IS_PENDING` as it was left.
-    pub pending: bool,
-}
-
-/// One chooser the host fake was asked to show.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Chooser {
-    pub uri: String,
-    pub mime: String,
-    pub title: String,
-}
-
-/// The host fake's media store and what it is scripted to do.
-#[derive(Debug, Default)]
-pub struct MediaScript {
-    /// `insert` returns `null` (the provider refuses: no external volume mounted).
-    pub refuse_insert: bool,
-    /// Writing throws this Java exception (`class: message`), e.g. a full disk's
-    /// `java.io.IOException: No space left on device`.
-    pub write_throws: Option<String>,
-    /// `startActivity` throws this (e.g. `android.content.ActivityNotFoundException`).
-    pub chooser_throws: Option<String>,
-    pub stored: Vec<StoredMedia>,
-    pub choosers: Vec<Chooser>,
-}
-
-/// The Java exception a full disk throws from `OutputStream.write`.
-pub const NO_SPACE: &str = "java.io.IOException: No space left on device";
 
 impl ScriptedJni {
     fn media(&self) -> MutexGuard<'_, MediaScript> {
