@@ -111,22 +111,30 @@ fn pause_resume_cycles_in_a_quiet_process() {
     }
     let drawn = sim.app.status().frames_drawn;
     let mut samples = vec![resident_bytes()];
-    let heap_before = heap_in_use();
+    let mut heap = vec![heap_in_use()];
     for _ in 0..10 {
         for _ in 0..10 {
             cycle(&mut sim);
         }
         samples.push(resident_bytes());
+        heap.push(heap_in_use());
     }
     // The overlays are drawn: boats on screen, their labels painted.
     assert!(!sim.app.overlays.hulls().is_empty() && !sim.app.overlays.placed_labels().is_empty());
-    let heap_after = heap_in_use();
-    if let (Some(a), Some(b)) = (heap_before, heap_after) {
-        let held = b.saturating_sub(a);
+    // A leak grows the heap in every block of ten cycles; a cache that fills once (new glyphs
+    // as the race's labels change, a grow-only buffer the race's wakes outgrow) grows it in
+    // one block: measured, one step of 2.5 MB near the 150th frame, then under 0.3 MB a block.
+    // So the median of the ten blocks' growth, against a leak of 10 kB a cycle (1 MB over
+    // the hundred, the bound the whole run had before such a step fell into it).
+    if heap.iter().all(Option::is_some) {
+        let heap: Vec<i64> = heap.iter().map(|h| h.unwrap() as i64).collect();
+        let mut blocks: Vec<i64> = heap.windows(2).map(|w| w[1] - w[0]).collect();
+        blocks.sort_unstable();
+        let median = (blocks[4] + blocks[5]) / 2;
         assert!(
-            held < 1 << 20,
-            "the heap in use grew by {:.2} MB over 100 cycles",
-            held as f64 / 1048576.0
+            median < 100 << 10,
+            "the heap in use grew by a median {:.1} kB per ten cycles (blocks {blocks:?})",
+            median as f64 / 1024.0
         );
     }
     let retained = samples[8..].iter().min().unwrap();
@@ -146,6 +154,6 @@ fn pause_resume_cycles_in_a_quiet_process() {
     assert_eq!(sim.app.session(), ar::arcore::SessionState::Running);
     eprintln!(
         "resident growth over 100 cycles: {growth} bytes (samples {samples:?}); heap in use \
-         {heap_before:?} -> {heap_after:?} bytes"
+         every ten cycles {heap:?} bytes"
     );
 }
