@@ -60,53 +60,57 @@ fn trips(
         tier.wake_source_budget,
         &mut frame,
     );
+    let [height, foam] = wake_sources_per_vertex(&frame);
     let trips = Trips {
         waves: scene.sea.waves.len() as f64,
         waves_in_pixel: waves_in_pixel(&frame),
-        wake_sources_per_vertex: wake_sources_per_vertex(&frame, 1),
-        wake_foam_sources_per_vertex: wake_sources_per_vertex(&frame, 3),
+        wake_sources_per_vertex: height,
+        wake_foam_sources_per_vertex: foam,
         marks: scene.marks.len() as f64,
     };
     let bytes = frame.wake_bins.bytes(frame.wakes.sources.len()) as f64;
     (trips, bytes, frame.mesh.vertices.len() as f64)
 }
 
-/// The wake sources the compute stage sums per clip-map vertex, the mean over the vertices:
-/// each sums the sources of one list (`count` 1: the height list, 3: the foam list) of the bin
-/// its displaced position falls in (`wake_at` in `shaders/render/water_vertices.wgsl`), none
-/// outside the grid or in an empty bin. The position is the f64 sea's displacement (the
+/// The wake sources the compute stage sums per clip-map vertex, the means over the vertices
+/// of its bin's height list and foam list: each vertex looks up the bin its displaced position
+/// falls in as `wake_at` in `shaders/render/water_vertices.wgsl` does (`WakeBins::bin_at`),
+/// none outside the grid or without wakes. The position is the f64 sea's displacement (the
 /// shader's f32 one can fall in a neighbouring bin within a few millimetres of a bin's edge).
-fn wake_sources_per_vertex(frame: &render::frame::FrameContext, count: usize) -> f64 {
-    let bins = &frame.wake_bins;
-    let g = &bins.grid;
-    let (o, sea, t) = (frame.origin, &frame.scene.sea, frame.scene.t);
+fn wake_sources_per_vertex(frame: &render::frame::FrameContext) -> [f64; 2] {
     let vertices = &frame.mesh.vertices;
-    let listed: f64 = vertices
-        .iter()
-        .map(|v| {
-            let d = sea.displace([f64::from(v.rest[0]) + o.x, f64::from(v.rest[1]) + o.y], t);
-            let gx = ((d[0] - o.x) as f32 - g.origin[0]) * g.inv_cell;
-            let gz = ((d[2] - o.y) as f32 - g.origin[1]) * g.inv_cell;
-            let inside = gx >= 0.0 && gz >= 0.0 && gx < g.nx as f32 && gz < g.nz as f32;
-            let bin = (gz as usize) * g.nx as usize + gx as usize;
-            match bins.bins.get(bin) {
-                Some(b) if inside && frame.uniform.counts[2] > 0 => f64::from(b[count]),
-                _ => 0.0,
-            }
-        })
-        .sum();
-    listed / vertices.len().max(1) as f64
+    if frame.uniform.counts[2] == 0 || vertices.is_empty() {
+        return [0.0; 2];
+    }
+    let surface = sea_surface(frame);
+    let mut listed = [0.0; 2];
+    for v in vertices {
+        let d = surface([f64::from(v.rest[0]), f64::from(v.rest[1])]);
+        if let Some([_, height, _, foam]) = frame.wake_bins.bin_at([d[0] as f32, d[2] as f32]) {
+            listed[0] += f64::from(height);
+            listed[1] += f64::from(foam);
+        }
+    }
+    listed.map(|n| n / vertices.len() as f64)
+}
+
+/// The frame's sea surface in its local coordinates: a rest point (x, z, metres from the
+/// origin) to its displaced position (x, y, z), as the f64 sea has it at the frame's time.
+fn sea_surface<'a>(frame: &'a render::frame::FrameContext) -> impl Fn([f64; 2]) -> [f64; 3] + 'a {
+    let (o, sea, t) = (frame.origin, &frame.scene.sea, frame.scene.t);
+    move |p| {
+        let d = sea.displace([p[0] + o.x, p[1] + o.y], t);
+        [d[0] - o.x, d[1], d[2] - o.y]
+    }
 }
 
 /// The waves a water fragment's `surface_frame` sums, the mean over the fragments a GPU
 /// shading 2×2 quads runs for the frame's clip-map: the loop runs the waves sorted by
 /// wavenumber up to the first with k·footprint ≥ π/2 (fully faded by the pixel filter).
 fn waves_in_pixel(frame: &render::frame::FrameContext) -> f64 {
-    let (o, sea, t) = (frame.origin, &frame.scene.sea, frame.scene.t);
-    let footprints = frame.mesh.footprints(frame.view_proj, frame.size, |p| {
-        let d = sea.displace([p[0] + o.x, p[1] + o.y], t);
-        [d[0] - o.x, d[1], d[2] - o.y]
-    });
+    let footprints = frame
+        .mesh
+        .footprints(frame.view_proj, frame.size, sea_surface(frame));
     let limit = 0.5 * std::f64::consts::PI;
     let (mut turns, mut fragments) = (0.0, 0.0);
     for (footprint, n) in footprints {
@@ -131,13 +135,9 @@ fn waves_in_pixel(frame: &render::frame::FrameContext) -> f64 {
 /// 4 per quad each triangle covers a pixel of (`render::clipmap::ScreenCoverage`).
 fn water_quad_fragments(scene: &render::Scene, tier: &TierRender, drawn: [u32; 2]) -> u64 {
     let frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
-    let (o, sea, t) = (frame.origin, &scene.sea, scene.t);
     frame
         .mesh
-        .screen_coverage(frame.view_proj, drawn, |p| {
-            let d = sea.displace([p[0] + o.x, p[1] + o.y], t);
-            [d[0] - o.x, d[1], d[2] - o.y]
-        })
+        .screen_coverage(frame.view_proj, drawn, sea_surface(&frame))
         .quad_fragments
 }
 

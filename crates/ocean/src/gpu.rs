@@ -34,7 +34,7 @@ pub struct GpuWave {
     pub slope: f32,
     /// (k·A)²/2, its mean square slope (the slope variance a shader keeps for a faded wave).
     pub half_slope2: f32,
-    /// Σ of `half_slope2` over this wave and every wave after it in the list (formed in f64):
+    /// Σ of `half_slope2` over this wave and every wave after it in the list (summed in f64):
     /// in a list sorted by wavenumber ([`sort_by_wavenumber`]) a shader whose pixel filter has
     /// faded this wave out has faded all the rest too, stops there and keeps their variance
     /// in one addition.
@@ -71,21 +71,17 @@ impl WaveSet {
                 }
             })
             .collect();
-        let half_slope2: Vec<f64> = self
-            .waves
-            .iter()
-            .map(|w| 0.5 * (w.k() * w.amplitude()).powi(2))
-            .collect();
-        set_tails(&mut waves, &half_slope2);
+        set_tails(&mut waves);
         waves
     }
 }
 
-/// Fill `tail_half_slope2` from the f64 mean square slopes, in `waves`' order.
-fn set_tails(waves: &mut [GpuWave], half_slope2: &[f64]) {
+/// Fill `tail_half_slope2` in `waves`' order: each term the shader's own `half_slope2` (the
+/// f64 value rounded once), summed in f64.
+fn set_tails(waves: &mut [GpuWave]) {
     let mut tail = 0.0f64;
-    for (w, h) in waves.iter_mut().zip(half_slope2).rev() {
-        tail += h;
+    for w in waves.iter_mut().rev() {
+        tail += f64::from(w.half_slope2);
         w.tail_half_slope2 = tail as f32;
     }
 }
@@ -100,11 +96,8 @@ fn set_tails(waves: &mut [GpuWave], half_slope2: &[f64]) {
 pub fn sort_by_wavenumber(waves: &mut Vec<GpuWave>) -> Vec<usize> {
     let mut order: Vec<usize> = (0..waves.len()).collect();
     order.sort_by(|&a, &b| waves[a].k.total_cmp(&waves[b].k));
-    let sorted: Vec<GpuWave> = order.iter().map(|&i| waves[i]).collect();
-    // Each term as the shader's own half_slope2 (the f64 value rounded once), summed in f64.
-    let half_slope2: Vec<f64> = sorted.iter().map(|w| f64::from(w.half_slope2)).collect();
-    *waves = sorted;
-    set_tails(waves, &half_slope2);
+    *waves = order.iter().map(|&i| waves[i]).collect();
+    set_tails(waves);
     order
 }
 
