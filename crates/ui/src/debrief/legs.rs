@@ -2,12 +2,11 @@
 //! end, places and seconds gained on the leg, and the metres it sailed against the leg's
 //! length.
 
-use egui::{Color32, RichText, Ui};
+use egui::{RichText, Ui};
 use race::debrief::LegResult;
 
-use super::{metres, note, signed};
+use super::{boat_name, header_row, metres, note, signed};
 use crate::clock::format_race_time;
-use crate::leaderboard::parse_hex_color;
 
 /// "Leg 2 to L1 (1.24 km)".
 pub fn leg_heading(r: &LegResult) -> String {
@@ -40,26 +39,19 @@ pub fn legs_ui(ui: &mut Ui, race: &race::Race, legs: &[LegResult]) {
             .striped(true)
             .spacing([8.0, 4.0])
             .show(ui, |ui| {
-                for (h, hover) in [
-                    ("Boat", ""),
-                    ("Time", "Elapsed on the leg"),
-                    ("Rank", "Order rounding the leg's end"),
-                    ("Places", "Places gained on the leg"),
-                    ("Secs", "Seconds gained on the leader of each mark"),
-                    ("Sailed", "Metres sailed on the leg"),
-                ] {
-                    let r = ui.label(RichText::new(h).strong());
-                    if !hover.is_empty() {
-                        r.on_hover_text(hover);
-                    }
-                }
-                ui.end_row();
+                header_row(
+                    ui,
+                    &[
+                        ("Boat", ""),
+                        ("Time", "Elapsed on the leg"),
+                        ("Rank", "Order rounding the leg's end"),
+                        ("Places", "Places gained on the leg"),
+                        ("Secs", "Seconds gained on the leader of each mark"),
+                        ("Sailed", "Metres sailed on the leg"),
+                    ],
+                );
                 for r in rows {
-                    let colour = race
-                        .boat_index(&r.boat)
-                        .and_then(|i| parse_hex_color(&race.boats[i].color))
-                        .unwrap_or(Color32::GRAY);
-                    ui.label(RichText::new(&r.boat).color(colour).strong());
+                    boat_name(ui, race, &r.boat);
                     ui.label(format_race_time(r.elapsed_s));
                     ui.label(r.rank.to_string());
                     ui.label(r.places_gained.map_or("—".into(), |p| signed(p as f64, 0)));

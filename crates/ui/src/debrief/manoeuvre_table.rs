@@ -4,12 +4,12 @@
 //! pauses and moves race time to that manoeuvre's start (`t_entry`), as the timeline's Tack
 //! buttons do.
 
-use egui::{Color32, RichText, Ui};
+use egui::{RichText, Ui};
 use race::debrief::{BoatManoeuvres, Manoeuvre, ManoeuvreKind};
 
-use super::{note, wind_line};
+use super::{boat_name, header_row, note, wind_line};
 use crate::clock::{RaceClock, format_race_time};
-use crate::leaderboard::{KNOTS_PER_MPS, parse_hex_color};
+use crate::leaderboard::KNOTS_PER_MPS;
 
 /// A loss as the table shows it: whole metres (negative: the boat gained on sailing on).
 pub fn format_loss(m: f64) -> String {
@@ -67,17 +67,18 @@ pub fn manoeuvre_table_ui(
         .striped(true)
         .spacing([8.0, 4.0])
         .show(ui, |ui| {
-            for h in ["Boat", "Tacks", "Gybes", "Median", "Worst"] {
-                ui.label(RichText::new(h).strong());
-            }
-            ui.end_row();
+            header_row(
+                ui,
+                &[
+                    ("Boat", ""),
+                    ("Tacks", ""),
+                    ("Gybes", ""),
+                    ("Median", ""),
+                    ("Worst", ""),
+                ],
+            );
             for bm in &debrief.manoeuvres {
-                let colour = race
-                    .boats
-                    .get(bm.boat)
-                    .and_then(|b| parse_hex_color(&b.color))
-                    .unwrap_or(Color32::GRAY);
-                ui.label(RichText::new(&bm.id).color(colour).strong());
+                boat_name(ui, race, &bm.id);
                 ui.label(bm.tacks.to_string());
                 ui.label(bm.gybes.to_string());
                 ui.label(bm.median_loss_m.map_or("—".into(), format_loss));
@@ -126,10 +127,16 @@ fn manoeuvre_list(ui: &mut Ui, bm: &BoatManoeuvres, clock: &mut RaceClock) -> bo
         .striped(true)
         .spacing([8.0, 4.0])
         .show(ui, |ui| {
-            for h in ["When", "Kind", "Turn", "kn in/out", "Lost"] {
-                ui.label(RichText::new(h).strong());
-            }
-            ui.end_row();
+            header_row(
+                ui,
+                &[
+                    ("When", ""),
+                    ("Kind", ""),
+                    ("Turn", ""),
+                    ("kn in/out", ""),
+                    ("Lost", ""),
+                ],
+            );
             for m in &bm.manoeuvres {
                 let here = (clock.time() - m.t_entry).abs() < 1e-3;
                 if ui

@@ -132,6 +132,26 @@ fn note(ui: &mut Ui, text: impl Into<String>) {
     ui.label(RichText::new(text.into()).weak());
 }
 
+/// A table's header row: each column's name in bold, with its hover text where there is one.
+fn header_row(ui: &mut Ui, columns: &[(&str, &str)]) {
+    for &(name, hover) in columns {
+        let r = ui.label(RichText::new(name).strong());
+        if !hover.is_empty() {
+            r.on_hover_text(hover);
+        }
+    }
+    ui.end_row();
+}
+
+/// A boat's id in bold, in its team's colour (grey for a boat the race does not know).
+fn boat_name(ui: &mut Ui, race: &race::Race, id: &str) {
+    let colour = race
+        .boat_index(id)
+        .and_then(|i| crate::leaderboard::parse_hex_color(&race.boats[i].color))
+        .unwrap_or(egui::Color32::GRAY);
+    ui.label(RichText::new(id).color(colour).strong());
+}
+
 /// `+3`, `−2`, `0`: a signed count or figure (a minus sign, not a hyphen).
 pub fn signed(v: f64, decimals: usize) -> String {
     let s = format!("{:.*}", decimals, v.abs());

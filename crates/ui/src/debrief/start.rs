@@ -1,11 +1,11 @@
 //! The Start view: each boat at the gun (race time 0) against the start line, closest first,
 //! and the line's bias; or, without a start line, the one reason why not.
 
-use egui::{Color32, RichText, Ui};
+use egui::Ui;
 use race::debrief::{BoatStart, StartReport};
 
-use super::{metres, note, number, wind_line};
-use crate::leaderboard::{KNOTS_PER_MPS, parse_hex_color};
+use super::{boat_name, header_row, metres, note, number, wind_line};
+use crate::leaderboard::KNOTS_PER_MPS;
 
 /// The line when the race has none: "No start line in this race: the race has no course".
 pub fn no_start_line_text(reason: &str) -> String {
@@ -52,32 +52,25 @@ pub fn start_ui(ui: &mut Ui, race: &race::Race, debrief: &race::Debrief) {
         .striped(true)
         .spacing([8.0, 4.0])
         .show(ui, |ui| {
-            for (h, hover) in [
-                ("Boat", ""),
-                (
-                    "To line",
-                    "Metres behind the line at the gun (negative: over it)",
-                ),
-                (
-                    "Along",
-                    "Where along the line: 0 % the pin, 100 % the committee end",
-                ),
-                ("kn", "Speed at the gun"),
-                ("Late", "Seconds to the line at the gun's speed towards it"),
-                ("Over", "On the course side at the gun"),
-            ] {
-                let r = ui.label(RichText::new(h).strong());
-                if !hover.is_empty() {
-                    r.on_hover_text(hover);
-                }
-            }
-            ui.end_row();
+            header_row(
+                ui,
+                &[
+                    ("Boat", ""),
+                    (
+                        "To line",
+                        "Metres behind the line at the gun (negative: over it)",
+                    ),
+                    (
+                        "Along",
+                        "Where along the line: 0 % the pin, 100 % the committee end",
+                    ),
+                    ("kn", "Speed at the gun"),
+                    ("Late", "Seconds to the line at the gun's speed towards it"),
+                    ("Over", "On the course side at the gun"),
+                ],
+            );
             for b in by_distance(report) {
-                let colour = race
-                    .boat_index(&b.boat)
-                    .and_then(|i| parse_hex_color(&race.boats[i].color))
-                    .unwrap_or(Color32::GRAY);
-                ui.label(RichText::new(&b.boat).color(colour).strong());
+                boat_name(ui, race, &b.boat);
                 ui.label(metres(b.distance_to_line_m));
                 ui.label(format!("{} %", number(b.along_line_pct, 0)));
                 ui.label(format!("{:.1}", b.speed_mps * KNOTS_PER_MPS));
