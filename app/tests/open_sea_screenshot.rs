@@ -9,7 +9,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{hsv, regatta};
+use common::{differing_pixels, hsv, regatta};
 
 /// Hue of the water's mean colour per type, degrees (blue is 240°, cyan 180°), and its HSV
 /// saturation: pure water and oceanic IB deep blue, coastal 5 blue-green.
@@ -50,16 +50,7 @@ fn the_open_seas_hue_follows_the_water_type() {
         .collect();
     let (w, h) = pics[0].dimensions();
     // The water body: where pure water and coastal 5 differ by more than 30 levels summed.
-    let water: Vec<(u32, u32)> = (0..h)
-        .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .filter(|&(x, y)| {
-            let (a, b) = (pics[0].get_pixel(x, y), pics[2].get_pixel(x, y));
-            (0..3)
-                .map(|c| (f64::from(a[c]) - f64::from(b[c])).abs())
-                .sum::<f64>()
-                > 30.0
-        })
-        .collect();
+    let water = differing_pixels(&pics[0], &pics[2], 30.0);
     assert!(
         water.len() as f64 > 0.3 * f64::from(w * h),
         "only {} water pixels",

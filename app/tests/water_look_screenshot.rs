@@ -8,7 +8,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{hsv, regatta};
+use common::{differing_pixels, hsv, regatta};
 
 /// Hue of the water's mean colour, degrees: blue-green (cyan is 180°; green 120°, blue 240°).
 const HUE_DEG: std::ops::RangeInclusive<f64> = 160.0..=200.0;
@@ -64,16 +64,7 @@ fn the_default_table_sea_is_blue_green_and_the_table_shows_through() {
     let dry = render(&dir.join("dry.png"), &["--effects", "background"]);
     let (w, h) = wet.dimensions();
     // The water: where the picture is no longer the camera's table.
-    let water: Vec<(u32, u32)> = (0..h)
-        .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .filter(|&(x, y)| {
-            let (a, b) = (wet.get_pixel(x, y), dry.get_pixel(x, y));
-            (0..3)
-                .map(|c| (f64::from(a[c]) - f64::from(b[c])).abs())
-                .sum::<f64>()
-                > 45.0
-        })
-        .collect();
+    let water = differing_pixels(&wet, &dry, 45.0);
     assert!(
         water.len() as f64 > 0.2 * f64::from(w * h),
         "only {} water pixels",

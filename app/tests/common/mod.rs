@@ -142,3 +142,19 @@ pub fn hsv(c: [f64; 3]) -> (f64, f64, f64) {
     };
     (h, s, max / 255.0)
 }
+
+/// The pixels where two pictures of the same size differ by more than `levels`, summed over
+/// the three channels (0–255 each).
+pub fn differing_pixels(a: &image::RgbImage, b: &image::RgbImage, levels: f64) -> Vec<(u32, u32)> {
+    let (w, h) = a.dimensions();
+    (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let (p, q) = (a.get_pixel(x, y), b.get_pixel(x, y));
+            (0..3)
+                .map(|c| (f64::from(p[c]) - f64::from(q[c])).abs())
+                .sum::<f64>()
+                > levels
+        })
+        .collect()
+}
