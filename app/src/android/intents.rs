@@ -39,6 +39,22 @@ fn string(env: &mut Env<'_>, obj: JObject<'_>) -> jni::errors::Result<Option<Str
     Ok(Some(s.try_to_string(env)?))
 }
 
+/// `uri.toString()` (a `android.net.Uri`), `None` for a `null` string.
+pub(super) fn uri_text(
+    env: &mut Env<'_>,
+    uri: &JObject<'_>,
+) -> jni::errors::Result<Option<String>> {
+    let text = env
+        .call_method(
+            uri,
+            jni_str!("toString"),
+            jni_sig!("()Ljava/lang/String;"),
+            &[],
+        )?
+        .l()?;
+    string(env, text)
+}
+
 /// `Uri.parse(uri)`.
 pub(super) fn parse_uri<'local>(
     env: &mut Env<'local>,
@@ -117,15 +133,7 @@ impl IntentJni for AndroidJni {
                 if uri.is_null() {
                     return Ok(None);
                 }
-                let text = env
-                    .call_method(
-                        &uri,
-                        jni_str!("toString"),
-                        jni_sig!("()Ljava/lang/String;"),
-                        &[],
-                    )?
-                    .l()?;
-                let Some(uri) = string(env, text)? else {
+                let Some(uri) = uri_text(env, &uri)? else {
                     return Ok(None);
                 };
                 let mime = env

@@ -16,7 +16,7 @@ use ar::arcore::ffi::{JavaObject, MediaItem, ShareJni};
 use jni::objects::JObject;
 use jni::{Env, JValue, jni_sig, jni_str};
 
-use super::intents::{caught, parse_uri, resolver};
+use super::intents::{caught, parse_uri, resolver, uri_text};
 use super::jni_calls::AndroidJni;
 
 /// Bytes written per `OutputStream.write` call.
@@ -182,16 +182,8 @@ impl ShareJni for AndroidJni {
                     }
                     return Ok(Err(why));
                 }
-                let text = env
-                    .call_method(
-                        &uri,
-                        jni_str!("toString"),
-                        jni_sig!("()Ljava/lang/String;"),
-                        &[],
-                    )?
-                    .l()?;
-                let text = env.cast_local::<jni::objects::JString>(text)?;
-                Ok(Ok(text.try_to_string(env)?))
+                let text = uri_text(env, &uri)?;
+                Ok(Ok(text.ok_or(jni::errors::Error::NullPtr("Uri.toString"))?))
             })
         })?
     }
