@@ -43,16 +43,24 @@ impl DebriefView {
         }
     }
 
-    /// Runs the debrief when `race` is not the one last seen.
+    /// Runs the debrief when `race` is not the one last seen. Called every frame (the timeline
+    /// and the trails' marks): the check compares in place and copies the key only for a new
+    /// race.
     pub fn update(&mut self, race: &race::Race) {
         let (a, b) = race.time_span();
-        let ids = race.boats.iter().map(|boat| boat.id.clone()).collect();
-        let key = (race.name.clone(), ids, [a.to_bits(), b.to_bits()]);
-        if self.key.as_ref() == Some(&key) {
+        let span = [a.to_bits(), b.to_bits()];
+        let same = self.key.as_ref().is_some_and(|(name, ids, s)| {
+            *name == race.name
+                && *s == span
+                && ids.len() == race.boats.len()
+                && ids.iter().zip(&race.boats).all(|(id, boat)| *id == boat.id)
+        });
+        if same {
             return;
         }
         *self = Self::from_debrief(race::Debrief::of(race), race.boats.len());
-        self.key = Some(key);
+        let ids = race.boats.iter().map(|boat| boat.id.clone()).collect();
+        self.key = Some((race.name.clone(), ids, span));
     }
 
     /// The debrief; `None` before the first [`DebriefView::update`].
