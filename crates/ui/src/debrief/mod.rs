@@ -197,6 +197,31 @@ pub fn parse_signed(s: &str) -> Option<f64> {
 mod tests {
     use super::*;
 
+    /// The same race keeps its debrief; another race of the same name (a boat renamed, or one
+    /// boat fewer) runs it again.
+    #[test]
+    fn a_debrief_is_run_again_only_for_another_race() {
+        let mut race = race::Race::sample();
+        let mut view = DebriefView::default();
+        view.update(&race);
+        let key = view.key.clone();
+        view.starts.clear();
+        view.update(&race);
+        assert!(
+            view.starts.is_empty(),
+            "the same race ran the debrief again"
+        );
+        race.boats[0].id.push('x');
+        view.update(&race);
+        assert_ne!(view.key, key);
+        assert_eq!(view.starts.len(), race.boats.len());
+        let key = view.key.clone();
+        race.boats.pop();
+        view.update(&race);
+        assert_ne!(view.key, key, "a fleet of one boat fewer is another race");
+        assert_eq!(view.starts.len(), race.boats.len());
+    }
+
     /// Signs as a sailor reads them: a real minus sign, no "-0", a plus only where asked; and
     /// every form parses back.
     #[test]
