@@ -5,14 +5,17 @@
 # (docs/benchmarks.md, "Budget: run to run").
 #
 # Usage: scripts/budget-spread.sh [RUNS] [OUT]     (defaults: 5, bench-out/budget-spread)
-# Env:   REGATTA_BIN (default target/release/regatta; built with `cargo build --release` if missing)
+# Env:   REGATTA_BIN (default target/release/regatta; `regatta bench` runs the regatta-bench
+#        binary beside it, both built with `cargo build --release` if missing)
 # Writes OUT/run-K/ (each run's report and budget.json) and OUT/spread.json, prints a table.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-5}
 out=${2:-bench-out/budget-spread}
 bin=${REGATTA_BIN:-target/release/regatta}
-[ -x "$bin" ] || cargo build --release -p regatta
+if [ ! -x "$bin" ] || [ ! -x "$(dirname "$bin")/regatta-bench" ]; then
+  cargo build --release -p regatta -p regatta-bench
+fi
 command -v jq >/dev/null || { echo "budget-spread: needs jq" >&2; exit 2; }
 mkdir -p "$out"
 for k in $(seq 1 "$runs"); do

@@ -1,7 +1,6 @@
 //! The `regatta` package: the command line and desktop app (host), and the Android cdylib
 //! (`android_main`). Everything here is wiring; the domain lives in the crates.
 
-pub mod bench;
 pub mod cli;
 pub mod core;
 #[cfg(not(target_os = "android"))]

@@ -192,17 +192,6 @@ fn run_without_a_display_names_no_source_path() {
 }
 
 #[test]
-fn bench_with_an_unknown_section_leaves_no_folder() {
-    let out = tmp("cli_rel_bench");
-    let _ = std::fs::remove_dir_all(&out);
-    fails_with(
-        &["bench", "--only", "bogus", "--out", out.to_str().unwrap()],
-        "--only names the unknown section \"bogus\"",
-    );
-    assert!(!out.exists());
-}
-
-#[test]
 fn info_lines_escape_the_paths_they_echo_and_bad_intrinsics_are_named_by_field() {
     let out = tmp("cli_rel_feed\nx\u{1b}[2J");
     let _ = std::fs::remove_dir_all(&out);

@@ -28,7 +28,8 @@ pub struct Cli {
 pub enum Command {
     /// Print wave, wake and foam values at world points and a race time (JSON on stdout).
     Probe(probe::ProbeArgs),
-    /// Run time against error: writes JSON, Markdown and SVG plots into a folder.
+    /// Run time against error: writes JSON, Markdown and SVG plots into a folder (runs the
+    /// `regatta-bench` program beside this one; `regatta bench --help` for its options).
     Bench(bench::BenchArgs),
     /// Recorded camera feeds: write the synthetic feed, check a replay or TUM RGB-D folder.
     Replay(replay::ReplayArgs),

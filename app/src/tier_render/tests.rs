@@ -15,7 +15,14 @@ fn frame_of(
     let (mut renderer, fx) = tier
         .renderer(&gpu, Some(&race), &scene, size)
         .expect("renderer");
-    let view = crate::bench::offscreen(&gpu, size);
+    let view = render::gpu::texture_2d(
+        &gpu.device,
+        "tier test frame",
+        size,
+        render::OFFSCREEN_FORMAT,
+        wgpu::TextureUsages::RENDER_ATTACHMENT,
+    )
+    .create_view(&Default::default());
     let report = renderer.render(&gpu, &view, size, &scene).expect("frame");
     (report, fx.offscreen_sizes())
 }

@@ -1,6 +1,8 @@
 //! `regatta bench`: run time against error. Each section is one module that returns tables
-//! (and may draw SVG plots); this module runs them, shows progress on stderr and writes
-//! `report.json`, `report.md` and the plots into the output folder.
+//! (and may draw SVG plots); this crate root runs them, shows progress on stderr and writes
+//! `report.json`, `report.md` and the plots into the output folder. A package of its own on the
+//! app library (`regatta`), so the Android library carries none of it; `regatta bench ARGS`
+//! runs the `regatta-bench` binary (src/main.rs) found beside the `regatta` executable.
 //!
 //! Timings here are for people and for the README; no test asserts a timing.
 
@@ -10,7 +12,7 @@ use std::time::Instant;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use crate::error::{CliError, CliResult};
+use regatta::error::{CliError, CliResult};
 
 pub mod budget;
 pub mod budget_accuracy;
@@ -251,8 +253,8 @@ fn write_report(ctx: &BenchContext, tables: &[Table]) -> CliResult {
     let json =
         serde_json::to_string_pretty(&serde_json::json!({ "quick": ctx.quick, "tables": tables }))?;
     // Written whole or not at all, a failure naming the file.
-    crate::cli::output::write_text(&ctx.out_dir.join("report.json"), &json)?;
-    crate::cli::output::write_text(&ctx.out_dir.join("report.md"), &markdown(tables))
+    regatta::cli::output::write_text(&ctx.out_dir.join("report.json"), &json)?;
+    regatta::cli::output::write_text(&ctx.out_dir.join("report.md"), &markdown(tables))
 }
 
 /// The tables as Markdown, for the README and for people.

@@ -13,9 +13,9 @@ use render::passes::overlay::{OverlayHandle, add_overlay_passes};
 use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
 
-use crate::bench::{BenchContext, Table};
-use crate::error::{CliError, CliResult};
-use crate::scene_overlay::{self, OverlaySettings};
+use crate::{BenchContext, Table};
+use regatta::error::{CliError, CliResult};
+use regatta::scene_overlay::{self, OverlaySettings};
 
 /// Goal: all overlays together cost at most this fraction over the water-only frame.
 pub const GOAL_RATIO: f64 = 1.10;
@@ -34,7 +34,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let race = race::Race::sample();
     // Worked out once per race, as the windows do (not a per-frame cost).
     let debrief = race::Debrief::of(&race);
-    let sea = crate::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
+    let sea = regatta::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let options = RenderOptions::default();
     let mut plain = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
     let mut with = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
@@ -49,8 +49,10 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         &[OFFSCREEN_FORMAT.remove_srgb_suffix()],
     );
     let view = texture.create_view(&Default::default());
-    let mut painter =
-        crate::overlay::EguiPainter::for_format(&gpu.device, OFFSCREEN_FORMAT.remove_srgb_suffix());
+    let mut painter = regatta::overlay::EguiPainter::for_format(
+        &gpu.device,
+        OFFSCREEN_FORMAT.remove_srgb_suffix(),
+    );
     let settings = OverlaySettings::default();
     let ppp = scene_overlay::paint::headless_pixels_per_point(size);
     let (mut wall, mut gpu_ms) = ([Vec::new(), Vec::new()], [Vec::new(), Vec::new()]);
@@ -60,7 +62,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         ctx.progress(format!("overlays: frame {i} of {}", frames + 2));
         // Race time moves 1/30 s per frame, as in a playing race.
         let t = 600.0 + f64::from(i) / 30.0;
-        let scene = crate::core::scene::scene_at(&race, &sea, t, None);
+        let scene = regatta::core::scene::scene_at(&race, &sea, t, None);
         let t0 = Instant::now();
         let water = plain.render(&gpu, &view, size, &scene).map_err(fail)?;
         gpu.wait();

@@ -292,21 +292,21 @@ pub fn frame_ms(work: &[PassWork], phone: &PhoneGpu) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tier_render::TierRender;
     use quality::Tier;
+    use regatta::tier_render::TierRender;
 
     /// The sample race's frame at 600 s for `tier` at 180×320 drawn by a fresh renderer: the
     /// model's work per pass.
     fn work_of(gpu: &render::Gpu, tier: Tier) -> Vec<PassWork> {
         let race = race::Race::sample();
         let scene =
-            crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+            regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
         let t = TierRender::of(tier);
         let size = [180, 320];
         let (mut renderer, fx) = t
             .renderer(gpu, Some(&race), &scene, size)
             .expect("renderer");
-        let view = crate::bench::offscreen(gpu, size);
+        let view = crate::offscreen(gpu, size);
         let report = renderer.render(gpu, &view, size, &scene).expect("frame");
         assert!(
             !report.shader_invocations.is_empty(),

@@ -9,8 +9,8 @@ use pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, render_po
 use render::{Gpu, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
 use serde_json::json;
 
-use crate::bench::{BenchContext, Table, offscreen};
-use crate::error::{CliError, CliResult};
+use crate::{BenchContext, Table, offscreen};
+use regatta::error::{CliError, CliResult};
 
 /// The race scene with nothing but its sea: no boats, no marks, a camera over the water.
 fn water_only_scene(t: f64) -> Scene {

@@ -1,7 +1,7 @@
-//! The budget's work clock (`regatta::bench::work_clock`) in a process of its own: its process
+//! The budget's work clock (`regatta_bench::work_clock`) in a process of its own: its process
 //! CPU clock counts every thread, so this file holds this one test and nothing runs beside it.
 
-use regatta::bench::work_clock::{WorkClock, thread_cpu_s};
+use regatta_bench::work_clock::{WorkClock, thread_cpu_s};
 
 /// Work done on another thread counts; the calling thread's own work does not; a thread that
 /// sleeps adds nothing. The spinning is measured in the spinning thread's own CPU time, so the

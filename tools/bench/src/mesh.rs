@@ -20,8 +20,8 @@ use render::clipmap::{BASE_LADDER_STEPS, ClipMapConfig, ErrorTarget, LEVEL_RATIO
 use render::mesh_error::{bench_view, measure, regatta_triangles};
 use serde_json::json;
 
-use crate::bench::{BenchContext, Table};
-use crate::error::CliResult;
+use crate::{BenchContext, Table};
+use regatta::error::CliResult;
 
 /// Published triangle counts of source 003, Table 2: (levels, resolution, triangles).
 pub const SOURCE_TABLE_2: [(u32, u32, u64); 9] = [
@@ -225,7 +225,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
 /// GPU milliseconds per pass (timestamp queries) for the sample race at its middle, framed by
 /// the default camera, with and without wakes: the ratio is what wakes cost.
 fn gpu_time_table(ctx: &BenchContext) -> CliResult<Table> {
-    use crate::core::scene::{middle_time, race_wake, scene_at};
+    use regatta::core::scene::{middle_time, race_wake, scene_at};
     let mut table = Table::new(
         "render_gpu",
         "GPU time per pass: the sample race with and without wakes",
@@ -253,7 +253,7 @@ fn gpu_time_table(ctx: &BenchContext) -> CliResult<Table> {
         let mut runs = Vec::new();
         for _ in 0..reps {
             let (_, rep) = render::render_image(&gpu, r, &scene, size)
-                .map_err(|e| crate::error::CliError::new(format!("bench render: {e}")))?;
+                .map_err(|e| regatta::error::CliError::new(format!("bench render: {e}")))?;
             runs.push(rep.passes);
         }
         let names: Vec<String> = runs[0].iter().map(|p| p.name.clone()).collect();

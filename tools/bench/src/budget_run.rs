@@ -10,9 +10,9 @@ use super::budget::FmaKernel;
 use super::budget_model::{FrameInputs, PHONES, PassWork, PhoneGpu, frame_ms, frame_work};
 use super::shader_cost::Trips;
 use super::work_clock::WorkClock;
-use crate::bench::{Axes, BenchContext, Series, Table};
-use crate::error::{CliError, CliResult};
-use crate::tier_render::TierRender;
+use crate::{Axes, BenchContext, Series, Table};
+use regatta::error::{CliError, CliResult};
+use regatta::tier_render::TierRender;
 
 /// Race time of the budget's frame, s: the sample race's busiest wakes.
 const T: f64 = 600.0;
@@ -169,7 +169,7 @@ pub(crate) fn measure(
     reps: usize,
 ) -> CliResult<Row> {
     let race = race::Race::sample();
-    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+    let scene = regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
     let t = TierRender::of(tier);
     let size = phone.screen;
     ctx.progress(format!(
@@ -177,7 +177,7 @@ pub(crate) fn measure(
         phone.phone, size[0], size[1]
     ));
     let (mut renderer, fx) = t.renderer(gpu, Some(&race), &scene, size)?;
-    let view = crate::bench::offscreen(gpu, size);
+    let view = crate::offscreen(gpu, size);
     let failed = |e: render::GpuError| CliError(e.to_string());
     let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up
     let mut timed_ms = Vec::with_capacity(reps);
@@ -357,7 +357,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         tiers.note(format!("{} ({}) rates: {}", p.phone, p.gpu, p.sources));
     }
     let path = ctx.out_dir.join("budget.json");
-    crate::cli::output::write_text(&path, &serde_json::to_string_pretty(&json_rows)?)?;
+    regatta::cli::output::write_text(&path, &serde_json::to_string_pretty(&json_rows)?)?;
     let passes = passes_table(&rows);
     let accuracy = accuracy_table(ctx, &rows)?;
     let yuv = yuv_table(ctx, &gpu)?;
@@ -506,7 +506,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
         &["phone", "case", "model ms (slow spec)", "× water only"],
     );
     let race = race::Race::sample();
-    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+    let scene = regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
     let ultra = TierRender::of(Tier::Ultra);
     let wake = ultra.race_wake(&race)?;
     for phone in &PHONES {
@@ -515,7 +515,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
             "budget: {} water only and all effects",
             phone.phone
         ));
-        let view = crate::bench::offscreen(gpu, size);
+        let view = crate::offscreen(gpu, size);
         let failed = |e: render::GpuError| CliError(e.to_string());
         let mut water = render::Renderer::new(gpu, render::OFFSCREEN_FORMAT, ultra.options);
         water.set_wake(Some(wake.clone()));
@@ -594,13 +594,13 @@ mod tests {
             return;
         };
         let race = race::Race::sample();
-        let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+        let scene = regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
         let t = TierRender::of(Tier::High);
         let size = [270, 540];
         let (mut renderer, _) = t
             .renderer(&gpu, Some(&race), &scene, size)
             .expect("renderer");
-        let view = crate::bench::offscreen(&gpu, size);
+        let view = crate::offscreen(&gpu, size);
         let report = renderer.render(&gpu, &view, size, &scene).expect("frame");
         if report.shader_invocations.is_empty() {
             return; // no pipeline statistics on this adapter: nothing to replace

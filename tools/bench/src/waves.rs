@@ -12,8 +12,8 @@ use ocean::spectrum::{SeaState, SpectralOptions};
 use ocean::{WaveSet, displace_f32, f32_error_bound};
 use serde_json::json;
 
-use crate::bench::{Axes, BenchContext, Series, Table, time_ns};
-use crate::error::CliResult;
+use crate::{Axes, BenchContext, Series, Table, time_ns};
+use regatta::error::CliResult;
 
 /// A patch of the course: `n`×`n` points over `size` metres centred at `centre`.
 fn grid(centre: [f64; 2], size: f64, n: usize) -> Vec<[f64; 2]> {
@@ -387,7 +387,7 @@ fn inverse_table(ctx: &BenchContext) -> CliResult<Table> {
             for p in &pts {
                 let r = sea
                     .rest_point(*p, time, tol)
-                    .map_err(|e| crate::error::CliError::new(format!("bench waves: {e}")))?;
+                    .map_err(|e| regatta::error::CliError::new(format!("bench waves: {e}")))?;
                 it += r.iterations as u64;
                 ev += r.evaluations as u64;
                 max_it = max_it.max(r.iterations);

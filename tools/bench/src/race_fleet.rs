@@ -10,8 +10,8 @@ use race::Race;
 use race::synth_logs::fleet_csv;
 use serde_json::json;
 
-use crate::bench::{BenchContext, Table};
-use crate::error::{CliError, CliResult};
+use crate::{BenchContext, Table};
+use regatta::error::{CliError, CliResult};
 
 /// Fixes per boat in the generated fleet.
 const FIXES: usize = 10;

@@ -11,8 +11,8 @@ use serde_json::json;
 use super::budget_model::{PHONES, PhoneGpu, camera_yuv_work};
 use super::budget_run::Row;
 use super::shader_cost::Trips;
-use crate::bench::Table;
-use crate::error::{CliError, CliResult};
+use crate::Table;
+use regatta::error::{CliError, CliResult};
 
 /// The phone and frame rate a tier is made for (quality's tier docs): `low` and `medium` the
 /// OPPO A54 at 30 fps, `high` and `ultra` the Pixel 2 XL at 60 fps.

@@ -19,8 +19,8 @@ use render::optics::{N_AIR, N_WATER, brewster_angle, critical_angle, fresnel, sc
 use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
 
-use crate::bench::{Axes, BenchContext, Series, Table, time_ns};
-use crate::error::{CliError, CliResult};
+use crate::{Axes, BenchContext, Series, Table, time_ns};
+use regatta::error::{CliError, CliResult};
 
 /// Goal of the issue: every effect on costs at most this much of a water-only frame.
 const GOAL_RATIO: f64 = 1.6;
@@ -87,7 +87,7 @@ impl Case {
             let handle = add_effect_passes(&mut renderer, gpu, cfg, frame);
             new_frames = again.map(|frame| (handle, frame));
         }
-        let view = crate::bench::offscreen(gpu, size);
+        let view = crate::offscreen(gpu, size);
         Case {
             renderer,
             view,

@@ -21,8 +21,8 @@ use ocean::wake::{
 };
 use serde_json::json;
 
-use crate::bench::{Axes, BenchContext, Series, Table, time_ns};
-use crate::error::{CliError, CliResult};
+use crate::{Axes, BenchContext, Series, Table, time_ns};
+use regatta::error::{CliError, CliResult};
 
 const KELVIN_DEG: f64 = 19.471_220_634_490_69;
 

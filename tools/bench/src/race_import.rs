@@ -14,8 +14,8 @@ use race::synth_formats::{canboat_json_log, candump_log, fit_log, tcx_log};
 use race::synth_logs::{csv_log, nmea_log};
 use serde_json::json;
 
-use crate::bench::{BenchContext, Table};
-use crate::error::{CliError, CliResult};
+use crate::{BenchContext, Table};
+use regatta::error::{CliError, CliResult};
 
 /// A field of /proc/self/status in kB, as bytes.
 fn status_bytes(field: &str) -> Option<u64> {

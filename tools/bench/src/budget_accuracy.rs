@@ -14,9 +14,9 @@ use effects::caustics::{MAX_INTENSITY, area_ratio, cheap_caustic_light};
 use effects::demo_table_scene;
 use effects::passes::{ArConfig, caustic_region};
 
-use crate::bench::BenchContext;
-use crate::error::CliResult;
+use crate::BenchContext;
 use quality::Tier;
+use regatta::error::CliResult;
 
 /// One tier's accuracy.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -11,9 +11,9 @@ use super::budget_camera::camera_table;
 use super::budget_model::{PHONES, pass_shaders};
 use super::budget_run::{Row, goal, measure, passes_table};
 use super::shader_cost::{entry_cost, function_costs};
-use crate::bench::{BenchContext, Table};
-use crate::error::{CliError, CliResult};
-use crate::tier_render::TierRender;
+use crate::{BenchContext, Table};
+use regatta::error::{CliError, CliResult};
+use regatta::tier_render::TierRender;
 
 /// Section `budget-model`.
 pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {

@@ -13,8 +13,8 @@ use race::Race;
 use race::track::{hermite, pchip_slopes};
 use serde_json::json;
 
-use crate::bench::{BenchContext, Table, time_ns};
-use crate::error::{CliError, CliResult};
+use crate::{BenchContext, Table, time_ns};
+use regatta::error::{CliError, CliResult};
 
 const BOATS: usize = 50;
 const HZ: f64 = 10.0;
@@ -207,7 +207,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         "The f32 slopes are the only approximation: {max_err:.2e} m measured against the f64 \
          reference at 100,000 points (bound stated in track.rs: < 1e-4 m).",
     ));
-    let import = crate::bench::race_import::table(ctx)?;
-    let fleet = crate::bench::race_fleet::table(ctx)?;
+    let import = crate::race_import::table(ctx)?;
+    let fleet = crate::race_fleet::table(ctx)?;
     Ok(vec![t, import, fleet])
 }

@@ -1,0 +1,82 @@
+//! `regatta-bench`: what `regatta bench ARGS` runs (the app finds this binary beside its own and
+//! passes the arguments on; app/src/cli/bench.rs). Messages are `regatta:` lines as every other
+//! subcommand's; the summary is JSON on stdout (docs/command-line.md).
+
+use std::path::PathBuf;
+
+use clap::Parser;
+use regatta::error::{CliError, CliResult};
+use regatta_bench::{BenchContext, run_all};
+
+/// Run time against error: writes JSON, Markdown and SVG plots into a folder.
+#[derive(Debug, Parser)]
+#[command(name = "regatta bench", bin_name = "regatta bench", version)]
+struct BenchArgs {
+    /// Fewer repetitions and smaller grids (a minute or two instead of many).
+    #[arg(long)]
+    quick: bool,
+    /// Output folder for report.json, report.md and the SVG plots.
+    #[arg(long, default_value = "bench-out")]
+    out: PathBuf,
+    /// Run only these sections (repeatable).
+    #[arg(long)]
+    only: Vec<String>,
+}
+
+fn run(a: BenchArgs) -> CliResult {
+    let ctx = BenchContext {
+        out_dir: a.out.clone(),
+        quick: a.quick,
+    };
+    let tables = run_all(&ctx, &a.only)?;
+    eprintln!(
+        "bench: wrote {} tables to {}",
+        tables.len(),
+        input::show_path(&a.out.join("report.md"))
+    );
+    regatta::cli::print_stdout(
+        "the bench summary",
+        &serde_json::json!({ "out": a.out, "tables": tables.len() }),
+    )
+}
+
+/// Warnings print as `regatta: <one line>`, as the app's do; with `RUST_LOG` set, a developer
+/// gets the logger's own format.
+fn init_logging() {
+    let mut b = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"));
+    if std::env::var_os("RUST_LOG").is_none() {
+        b.format(|buf, record| {
+            use std::io::Write;
+            writeln!(
+                buf,
+                "{}",
+                regatta::cli::user_line(&record.args().to_string())
+            )
+        });
+    }
+    b.init();
+}
+
+fn main() {
+    init_logging();
+    // Help and version print as clap prints them; every other clap error is one line, exit 2.
+    let args = match BenchArgs::try_parse() {
+        Ok(a) => a,
+        Err(e) if !e.use_stderr() => e.exit(),
+        Err(e) => {
+            eprintln!("regatta: {}", regatta::cli::clap_one_line(&e.to_string()));
+            std::process::exit(2);
+        }
+    };
+    let result = if regatta::cli::stdout_is_closed() {
+        Err(CliError::new(
+            "stdout is closed, so the output has nowhere to go (was it run with >&-?)",
+        ))
+    } else {
+        run(args)
+    };
+    if let Err(e) = result {
+        eprintln!("regatta: {}", input::one_line(&e.to_string()));
+        std::process::exit(1);
+    }
+}
