@@ -413,7 +413,7 @@ pub(crate) fn passes_table(rows: &[Row]) -> Table {
          queries (this adapter's rasteriser); the water's compute stage once per clip-map vertex \
          (half its triangles); the reflection texture once per texel; the caustic map once per \
          surface grid point, twice per grid cell and once per map cell; the upscale once per \
-         screen pixel. Work per invocation: naga's IR of each entry point (app/src/bench/\
+         screen pixel. Work per invocation: naga's IR of each entry point (tools/bench/src/\
          shader_cost.rs), loops × trip counts known on the CPU (waves, marks, wake sources per \
          bin). A pass takes the longest of ALU ÷ FP32 rate, texels ÷ texture rate and memory \
          bytes ÷ bandwidth (render targets, vertices, the wake buffers once: the sources a bin \
