@@ -6,7 +6,8 @@
 # (regatta-apk check, and aapt list); the "Open with"/"Share" intent filters of app/Cargo.toml
 # read back with aapt dump xmltree; and every undefined dynamic symbol of the native library against Android's
 # symbol maps at the declared minSdk (regatta-apk check-symbols: no symbol newer than minSdk, no
-# _Unwind_*, no glibc version).   Usage: scripts/check-apk.sh [APK]
+# _Unwind_*, no glibc version); and no code of the bench in it (regatta-apk check-bench-free).
+# Usage: scripts/check-apk.sh [APK]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 apk="${1:-${CARGO_TARGET_DIR:-target}/apk/regatta.apk}"
@@ -59,6 +60,10 @@ maps="${ANDROID_SYMBOL_MAPS:-$(cd .. && pwd)/shared/data/android}"
 report=$("${CARGO_TARGET_DIR:-target}/debug/regatta-apk" check-symbols --lib "$so" --maps "$maps" --maps android) \
   || fail "undefined symbols of $so not all available at minSdk $min_sdk (above)"
 weak=$(grep -c '(API\|(not in the maps)' <<<"$report" || true)
+# The bench (tools/bench, `regatta bench`) is a program of its own: no symbol of the library's
+# symbol table is its code (its crate, its budget model and shader cost, plotters).
+"${CARGO_TARGET_DIR:-target}/debug/regatta-apk" check-bench-free --lib "$so" >/dev/null \
+  || fail "the library holds the bench's code (above)"
 # Cross-check with LLVM's own reader: nothing glibc-versioned, no unwinder import.
 if llvm-nm -D --undefined-only "$so" | grep -E '@GLIBC|_Unwind_' ; then
   fail "llvm-nm finds glibc-versioned or _Unwind_ imports above"

@@ -1,5 +1,5 @@
 // The AR water: the water pass's mesh (water.wgsl's vs_main: waves and wakes) shaded once with
-// the effects this frame needs, mixed by the full Fresnel equations (source 004):
+// the effects this frame needs, mixed by the full Fresnel equations (not Schlick's approximation):
 // R·reflection + (1 − R)·the table seen through the water (refracted, lit by caustics,
 // through clear water: water_look.wgsl), then foam. Replaces water.wgsl's fs_main when an effect runs, so
 // no water pixel is shaded twice. Appended after the water pass's files and the effect files;

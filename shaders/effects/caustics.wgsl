@@ -2,7 +2,7 @@
 //
 // Area-ratio tier: the irradiance map of the actual wave surface at this race time, computed on
 // the CPU by the area ratio (light conserved; 1 = flat water) and sampled at the table point.
-// Cheap tier (source 000 / GPU Gems): sun straight overhead; the vertical ray from the table
+// Cheap tier (the Sailing+ AR water thesis's, after GPU Gems; docs/sources.md): sun straight overhead; the vertical ray from the table
 // meets the surface above, is bent out by its normal and looks up a sun disc; the source's
 // alpha = clamp(r + g + b, 0, 1) makes the dark parts transparent. The sun disc's radius
 // CHEAP_SUN_RADIUS and the blend CHEAP_SUN_GAIN come from the prelude (f64 reference:

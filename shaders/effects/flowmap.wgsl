@@ -1,4 +1,4 @@
-// Flow-map distortion with the UV jump (source 000 § 3.1; f64 reference: effects/flowmap.rs):
+// Flow-map distortion with the UV jump (the Sailing+ AR water thesis's § 3.1, docs/sources.md; f64 reference: effects/flowmap.rs):
 // a detail normal texture advected by the current around the marks, two copies half a period
 // apart blended with triangle weights, each jumping at its restart. The current is the
 // potential flow past each mark (a cylinder) in the far current; progress and offsets come

@@ -1,4 +1,4 @@
-// Reflection (source 000 § 3.2.1, improved; f64 reference of the ring: effects/reflection.rs):
+// Reflection (the Sailing+ AR water thesis's § 3.2.1, improved: docs/sources.md; f64 reference of the ring: effects/reflection.rs):
 // what the water mirrors, from the planar reflection texture. The reflection pass draws it at a
 // fraction of the screen (000: a quarter) with the reflection matrix (000 eq. 1) and oblique
 // near-plane clipping at the water (000 eq. 2), so nothing below the water is in it: first the

@@ -1,4 +1,4 @@
-// The real room in the planar reflection texture (source 000 § 3.2.1, improved; f64 reference
+// The real room in the planar reflection texture (the Sailing+ AR water thesis's § 3.2.1, improved: docs/sources.md; f64 reference
 // of the ring: effects/reflection.rs). Drawn first in the planar reflection pass, at the
 // texture's fraction of the screen, with the reflection pass's frame bindings: the camera
 // mirrored in the water (000 eq. 1) with its near plane on the water (000 eq. 2). In those

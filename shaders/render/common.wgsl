@@ -71,7 +71,7 @@ fn wave_phase(w: Wave, p: vec2<f32>) -> f32 {
     return w.k * dot(w.direction, p) + w.phase0;
 }
 
-// Displacement (dx, y, dz) of one wave at local rest point p (source 003, eqs. 1-2).
+// Displacement (dx, y, dz) of one wave at local rest point p (Gerstner, as eqs. 1-2 of the Sailing+ wave-model thesis: docs/sources.md).
 fn gerstner(w: Wave, p: vec2<f32>) -> vec3<f32> {
     let theta = wave_phase(w, p);
     let c = cos(theta);

@@ -5,7 +5,7 @@
 
 // N_AIR, N_WATER: from the generated prelude (render::optics).
 
-// Unpolarised reflectance by the full Fresnel equations (source 004), 1.0 under total internal
+// Unpolarised reflectance by the full Fresnel equations (not Schlick's approximation), 1.0 under total internal
 // reflection. Rs = ((n1 ci − n2 ct)/(n1 ci + n2 ct))², Rp = ((n1 ct − n2 ci)/(n1 ct + n2 ci))².
 fn fresnel_reflectance(cos_i_in: f32, n1: f32, n2: f32) -> f32 {
     let cos_i = min(abs(cos_i_in), 1.0);

@@ -8,7 +8,7 @@
 //! waves are a closed-form function of t (`ocean::WaveSet::surface`), the caustics scrub with
 //! the timeline like everything else.
 //!
-//! **Cheap tier (source 000, after GPU Gems ch. 2).** The sun straight overhead, the flat water
+//! **Cheap tier (the Sailing+ AR water thesis's, TU Delft 2022, docs/sources.md; after GPU Gems ch. 2).** The sun straight overhead, the flat water
 //! plane, one lookup of a sun map in the direction the surface normal bends the vertical ray,
 //! and alpha = clamp(r + g + b, 0, 1) so black means transparent. It ignores the sun's
 //! direction and the real focusing distance; it costs one normal per pixel.
@@ -241,10 +241,10 @@ fn splat_triangle(
 pub const CHEAP_SUN_RADIUS: f64 = 0.1;
 
 /// The cheap tier's brightness at a table point under flat water lit from straight above
-/// (source 000 / GPU Gems): the vertical ray from the table meets the water plane directly
+/// (the AR water thesis's, after GPU Gems): the vertical ray from the table meets the water plane directly
 /// above, is bent by the surface normal there, and looks up a sun map: here a Gaussian disc
 /// of angular radius `sun_radius` (radians; the shader's is [`CHEAP_SUN_RADIUS`]) around the
-/// zenith, standing in for 000's texture. Under total internal reflection (the normal tilted
+/// zenith, standing in for the thesis's sun texture. Under total internal reflection (the normal tilted
 /// beyond the critical angle, 48.6°) no sun is seen: 0 up to e^{−(π/2)²/ρ²}.
 pub fn overhead_sun(normal: DVec3, sun_radius: f64) -> f64 {
     // Looking up from below the water: refract the upward ray out into the air.
@@ -253,14 +253,14 @@ pub fn overhead_sun(normal: DVec3, sun_radius: f64) -> f64 {
     (-(angle / sun_radius).powi(2)).exp()
 }
 
-/// Source 000's trick to make the black of the caustic texture transparent without a branch:
+/// The AR water thesis's trick to make the black of the caustic texture transparent without a branch:
 /// alpha = clamp(r + g + b, 0, 1).
 pub fn caustic_alpha(rgb: [f64; 3]) -> f64 {
     (rgb[0] + rgb[1] + rgb[2]).clamp(0.0, 1.0)
 }
 
 /// How much the cheap tier's sun adds to flat water's light at full alpha (`CHEAP_SUN_GAIN` in
-/// WGSL, which `caustics.wgsl`'s `caustic_light` uses): source 000's blend strength.
+/// WGSL, which `caustics.wgsl`'s `caustic_light` uses): the AR water thesis's blend strength.
 pub const CHEAP_SUN_GAIN: f64 = 0.8;
 
 /// The cheap tier's light on a table point relative to flat water, `normal` the surface normal

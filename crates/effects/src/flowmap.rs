@@ -1,4 +1,4 @@
-//! Flow-map texture distortion with the UV jump (source 000 § 3.1, after Vlachos, "Water Flow
+//! Flow-map texture distortion with the UV jump (as the Sailing+ AR water thesis, TU Delft 2022, does it in its § 3.1: docs/sources.md; after Vlachos, "Water Flow
 //! in Portal 2", 2010, and Flick's flow tutorial), used for the tidal current around marks.
 //! f64 reference of `shaders/flowmap.wgsl`.
 //!

@@ -1,6 +1,8 @@
-//! `effects`: the AR water effects of source 000, made physical where 000 names its own limitations:
-//! camera background, planar reflection, refraction of the real table, caustics and flow-map
-//! distortion, mixed by the full Fresnel equations of source 004 ([`render::optics`]). A crate on the render
+//! `effects`: the AR water effects of the Sailing+ AR water thesis (TU Delft 2022; what it says:
+//! docs/sources.md), made physical where the thesis names its own limitations: camera
+//! background, planar reflection, refraction of the real table, caustics and flow-map
+//! distortion, mixed by the full Fresnel equations, not Schlick's approximation
+//! ([`render::optics`]). A crate on the render
 //! core (`render`): its passes implement [`render::Pass`] and draw with the core's helpers.
 //!
 //! Invariant: it knows nothing of ARCore (a camera image arrives as a [`camera_frame`] value),

@@ -1,7 +1,7 @@
 //! The f64 reference of what the pool shader computes per fragment of the water surface: the
 //! view ray splits at the surface into a reflected and a refracted ray (Snell; total internal
 //! reflection from below past the critical angle), each is traced against the analytic spheres
-//! and the pool box, the hits are Phong-shaded (source 004's coefficients), and the full
+//! and the pool box, the hits are Phong-shaded (the CS114 WebGL pool report's coefficients, 2018: docs/sources.md), and the full
 //! Fresnel equations weigh the two. Under the water, light is lit by the caustics map and
 //! absorbed along the view path (Beer–Lambert, red first).
 
@@ -16,7 +16,7 @@ use render::optics::{N_AIR, fresnel, reflect, refract};
 /// e^(−μ s) over a path of s metres (pure water absorbs red most).
 pub const WATER_ABSORPTION: [f64; 3] = [0.45, 0.09, 0.06];
 
-/// Phong coefficients of source 004: diffuse 0.8, specular 0.4, plus an ambient term.
+/// Phong coefficients of the CS114 pool report: diffuse 0.8, specular 0.4, plus an ambient term.
 pub const AMBIENT: f64 = 0.25;
 pub const DIFFUSE: f64 = 0.8;
 pub const SPECULAR: f64 = 0.4;

@@ -20,7 +20,7 @@ pub enum Tier {
     /// A PowerVR GE8320 class phone (OPPO A54) at 30 fps: half-size frame, coarse mesh,
     /// background, reflection and refraction only, the reflection at ⅙ of the screen per side.
     Low,
-    /// Adds the cheap overhead-sun caustics (source 000's tier) and a finer mesh.
+    /// Adds the cheap overhead-sun caustics (the Sailing+ AR water thesis's, TU Delft 2022: docs/sources.md) and a finer mesh.
     Medium,
     /// Every effect, the area-ratio caustic map at its default grid, ¾-size frame (the Pixel 2
     /// XL at 60 fps is the goal here).
@@ -40,7 +40,7 @@ pub struct TierSettings {
     pub effects: &'static [&'static str],
     /// Reflection texture size as a fraction of the screen per side (`ArConfig::reflection_fraction`).
     pub reflection_fraction: f64,
-    /// Caustics by source 000's overhead-sun formula instead of the area-ratio map.
+    /// Caustics by the AR water thesis's overhead-sun formula (GPU Gems ch. 2) instead of the area-ratio map.
     pub cheap_caustics: bool,
     /// Surface grid and output cells per side of the area-ratio caustic map
     /// (`ArConfig::caustic_resolution`).

@@ -1,5 +1,6 @@
 //! Measured screen-space height error of a clip-map against the analytic f64 sea, and the
-//! triangles it draws at a view: what the `mesh` bench compares with source 003's clip-maps.
+//! triangles it draws at a view: what the `mesh` bench compares with the clip-maps measured in the Sailing+ wave-model thesis
+//! (TU Delft 2022; docs/sources.md).
 //!
 //! Error: for a ray through every `stride`-th pixel that meets the sea's rest plane inside the
 //! play area, the height the (unmorphed) mesh draws at that rest point, linear over its

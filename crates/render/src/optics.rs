@@ -2,11 +2,12 @@
 //! mirrors in `shaders/optics.wgsl` are tested against, and what the CPU-side effect models
 //! (refraction of the table, caustics) are built from.
 //!
-//! - The full Fresnel equations (source 004) for s- and p-polarised light, their unpolarised
+//! - The full Fresnel equations (as the CS114 WebGL pool report, 2018, uses them instead of
+//!   Schlick's approximation; docs/sources.md) for s- and p-polarised light, their unpolarised
 //!   average, and total internal reflection; Schlick's approximation only for comparison.
 //! - Snell refraction and mirror reflection of direction vectors.
-//! - The planar reflection matrix (source 000, eq. 1) and oblique near-plane clipping (000,
-//!   eq. 2, after Lengyel 2005) on a glam projection matrix, for OpenGL's and for wgpu's depth
+//! - The planar reflection matrix and oblique near-plane clipping (after Lengyel 2005), eqs. 1
+//!   and 2 of the Sailing+ AR water thesis (TU Delft 2022; docs/sources.md), on a glam projection matrix, for OpenGL's and for wgpu's depth
 //!   range.
 //! - Ray–plane intersection and pinhole projection through camera intrinsics and pose.
 //!
@@ -18,8 +19,8 @@ use glam::{DMat4, DVec2, DVec3, DVec4};
 
 /// Refractive index of air.
 pub const N_AIR: f64 = 1.0;
-/// Refractive index of water for visible light (about 1.333 at 20 °C, 589 nm; source 004
-/// rounds it to 1.33).
+/// Refractive index of water for visible light (about 1.333 at 20 °C, 589 nm; the CS114 pool
+/// report rounds it to 1.33).
 pub const N_WATER: f64 = 1.333;
 
 /// The Fresnel power coefficients at one interface and angle.
@@ -192,7 +193,7 @@ impl Plane {
     }
 }
 
-/// The affine reflection about `plane` (source 000, eq. 1):
+/// The affine reflection about `plane` (the AR water thesis's eq. 1):
 ///
 /// ```text
 /// | 1−2a²  −2ab   −2ac   −2ad |
@@ -225,7 +226,7 @@ pub enum DepthRange {
     ZeroToOne,
 }
 
-/// Oblique near-plane clipping (source 000, eq. 2; Lengyel, "Oblique view frustum depth
+/// Oblique near-plane clipping (the AR water thesis's eq. 2; Lengyel, "Oblique view frustum depth
 /// projection and clipping", 2005): returns `proj` with its third row replaced so that the near
 /// plane becomes `clip_plane` (given in view space, its front the side that is kept) and the
 /// far plane still passes through the far frustum corner Q opposite to it, so depth precision

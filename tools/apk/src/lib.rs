@@ -6,6 +6,8 @@
 #[cfg(not(target_os = "android"))]
 pub mod aar;
 #[cfg(not(target_os = "android"))]
+pub mod bench_free;
+#[cfg(not(target_os = "android"))]
 pub mod check;
 #[cfg(not(target_os = "android"))]
 pub mod key;

@@ -33,9 +33,18 @@ mod host {
         /// Check the library's undefined dynamic symbols against Android's symbol maps at the
         /// manifest's minSdk.
         CheckSymbols(SymbolArgs),
+        /// Refuse a library whose symbol table names the bench's code (tools/bench).
+        CheckBenchFree(BenchFreeArgs),
         /// Read a built APK back: refuse ARCore's library without ARCore's classes (DEX) and
         /// code declared but absent; print its libraries, DEX files and intent filters.
         Check(CheckArgs),
+    }
+
+    #[derive(clap::Args, Debug)]
+    struct BenchFreeArgs {
+        /// The native library to check.
+        #[arg(long)]
+        lib: PathBuf,
     }
 
     #[derive(clap::Args, Debug)]
@@ -88,6 +97,8 @@ mod host {
         let result = match Cli::parse() {
             Cli::Package(args) => run(&args),
             Cli::CheckSymbols(args) => check_symbols(&args),
+            Cli::CheckBenchFree(args) => regatta_apk::bench_free::check_bench_free(&args.lib)
+                .map(|n| serde_json::json!({ "lib": args.lib, "symbols_checked": n }).to_string()),
             Cli::Check(args) => regatta_apk::check::check_apk(&args.apk).and_then(|report| {
                 serde_json::to_string_pretty(&report).map_err(|e| ApkError(e.to_string()))
             }),

@@ -7,7 +7,7 @@
 //!   height error bound of the sources the tier's budget drops in the frame;
 //! - caustics: the RMS error of the light on the table against the converged area-ratio map
 //!   (512² surface grid) of the effects bench's demo table: the tier's map, the cheap
-//!   overhead-sun tier (source 000's formula as `shaders/caustics.wgsl` applies it), or flat
+//!   overhead-sun tier (the AR water thesis's formula as `shaders/caustics.wgsl` applies it), or flat
 //!   light where caustics are off.
 
 use effects::caustics::{MAX_INTENSITY, area_ratio, cheap_caustic_light};

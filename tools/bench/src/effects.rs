@@ -1,12 +1,12 @@
 //! Bench sections of the AR water effects:
 //!
 //! - `effects`: the cost of each AR effect alone and of all of them against a water-only
-//!   frame, in the form of source 000's Table 1 (min / max / average frames per second) plus
+//!   frame, in the form of the Sailing+ AR water thesis's Table 1 (TU Delft 2022) (min / max / average frames per second) plus
 //!   the ratios, measured in one run on the adapter at hand (lavapipe in CI); each pass's GPU
 //!   time in the same run; and the area-ratio caustic map's CPU time against its error per
 //!   resolution (against a 512² f64 reference).
 //! - `fresnel`: the error Schlick's approximation would make against the full Fresnel
-//!   equations (source 004) at each angle, air → water and water → air, and what each costs.
+//!   equations at each angle, air → water and water → air, and what each costs.
 
 use std::collections::BTreeMap;
 use std::hint::black_box;
@@ -160,7 +160,7 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     ));
     let mut t = Table::new(
         "effects_cost",
-        "AR effects: frame cost of each effect against water only (after source 000, Table 1)",
+        "AR effects: frame cost of each effect against water only (after the AR water thesis, Table 1)",
         &[
             "effects",
             "min fps",

@@ -23,7 +23,7 @@ use serde_json::json;
 use crate::{BenchContext, Table};
 use regatta::error::CliResult;
 
-/// Published triangle counts of source 003, Table 2: (levels, resolution, triangles).
+/// Published triangle counts of the Sailing+ wave-model thesis (TU Delft 2022), Table 2: (levels, resolution, triangles).
 pub const SOURCE_TABLE_2: [(u32, u32, u64); 9] = [
     (2, 50, 142_820),
     (2, 100, 565_620),
@@ -122,7 +122,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let stride = if ctx.quick { 16 } else { 8 };
     let mut table = Table::new(
         "mesh",
-        "Clip-map: source 003's nine configurations against Regatta's at the same view",
+        "Clip-map: the wave-model thesis's nine configurations against Regatta's at the same view",
         &[
             "source levels × res",
             "source triangles (Table 2)",

@@ -172,6 +172,52 @@ struct Track {
     series: Vec<Series>,
 }
 
+/// The instrument channels kept as series, in the order their values are read.
+type Channels = [(&'static str, Col); 4];
+
+/// One data row's values: NaN where the log has no such column or the cell is empty.
+struct Row<'r> {
+    t: f64,
+    lat: f64,
+    lon: f64,
+    sog: f64,
+    heading: f64,
+    heel: f64,
+    tws: f64,
+    twd: f64,
+    /// The channels' values, in [`Channels`]' order.
+    channel_values: [f64; 4],
+    /// The boat column's id; empty when the log has none or the cell is blank.
+    boat: &'r str,
+}
+
+/// The mean wind over the rows that give both TWS and TWD (directions averaged as vectors).
+#[derive(Default)]
+struct WindMean {
+    east: f64,
+    north: f64,
+    tws_sum: f64,
+    rows: usize,
+}
+
+impl WindMean {
+    fn add(&mut self, tws: f64, twd: f64) {
+        if tws.is_finite() && twd.is_finite() {
+            self.east += twd.to_radians().sin();
+            self.north += twd.to_radians().cos();
+            self.tws_sum += tws;
+            self.rows += 1;
+        }
+    }
+
+    fn mean(&self) -> Option<Wind> {
+        (self.rows > 0).then(|| Wind {
+            from_deg: self.east.atan2(self.north).to_degrees().rem_euclid(360.0),
+            speed_mps: self.tws_sum / self.rows as f64,
+        })
+    }
+}
+
 pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)
@@ -183,101 +229,38 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
         .clone();
     let cols = detect(file, &header)?;
     let names: Vec<&str> = header.iter().map(str::trim).collect();
-    let n_cols = names.len();
     let mut tracks: Vec<Track> = Vec::new();
     // Boat id → index in `tracks`: a fleet file of 40,000 boats looked up by scanning was
     // quadratic in the boat count.
     let mut track_of: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
     let mut times: Option<Times> = None;
-    let (mut wind_e, mut wind_n, mut tws_sum, mut n_wind) = (0.0, 0.0, 0.0, 0usize);
+    let mut wind = WindMean::default();
     let (mut rows, mut blank, mut no_fix) = (0usize, 0usize, 0usize);
     let mut rec = csv::StringRecord::new();
     let file_id = super::boat_id_from_file(file);
-    let channels: Vec<(&str, Col)> = vec![
+    let channels: Channels = [
         ("bsp", cols.bsp),
         ("tws", cols.tws),
         ("twd", cols.twd),
         ("trim", cols.trim),
     ];
-    loop {
-        match rdr.read_record(&mut rec) {
-            Ok(true) => {}
-            Ok(false) => break,
-            Err(e) => {
-                let line = e.position().map_or(0, |p| p.line());
-                let what = match e.kind() {
-                    csv::ErrorKind::Utf8 { .. } => "text that is not UTF-8".to_string(),
-                    _ => format!("unreadable row ({})", crate::text::escape(&e.to_string())),
-                };
-                return Err(RaceError::at_line(file, line, what));
-            }
-        }
+    while next_record(file, &mut rdr, &mut rec)? {
         rows += 1;
         let line = rec.position().map_or(0, |p| p.line());
         if rec.iter().all(|c| c.trim().is_empty()) {
             blank += 1;
             continue;
         }
-        if rec.len() != n_cols {
-            return Err(RaceError::at_line(
-                file,
-                line,
-                format!("{} cells where the header has {n_cols}", rec.len()),
-            ));
-        }
-        let cell = |i: usize| rec.get(i).unwrap_or("").trim();
-        let num = |i: usize| number_cell(file, line, names[i], cell(i));
-        let opt = |c: Col| -> RaceResult<f64> {
-            match c {
-                Some((i, u)) => Ok(num(i)? * u),
-                None => Ok(f64::NAN),
-            }
-        };
-        let (lat, lon) = (num(cols.lat)?, num(cols.lon)?);
-        if lat.is_nan() && cell(cols.lat).is_empty() || lon.is_nan() && cell(cols.lon).is_empty() {
+        let Some(row) = read_row(file, line, &rec, &names, &cols, &channels, &mut times)? else {
             no_fix += 1;
             continue;
-        }
-        let Some((t, kind)) = parse_time(cell(cols.time), cols.time_unit_s) else {
-            return Err(RaceError::at_line(
-                file,
-                line,
-                format!(
-                    "{} is {}, not a time (YYYY-MM-DD HH:MM:SS with an optional zone, RFC 3339 or seconds)",
-                    plain(names[cols.time]),
-                    q(cell(cols.time))
-                ),
-            ));
         };
-        match times {
-            None => times = Some(kind),
-            Some(k) if k != kind => {
-                return Err(RaceError::at_line(
-                    file,
-                    line,
-                    "mixes calendar times and plain seconds in the time column",
-                ));
-            }
-            _ => {}
-        }
-        if let Some(msg) = super::geo_problem(lat, lon) {
-            return Err(RaceError::at_line(file, line, msg));
-        }
-        let sog = opt(cols.sog)?;
-        let heading = opt(cols.heading)?;
-        let heel = opt(cols.heel)?;
-        let (tws, twd) = (opt(cols.tws)?, opt(cols.twd)?);
-        if tws.is_finite() && twd.is_finite() {
-            wind_e += twd.to_radians().sin();
-            wind_n += twd.to_radians().cos();
-            tws_sum += tws;
-            n_wind += 1;
-        }
-        let id = cols
-            .boat
-            .map(cell)
-            .filter(|b| !b.is_empty())
-            .unwrap_or(&file_id);
+        wind.add(row.tws, row.twd);
+        let id = if row.boat.is_empty() {
+            &file_id
+        } else {
+            row.boat
+        };
         let k = match track_of.get(id) {
             Some(&k) => k,
             None => {
@@ -286,27 +269,7 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
                 tracks.len() - 1
             }
         };
-        let tr = &mut tracks[k];
-        for (ser, (_, c)) in tr
-            .series
-            .iter_mut()
-            .zip(channels.iter().filter(|(_, c)| c.is_some()))
-        {
-            let v = opt(*c)?;
-            if v.is_finite() {
-                ser.t.push(t);
-                ser.v.push(v as f32);
-            }
-        }
-        tr.points.push(RawPoint {
-            t,
-            c: [lat, lon],
-            logged: Logged {
-                heading: heading as f32,
-                heel: heel as f32,
-            },
-            sog,
-        });
+        tracks[k].push(&row, &channels);
     }
     if tracks.is_empty() {
         return Err(RaceError::in_file(
@@ -314,21 +277,133 @@ pub(crate) fn parse(file: &str, text: &str) -> RaceResult<Source> {
             "the log has a header but no rows with a position: a boat needs points",
         ));
     }
-    let wind = (n_wind > 0).then(|| Wind {
-        from_deg: wind_e.atan2(wind_n).to_degrees().rem_euclid(360.0),
-        speed_mps: tws_sum / n_wind as f64,
-    });
     Ok(into_source(
         file,
         &cols,
         tracks,
         times,
-        wind,
+        wind.mean(),
         [rows, blank, no_fix],
     ))
 }
 
+/// The next record into `rec`: false at the end, or the reader's error naming the line.
+fn next_record(
+    file: &str,
+    rdr: &mut csv::Reader<&[u8]>,
+    rec: &mut csv::StringRecord,
+) -> RaceResult<bool> {
+    rdr.read_record(rec).map_err(|e| {
+        let line = e.position().map_or(0, |p| p.line());
+        let what = match e.kind() {
+            csv::ErrorKind::Utf8 { .. } => "text that is not UTF-8".to_string(),
+            _ => format!("unreadable row ({})", crate::text::escape(&e.to_string())),
+        };
+        RaceError::at_line(file, line, what)
+    })
+}
+
+/// A non-blank row's values; `None` for a row without a position; an error naming the line
+/// for a short or long row, a bad number, time or position, or a time of the other kind than
+/// the rows before (`times`: the kind the first row set).
+fn read_row<'r>(
+    file: &str,
+    line: u64,
+    rec: &'r csv::StringRecord,
+    names: &[&str],
+    cols: &Columns,
+    channels: &Channels,
+    times: &mut Option<Times>,
+) -> RaceResult<Option<Row<'r>>> {
+    if rec.len() != names.len() {
+        return Err(RaceError::at_line(
+            file,
+            line,
+            format!("{} cells where the header has {}", rec.len(), names.len()),
+        ));
+    }
+    let cell = |i: usize| rec.get(i).unwrap_or("").trim();
+    let num = |i: usize| number_cell(file, line, names[i], cell(i));
+    let opt = |c: Col| -> RaceResult<f64> {
+        match c {
+            Some((i, u)) => Ok(num(i)? * u),
+            None => Ok(f64::NAN),
+        }
+    };
+    let (lat, lon) = (num(cols.lat)?, num(cols.lon)?);
+    if lat.is_nan() && cell(cols.lat).is_empty() || lon.is_nan() && cell(cols.lon).is_empty() {
+        return Ok(None);
+    }
+    let Some((t, kind)) = parse_time(cell(cols.time), cols.time_unit_s) else {
+        return Err(RaceError::at_line(
+            file,
+            line,
+            format!(
+                "{} is {}, not a time (YYYY-MM-DD HH:MM:SS with an optional zone, RFC 3339 or seconds)",
+                plain(names[cols.time]),
+                q(cell(cols.time))
+            ),
+        ));
+    };
+    match times {
+        None => *times = Some(kind),
+        Some(k) if *k != kind => {
+            return Err(RaceError::at_line(
+                file,
+                line,
+                "mixes calendar times and plain seconds in the time column",
+            ));
+        }
+        _ => {}
+    }
+    if let Some(msg) = super::geo_problem(lat, lon) {
+        return Err(RaceError::at_line(file, line, msg));
+    }
+    let (sog, heading, heel) = (opt(cols.sog)?, opt(cols.heading)?, opt(cols.heel)?);
+    let (tws, twd) = (opt(cols.tws)?, opt(cols.twd)?);
+    let mut channel_values = [f64::NAN; 4];
+    for (v, (_, c)) in channel_values.iter_mut().zip(channels) {
+        *v = opt(*c)?;
+    }
+    Ok(Some(Row {
+        t,
+        lat,
+        lon,
+        sog,
+        heading,
+        heel,
+        tws,
+        twd,
+        channel_values,
+        boat: cols.boat.map(cell).unwrap_or(""),
+    }))
+}
+
 impl Track {
+    /// A row's fix, and its channels' values where the row has them.
+    fn push(&mut self, row: &Row, channels: &Channels) {
+        let present = row
+            .channel_values
+            .iter()
+            .zip(channels)
+            .filter(|(_, (_, c))| c.is_some());
+        for (ser, (&v, _)) in self.series.iter_mut().zip(present) {
+            if v.is_finite() {
+                ser.t.push(row.t);
+                ser.v.push(v as f32);
+            }
+        }
+        self.points.push(RawPoint {
+            t: row.t,
+            c: [row.lat, row.lon],
+            logged: Logged {
+                heading: row.heading as f32,
+                heel: row.heel as f32,
+            },
+            sog: row.sog,
+        });
+    }
+
     /// A boat's track with one empty series per instrument channel the log has.
     fn new(id: &str, channels: &[(&str, Col)]) -> Track {
         Track {

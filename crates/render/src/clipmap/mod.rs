@@ -1,4 +1,5 @@
-//! The camera-following clip-map of source 003 (after Asirvatham & Hoppe), sized from a
+//! The camera-following clip-map of the Sailing+ wave-model thesis (TU Delft 2022;
+//! docs/sources.md; after Asirvatham & Hoppe), sized from a
 //! stated screen-space error target instead of a fixed level count and resolution.
 //!
 //! **Layout.** Level 0 is an n₀ × n₀ grid of square cells of size s₀ around the camera; level
