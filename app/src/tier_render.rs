@@ -7,8 +7,9 @@
 //! means the same frame everywhere; a tier changed on a running renderer
 //! ([`TierRender::apply_live`]) draws the frame a renderer built at that tier draws.
 //!
-//! The overlay detail is carried for the race-overlay passes; they read
-//! [`TierRender::overlay`] when they land (not yet read: every tier draws the overlays the user chose).
+//! The overlay detail ([`TierRender::overlay`]) is carried but read by nothing: the race
+//! overlays (`scene_overlay`) draw what the user chose at every tier, so a tier does not yet
+//! change the overlays.
 
 use std::sync::Arc;
 

@@ -1,4 +1,4 @@
-//! `regatta probe` through the built binary: the JSON contract of DESIGN.md and its errors.
+//! `regatta probe` through the built binary: the JSON contract of docs/command-line.md and its errors.
 
 mod common;
 

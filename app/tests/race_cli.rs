@@ -1,4 +1,4 @@
-//! `regatta race` through the built binary: the DESIGN.md JSON, the report, and bad input
+//! `regatta race` through the built binary: the docs/command-line.md JSON, the report, and bad input
 //! (one sentence on stderr naming the file, non-zero exit, nothing on stdout).
 
 mod common;
@@ -317,4 +317,38 @@ fn a_device_is_refused_at_once() {
         &["race", "--t", "0", "--race", "/dev/zero"],
         "/dev/zero: is not a regular file",
     );
+}
+
+/// `--race`'s help names every format the importer detects (`race::import::detect::Format`:
+/// native JSON, maxSail, GPX, CSV, Expedition, NMEA 0183, race XML, FIT, TCX, KML and the three
+/// NMEA 2000 logs), on each command that takes race files; it once named 6 of them.
+#[test]
+fn race_help_names_every_format_the_importer_reads() {
+    let formats = [
+        "native race JSON",
+        "maxSail JSON",
+        "GPX",
+        "CSV logs",
+        "Expedition",
+        "NMEA 0183",
+        "race XML",
+        "FIT",
+        "TCX",
+        "KML / KMZ",
+        "candump",
+        "Actisense CSV",
+        "canboat JSON",
+    ];
+    for command in ["race", "render", "run"] {
+        let (code, help, err) = common::regatta(&[command, "--help"]);
+        assert_eq!(code, 0, "{err}");
+        // clap wraps the help; the words are compared with the line breaks as spaces.
+        let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
+        for f in formats {
+            assert!(
+                help.contains(f),
+                "regatta {command} --help lacks {f:?}: {help}"
+            );
+        }
+    }
 }

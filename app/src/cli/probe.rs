@@ -1,4 +1,4 @@
-//! `regatta probe`: sea, wake and foam values at world points (DESIGN.md contract).
+//! `regatta probe`: sea, wake and foam values at world points (docs/command-line.md contract).
 //!
 //! Per point: the wave surface is sampled at the world point (Newton inverse of the horizontal
 //! displacement, tolerance [`ocean::DEFAULT_TOLERANCE`]), then whatever the wakes add there
@@ -25,7 +25,7 @@ pub struct ProbeArgs {
     /// A world point "X,Z" in metres (x east, z south); repeatable.
     #[arg(long, allow_hyphen_values = true, value_name = "X,Z")]
     pub at: Vec<String>,
-    /// Sea file (JSON, see DESIGN.md); the embedded default sea without it.
+    /// Sea file (JSON, see docs/command-line.md); the embedded default sea without it.
     #[arg(long, value_name = "FILE")]
     pub sea: Option<PathBuf>,
     /// Race files whose boats make the wakes; the embedded sample race without them.

@@ -1,4 +1,4 @@
-//! `regatta race --t T [--race PATH ...]`: boat states and ranks at one race time (DESIGN.md
+//! `regatta race --t T [--race PATH ...]`: boat states and ranks at one race time (docs/command-line.md
 //! contract); `regatta race --report`: the import and cleaning report and the debrief
 //! (wind, manoeuvres, start, legs). Files of every format
 //! of docs/race-files.md; `--keep-going`, `--session N`, `--marks FILE`, `--course A,B,C`.
@@ -16,8 +16,9 @@ pub struct RaceArgs {
     /// Race time in seconds since the start.
     #[arg(long, allow_negative_numbers = true)]
     pub t: Option<f64>,
-    /// Race files (GPX, native JSON, CSV logs and exports, Expedition, NMEA 0183, SailGP race
-    /// XML; several combine into one race). Default: the sample.
+    /// Race files (native race JSON, maxSail JSON, GPX, CSV logs and exports, Expedition, NMEA
+    /// 0183, SailGP / AC race XML, FIT, TCX, KML / KMZ, NMEA 2000 logs: candump, Actisense CSV,
+    /// canboat JSON; several combine into one race). Default: the sample.
     #[arg(long, num_args = 1..)]
     pub race: Vec<PathBuf>,
     /// Print the import and cleaning report (and the course and roundings) instead.
@@ -90,7 +91,7 @@ pub fn run(a: RaceArgs) -> CliResult {
     super::output::print_stdout("the race JSON", &out)
 }
 
-/// The DESIGN.md JSON of `regatta race --t T`.
+/// The docs/command-line.md JSON of `regatta race --t T`.
 pub fn states_json(race: &race::Race, t: f64) -> Value {
     let mut states = Vec::new();
     race.states_at(t, &mut states);

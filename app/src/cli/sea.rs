@@ -1,4 +1,4 @@
-//! `regatta sea`: write a sea file (DESIGN.md format, JSON on stdout) from real conditions:
+//! `regatta sea`: write a sea file (docs/command-line.md format, JSON on stdout) from real conditions:
 //! a JONSWAP / Pierson–Moskowitz sea state, or an NDBC buoy's spectral files. What the
 //! generation did (Hs kept, the amplitude scale that keeps Σ kA below the limit) goes to stderr.
 //!

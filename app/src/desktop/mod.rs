@@ -34,8 +34,9 @@ pub mod smoke;
 
 #[derive(Debug, Args, Default)]
 pub struct RunArgs {
-    /// Race files (native JSON, GPX, CSV logs, NMEA 0183, Expedition, race XML; several combine
-    /// into one race); the embedded sample race without it.
+    /// Race files (native race JSON, maxSail JSON, GPX, CSV logs and exports, Expedition, NMEA
+    /// 0183, SailGP / AC race XML, FIT, TCX, KML / KMZ, NMEA 2000 logs: candump, Actisense CSV,
+    /// canboat JSON; several combine into one race); the embedded sample race without it.
     #[arg(long, num_args = 1..)]
     pub race: Vec<PathBuf>,
     /// Sea file (JSON); the embedded default sea without it.

@@ -1,5 +1,5 @@
 //! What the app's integration tests share: running the built `regatta` binary and checking the
-//! command-line contract of DESIGN.md (JSON on stdout; bad input is one sentence on stderr,
+//! command-line contract of docs/command-line.md (JSON on stdout; bad input is one sentence on stderr,
 //! nothing on stdout, a non-zero exit and no panic).
 
 // Each test file is its own crate and uses only some of these helpers.

@@ -2,7 +2,7 @@
 //! ARCore on Android all yield [`CameraFrame`]s through [`FrameSource`].
 //!
 //! Conventions (those of ARCore and OpenGL, so the Android path needs no conversion):
-//! - world: metres, right-handed, y up (DESIGN.md: x east, y up, z south);
+//! - world: metres, right-handed, y up (docs/command-line.md: x east, y up, z south);
 //! - camera: x right, y up, looking down -z; `camera_to_world` maps camera coordinates to world;
 //! - image: pixel (0, 0) is the top-left corner of the top-left pixel, u right, v down; a pixel's
 //!   centre is at (i + 0.5, j + 0.5).

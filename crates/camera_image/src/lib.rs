@@ -1,4 +1,4 @@
-//! The camera image as the frame sources hand it over and the renderer uploads it: RGBA, or
+//! The camera image as the frame sources hand it over and the AR effects upload it: RGBA, or
 //! YUV 4:2:0 planes normalised from the strided layout ARCore's CPU image (`AImage`) gives,
 //! and their BT.601 colour ([`yuv`]). `crates/ar` makes these images, `crates/effects` draws
 //! them (its camera upload: the Y and chroma planes as textures, converted in a shader with the

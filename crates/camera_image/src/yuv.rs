@@ -1,8 +1,9 @@
 //! The camera image's colour: ARCore's CPU image is YUV 4:2:0 (`AIMAGE_FORMAT_YUV_420_888`),
 //! which Android's camera stack fills with BT.601 full-range (JFIF) values; limited range
 //! (16–235 luma) is kept for recordings from other sources. The phone uploads the Y plane and
-//! the interleaved chroma as two textures (wgpu has no external textures) and the shader applies
-//! [`YuvToRgb`] (`render`'s `sample_camera`); the CPU path ([`crate::Yuv420::to_rgba8`]) uses
+//! the interleaved chroma as two textures (wgpu has no external textures) and the `effects`
+//! crate's camera upload (`shaders/effects/camera_yuv.wgsl`) applies [`YuvToRgb`] once per
+//! camera frame into the RGBA texture its `sample_camera` reads; the CPU path ([`crate::Yuv420::to_rgba8`]) uses
 //! the same matrix.
 
 /// Quantisation range of the YUV samples.

@@ -6,7 +6,7 @@
 //! coordinate.
 //!
 //! Invariant: this crate knows nothing of wgpu, egui, Android or the race model's types.
-//! Units: metres and seconds; world frame x east, y up, z south (DESIGN.md).
+//! Units: metres and seconds; world frame x east, y up, z south (docs/command-line.md).
 
 pub mod cull;
 pub mod gerstner;

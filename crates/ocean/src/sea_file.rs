@@ -1,4 +1,4 @@
-//! The sea file of DESIGN.md (JSON), validated: bad input is refused with one sentence naming
+//! The sea file of docs/command-line.md (JSON), validated: bad input is refused with one sentence naming
 //! the file and the wave, never clamped.
 //!
 //! Ranges (docs/command-line-errors.md says why): wavelength [`MIN_WAVELENGTH_M`] to
@@ -186,7 +186,7 @@ impl WaveSet {
 }
 
 impl WaveSet {
-    /// The sea file of DESIGN.md for this sea: `from_json_str` reads it back to the same set
+    /// The sea file of docs/command-line.md for this sea: `from_json_str` reads it back to the same set
     /// (numbers are written with Rust's shortest round-trip formatting).
     pub fn to_json_string(&self) -> String {
         let waves: Vec<serde_json::Value> = self

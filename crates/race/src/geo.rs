@@ -1,5 +1,5 @@
 //! Latitude/longitude to local metres: an east-north-up tangent plane on the WGS84 ellipsoid,
-//! all in f64. Race metres are x east, z south (DESIGN.md), so z = -north.
+//! all in f64. Race metres are x east, z south (docs/command-line.md), so z = -north.
 //!
 //! The plane is the true local tangent plane (ECEF difference rotated into ENU at the origin,
 //! the up component dropped), so distances within a course are exact to the order of

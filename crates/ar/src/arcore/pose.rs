@@ -58,7 +58,7 @@ pub struct CoursePlacement {
     /// Turn about the vertical (radians, counter-clockwise seen from above) from race axes to
     /// AR axes.
     pub yaw: f64,
-    /// AR metres per race metre (DESIGN.md `course_to_table`), e.g. 1/2000 for a 2 km course
+    /// AR metres per race metre (docs/command-line.md `course_to_table`), e.g. 1/2000 for a 2 km course
     /// on a 1 m table.
     pub course_to_table: f64,
 }

@@ -1,4 +1,4 @@
-//! The native race JSON of DESIGN.md, plus two optional fields: `"course"` (mark names in
+//! The native race JSON of docs/command-line.md, plus two optional fields: `"course"` (mark names in
 //! rounding order; default: the marks in file order) and `"wind"` (`{"from_deg", "speed_mps"}`).
 //! A boat may give `"max_speed_kn"` (its class's spike limit; default 20 kn, the same rule as
 //! GPX: a 388,775 kn step is a broken fix, not a boat).

@@ -1,5 +1,6 @@
 //! Reading race files (native JSON, GPX, CSV boat logs and instrument exports, Expedition
-//! logs, NMEA 0183 logs, SailGP race XML, maxSail meta-data JSON) and assembling them into one
+//! logs, NMEA 0183 logs, SailGP / AC race XML, maxSail meta-data JSON, FIT, TCX, KML / KMZ,
+//! NMEA 2000 bus logs: candump, Actisense CSV, canboat JSON) and assembling them into one
 //! [`Race`](crate::Race): a common origin and start, cleaning, course and roundings.
 
 use serde::Serialize;
