@@ -1,4 +1,5 @@
-// Reflection (the Sailing+ AR water thesis's § 3.2.1, improved: docs/sources.md; f64 reference of the ring: effects/reflection.rs):
+// Reflection (§ 3.2.1 of the Sailing+ AR water thesis, report 000 in docs/sources.md, improved;
+// f64 reference of the ring: effects/reflection.rs):
 // what the water mirrors, from the planar reflection texture. The reflection pass draws it at a
 // fraction of the screen (000: a quarter) with the reflection matrix (000 eq. 1) and oblique
 // near-plane clipping at the water (000 eq. 2), so nothing below the water is in it: first the

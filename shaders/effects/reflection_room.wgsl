@@ -1,7 +1,7 @@
 // The real room in the planar reflection texture (the Sailing+ AR water thesis's § 3.2.1, improved: docs/sources.md; f64 reference
 // of the ring: effects/reflection.rs). Drawn first in the planar reflection pass, at the
 // texture's fraction of the screen, with the reflection pass's frame bindings: the camera
-// mirrored in the water (000 eq. 1) with its near plane on the water (000 eq. 2). In those
+// mirrored in the water (eq. 1 of the Sailing+ AR water thesis, 000 in docs/sources.md) with its near plane on the water (000 eq. 2). In those
 // coordinates a pixel's ray leaves the mirrored eye below the water, crosses the water at p and
 // goes on up as the reflected ray of the flat water. The room is the camera image on a vertical
 // ring of radius R around the water (000's background plane on a circle, here a whole

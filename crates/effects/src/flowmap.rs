@@ -1,5 +1,6 @@
-//! Flow-map texture distortion with the UV jump (as the Sailing+ AR water thesis, TU Delft 2022, does it in its § 3.1: docs/sources.md; after Vlachos, "Water Flow
-//! in Portal 2", 2010, and Flick's flow tutorial), used for the tidal current around marks.
+//! Flow-map texture distortion with the UV jump (as the Sailing+ AR water thesis, TU Delft
+//! 2022, report 000 in docs/sources.md, does it in its § 3.1; after Vlachos, "Water Flow in
+//! Portal 2", 2010, and Flick's flow tutorial), used for the tidal current around marks.
 //! f64 reference of `shaders/flowmap.wgsl`.
 //!
 //! A detail texture is advected along the flow for one period, then restarts. Two copies (A and

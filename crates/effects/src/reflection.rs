@@ -1,7 +1,7 @@
 //! What the water mirrors of the real room (f64 reference of `ring_hit` and
 //! `reflection_colour` in `shaders/reflection.wgsl`).
 //!
-//! Source 000 places the camera image on a plane that moves on a circle around the water,
+//! The AR water thesis (TU Delft 2022, report 000 in docs/sources.md) places the camera image on a plane that moves on a circle around the water,
 //! turned with the camera's yaw; its reflection then shows "parts that are below the water"
 //! when looking steeply down, and reflections sit "right below" the objects. Here the room is
 //! taken to stand on a vertical ring of radius R around the water (the whole circle, not one

@@ -1,7 +1,7 @@
 //! Refraction of the real table, seen through the water (f64 reference of
 //! `shaders/refraction.wgsl`).
 //!
-//! Source 000 offsets the screen UV by the surface normal, so "every object is distorted the
+//! The AR water thesis (TU Delft 2022, report 000 in docs/sources.md) offsets the screen UV by the surface normal, so "every object is distorted the
 //! same amount regardless of the angle" (its stated limitation). Here the view ray is refracted
 //! by Snell's law (n = 1.333) through the actual surface normal, followed down to the table
 //! plane under the water, and that table point is projected through the camera's intrinsics and

@@ -1,4 +1,4 @@
-//! Superimposed Gerstner waves, exactly as source report 003 states them (its eqs. 1–2):
+//! Superimposed Gerstner waves, exactly as the Sailing+ wave-model thesis (TU Delft 2022, report 003 in docs/sources.md) states them (its eqs. 1–2):
 //!
 //! W = (Dx, Dz, steepness Ω, wavelength λ), k = 2π/λ, A = Ω/k, c = sqrt(g/k), and for a rest
 //! point x0 = (x, z):

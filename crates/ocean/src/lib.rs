@@ -1,6 +1,6 @@
 //! `ocean`: the sea state of a race as closed-form functions of race time.
 //!
-//! Pure math in f64: Gerstner waves as source report 003 states them (plus finite depth),
+//! Pure math in f64: Gerstner waves as the Sailing+ wave-model thesis (TU Delft 2022, report 003 in docs/sources.md) states them (plus finite depth),
 //! their inverse, normals and Jacobian; the wakes; and f32-safe inputs for a GPU whose phases
 //! are reduced here, in f64, so that no shader ever sees an absolute race time or a large
 //! coordinate.

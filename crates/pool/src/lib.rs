@@ -2,7 +2,7 @@
 //! spheres, reflection and refraction traced against the analytic spheres and the box, the full
 //! Fresnel equations, Phong shading and caustics on the floor and walls.
 //!
-//! Source report 004 draws this scene in WebGL with still water and no caustics; here the water
+//! The CS114 WebGL pool report (2018, report 004 in docs/sources.md) draws this scene in WebGL with still water and no caustics; here the water
 //! moves (Gerstner waves from `ocean` plus analytic ripples where a sphere moves, see
 //! [`water`]) and the caustics come from the moving surface (area ratio, see [`caustics`]).
 //!

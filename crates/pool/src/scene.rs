@@ -90,7 +90,7 @@ pub struct PoolScene {
 }
 
 impl Default for PoolScene {
-    /// The scene of source report 004, with moving water: a 2 m × 1.6 m pool, 1 m deep; a red
+    /// The scene of the CS114 WebGL pool report (2018, report 004 in docs/sources.md), with moving water: a 2 m × 1.6 m pool, 1 m deep; a red
     /// and a yellow ball floating, a blue ball swimming below the surface, a green ball moving
     /// through the surface (the one a drag moves), the sun high in the south-west.
     fn default() -> Self {

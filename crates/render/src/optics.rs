@@ -7,7 +7,7 @@
 //!   average, and total internal reflection; Schlick's approximation only for comparison.
 //! - Snell refraction and mirror reflection of direction vectors.
 //! - The planar reflection matrix and oblique near-plane clipping (after Lengyel 2005), eqs. 1
-//!   and 2 of the Sailing+ AR water thesis (TU Delft 2022; docs/sources.md), on a glam projection matrix, for OpenGL's and for wgpu's depth
+//!   and 2 of the Sailing+ AR water thesis (TU Delft 2022, report 000 in docs/sources.md), on a glam projection matrix, for OpenGL's and for wgpu's depth
 //!   range.
 //! - Ray–plane intersection and pinhole projection through camera intrinsics and pose.
 //!
@@ -27,7 +27,7 @@ pub const N_WATER: f64 = 1.333;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fresnel {
     /// Reflectance of s-polarised light (electric field perpendicular to the plane of
-    /// incidence). Source 004 calls this one "fPar"; the name is swapped there, the average
+    /// incidence). The CS114 pool report (004) calls this one "fPar"; the name is swapped there, the average
     /// is the same.
     pub rs: f64,
     /// Reflectance of p-polarised light (field in the plane of incidence); zero at Brewster's

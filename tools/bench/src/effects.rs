@@ -1,7 +1,8 @@
 //! Bench sections of the AR water effects:
 //!
 //! - `effects`: the cost of each AR effect alone and of all of them against a water-only
-//!   frame, in the form of the Sailing+ AR water thesis's Table 1 (TU Delft 2022) (min / max / average frames per second) plus
+//!   frame, in the form of Table 1 of the Sailing+ AR water thesis (TU Delft 2022, report 000
+//!   in docs/sources.md: min / max / average frames per second) plus
 //!   the ratios, measured in one run on the adapter at hand (lavapipe in CI); each pass's GPU
 //!   time in the same run; and the area-ratio caustic map's CPU time against its error per
 //!   resolution (against a 512² f64 reference).
@@ -237,7 +238,7 @@ pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         "{} frames per case of the demo table scene (60 m of water, two boats, a mark, three \
          waves) at {}×{} on {}, measured in one run, the cases interleaved frame by frame; each frame planned, \
          drawn and waited for (CPU planning included; the area-ratio caustic map is drawn on \
-         the GPU every frame the race time moves). fps is 1 / frame time, as in 000's Table 1.",
+         the GPU every frame the race time moves). fps is 1 / frame time, as in the AR water thesis's Table 1.",
         frames,
         size[0],
         size[1],

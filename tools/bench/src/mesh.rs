@@ -1,4 +1,4 @@
-//! The `mesh` section: the source's nine clip-map configurations (003, Table 2: 2/6/10 levels
+//! The `mesh` section: the source's nine clip-map configurations (the Sailing+ wave-model thesis, 003 in docs/sources.md, Table 2: 2/6/10 levels
 //! × resolution 50/100/150) against Regatta's clip-map at the same view: triangles drawn and
 //! the *measured* screen-space height error.
 //!

@@ -3,7 +3,7 @@
 //!
 //! - Kelvin model, source spacing → sources per boat, RMS and max error, ns per point (f64 and
 //!   the f32 GPU mirror);
-//! - 003's ring model (eq. 3) and the Kelvin model side by side at equal cost (the same number
+//! - the Sailing+ wave-model thesis's ring model (003 in docs/sources.md) (eq. 3) and the Kelvin model side by side at equal cost (the same number
 //!   of terms per boat and point) at 2, 5, 8 and 12 m/s: envelope half-angle error and RMS
 //!   error. The ring strength is not in metres, so it is first scaled by its least-squares
 //!   best factor against the reference (a favour to the baseline).

@@ -50,7 +50,7 @@ pub struct RenderArgs {
     /// reflection, refraction, caustics, flowmap, or all / none; without it, the water only.
     #[arg(long)]
     pub effects: Option<String>,
-    /// Which scene: the race, or the tiled pool of source report 004 (`--camera` then in pool
+    /// Which scene: the race, or the tiled pool after a 2018 WebGL pool project (CS114) (`--camera` then in pool
     /// metres, `--sea` replacing the pool's waves).
     #[arg(long, value_enum, default_value_t = SceneKind::Race)]
     pub scene: SceneKind,

@@ -15,7 +15,7 @@ pub struct ArConfig {
     /// real metres per scene metre are `water.depth_m / table_depth`.
     pub water: render::water_look::WaterLook,
     /// Radius of the ring the camera image is reflected on; `None`: 1.05 × half the play
-    /// area's diagonal (000: at least half the water's diagonal).
+    /// area's diagonal (the AR water thesis, 000 in docs/sources.md: at least half the water's diagonal).
     pub ring_radius: Option<f64>,
     /// Reflection texture size as a fraction of the screen's (000 uses a quarter).
     pub reflection_fraction: f64,

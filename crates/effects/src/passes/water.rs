@@ -200,7 +200,8 @@ impl ArWaterPass {
     }
 
     /// Upload what the reflection texture shows: the room, boats and marks as the water
-    /// mirrors them, seen through view × reflection matrix (000 eq. 1) with the near plane
+    /// mirrors them, seen through view × reflection matrix (eq. 1 of the AR water
+    /// thesis, 000 in docs/sources.md) with the near plane
     /// moved onto the water (000 eq. 2, wgpu depth). Returns whether anything is mirrored
     /// (not with the camera at or below the water).
     fn prepare_reflection(&mut self, gpu: &Gpu, frame: &FrameContext) -> bool {

@@ -1,5 +1,5 @@
 //! Measuring a wake field: the envelope's half-angle and the transverse wavelength. Used by the
-//! tests and by `regatta bench`, on any model (Kelvin, 003's rings, the reference).
+//! tests and by `regatta bench`, on any model (Kelvin, the wave-model thesis's rings, 003 in docs/sources.md, the reference).
 //!
 //! Fields are given in the boat frame: `f(ξ, y)`, the boat at the origin moving in +ξ.
 

@@ -1,4 +1,4 @@
-//! Boat wakes, analytic at any race time: source report 003's ring model (its eq. 3, the
+//! Boat wakes, analytic at any race time: the ring model of the Sailing+ wave-model thesis (TU Delft 2022, report 003 in docs/sources.md) (its eq. 3, the
 //! baseline) and a Kelvin-correct model, with an independent f64 reference and the per-frame
 //! GPU source buffer.
 //!

@@ -1,4 +1,4 @@
-//! The baseline: source report 003's ring wake, its eq. 3, exactly as stated.
+//! The baseline: the ring wake of the Sailing+ wave-model thesis (TU Delft 2022, report 003 in docs/sources.md), its eq. 3, exactly as stated.
 //!
 //! For boat point j (the boat's position P_j and unit direction P_j^d at time t − j·Δt,
 //! j = 1..=n: "the past n positions", a fixed time apart) and a point p, with

@@ -1,5 +1,5 @@
 //! Wake tests: each asserts against an independent truth (the Havelock integral, a closed
-//! form, 003's equation evaluated by hand) or an exact property (zero, bitwise equality).
+//! form, the wave-model thesis's eq. 3 (003 in docs/sources.md) evaluated by hand) or an exact property (zero, bitwise equality).
 
 use std::f64::consts::PI;
 
