@@ -7,12 +7,14 @@ pub mod core;
 #[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
+pub mod feed;
 pub mod overlay;
 pub mod panels;
 #[cfg(not(target_os = "android"))]
 pub mod phone_sim;
 pub mod pool_play;
 pub mod scene_overlay;
+pub mod setup;
 pub mod tier_control;
 pub mod tier_render;
 pub mod wakes;

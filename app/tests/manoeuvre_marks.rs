@@ -144,7 +144,7 @@ fn race() -> (race::Race, [Plan; 2]) {
 }
 
 fn sea() -> ocean::WaveSet {
-    regatta::cli::inputs::drawable_sea(regatta::cli::inputs::load_sea(None).unwrap())
+    regatta::setup::inputs::drawable_sea(regatta::setup::inputs::load_sea(None).unwrap())
 }
 
 /// The marks' discs in the trails' layer: segments of length 0 as wide as a mark's parts (a

@@ -14,7 +14,7 @@ use render::passes::overlay::{Layer, OverlayKind};
 use render::{RenderOptions, Renderer, Scene};
 
 fn sea() -> ocean::WaveSet {
-    regatta::cli::inputs::drawable_sea(regatta::cli::inputs::load_sea(None).unwrap())
+    regatta::setup::inputs::drawable_sea(regatta::setup::inputs::load_sea(None).unwrap())
 }
 
 /// The desktop's orbit view of `race` at `t`.
@@ -297,7 +297,7 @@ fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaI
     let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
     let mut scene = orbit_scene(race, t);
     if table {
-        let mut feed = regatta::desktop::feed::FeedView::open(Path::new("synth")).unwrap();
+        let mut feed = regatta::feed::FeedView::open(Path::new("synth")).unwrap();
         feed.prepare_frame(
             &gpu,
             &mut renderer,

@@ -10,8 +10,8 @@
 use ar::arcore::ffi::share::NO_SPACE;
 use ar::arcore::ffi::{JavaScript, ScriptedJni};
 use regatta::core::phone::{PhoneClip, ShareState};
+use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::backend::Feed;
 use regatta::phone_sim::device::Device;
 
 /// The A54's layout (360 × 800 dp) on a quarter of its pixels: quick on lavapipe.
@@ -30,7 +30,7 @@ fn launch(name: &str) -> PhoneSim {
         .join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let feed = Feed::synth(ar::SynthConfig {
+    let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 1,
         width: 320,
         height: 240,

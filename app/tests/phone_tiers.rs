@@ -12,9 +12,9 @@
 
 use quality::{Target, Tier};
 use regatta::core::phone::{PHONE_START_TIER, PhoneEvent};
+use regatta::feed::CameraFeed;
 use regatta::overlay::touch::TouchAction;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::backend::Feed;
 use regatta::phone_sim::device::Device;
 
 /// The A54's layout on a quarter of its pixels: quick on lavapipe.
@@ -34,7 +34,7 @@ fn slow_phone(tier: Tier, i: usize) -> f64 {
 
 fn launch() -> Option<PhoneSim> {
     render::gpu::test_gpu()?;
-    let feed = Feed::synth(ar::SynthConfig {
+    let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 1,
         width: 320,
         height: 240,

@@ -12,9 +12,9 @@
 use std::path::Path;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::cli::render::replay::TableFrame;
 use regatta::core::scene::RaceWorld;
-use regatta::desktop::feed::{FeedView, SYNTH};
+use regatta::feed::TableFrame;
+use regatta::feed::{FeedView, SYNTH};
 use render::{Camera, RenderOptions, Renderer};
 
 const SIZE: [u32; 2] = [640, 480];
@@ -61,7 +61,7 @@ fn the_water_covers_the_table_to_its_corners_and_stops_at_its_edges() {
         return;
     };
     let race = race::Race::sample();
-    let sea = regatta::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
+    let sea = regatta::setup::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let world = RaceWorld::new(race, sea);
     let table = TableFrame {
         world: &world,

@@ -11,9 +11,9 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::cli::render::replay::TableFrame;
 use regatta::core::scene::{middle_time, race_wake};
-use regatta::desktop::feed::{FeedView, SYNTH};
+use regatta::feed::TableFrame;
+use regatta::feed::{FeedView, SYNTH};
 use render::{Camera, RenderOptions, Renderer};
 
 const SIZE: [u32; 2] = [1280, 720];
@@ -65,7 +65,7 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
         return;
     };
     let race = race::Race::sample();
-    let sea = regatta::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
+    let sea = regatta::setup::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let t = middle_time(&race);
     let world = regatta::core::scene::RaceWorld::new(race.clone(), sea.clone());
     let table = TableFrame {

@@ -30,8 +30,8 @@ use unwinding as _;
 fn android_main(app: AndroidApp) {
     android_logger::init_once(crate::android_log::config());
     log::info!("regatta: android_main started");
-    let world = crate::cli::inputs::load_race(&[])
-        .and_then(|race| Ok(RaceWorld::new(race, crate::cli::inputs::load_sea(None)?)));
+    let world = crate::setup::inputs::load_race(&[])
+        .and_then(|race| Ok(RaceWorld::new(race, crate::setup::inputs::load_sea(None)?)));
     // Two handles on the same Activity: ARCore's glue owns one, the rotation reads use the other.
     let jni = jni_calls::AndroidJni::new(&app);
     let ar_jni = Box::new(jni_calls::AndroidJni::new(&app));

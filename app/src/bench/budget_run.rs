@@ -357,7 +357,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         tiers.note(format!("{} ({}) rates: {}", p.phone, p.gpu, p.sources));
     }
     let path = ctx.out_dir.join("budget.json");
-    crate::cli::output::write_text(&path, &serde_json::to_string_pretty(&json_rows)?)?;
+    crate::setup::output::write_text(&path, &serde_json::to_string_pretty(&json_rows)?)?;
     let passes = passes_table(&rows);
     let accuracy = accuracy_table(ctx, &rows)?;
     let yuv = yuv_table(ctx, &gpu)?;

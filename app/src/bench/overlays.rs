@@ -34,7 +34,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let race = race::Race::sample();
     // Worked out once per race, as the windows do (not a per-frame cost).
     let debrief = race::Debrief::of(&race);
-    let sea = crate::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
+    let sea = crate::setup::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let options = RenderOptions::default();
     let mut plain = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
     let mut with = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);

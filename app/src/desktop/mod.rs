@@ -18,14 +18,13 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
-use crate::cli::inputs::{load_race, load_sea};
-use crate::cli::scene_kind::SceneKind;
 use crate::core::gfx::{self, Acquired, Profile};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
+use crate::setup::SceneKind;
+use crate::setup::inputs::{load_race, load_sea};
 use crate::wall_clock::Ticker;
 
-pub mod feed;
 pub mod overlay;
 pub mod phone;
 pub mod pool;
@@ -74,7 +73,7 @@ impl RunArgs {
     /// feed's table.
     pub fn default_app() -> RunArgs {
         RunArgs {
-            replay: Some(PathBuf::from(feed::SYNTH)),
+            replay: Some(PathBuf::from(crate::feed::SYNTH)),
             ..RunArgs::default()
         }
     }
@@ -86,10 +85,14 @@ pub fn run(a: RunArgs) -> CliResult {
     if a.phone {
         return phone::run(a);
     }
-    let sea = crate::cli::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
+    let sea = crate::setup::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
     let race = load_race(&a.race)?;
     // A bad feed is refused before a window opens (file and line named).
-    let mut feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
+    let mut feed = a
+        .replay
+        .as_deref()
+        .map(crate::feed::FeedView::open)
+        .transpose()?;
     let water = match feed.as_mut() {
         Some(f) => {
             f.set_water(a.water.look(f.water())?);
@@ -160,7 +163,7 @@ struct App {
     /// `Some` with `--scene pool`: the pool replaces the race.
     pool: Option<pool::PoolMode>,
     /// `Some` with `--replay`: the feed's camera and image replace the orbit and the sky.
-    feed: Option<feed::FeedView>,
+    feed: Option<crate::feed::FeedView>,
     /// The water the command line chose (the Scene panel starts there; its type colours the
     /// open sea too).
     water: render::water_look::WaterLook,

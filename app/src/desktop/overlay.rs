@@ -50,7 +50,7 @@ pub struct Overlay {
 /// the smoke test keeps lavapipe's frames small with it).
 pub fn window_size() -> winit::dpi::Size {
     let env = std::env::var("REGATTA_WINDOW_SIZE").ok();
-    match env.as_deref().map(crate::cli::replay::parse_size) {
+    match env.as_deref().map(crate::setup::inputs::parse_frame_size) {
         Some(Ok((w, h))) => winit::dpi::PhysicalSize::new(w, h).into(),
         Some(Err(e)) => {
             log::warn!("REGATTA_WINDOW_SIZE: {e}; opening 1280x720");

@@ -20,8 +20,9 @@ use glam::DVec2;
 
 use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
 use crate::core::scene::RaceWorld;
+use crate::feed::CameraFeed;
 use crate::overlay::touch::TouchAction;
-use backend::{Availability, Feed, SimArCore, SimControl};
+use backend::{Availability, SimArCore, SimControl};
 use ffi::{FfiBackend, SimLibrary};
 use script::{Line, Step};
 
@@ -92,7 +93,7 @@ impl PhoneSim {
     /// The embedded race on a phone screen of `portrait` pixels at `ppp` pixels per point,
     /// frames from `feed`, not yet launched (cues may be set first). `data_dir` receives
     /// recordings.
-    pub fn new(feed: Feed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
+    pub fn new(feed: CameraFeed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
         let (backend, control) = SimArCore::new(feed);
         Self::with_backend(
             Box::new(backend),
@@ -123,8 +124,8 @@ impl PhoneSim {
         ppp: f32,
         data_dir: Option<PathBuf>,
     ) -> Self {
-        let race = crate::cli::inputs::load_race(&[]).expect("the embedded race loads");
-        let sea = crate::cli::inputs::load_sea(None).expect("the embedded sea loads");
+        let race = crate::setup::inputs::load_race(&[]).expect("the embedded race loads");
+        let sea = crate::setup::inputs::load_sea(None).expect("the embedded sea loads");
         let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
         app.data_dir = data_dir;
         app.on(PhoneEvent::Density(ppp));
@@ -209,7 +210,12 @@ impl PhoneSim {
     }
 
     /// [`PhoneSim::new`], launched: the app resumed with a window and one frame drawn.
-    pub fn launch(feed: Feed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
+    pub fn launch(
+        feed: CameraFeed,
+        portrait: [u32; 2],
+        ppp: f32,
+        data_dir: Option<PathBuf>,
+    ) -> Self {
         let mut sim = Self::new(feed, portrait, ppp, data_dir);
         sim.resume();
         sim

@@ -8,8 +8,8 @@ use clap::Args;
 use glam::{DVec2, DVec3};
 use render::{Camera, RenderOptions, Renderer};
 
-use crate::cli::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
-use crate::cli::output::{ImageOut, write_text};
+use crate::setup::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
+use crate::setup::output::{ImageOut, write_text};
 
 pub mod clip;
 pub mod replay;
@@ -123,7 +123,7 @@ pub fn note_unmet_error(report: &render::FrameReport) {
     }
 }
 
-pub use super::scene_kind::SceneKind;
+pub use crate::setup::SceneKind;
 
 /// Parse `WIDTHxHEIGHT` (each 1..=8192).
 pub fn parse_size(s: &str) -> CliResult<[u32; 2]> {

@@ -1,19 +1,21 @@
 //! `regatta render --replay DIR [--frame N]`: the table scene as `regatta run --replay` shows
 //! it, headless, over frame N (default 0) of a recorded feed: the race fitted on the feed's
 //! table, the feed's camera, `--effects` (all without it, as in the window) over the real
-//! image. It goes through the window's own [`FeedView`](crate::desktop::feed::FeedView), so
-//! what this draws is what the app draws for that frame. The desktop window module does not
-//! exist on Android, and neither does this path there.
+//! image. It goes through the window's own [`FeedView`](crate::feed::FeedView) (and
+//! [`TableFrame`](crate::feed::TableFrame)), so what this draws is what the app draws for that
+//! frame.
 
 use std::path::Path;
 
 use effects::EffectSet;
 
-use crate::cli::output::ImageOut;
-use crate::cli::render::RenderArgs;
+use crate::cli::render::{RenderArgs, note_unmet_error, print_report};
+use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
+use crate::feed::{FeedView, TableFrame};
+use crate::setup::inputs::{drawable_sea, load_race, load_sea};
+use crate::setup::output::ImageOut;
 
-#[cfg(not(target_os = "android"))]
 pub fn run(
     a: &RenderArgs,
     dir: &Path,
@@ -23,12 +25,9 @@ pub fn run(
     tier: Option<quality::Tier>,
     overlays: &crate::scene_overlay::OverlaySettings,
 ) -> CliResult {
-    use crate::cli::inputs::{drawable_sea, load_race, load_sea};
-    use crate::cli::render::{note_unmet_error, print_report};
-    use crate::core::scene::RaceWorld;
     use render::{RenderOptions, Renderer};
 
-    let mut feed = crate::desktop::feed::FeedView::open(dir)?;
+    let mut feed = FeedView::open(dir)?;
     feed.set_water(a.water.look(feed.water())?);
     // Without --effects, the window's own set; with --tier, the tier's effects and sizes.
     if let Some(effects) = effects {
@@ -93,78 +92,4 @@ pub fn run(
     out.save(&img)?;
     note_unmet_error(&report);
     print_report(a, &report)
-}
-
-/// One picture of the table scene, as `run` draws it: `race` at race time `t` over feed frame
-/// `frame`, `size` pixels.
-#[cfg(not(target_os = "android"))]
-pub struct TableFrame<'a> {
-    pub world: &'a crate::core::scene::RaceWorld,
-    pub t: f64,
-    pub size: [u32; 2],
-    pub frame: usize,
-    /// The scene overlays drawn over it (labels through egui), or none.
-    pub overlays: Option<&'a crate::scene_overlay::OverlaySettings>,
-}
-
-#[cfg(not(target_os = "android"))]
-impl TableFrame<'_> {
-    /// Draws it through `feed` with `renderer` (built anew with `options` on the feed's first
-    /// frame) and `wake` (the boats' own: the feed scales it for the table); `edit` changes the
-    /// scene last (tests leave boats out).
-    pub fn draw(
-        &self,
-        feed: &mut crate::desktop::feed::FeedView,
-        gpu: &render::Gpu,
-        renderer: &mut render::Renderer,
-        options: render::RenderOptions,
-        wake: Option<std::sync::Arc<ocean::wake::Wake>>,
-        edit: impl FnOnce(&mut render::Scene),
-    ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
-        let mut orbit = crate::core::scene::race_orbit();
-        let mut scene = self.world.orbit_scene(self.t, &mut orbit);
-        feed.prepare_frame(
-            gpu,
-            renderer,
-            render::OFFSCREEN_FORMAT,
-            options,
-            wake,
-            self.world.race_bounds,
-            self.size,
-            self.frame,
-        )?;
-        feed.apply(&mut scene);
-        edit(&mut scene);
-        match self.overlays {
-            Some(overlays) => crate::scene_overlay::render_headless(
-                gpu,
-                renderer,
-                (
-                    &self.world.race,
-                    crate::scene_overlay::manoeuvres::debrief_if_shown(&self.world.race, overlays)
-                        .as_ref(),
-                ),
-                &scene,
-                self.size,
-                overlays,
-            ),
-            None => render::render_image(gpu, renderer, &scene, self.size),
-        }
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))
-    }
-}
-
-#[cfg(target_os = "android")]
-pub fn run(
-    _a: &RenderArgs,
-    _dir: &Path,
-    _out: &ImageOut,
-    _size: [u32; 2],
-    _effects: Option<EffectSet>,
-    _tier: Option<quality::Tier>,
-    _overlays: &crate::scene_overlay::OverlaySettings,
-) -> CliResult {
-    Err(CliError::new(
-        "render --replay draws through the desktop window's feed view, which Android does not build",
-    ))
 }

@@ -1,5 +1,6 @@
-//! `regatta run --replay DIR`: a recorded camera feed (replay folder or TUM RGB-D, `crates/ar`)
-//! as the background, the race on its table.
+//! The race on a camera feed's table (the window's `regatta run --replay DIR`, and `regatta
+//! render --replay` through [`TableFrame`](super::TableFrame)): a recorded feed (replay folder
+//! or TUM RGB-D, `crates/ar`) or the synthetic one as the background.
 //!
 //! The table maps to the race as on the phone (`core::table`): the race's bounds (its tracks
 //! and marks) are fitted onto the table's extent with a margin, the table's centre is the
@@ -17,8 +18,8 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use ar::CameraFrame;
 use ar::arcore::CoursePlacement;
-use ar::{CameraFrame, ReplayFeed, SynthConfig};
 use effects::camera_frame::CameraFrame as RenderCameraFrame;
 use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use glam::{DVec2, DVec3};
@@ -27,22 +28,12 @@ use render::{Camera, RenderOptions, Renderer, Scene};
 use crate::core::camera_frame::{fill_view, physical_camera, render_frame};
 use crate::core::table::{boats_as_models, fit_on_table, table_area};
 
+use super::CameraFeed;
 use crate::error::{CliError, CliResult};
-
-/// Where the frames come from.
-enum Source {
-    Replay(ReplayFeed),
-    /// The synthetic table of `ar::synth`, rendered frame by frame (no files needed) and kept:
-    /// after the first loop, frames cost nothing.
-    Synth(SynthConfig, Vec<Option<CameraFrame>>),
-}
-
-/// The `--replay` value that chooses the built-in synthetic feed.
-pub const SYNTH: &str = "synth";
 
 /// The feed, where it maps in the race, and which frame the renderer holds.
 pub struct FeedView {
-    source: Source,
+    source: CameraFeed,
     start: Instant,
     /// The frame the effects show, and the window size it was fitted to.
     shown: Option<(usize, [u32; 2])>,
@@ -72,21 +63,9 @@ struct TableWake {
 }
 
 impl FeedView {
-    /// Opens a replay or TUM folder, or the synthetic feed for [`SYNTH`].
+    /// Opens a replay or TUM folder, or the synthetic feed for [`SYNTH`](super::SYNTH).
     pub fn open(dir: &std::path::Path) -> CliResult<Self> {
-        let source = if dir.as_os_str() == SYNTH {
-            let cfg = SynthConfig::default();
-            Source::Synth(cfg, vec![None; cfg.frames])
-        } else {
-            let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
-            log::info!(
-                "replay {}: {} frames, {:.1} s",
-                dir.display(),
-                feed.len(),
-                feed.duration()
-            );
-            Source::Replay(feed)
-        };
+        let source = CameraFeed::open(dir)?;
         Ok(FeedView {
             source,
             start: Instant::now(),
@@ -151,10 +130,7 @@ impl FeedView {
 
     /// How many frames the feed has.
     pub fn len(&self) -> usize {
-        match &self.source {
-            Source::Replay(f) => f.len(),
-            Source::Synth(c, _) => c.frames,
-        }
+        self.source.len()
     }
 
     /// Whether the feed has no frames (a feed that opened always has some).
@@ -227,10 +203,7 @@ impl FeedView {
         size: [u32; 2],
     ) -> CliResult {
         let t = self.start.elapsed().as_secs_f64();
-        let i = match &self.source {
-            Source::Replay(f) => f.index_at(t),
-            Source::Synth(c, _) => c.index_at(t),
-        };
+        let i = self.source.index_at(t);
         let options = RenderOptions {
             measure_gpu_time: false,
             // A new camera image is drawn even while the scene stands still: the background
@@ -264,10 +237,10 @@ impl FeedView {
             }
             return Ok(());
         }
-        let frame = match &mut self.source {
-            Source::Replay(f) => f.frame(i).map_err(|e| CliError::new(e.to_string()))?,
-            Source::Synth(c, cache) => cache[i].get_or_insert_with(|| c.frame(i)).clone(),
-        };
+        let frame = self
+            .source
+            .frame(i)
+            .map_err(|e| CliError::new(e.to_string()))?;
         let started = Instant::now();
         let mut cfg = self.config.clone();
         let (extent, centre) = match frame.planes.first() {

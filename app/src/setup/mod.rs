@@ -1,0 +1,19 @@
+//! The scene set-up: what every app and command draws from, in one place. Validated options (a
+//! race, a sea, a scene, sizes) become the race world and the files it writes: the command line
+//! keeps only its flags and the glue between them and this module (as ripgrep's binary does),
+//! and the desktop window, the phone, `phone-sim` and the bench take the same set-up.
+//!
+//! It never knows the command line's flags or a platform (winit, android-activity): a flag's
+//! name in a message is handed in by the caller.
+
+pub mod clip;
+pub mod inputs;
+pub mod output;
+
+/// The scenes `regatta render` and `regatta run` draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum SceneKind {
+    #[default]
+    Race,
+    Pool,
+}
