@@ -86,8 +86,8 @@ impl TierRender {
         renderer.invalidate();
     }
 
-    /// A tier change on a running renderer, every setting as [`TierRender::renderer`] builds
-    /// it: the options and wake source budget ([`TierRender::apply_to`]), the AR effects'
+    /// A tier change on a running renderer, every setting as the scene set-up builds it at
+    /// this tier (`crate::setup::RaceSetup::tier_renderer`): the options and wake source budget ([`TierRender::apply_to`]), the AR effects'
     /// set-up through their handle (which effects run, reflection size, caustic tier and map
     /// cells: `EffectsHandle::set_quality`), and the renderer's wakes emitted again at the
     /// tier's spacing ([`TierRender::respaced_wake`]) when `race` is given.
@@ -130,31 +130,6 @@ impl TierRender {
             ..w.params
         };
         crate::wakes::race_wake(race, params).map(|w| Some(Arc::new(w)))
-    }
-
-    /// A renderer for `scene` at `size` drawn at this tier: its options and wake source
-    /// budget, `race`'s wakes at the tier's spacing (none without a race), and the tier's AR
-    /// effects over the scene's synthetic camera frame.
-    pub fn renderer(
-        &self,
-        gpu: &render::Gpu,
-        race: Option<&race::Race>,
-        scene: &render::Scene,
-        size: [u32; 2],
-    ) -> CliResult<(Renderer, EffectsHandle)> {
-        let mut renderer = Renderer::new(gpu, render::OFFSCREEN_FORMAT, self.options);
-        self.apply_to(&mut renderer);
-        if let Some(race) = race {
-            renderer.set_wake(Some(self.race_wake(race)?));
-        }
-        let fx = effects::passes::add_scene_effects_with(
-            &mut renderer,
-            gpu,
-            scene,
-            size,
-            self.ar.clone(),
-        );
-        Ok((renderer, fx))
     }
 
     /// The race's wakes with this tier's source spacing.

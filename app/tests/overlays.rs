@@ -9,9 +9,10 @@ use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
 use regatta::scene_overlay::{self, OverlaySet, OverlaySettings, labels};
+use regatta::setup::{Profile, RaceSetup};
+use render::Scene;
 use render::golden::{Region, differing};
 use render::passes::overlay::{Layer, OverlayKind};
-use render::{RenderOptions, Renderer, Scene};
 
 fn sea() -> ocean::WaveSet {
     regatta::setup::inputs::drawable_sea(regatta::setup::inputs::load_sea(None).unwrap())
@@ -293,8 +294,8 @@ fn golden_path(name: &str) -> PathBuf {
 /// show the overlays, not the wake model.
 fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaImage {
     let gpu = render::gpu::test_gpu().expect("checked by the caller");
-    let options = RenderOptions::default();
-    let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
+    let setup = RaceSetup::new(Profile::Picture);
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
     let mut scene = orbit_scene(race, t);
     if table {
         let mut feed = regatta::feed::FeedView::open(Path::new("synth")).unwrap();
@@ -302,7 +303,7 @@ fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaI
             &gpu,
             &mut renderer,
             render::OFFSCREEN_FORMAT,
-            options,
+            &setup,
             None,
             regatta::core::scene::RaceWorld::new(race.clone(), sea()).race_bounds,
             GOLDEN_SIZE,

@@ -14,7 +14,8 @@ use glam::{DVec2, DVec3, DVec4};
 use regatta::core::scene::{middle_time, race_wake};
 use regatta::feed::TableFrame;
 use regatta::feed::{FeedView, SYNTH};
-use render::{Camera, RenderOptions, Renderer};
+use regatta::setup::{Profile, RaceSetup};
+use render::Camera;
 
 const SIZE: [u32; 2] = [1280, 720];
 /// Luma step that counts as visible, of 255.
@@ -76,16 +77,14 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
         overlays: None,
     };
     let mut feed = FeedView::open(Path::new(SYNTH)).unwrap();
-    let options = RenderOptions {
-        measure_gpu_time: false,
-        ..Default::default()
-    };
-    let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
+    let mut setup = RaceSetup::new(Profile::Picture);
+    setup.options.measure_gpu_time = false;
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
     // `keep`: draw only the boat at that position (NaN: none).
     let mut draw = |wake: Option<Arc<ocean::wake::Wake>>, keep: Option<DVec2>| {
         let mut camera = None;
         let (img, _) = table
-            .draw(&mut feed, &gpu, &mut renderer, options, wake, |s| {
+            .draw(&mut feed, &gpu, &mut renderer, &setup, wake, |s| {
                 if let Some(p) = keep {
                     // NaN: no boat.
                     s.boats.retain(|b| b.position == p);

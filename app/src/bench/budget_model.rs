@@ -303,9 +303,9 @@ mod tests {
             crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
         let t = TierRender::of(tier);
         let size = [180, 320];
-        let (mut renderer, fx) = t
-            .renderer(gpu, Some(&race), &scene, size)
-            .expect("renderer");
+        let (mut renderer, fx) =
+            crate::setup::RaceSetup::tier_renderer(&t, gpu, Some(&race), &scene, size)
+                .expect("renderer");
         let view = crate::bench::offscreen(gpu, size);
         let report = renderer.render(gpu, &view, size, &scene).expect("frame");
         assert!(

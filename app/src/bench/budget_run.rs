@@ -176,7 +176,8 @@ pub(crate) fn measure(
         "budget: {} {tier} at {}×{}",
         phone.phone, size[0], size[1]
     ));
-    let (mut renderer, fx) = t.renderer(gpu, Some(&race), &scene, size)?;
+    let (mut renderer, fx) =
+        crate::setup::RaceSetup::tier_renderer(&t, gpu, Some(&race), &scene, size)?;
     let view = crate::bench::offscreen(gpu, size);
     let failed = |e: render::GpuError| CliError(e.to_string());
     let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up
@@ -521,7 +522,8 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
         water.set_wake(Some(wake.clone()));
         let water_report = water.render(gpu, &view, size, &scene).map_err(failed)?;
         let water_report = as_phone_shades(&water_report, &scene, &ultra);
-        let (mut all, fx) = ultra.renderer(gpu, Some(&race), &scene, size)?;
+        let (mut all, fx) =
+            crate::setup::RaceSetup::tier_renderer(&ultra, gpu, Some(&race), &scene, size)?;
         let all_report = all.render(gpu, &view, size, &scene).map_err(failed)?;
         let all_report = as_phone_shades(&all_report, &scene, &ultra);
         let (trips, wake_buffer_bytes, clipmap_vertices) = trips(&scene, &ultra, &wake, size);
@@ -597,9 +599,9 @@ mod tests {
         let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
         let t = TierRender::of(Tier::High);
         let size = [270, 540];
-        let (mut renderer, _) = t
-            .renderer(&gpu, Some(&race), &scene, size)
-            .expect("renderer");
+        let (mut renderer, _) =
+            crate::setup::RaceSetup::tier_renderer(&t, &gpu, Some(&race), &scene, size)
+                .expect("renderer");
         let view = crate::bench::offscreen(&gpu, size);
         let report = renderer.render(&gpu, &view, size, &scene).expect("frame");
         if report.shader_invocations.is_empty() {

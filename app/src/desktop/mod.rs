@@ -18,11 +18,12 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
-use crate::core::gfx::{self, Acquired, Profile};
+use crate::core::gfx::{self, Acquired};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 use crate::setup::SceneKind;
 use crate::setup::inputs::{load_race, load_sea};
+use crate::setup::{Profile, RaceSetup};
 use crate::wall_clock::Ticker;
 
 pub mod overlay;
@@ -405,10 +406,12 @@ impl ApplicationHandler for App {
         let size = window.inner_size();
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
-                let wake = gfx::wake_or_none(&self.world);
-                let mut renderer =
-                    gfx::race_renderer(&gpu, surface.config.format, wake, Profile::Desktop);
-                renderer.set_water_look(self.water);
+                let setup = RaceSetup {
+                    sea_water: self.water,
+                    ..RaceSetup::new(Profile::Desktop)
+                };
+                let wake = setup.wake_or_none(&self.world.race);
+                let renderer = setup.renderer(&gpu, surface.config.format, wake);
                 // The tier is applied before the first frame is drawn (`draw`).
                 log::info!("window on {}", gpu.describe());
                 let overlay = self.pool.is_none().then(|| {

@@ -15,7 +15,7 @@ pub struct TableFrame<'a> {
 }
 
 impl TableFrame<'_> {
-    /// Draws it through `feed` with `renderer` (built anew with `options` on the feed's first
+    /// Draws it through `feed` with `renderer` (built anew by `setup` on the feed's first
     /// frame) and `wake` (the boats' own: the feed scales it for the table); `edit` changes the
     /// scene last (tests leave boats out).
     pub fn draw(
@@ -23,7 +23,7 @@ impl TableFrame<'_> {
         feed: &mut super::FeedView,
         gpu: &render::Gpu,
         renderer: &mut render::Renderer,
-        options: render::RenderOptions,
+        setup: &crate::setup::RaceSetup,
         wake: Option<std::sync::Arc<ocean::wake::Wake>>,
         edit: impl FnOnce(&mut render::Scene),
     ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
@@ -33,7 +33,7 @@ impl TableFrame<'_> {
             gpu,
             renderer,
             render::OFFSCREEN_FORMAT,
-            options,
+            setup,
             wake,
             self.world.race_bounds,
             self.size,

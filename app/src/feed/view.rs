@@ -23,7 +23,7 @@ use ar::arcore::CoursePlacement;
 use effects::camera_frame::CameraFrame as RenderCameraFrame;
 use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use glam::{DVec2, DVec3};
-use render::{Camera, RenderOptions, Renderer, Scene};
+use render::{Camera, Renderer, Scene};
 
 use crate::core::camera_frame::{fill_view, physical_camera, render_frame};
 use crate::core::table::{boats_as_models, fit_on_table, table_area};
@@ -204,25 +204,21 @@ impl FeedView {
     ) -> CliResult {
         let t = self.start.elapsed().as_secs_f64();
         let i = self.source.index_at(t);
-        let options = RenderOptions {
-            measure_gpu_time: false,
-            // A new camera image is drawn even while the scene stands still: the background
-            // pass's revision changes with it.
-            keep_still_frames: true,
-            ..Default::default()
-        };
-        self.prepare_frame(gpu, renderer, format, options, wake, race_bounds, size, i)
+        // The window's renderer: a new camera image is drawn even while the scene stands
+        // still (the background pass's revision changes with it).
+        let setup = crate::setup::RaceSetup::new(crate::setup::Profile::Desktop);
+        self.prepare_frame(gpu, renderer, format, &setup, wake, race_bounds, size, i)
     }
 
     /// [`FeedView::prepare`] for feed frame `i` (below [`FeedView::len`]), a renderer built
-    /// with `options` the first time: what `regatta render --replay --frame i` draws.
+    /// by `setup` the first time: what `regatta render --replay --frame i` draws.
     #[allow(clippy::too_many_arguments)]
     pub fn prepare_frame(
         &mut self,
         gpu: &render::Gpu,
         renderer: &mut Renderer,
         format: wgpu::TextureFormat,
-        options: RenderOptions,
+        setup: &crate::setup::RaceSetup,
         wake: Option<Arc<ocean::wake::Wake>>,
         race_bounds: [f64; 4],
         size: [u32; 2],
@@ -272,8 +268,7 @@ impl FeedView {
                 }
             }
             None => {
-                let mut fresh = Renderer::new(gpu, format, options);
-                fresh.set_wake(wake);
+                let mut fresh = setup.renderer(gpu, format, wake);
                 self.effects = Some(add_effect_passes(&mut fresh, gpu, cfg, render_frame));
                 *renderer = fresh;
             }

@@ -11,8 +11,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use render::{RenderOptions, Renderer};
-
+use super::{Profile, RaceSetup};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 
@@ -153,17 +152,10 @@ pub fn write_gif(
 ) -> CliResult {
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
-    let mut renderer = Renderer::new(
-        &gpu,
-        render::OFFSCREEN_FORMAT,
-        RenderOptions {
-            error_px: look.error_px,
-            ..Default::default()
-        },
-    );
-    if look.wakes {
-        renderer.set_wake(Some(world.wake()?));
-    }
+    let mut setup = RaceSetup::new(Profile::Picture);
+    setup.options.error_px = look.error_px;
+    setup.wakes = look.wakes;
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, setup.wake(&world.race)?);
     // The overlay passes keep the handle they were added with: one for every frame.
     let handle = render::passes::overlay::OverlayHandle::default();
     crate::setup::output::write_atomically(out, |tmp| {

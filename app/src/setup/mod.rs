@@ -1,5 +1,6 @@
 //! The scene set-up: what every app and command draws from, in one place. Validated options (a
-//! race, a sea, a scene, sizes) become the race world and the files it writes: the command line
+//! race, a sea, a scene, sizes, a tier, effects, wakes, water, overlays) become the race world,
+//! its renderer ([`RaceSetup`]) and the files it writes: the command line
 //! keeps only its flags and the glue between them and this module (as ripgrep's binary does),
 //! and the desktop window, the phone, `phone-sim` and the bench take the same set-up.
 //!
@@ -9,6 +10,9 @@
 pub mod clip;
 pub mod inputs;
 pub mod output;
+mod race_setup;
+
+pub use race_setup::{PHONE_RENDER_SCALE, Profile, RaceSetup};
 
 /// The scenes `regatta render` and `regatta run` draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]

@@ -10,10 +10,11 @@ use render::{Camera, Gpu, Renderer};
 
 use super::PhoneApp;
 use crate::core::camera_frame::{display_of, render_frame_with_image};
-use crate::core::gfx::{self, Acquired, LostFlag, Profile, Window};
+use crate::core::gfx::{self, Acquired, LostFlag, Window};
 use crate::core::table;
 use crate::core::vulkan_marker::{FELL_BACK_NOTE, GOOD_FRAMES, VulkanMarker};
 use crate::overlay::{EguiPainter, SceneChoice, phone_bar, race_panels};
+use crate::setup::{Profile, RaceSetup};
 
 /// The device, the window, and what draws into it.
 pub struct Graphics {
@@ -157,9 +158,10 @@ impl PhoneApp {
             }
         };
         let format = window.format().unwrap_or(render::OFFSCREEN_FORMAT);
-        let wake = gfx::wake_or_none(&self.world);
+        let setup = RaceSetup::new(Profile::Phone);
+        let wake = setup.wake_or_none(&self.world.race);
         Ok(Graphics {
-            race: gfx::race_renderer(&gpu, format, wake, Profile::Phone),
+            race: setup.renderer(&gpu, format, wake),
             race_effects: None,
             backdrop: None,
             pool: None,
@@ -258,7 +260,7 @@ impl PhoneApp {
             match &g.backdrop {
                 Some((_, handle)) => handle.set_camera_frame(&g.gpu, background),
                 None => {
-                    let mut r = gfx::race_renderer(&g.gpu, format, None, Profile::Phone);
+                    let mut r = RaceSetup::new(Profile::Phone).renderer(&g.gpu, format, None);
                     let handle = add_effect_passes(&mut r, &g.gpu, ArConfig::default(), background);
                     r.replace_pass("water", Box::new(NoSea));
                     g.backdrop = Some((r, handle));
