@@ -86,28 +86,22 @@ impl TierRender {
         renderer.invalidate();
     }
 
-    /// A tier change on a running renderer, every setting as the scene set-up builds it at
-    /// this tier (`crate::setup::RaceSetup::tier_renderer`): the options and wake source budget ([`TierRender::apply_to`]), the AR effects'
-    /// set-up through their handle (which effects run, reflection size, caustic tier and map
-    /// cells: `EffectsHandle::set_quality`), and the renderer's wakes emitted again at the
-    /// tier's spacing ([`TierRender::respaced_wake`]) when `race` is given.
+    /// A tier change on a running renderer, the renderer's part: the options and wake source
+    /// budget ([`TierRender::apply_to`]) and the AR effects' set-up through their handle
+    /// (which effects run, reflection size, caustic tier and map cells:
+    /// `EffectsHandle::set_quality`). The wakes, emitted again at the tier's spacing
+    /// ([`TierRender::respaced_wake`]), and the Scene panel's switches are the window's and the
+    /// phone's one tier path's (`crate::panels::SceneApplier::follow_tier`).
     pub fn apply_live(
         &self,
         gpu: &render::Gpu,
         renderer: &mut Renderer,
         fx: Option<&EffectsHandle>,
-        race: Option<&race::Race>,
-    ) -> CliResult {
+    ) {
         self.apply_to(renderer);
         if let Some(fx) = fx {
             fx.set_quality(gpu, &self.ar);
         }
-        if let Some(race) = race
-            && let Some(w) = self.respaced_wake(race, renderer.wake().map(Arc::as_ref))?
-        {
-            renderer.set_wake(Some(w));
-        }
-        Ok(())
     }
 
     /// `race`'s wakes at this tier's source spacing in hull radii (the other parameters

@@ -139,7 +139,6 @@ pub fn run(a: RunArgs) -> CliResult {
             pinned.unwrap_or(quality::Tier::Ultra),
             pinned.is_some(),
         ),
-        tier_applied: None,
         started: Instant::now(),
     };
     event_loop
@@ -184,9 +183,6 @@ struct App {
     dropped: Vec<PathBuf>,
     /// The quality governor: frame times in, the tier's renderer settings out.
     tiers: crate::tier_control::TierControl,
-    /// The tier the renderer draws at and whether its effect passes were there then (a feed
-    /// builds them on its first frame): applied again when either changes.
-    tier_applied: Option<(quality::Tier, bool)>,
     started: Instant,
 }
 
@@ -233,9 +229,8 @@ impl App {
             Ok(race) => {
                 log::info!("opened {}", race.name);
                 o.set_race(&race, &mut st.renderer);
+                // Its wakes at the tier's spacing from the next frame (`set_race`).
                 self.world = self.world.with_race(race);
-                // Its wakes at the tier's spacing.
-                self.tier_applied = None;
             }
             Err(e) => {
                 log::warn!("{e}");
@@ -306,15 +301,9 @@ impl App {
             let debrief = o.scene_overlays.debrief(&mut o.panels.debrief, race);
             o.scene_overlays
                 .prepare(&st.gpu, r, (race, debrief), &scene, size, ppp);
-            // The tier drawn, every setting, live (the governor's or the panel's pin).
-            let applied = Some((self.tiers.tier(), handle.is_some()));
-            if self.tier_applied != applied {
-                let tier = crate::tier_render::TierRender::of(self.tiers.tier());
-                if let Err(e) = o.apply_tier(&tier, &st.gpu, &mut st.renderer, handle, race) {
-                    log::warn!("quality tier {}: {e}", tier.tier);
-                }
-                self.tier_applied = applied;
-            }
+            // The tier drawn, every setting, live (the governor's or the panel's pin), when it
+            // or the feed's effect passes (built on its first frame) changed.
+            o.follow_tier(self.tiers.tier(), &st.gpu, &mut st.renderer, handle, race);
         }
         // A failed frame is logged by the renderer; the window shows the next one.
         let report = st.renderer.render(&st.gpu, &view, size, &scene).ok();

@@ -159,19 +159,20 @@ impl Overlay {
         }
     }
 
-    /// A quality tier on the running renderer, every setting, through the Scene panel's
-    /// switches ([`crate::panels::SceneApplier::apply_tier`]).
-    pub fn apply_tier(
+    /// The quality tier on the running renderer when it changed, every setting, through the
+    /// Scene panel's switches: the phone's path too
+    /// ([`crate::panels::SceneApplier::follow_tier`]).
+    pub fn follow_tier(
         &mut self,
-        tier: &crate::tier_render::TierRender,
+        tier: quality::Tier,
         gpu: &render::Gpu,
         renderer: &mut render::Renderer,
         effects: Option<&effects::passes::EffectsHandle>,
         race: &race::Race,
-    ) -> crate::error::CliResult {
+    ) {
         let settings = &mut self.panels.settings;
         self.scene
-            .apply_tier(settings, tier, gpu, renderer, effects, race)
+            .follow_tier(tier, settings, gpu, renderer, effects, race);
     }
 
     /// The water the Scene panel asks for (the feed applies it on the table).

@@ -173,9 +173,11 @@ fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
         )
         .expect("renderer");
         let before = draw(&gpu, &mut live, &live_fx, &scene, size);
-        TierRender::of(to)
-            .apply_live(&gpu, &mut live, Some(&live_fx), Some(&race))
-            .expect("the tier applies");
+        // The phone's way: a Scene panel without switches, through the one tier path.
+        let mut settings = ui::SceneSettings::new(Vec::new());
+        let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
+        let fx = Some(&live_fx);
+        assert!(applier.follow_tier(to, &mut settings, &gpu, &mut live, fx, &race));
         let after = draw(&gpu, &mut live, &live_fx, &scene, size);
         let (mut fresh, fresh_fx) = crate::setup::RaceSetup::tier_renderer(
             &TierRender::of(to),

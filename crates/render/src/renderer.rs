@@ -255,6 +255,11 @@ impl Renderer {
         self.invalidate();
     }
 
+    /// The most wake sources a frame draws ([`Renderer::set_wake_source_budget`]).
+    pub fn wake_source_budget(&self) -> usize {
+        self.wake_sources
+    }
+
     /// The real sea's water: its type sets the open sea's body colour (`view_light`).
     /// Unchanged, nothing happens (callers may hand it every frame).
     pub fn set_water_look(&mut self, look: crate::water_look::WaterLook) {

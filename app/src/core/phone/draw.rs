@@ -39,7 +39,9 @@ pub struct Graphics {
     /// The race renderer's GPU time of the last frame, where measured; the quality tier it
     /// draws at and whether its effect passes were there then (`tiers.rs`).
     pub(super) gpu_ms: Option<f64>,
-    pub(super) tier: Option<(quality::Tier, bool)>,
+    /// The Scene panel's switches and the quality tier on `race`, as the window applies them
+    /// (`crate::panels::SceneApplier`; `tiers.rs`).
+    pub(super) scene: crate::panels::SceneApplier,
     /// The Vulkan crash marker, armed until [`GOOD_FRAMES`] frames were presented.
     marker: Option<VulkanMarker>,
     /// The sea last handed to `race_effects` (`tiers.rs`, `follow_water`); `None` after they
@@ -69,7 +71,7 @@ impl render::Pass for NoSea {
 impl Graphics {
     /// The wakes of a newly opened race (and nothing kept of the last one's frames).
     pub(super) fn set_race_wake(&mut self, wake: Option<std::sync::Arc<ocean::wake::Wake>>) {
-        self.race.set_wake(wake);
+        self.scene.set_race_wake(wake, &mut self.race);
         self.race_upload = None;
     }
 }
@@ -161,6 +163,7 @@ impl PhoneApp {
         let setup = RaceSetup::new(Profile::Phone);
         let wake = setup.wake_or_none(&self.world.race);
         Ok(Graphics {
+            scene: crate::panels::SceneApplier::new(wake.clone()),
             race: setup.renderer(&gpu, format, wake),
             race_effects: None,
             backdrop: None,
@@ -173,7 +176,6 @@ impl PhoneApp {
             frames_drawn: 0,
             water: None,
             gpu_ms: None,
-            tier: None,
             marker,
             gpu,
             window,
