@@ -174,7 +174,10 @@ fn a_desktop_and_a_phone_renderer_at_one_tier_draw_the_same_frame() {
         let (b, rb) = render::render_image(&gpu, &mut phone.renderer, &scene, size).unwrap();
         assert_eq!(ra.size, rb.size, "{tier}");
         let first = *a.get_pixel(0, 0);
-        assert!(a.pixels().any(|p| *p != first), "{tier}: a frame of one colour");
+        assert!(
+            a.pixels().any(|p| *p != first),
+            "{tier}: a frame of one colour"
+        );
         assert!(a.as_raw() == b.as_raw(), "{tier}: the frames differ");
     }
 }

@@ -12,7 +12,7 @@
 //!
 //! The first feed frame builds the renderer with the effect passes (`add_effect_passes`); each
 //! later frame, and a resized window, goes through the returned `EffectsHandle`
-//! (`set_camera_frame`: the image is written into the same textures, RGBA as it is, YUV planes
+//! (`set_backdrop`: the image is written into the same textures, RGBA as it is, YUV planes
 //! converted in the shader), so nothing is rebuilt per frame.
 
 use std::sync::Arc;
@@ -20,12 +20,12 @@ use std::time::Instant;
 
 use ar::CameraFrame;
 use ar::arcore::CoursePlacement;
-use effects::camera_frame::CameraFrame as RenderCameraFrame;
+use effects::backdrop::Backdrop;
 use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use glam::{DVec2, DVec3};
 use render::{Camera, Renderer, Scene};
 
-use crate::core::camera_frame::{fill_view, physical_camera, render_frame};
+use crate::core::camera_frame::{backdrop_of, fill_view, physical_camera};
 use crate::core::table::{boats_as_models, fit_on_table, table_area};
 
 use super::CameraFeed;
@@ -257,11 +257,11 @@ impl FeedView {
             .image
             .to_camera_image()
             .map_err(|e| CliError::new(format!("feed frame {i}: {e}")))?;
-        let render_frame = view.with_image(image);
+        let backdrop = view.with_image(image);
         let (wake, wake_changed) = self.wake_for_table(wake, &map);
         match &self.effects {
             Some(effects) => {
-                effects.set_camera_frame(gpu, render_frame);
+                effects.set_backdrop(gpu, backdrop);
                 effects.set_water(cfg.water, cfg.table_depth);
                 if wake_changed {
                     renderer.set_wake(wake);
@@ -269,7 +269,7 @@ impl FeedView {
             }
             None => {
                 let mut fresh = setup.renderer(gpu, format, wake);
-                self.effects = Some(add_effect_passes(&mut fresh, gpu, cfg, render_frame));
+                self.effects = Some(add_effect_passes(&mut fresh, gpu, cfg, backdrop));
                 *renderer = fresh;
             }
         }
@@ -292,10 +292,10 @@ pub fn to_render(
     frame: &CameraFrame,
     map: &CoursePlacement,
     size: [u32; 2],
-) -> (Camera, RenderCameraFrame<()>) {
+) -> (Camera, Backdrop<()>) {
     let (display, fov_y) = fill_view(&frame.intrinsics, size);
     (
         physical_camera(frame, map, fov_y),
-        render_frame(frame, map, display),
+        backdrop_of(frame, map, display),
     )
 }

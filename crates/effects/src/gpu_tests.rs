@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use glam::{DVec2, DVec3};
 use wgpu::util::DeviceExt;
 
-use super::camera_frame::CameraFrame;
+use super::backdrop::Backdrop;
 use super::passes::{ArConfig, OFFSCREEN_REUSED, add_effect_passes};
 use super::{Effect, EffectSet};
 use render::golden::{Region, compare, differing, verify};
@@ -31,10 +31,10 @@ fn config(effects: EffectSet) -> ArConfig {
     }
 }
 
-fn frame_for(scene: &Scene, cfg: &ArConfig) -> CameraFrame {
+fn frame_for(scene: &Scene, cfg: &ArConfig) -> Backdrop {
     let [ax, az, bx, bz] = scene.play_area;
     let centre = DVec2::new(ax + bx, az + bz) / 2.0;
-    CameraFrame::synthetic(
+    Backdrop::synthetic(
         &scene.camera,
         SIZE,
         cfg.table_depth,

@@ -9,7 +9,7 @@ use pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 use render::{Camera, Gpu, Renderer};
 
 use super::PhoneApp;
-use crate::core::camera_frame::{display_of, render_frame_with_image};
+use crate::core::camera_frame::{backdrop_with_image, display_of};
 use crate::core::gfx::{self, Acquired, LostFlag, Window};
 use crate::core::table;
 use crate::core::vulkan_marker::{FELL_BACK_NOTE, GOOD_FRAMES, VulkanMarker};
@@ -251,16 +251,15 @@ impl PhoneApp {
         };
         let seq = self.ar.frame_seq;
         if g.backdrop_upload != Some(seq) {
-            let background =
-                match render_frame_with_image(frame, &table::AR_AS_IS, display_of(frame)) {
-                    Ok(b) => b,
-                    Err(e) => {
-                        log::warn!("regatta: {e}");
-                        return false;
-                    }
-                };
+            let background = match backdrop_with_image(frame, &table::AR_AS_IS, display_of(frame)) {
+                Ok(b) => b,
+                Err(e) => {
+                    log::warn!("regatta: {e}");
+                    return false;
+                }
+            };
             match &g.backdrop {
-                Some((_, handle)) => handle.set_camera_frame(&g.gpu, background),
+                Some((_, handle)) => handle.set_backdrop(&g.gpu, background),
                 None => {
                     let mut r = RaceSetup::new(Profile::Phone).renderer(&g.gpu, format, None);
                     let handle = add_effect_passes(&mut r, &g.gpu, ArConfig::default(), background);
@@ -306,9 +305,9 @@ impl PhoneApp {
             scene.play_area = self.table_room.area(self.world.race_bounds);
             let upload = (self.ar.frame_seq, p);
             if g.race_upload != Some(upload) {
-                match render_frame_with_image(frame, &p, display_of(frame)) {
+                match backdrop_with_image(frame, &p, display_of(frame)) {
                     Ok(background) => match &g.race_effects {
-                        Some(handle) => handle.set_camera_frame(&g.gpu, background),
+                        Some(handle) => handle.set_backdrop(&g.gpu, background),
                         None => {
                             // The table's sea; the Scene panel's water follows (`follow_water`).
                             let cfg = ArConfig::on_table(render::water_look::WaterLook::default());

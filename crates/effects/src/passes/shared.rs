@@ -5,7 +5,7 @@
 use glam::{DVec2, DVec3};
 
 use super::config::ArConfig;
-use crate::camera_frame::{CameraFrame, CameraImage};
+use crate::backdrop::{Backdrop, CameraImage};
 use crate::camera_upload::{CameraTextures, YuvConversion};
 use crate::caustic_map::CAUSTIC_MAP_FORMAT;
 use crate::caustics::CausticRegion;
@@ -89,7 +89,7 @@ pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
 pub(super) struct Shared {
     pub(super) cfg: ArConfig,
     /// The current frame's camera and display transform (its image is on the GPU).
-    pub(super) camera: CameraFrame<()>,
+    pub(super) camera: Backdrop<()>,
     pub(super) layout: wgpu::BindGroupLayout,
     /// Group 2 of the room in the reflection texture: the uniform and the camera image, not
     /// the reflection texture it draws into.
@@ -180,7 +180,7 @@ impl Shared {
         gpu: &Gpu,
         targets: Targets,
         cfg: ArConfig,
-        camera: CameraFrame<()>,
+        camera: Backdrop<()>,
         image: &CameraImage,
     ) -> Shared {
         let device = &gpu.device;
