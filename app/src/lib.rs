@@ -15,6 +15,8 @@ pub mod phone_sim;
 pub mod pool_play;
 pub mod scene_overlay;
 pub mod setup;
+#[cfg(not(target_os = "android"))]
+pub mod sim_phone;
 pub mod tier_control;
 pub mod tier_render;
 pub mod wakes;

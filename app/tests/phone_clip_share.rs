@@ -12,7 +12,7 @@ use ar::arcore::ffi::{JavaScript, ScriptedJni};
 use regatta::core::phone::{PhoneClip, ShareState};
 use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 
 /// The A54's layout (360 × 800 dp) on a quarter of its pixels: quick on lavapipe.
 const SIZE: [u32; 2] = [180, 400];

@@ -11,8 +11,8 @@ use ar::arcore::Unavailable;
 use ar::arcore::session::tracking_hint;
 use regatta::core::table::{course_pivot, table_depth};
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::device::Device;
 use regatta::phone_sim::script::Step;
+use regatta::sim_phone::device::Device;
 
 static TURN: Mutex<()> = Mutex::new(());
 const SIZE: [u32; 2] = [180, 400];
@@ -76,7 +76,7 @@ fn refusing_the_dialog_says_so() {
 #[test]
 fn an_unsupported_phone_says_so() {
     let Some((sim, _turn)) = session(&[Step::ArCore(
-        regatta::phone_sim::backend::Availability::Unsupported,
+        regatta::sim_phone::backend::Availability::Unsupported,
     )]) else {
         return;
     };
@@ -179,8 +179,8 @@ fn the_banners_button_asks_for_the_camera_again() {
         .expect("the refused banner has a button");
     // The user will accept this time.
     match &sim.cues {
-        regatta::phone_sim::Cues::Ffi { jni, .. } => jni.script(|s| s.dialog_answer = true),
-        regatta::phone_sim::Cues::Scripted(_) => unreachable!("an FFI session"),
+        regatta::sim_phone::Cues::Ffi { jni, .. } => jni.script(|s| s.dialog_answer = true),
+        regatta::sim_phone::Cues::Scripted(_) => unreachable!("an FFI session"),
     }
     let ppp = Device::A54.pixels_per_point(SIZE);
     let at = |p: egui::Pos2| {

@@ -17,7 +17,7 @@
 
 use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 
 /// Resident set size, bytes (/proc/self/statm: pages).
 fn resident_bytes() -> u64 {

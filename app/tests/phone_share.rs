@@ -12,7 +12,7 @@ use std::process::Command;
 use regatta::core::phone::Opened;
 use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 use serde_json::Value;
 
 /// The A54's layout (360 × 800 dp) on a quarter of its pixels: quick on lavapipe.

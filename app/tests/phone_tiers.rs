@@ -15,7 +15,7 @@ use regatta::core::phone::{PHONE_START_TIER, PhoneEvent};
 use regatta::feed::CameraFeed;
 use regatta::overlay::touch::TouchAction;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 
 /// The A54's layout on a quarter of its pixels: quick on lavapipe.
 const SIZE: [u32; 2] = [180, 400];

@@ -18,8 +18,8 @@ use regatta::core::scene::RaceWorld;
 use regatta::feed::CameraFeed;
 use regatta::panels::{SceneApplier, effect_toggles};
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::device::Device;
 use regatta::setup::{Profile, RaceSetup};
+use regatta::sim_phone::device::Device;
 use render::Renderer;
 
 /// The settings a tier sets on the race renderer: render scale, error target (px), wake

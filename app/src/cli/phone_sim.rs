@@ -11,8 +11,8 @@ use serde_json::json;
 
 use crate::error::{CliError, CliResult};
 use crate::feed::CameraFeed;
-use crate::phone_sim::device::Device;
 use crate::phone_sim::{PhoneSim, run_script, script};
+use crate::sim_phone::device::Device;
 
 #[derive(Debug, Args)]
 pub struct PhoneSimArgs {

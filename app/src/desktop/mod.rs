@@ -58,7 +58,7 @@ pub struct RunArgs {
     pub phone: bool,
     /// Which phone `--phone` shows.
     #[arg(long, value_enum, default_value_t, requires = "phone")]
-    pub device: crate::phone_sim::device::Device,
+    pub device: crate::sim_phone::device::Device,
     /// With `--phone`: the simulated ARCore library (crates/arcore_sim's cdylib) that the
     /// phone's own ARCore glue loads; a scripted stand-in without it.
     #[arg(long, value_name = "FILE", requires = "phone")]

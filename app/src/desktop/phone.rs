@@ -19,8 +19,8 @@ use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 use crate::overlay::touch::TouchAction;
-use crate::phone_sim::Cues;
-use crate::phone_sim::backend::SimArCore;
+use crate::sim_phone::Cues;
+use crate::sim_phone::backend::SimArCore;
 use crate::wall_clock::Ticker;
 
 /// The tallest window the host gives the phone, pixels (an 800-pixel-high screen keeps its
