@@ -4,8 +4,9 @@
 //! keeps only its flags and the glue between them and this module (as ripgrep's binary does),
 //! and the desktop window, the phone, `phone-sim` and the bench take the same set-up.
 //!
-//! It never knows the command line's flags or a platform (winit, android-activity): a flag's
-//! name in a message is handed in by the caller.
+//! It never knows the command line's argument structs (clap's `Args`, `cli::*Args`) or a
+//! platform (winit, android-activity). Its one-line errors name the option a value stands for
+//! (`--size`, `--from`), which the app's "Share clip" reports in the same words.
 
 pub mod clip;
 pub mod inputs;
