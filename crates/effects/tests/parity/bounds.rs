@@ -28,15 +28,38 @@ fn vec3(v: [f32; 4]) -> [Inexact; 3] {
 /// entry the f32 of the reference's f64.
 pub struct CameraBound {
     projection: [[Inexact; 4]; 4],
+    /// The same projection in f64, for `table_image`'s column.
+    exact: glam::DMat4,
 }
 
 impl CameraBound {
     pub fn new(camera: &PinholeCamera) -> Self {
-        let m = camera
-            .image_projection(camera.pose.inverse())
-            .to_cols_array_2d();
+        let exact = camera.image_projection(camera.pose.inverse());
         Self {
-            projection: m.map(|col| col.map(input)),
+            projection: exact.to_cols_array_2d().map(|col| col.map(input)),
+            exact,
+        }
+    }
+
+    /// `table_uv` of `effects_common.wgsl` for a table `depth` deep: the uv of the table
+    /// point (x, z), or `None` behind the camera. The constant column is formed in f64 on the
+    /// CPU (`effects::passes::table_image`) and reaches the GPU as its f32.
+    fn table_uv(&self, xz: [Inexact; 2], depth: f64) -> Bounded<Option<[Inexact; 2]>> {
+        let c = self.exact.y_axis * -depth + self.exact.w_axis;
+        let constant = [c.x, c.y, c.z].map(input);
+        let row = |i: usize| {
+            let terms = [
+                self.projection[0][i] * xz[0],
+                self.projection[2][i] * xz[1],
+                constant[i],
+            ];
+            render::wgsl_accuracy::sum(&terms)
+        };
+        let h = [row(0), row(1), row(2)];
+        match h[2].above(0.0) {
+            None => Bounded::Undecided,
+            Some(false) => Bounded::Decided(None),
+            Some(true) => Bounded::Decided(Some([h[0] / h[2], h[1] / h[2]])),
         }
     }
 
@@ -144,7 +167,7 @@ pub fn refracted_table(
     let Some(found) = s.above(0.0) else {
         return Bounded::Undecided;
     };
-    let uv = match camera.uv(hit) {
+    let uv = match camera.table_uv([hit[0], hit[2]], depth.value) {
         Bounded::Undecided => return Bounded::Undecided,
         Bounded::Decided(uv) => uv,
     };
