@@ -164,7 +164,6 @@ pub fn add_effect_passes(
     camera: CameraFrame,
 ) -> EffectsHandle {
     let targets = renderer.targets;
-    let feed = cfg.effects.contains(crate::Effect::Background);
     let (image, camera) = camera.split();
     let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera, &image)));
     let handle = EffectsHandle {
@@ -175,8 +174,9 @@ pub fn add_effect_passes(
     let water = ArWaterPass::new(gpu, frame_layout, targets, shared);
     renderer.add_pass(Box::new(background));
     // Over the camera image the AR water takes the room's radiance as the camera's white
-    // (`ar_water.wgsl`'s room): the boats take the same light. Without it, sun and sky.
-    renderer.set_room_light(feed.then_some(AR_ROOM_RADIANCE));
+    // (`ar_water.wgsl`'s room): the boats take the same light, in each frame that shows the
+    // image (the renderer applies it then; switched off live, sun and sky).
+    renderer.set_room_light(Some(AR_ROOM_RADIANCE));
     if !renderer.replace_pass("water", Box::new(water)) {
         log::warn!("no water pass to shade with the effects: the renderer has none");
     }
