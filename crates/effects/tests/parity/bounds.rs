@@ -55,12 +55,7 @@ impl CameraBound {
             ];
             render::wgsl_accuracy::sum(&terms)
         };
-        let h = [row(0), row(1), row(2)];
-        match h[2].above(0.0) {
-            None => Bounded::Undecided,
-            Some(false) => Bounded::Decided(None),
-            Some(true) => Bounded::Decided(Some([h[0] / h[2], h[1] / h[2]])),
-        }
+        in_front([row(0), row(1), row(2)])
     }
 
     /// `camera_uv` of `effects_common.wgsl`: the uv of `p`, or `None` behind the camera.
@@ -74,12 +69,17 @@ impl CameraBound {
             ];
             render::wgsl_accuracy::sum(&terms)
         };
-        let h = [row(0), row(1), row(2)];
-        match h[2].above(0.0) {
-            None => Bounded::Undecided,
-            Some(false) => Bounded::Decided(None),
-            Some(true) => Bounded::Decided(Some([h[0] / h[2], h[1] / h[2]])),
-        }
+        in_front([row(0), row(1), row(2)])
+    }
+}
+
+/// (u w, v w, w) → the uv, or `None` behind the camera (w ≤ 0): the division and the select
+/// that `camera_uv` and `table_uv` end with.
+fn in_front(h: [Inexact; 3]) -> Bounded<Option<[Inexact; 2]>> {
+    match h[2].above(0.0) {
+        None => Bounded::Undecided,
+        Some(false) => Bounded::Decided(None),
+        Some(true) => Bounded::Decided(Some([h[0] / h[2], h[1] / h[2]])),
     }
 }
 
