@@ -17,9 +17,11 @@ fn table_hit(p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(p.xz + s * d.xz, s);
 }
 
-fn table_point_straight(p: vec3<f32>, view: vec3<f32>) -> vec3<f32> {
-    let hit = ray_plane(p, view, vec4<f32>(0.0, 1.0, 0.0, fx.table.x));
-    return select(p, hit.xyz, hit.w > 0.0);
+// The table point straight through the water from p along the unit view ray, and the path to
+// it in the water (w): where the ray meets no table ahead, p itself and 0.
+fn table_point_straight(p: vec3<f32>, view: vec3<f32>) -> vec4<f32> {
+    let hit = table_hit(p, view);
+    return select(vec4<f32>(p, 0.0), vec4<f32>(hit.x, -fx.table.x, hit.y, hit.z), hit.z > 0.0);
 }
 
 fn refracted_table(p: vec3<f32>, view: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
@@ -39,7 +41,7 @@ fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, t: vec4<f32>) -> vec4<f3
     let refracted = clamp(uv.xy, vec2<f32>(0.0), vec2<f32>(1.0));
     // At w = 1 (w is 0 where no table is found) the sample is the refracted point and the
     // path the refracted ray's, as mix(straight, refracted, 1) and the select below give:
-    // the straight table point and its projection (a ray-plane solve and a camera_uv, 70
+    // the straight table point and its projection (table_point_straight and a camera_uv, 46
     // ALU operations) only where the refracted point is in the fade band, outside it or
     // missing, under 1 % of the water's pixels in the demo view. (The budget model counts a
     // branch's costlier side, so it does not see this; a GPU skips the block for each SIMD
@@ -48,9 +50,9 @@ fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, t: vec4<f32>) -> vec4<f3
     var path = hit.z;
     if w < 1.0 {
         let straight_point = table_point_straight(p, view);
-        let straight = camera_uv(straight_point).xy;
+        let straight = camera_uv(straight_point.xyz).xy;
         at = select(straight, mix(straight, refracted, w), w > 0.0);
-        path = select(length(straight_point - p), hit.z, found);
+        path = select(straight_point.w, hit.z, found);
     }
     return vec4<f32>(sample_camera(at), path);
 }

@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 use render::optics::{N_AIR, N_WATER, PinholeCamera};
-use render::wgsl_accuracy::{Inexact, add3, dot, length, mix, scale3, sub3};
+use render::wgsl_accuracy::{Inexact, add3, dot, length, mix, scale3};
 
 /// What a case's bound decided: the value (f64) and bound of each output, or `Undecided` when
 /// one of the function's branches may go either way on a conforming GPU (the case is not
@@ -147,10 +147,12 @@ pub fn refracted_table(
     let Bounded::Decided((straight_hit, straight_s)) = ray_table(p, view, depth) else {
         return Bounded::Undecided;
     };
-    let straight_point = match straight_s.above(0.0) {
+    // `table_point_straight`: the hit on the plane (its y the plane's own, −depth), and the
+    // path to it along the unit view ray, s; else p and 0.
+    let (straight_point, straight_path) = match straight_s.above(0.0) {
         None => return Bounded::Undecided,
-        Some(true) => straight_hit,
-        Some(false) => p,
+        Some(true) => ([straight_hit[0], -depth, straight_hit[2]], straight_s),
+        Some(false) => (p, Inexact::exact(0.0)),
     };
     let centre = [Inexact::exact(0.5); 2];
     let straight = match camera.uv(straight_point) {
@@ -175,11 +177,7 @@ pub fn refracted_table(
         (true, Some(uv)) => edge_weight(uv),
         _ => Inexact::exact(0.0),
     };
-    let path = if found {
-        s
-    } else {
-        length(&sub3(straight_point, p))
-    };
+    let path = if found { s } else { straight_path };
     // mix(straight, clamp(uv), w) where w > 0; mix at w = 0 is `straight` itself, so the
     // select is continuous and needs no decision.
     let at = match uv {
