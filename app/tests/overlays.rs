@@ -8,9 +8,10 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
+use regatta::scene_overlay::OverlayKind;
 use regatta::scene_overlay::{self, OverlaySet, OverlaySettings, labels};
 use render::golden::{Region, differing};
-use render::passes::overlay::{Layer, OverlayKind};
+use render::passes::segments::Layer;
 use render::{RenderOptions, Renderer, Scene};
 
 fn sea() -> ocean::WaveSet {
@@ -43,7 +44,7 @@ fn masthead_as_drawn(scene: &Scene, position: [f64; 2], heading_deg: f64, length
     let heading = heading_deg.to_radians();
     let pose = render::scene::float_pose(&scene.sea, scene.t, p, heading, length, 0.32 * length);
     render::scene::float_matrix(p, heading, &pose, DVec2::ZERO)
-        .transform_point3(DVec3::from(render::passes::overlay::MASTHEAD) * length)
+        .transform_point3(DVec3::from(render::passes::boats::MASTHEAD) * length)
 }
 
 #[test]
@@ -248,7 +249,10 @@ fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
         "no wind label ending {said}: {:?}",
         f.texts
     );
-    assert_eq!(layer(OverlayKind::Trails), Layer::Off);
+    assert_eq!(
+        layer(OverlayKind::Trails),
+        Layer::Hidden("turned off (\"trails\" not in --overlays)".into())
+    );
     assert!(f.labels.is_empty(), "labels off: none placed");
 }
 

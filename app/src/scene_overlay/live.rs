@@ -1,16 +1,16 @@
 //! The overlays of a window (desktop; the phone's loop can hold one the same way): the user's
-//! settings, the overlay passes' handle, this frame's overlay and the labels as last painted,
+//! settings, the overlay passes' layers, this frame's overlay and the labels as last painted,
 //! so a click or tap picks what the user saw.
 
-use render::passes::overlay::{OverlayHandle, OverlayKind, add_overlay_passes};
+use render::passes::segments::SegmentLayers;
 
 use super::labels::{PlacedLabel, pick};
-use super::{OverlayFrame, OverlaySettings, WindInfo};
+use super::{OverlayFrame, OverlayKind, OverlaySettings, WindInfo};
 
 #[derive(Default)]
 pub struct LiveOverlays {
     pub settings: OverlaySettings,
-    handle: OverlayHandle,
+    layers: SegmentLayers,
     frame: Option<OverlayFrame>,
     placed: Vec<PlacedLabel>,
 }
@@ -39,7 +39,7 @@ impl LiveOverlays {
         cache: &'a mut ui::DebriefView,
         race: &race::Race,
     ) -> Option<&'a race::Debrief> {
-        if !self.settings.set.is_on(OverlayKind::Trails) {
+        if !self.settings.shows(OverlayKind::Trails) {
             return None;
         }
         cache.update(race);
@@ -58,9 +58,9 @@ impl LiveOverlays {
         size: [u32; 2],
         pixels_per_point: f64,
     ) {
-        add_overlay_passes(renderer, gpu, &self.handle);
+        super::add_passes(renderer, gpu, &self.layers);
         let f = super::frame(race, scene, size, pixels_per_point, &self.settings, debrief);
-        f.push(&self.handle);
+        f.push(&self.layers);
         self.frame = Some(f);
     }
 
