@@ -87,6 +87,7 @@ impl Overlay {
             initial_clock(race),
             crate::panels::effect_toggles(with_effect_passes),
         );
+        panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
         crate::panels::set_water_ranges(&mut panels.settings, with_effect_passes);
         let mut scene_overlays = crate::scene_overlay::live::LiveOverlays::default();
         // The selected boats (at most two: follow, the plots, compare, the highlighted labels).
@@ -151,12 +152,7 @@ impl Overlay {
     ) {
         let settings = &self.panels.settings;
         self.scene.apply(settings, renderer, effects);
-        for (name, _) in ui::settings::OVERLAYS {
-            // The names are the overlays' own: setting one cannot fail.
-            let _ = self
-                .scene_overlays
-                .set_overlay(name, settings.overlay(name));
-        }
+        self.scene_overlays.follow_panel(settings);
     }
 
     /// A quality tier on the running renderer, every setting, through the Scene panel's
@@ -169,6 +165,7 @@ impl Overlay {
         effects: Option<&effects::passes::EffectsHandle>,
         race: &race::Race,
     ) -> crate::error::CliResult {
+        self.scene_overlays.set_detail(tier.overlay);
         let settings = &mut self.panels.settings;
         self.scene
             .apply_tier(settings, tier, gpu, renderer, effects, race)

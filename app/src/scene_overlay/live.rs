@@ -16,9 +16,22 @@ pub struct LiveOverlays {
 }
 
 impl LiveOverlays {
-    /// Turns the overlay `name` on or off (labels, trails, course, lines, wind).
+    /// Turns the overlay `name` on or off (a name of [`super::OVERLAYS`]).
     pub fn set_overlay(&mut self, name: &str, on: bool) -> Result<(), String> {
         self.settings.set_overlay(name, on)
+    }
+
+    /// The Scene panel's overlay switches (by the names of [`super::OVERLAYS`]) onto the
+    /// overlays drawn.
+    pub fn follow_panel(&mut self, panel: &ui::SceneSettings) {
+        for o in &super::OVERLAYS {
+            self.settings.set = self.settings.set.with(o.kind, panel.overlay(o.name));
+        }
+    }
+
+    /// A quality tier's overlay detail (`TierRender::overlay`) onto the overlays drawn.
+    pub fn set_detail(&mut self, detail: quality::OverlayDetail) {
+        self.settings.detail = detail;
     }
 
     /// The selected boats (indices into `Race::boats`), oldest first: "compare" takes two.

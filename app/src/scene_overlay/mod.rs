@@ -26,7 +26,8 @@ pub mod paint;
 use quality::OverlayDetail;
 use render::passes::segments::{Layer, LayerPass, Segment, SegmentLayers};
 
-/// The race overlays, in drawing order (the order of [`OVERLAYS`]).
+/// The race overlays, in drawing order (a later one is drawn over an earlier one: the labels'
+/// rings over the trails).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum OverlayKind {
     Trails,
@@ -62,7 +63,8 @@ struct Drawing<'a> {
     wind: Option<WindInfo>,
 }
 
-/// The overlays, in drawing order; indexed by [`OverlayKind`] (a test checks it).
+/// The overlays, one row each, in the Scene panel's order (the drawing order is
+/// [`OverlayKind`]'s).
 ///
 /// The tier details, and why (a phone held over a table, the Low tier's OPPO A54 first):
 /// - essential (Low): the labels and the course. Who is who and where the marks are answer
@@ -73,6 +75,17 @@ struct Drawing<'a> {
 /// - full (High, Ultra): adds the ahead/behind lines: an analysis layer whose gap texts
 ///   crowd a small screen, for the phones (and desktops) with room to spare.
 pub const OVERLAYS: [Overlay; 5] = [
+    Overlay {
+        kind: OverlayKind::Labels,
+        name: "labels",
+        label: "Boat labels",
+        detail: OverlayDetail::Essential,
+        pass: LayerPass {
+            name: "overlay-labels",
+            condition: "labels are on and a boat is in view",
+        },
+        draw: |d, _| geometry::rings(d.view, d.settings),
+    },
     Overlay {
         kind: OverlayKind::Trails,
         name: "trails",
@@ -124,34 +137,31 @@ pub const OVERLAYS: [Overlay; 5] = [
         },
         draw: |d, texts| geometry::wind_arrow(d.view, d.wind, texts),
     },
-    Overlay {
-        kind: OverlayKind::Labels,
-        name: "labels",
-        label: "Boat labels",
-        detail: OverlayDetail::Essential,
-        pass: LayerPass {
-            name: "overlay-labels",
-            condition: "labels are on and a boat is in view",
-        },
-        draw: |d, _| geometry::rings(d.view, d.settings),
-    },
 ];
 
 impl OverlayKind {
-    /// Every overlay, in drawing order.
+    /// Every overlay, in drawing order. (Built from [`OVERLAYS`]: a kind without a row, or
+    /// with two, does not compile.)
     pub const ALL: [OverlayKind; OVERLAYS.len()] = {
         let mut all = [OverlayKind::Trails; OVERLAYS.len()];
-        let mut i = 0;
-        while i < OVERLAYS.len() {
-            all[i] = OVERLAYS[i].kind;
-            i += 1;
+        let mut found = [false; OVERLAYS.len()];
+        let mut row = 0;
+        while row < OVERLAYS.len() {
+            let k = OVERLAYS[row].kind as usize;
+            assert!(!found[k], "an overlay kind with two rows in OVERLAYS");
+            found[k] = true;
+            all[k] = OVERLAYS[row].kind;
+            row += 1;
         }
         all
     };
 
     /// Its row of [`OVERLAYS`].
     pub fn overlay(self) -> &'static Overlay {
-        &OVERLAYS[self as usize]
+        OVERLAYS
+            .iter()
+            .find(|o| o.kind == self)
+            .expect("every kind has its row (OverlayKind::ALL checks it)")
     }
 
     /// The name `--overlays` and the Scene panel use.
@@ -164,9 +174,10 @@ impl OverlayKind {
     }
 }
 
-/// The overlays' segment passes, for `render::passes::segments::add_segment_passes`.
+/// The overlays' segment passes in drawing order, for
+/// `render::passes::segments::add_segment_passes`.
 pub fn layer_passes() -> [LayerPass; OVERLAYS.len()] {
-    OVERLAYS.map(|o| o.pass)
+    OverlayKind::ALL.map(|k| k.overlay().pass)
 }
 
 /// Adds the overlays' segment passes to `renderer` (once), fed by `layers`.
@@ -431,7 +442,7 @@ pub fn detail_name(detail: OverlayDetail) -> &'static str {
 /// Everything the overlays show in one frame: the GPU layers and the screen items.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OverlayFrame {
-    /// Per overlay, in [`OVERLAYS`] order.
+    /// Per overlay, in drawing order ([`OverlayKind::ALL`]).
     pub layers: Vec<(OverlayKind, Layer)>,
     /// The boats' labels to measure and place when egui paints ([`labels::place`]).
     pub labels: Vec<labels::LabelCandidate>,
@@ -472,14 +483,14 @@ pub fn frame(
         debrief,
         wind,
     };
-    let layers = OVERLAYS
-        .iter()
-        .map(|o| {
-            let layer = match settings.why_hidden(o.kind) {
+    let layers = OverlayKind::ALL
+        .into_iter()
+        .map(|kind| {
+            let layer = match settings.why_hidden(kind) {
                 Some(why) => Layer::Hidden(why),
-                None => (o.draw)(&drawing, &mut texts),
+                None => (kind.overlay().draw)(&drawing, &mut texts),
             };
-            (o.kind, layer)
+            (kind, layer)
         })
         .collect();
     let hulls = labels::hulls(&view);
@@ -567,6 +578,103 @@ pub fn render_headless_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each tier draws the overlays its detail has, of those the user chose. Truth: the tier
+    /// table of `crates/quality` (which detail each tier has) and the details as
+    /// docs/overlays.md states them (essential: labels and course; standard: + trails and
+    /// wind; full: + ahead/behind lines).
+    #[test]
+    fn each_tier_draws_the_overlays_its_detail_has() {
+        use OverlayKind::{Course, Labels, Lines, Trails, Wind};
+        use quality::Tier;
+        let stated = |d: OverlayDetail| -> Vec<OverlayKind> {
+            match d {
+                OverlayDetail::Essential => vec![Course, Labels],
+                OverlayDetail::Standard => vec![Trails, Course, Wind, Labels],
+                OverlayDetail::Full => vec![Trails, Course, Lines, Wind, Labels],
+            }
+        };
+        let expected = [
+            (Tier::Low, OverlayDetail::Essential),
+            (Tier::Medium, OverlayDetail::Standard),
+            (Tier::High, OverlayDetail::Full),
+            (Tier::Ultra, OverlayDetail::Full),
+        ];
+        for (tier, detail) in expected {
+            let t = crate::tier_render::TierRender::of(tier);
+            assert_eq!(t.overlay, detail, "{tier}: quality's table changed");
+            let settings = OverlaySettings {
+                detail: t.overlay,
+                ..Default::default()
+            };
+            assert_eq!(settings.shown(), stated(detail), "{tier}");
+            // What the user turned off stays off at every tier.
+            let no_course = OverlaySettings {
+                set: OverlaySet::ALL.with(Course, false),
+                ..settings.clone()
+            };
+            let mut without = stated(detail);
+            without.retain(|k| *k != Course);
+            assert_eq!(no_course.shown(), without, "{tier}");
+        }
+    }
+
+    /// A tier's hidden overlays reach the frame report with the reason, and the labels' egui
+    /// texts go with their rings.
+    #[test]
+    fn an_overlay_the_tier_hides_says_why_and_draws_nothing() {
+        let race = race::Race::sample();
+        let world = crate::core::scene::RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
+        let scene = world.scene_at(world.middle_time(), None);
+        let settings = OverlaySettings {
+            detail: OverlayDetail::Essential,
+            ..Default::default()
+        };
+        let f = frame(&race, &scene, [640, 360], 1.0, &settings, None);
+        let layer = |k: OverlayKind| {
+            f.layers
+                .iter()
+                .find(|(kind, _)| *kind == k)
+                .unwrap()
+                .1
+                .clone()
+        };
+        assert_eq!(
+            layer(OverlayKind::Trails),
+            Layer::Hidden("the tier's overlay detail is essential; trails need standard".into())
+        );
+        assert_eq!(
+            layer(OverlayKind::Lines),
+            Layer::Hidden("the tier's overlay detail is essential; lines need full".into())
+        );
+        assert!(matches!(layer(OverlayKind::Course), Layer::Draw(_)));
+        assert!(!f.labels.is_empty(), "essential keeps the labels");
+        let passes: Vec<&str> = layer_passes().iter().map(|p| p.name).collect();
+        assert_eq!(
+            passes,
+            [
+                "overlay-trails",
+                "overlay-course",
+                "overlay-lines",
+                "overlay-wind",
+                "overlay-labels"
+            ],
+            "drawing order: the labels' rings over the trails"
+        );
+    }
+
+    /// The Scene panel's switches are the table's, in its order, and every name round-trips.
+    #[test]
+    fn the_panel_and_the_names_read_the_table() {
+        let toggles = panel_toggles(OverlaySet::ALL.with(OverlayKind::Wind, false));
+        let keys: Vec<&str> = toggles.iter().map(|t| t.key.as_str()).collect();
+        assert_eq!(keys, ["labels", "trails", "course", "lines", "wind"]);
+        assert!(toggles.iter().all(|t| t.enabled == (t.key != "wind")));
+        for k in OverlayKind::ALL {
+            assert_eq!(OverlayKind::from_name(k.name()), Some(k));
+        }
+        assert_eq!(OverlayKind::from_name("wakes"), None);
+    }
 
     #[test]
     fn overlays_parse_and_bad_lists_name_the_flag_and_the_name() {

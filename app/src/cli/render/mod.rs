@@ -210,12 +210,16 @@ pub fn run(a: RenderArgs) -> CliResult {
             input::show_path(&a.out)
         )));
     }
-    let overlays = overlay_settings(&a)?;
+    let mut overlays = overlay_settings(&a)?;
     let tier = a
         .tier
         .as_deref()
         .map(crate::tier_render::parse_tier)
         .transpose()?;
+    if let Some(tier) = tier {
+        // A tier draws the overlays its detail has (docs/overlays.md, "Tiers").
+        overlays.detail = crate::tier_render::TierRender::of(tier).overlay;
+    }
     if tier.is_some() && effects.is_some() {
         return Err(CliError::new(
             "--tier chooses the effects itself: give --tier or --effects, not both",

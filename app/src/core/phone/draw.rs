@@ -342,6 +342,7 @@ impl PhoneApp {
     fn prepare_overlays(&mut self, g: &mut Graphics, scene: &render::Scene, size: [u32; 2]) {
         let ppp = f64::from(self.touch.pixels_per_point);
         let race = &self.world.race;
+        self.overlays.follow_panel(&self.panels.settings);
         let debrief = self.overlays.debrief(&mut self.panels.debrief, race);
         self.overlays
             .prepare(&g.gpu, &mut g.race, (race, debrief), scene, size, ppp);

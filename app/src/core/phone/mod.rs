@@ -163,6 +163,7 @@ impl PhoneApp {
     /// The embedded race and sea, with `backend` for AR.
     pub fn new(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
         let mut panels = RegattaUi::new(crate::overlay::initial_clock(&world.race), Vec::new());
+        panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
         // The phone's screen is small: the timeline and the bar; the leaderboard behind its
         // toggle in the timeline's header, no frame statistics.
         panels.show_perf = false;
