@@ -241,7 +241,7 @@ impl OverlaySet {
                 _ => match OverlayKind::from_name(name) {
                     Some(k) => set = set.with(k, true),
                     None => {
-                        let valid: Vec<&str> = OVERLAYS.iter().map(|o| o.name).collect();
+                        let valid: Vec<&str> = OverlayKind::ALL.map(OverlayKind::name).to_vec();
                         return Err(format!(
                             "--overlays names the unknown overlay {}; the overlays are: {}, all, none",
                             input::quote(name),
