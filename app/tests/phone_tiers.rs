@@ -12,7 +12,7 @@
 
 use quality::{Target, Tier};
 use regatta::core::phone::{PHONE_START_TIER, PhoneEvent};
-use regatta::overlay::touch::TouchAction;
+use regatta::hud::touch::TouchAction;
 use regatta::phone_sim::PhoneSim;
 use regatta::phone_sim::backend::Feed;
 use regatta::phone_sim::device::Device;

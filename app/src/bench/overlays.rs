@@ -50,7 +50,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     );
     let view = texture.create_view(&Default::default());
     let mut painter =
-        crate::overlay::EguiPainter::for_format(&gpu.device, OFFSCREEN_FORMAT.remove_srgb_suffix());
+        crate::hud::EguiPainter::for_format(&gpu.device, OFFSCREEN_FORMAT.remove_srgb_suffix());
     let settings = OverlaySettings::default();
     let ppp = scene_overlay::paint::headless_pixels_per_point(size);
     let (mut wall, mut gpu_ms) = ([Vec::new(), Vec::new()], [Vec::new(), Vec::new()]);
