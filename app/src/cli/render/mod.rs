@@ -73,7 +73,8 @@ pub struct RenderArgs {
         value_parser = crate::cli::inputs::whole_number::<usize>("from 0 to the feed's last frame"))]
     pub frame: Option<usize>,
     /// A quality tier (low, medium, high, ultra; docs/quality.md): its render scale, clip-map
-    /// error target, AR effects and their sizes, wake spacing and budget.
+    /// error target, AR effects and their sizes, wake spacing and budget, and which of the
+    /// race overlays it draws (its overlay detail; docs/overlays.md, "Tiers").
     #[arg(long, conflicts_with_all = ["effects", "error_px"])]
     pub tier: Option<String>,
     /// A clip's first race time, seconds since the start (with --to and a .gif --out).
