@@ -34,6 +34,7 @@ pub struct TierRender {
     pub wake: WakeParams,
     /// Most wake sources a frame draws.
     pub wake_source_budget: usize,
+    /// Which race overlays the tier draws (`scene_overlay::OverlaySettings::detail`).
     pub overlay: OverlayDetail,
 }
 

@@ -140,8 +140,8 @@ pub const OVERLAYS: [Overlay; 5] = [
 ];
 
 impl OverlayKind {
-    /// Every overlay, in drawing order. (Built from [`OVERLAYS`]: a kind without a row, or
-    /// with two, does not compile.)
+    /// Every overlay, in drawing order, built from [`OVERLAYS`] (a kind with two rows, or
+    /// rows whose kinds leave a gap in the drawing order, does not compile).
     pub const ALL: [OverlayKind; OVERLAYS.len()] = {
         let mut all = [OverlayKind::Trails; OVERLAYS.len()];
         let mut found = [false; OVERLAYS.len()];
