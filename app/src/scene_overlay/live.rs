@@ -106,3 +106,35 @@ impl LiveOverlays {
         &self.placed
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene_overlay::{OverlayKind, OverlaySet, panel_toggles};
+
+    /// The Scene panel's switches (the desktop's and the phone's) decide the overlays drawn,
+    /// and the tier's detail is kept apart from them.
+    #[test]
+    fn the_panel_switches_and_the_tier_detail_set_the_overlays() {
+        let mut live = LiveOverlays::default();
+        let mut panel = ui::SceneSettings::new(Vec::new());
+        panel.overlays = panel_toggles(OverlaySet::ALL);
+        panel
+            .overlays
+            .iter_mut()
+            .filter(|t| t.key == "wind")
+            .for_each(|t| t.enabled = false);
+        live.follow_panel(&panel);
+        assert_eq!(
+            live.settings.set,
+            OverlaySet::ALL.with(OverlayKind::Wind, false)
+        );
+        live.set_detail(quality::OverlayDetail::Essential);
+        assert_eq!(
+            live.settings.shown(),
+            [OverlayKind::Course, OverlayKind::Labels]
+        );
+        live.follow_panel(&panel);
+        assert_eq!(live.settings.detail, quality::OverlayDetail::Essential);
+    }
+}
