@@ -321,7 +321,7 @@ impl OverlaySettings {
             Some(format!("turned off (\"{}\" not in --overlays)", o.name))
         } else if o.detail > self.detail {
             Some(format!(
-                "the tier's overlay detail is {}; {} need {}",
+                "the tier's overlay detail is {}; the {} overlay needs {}",
                 detail_name(self.detail),
                 o.name,
                 detail_name(o.detail)
@@ -641,11 +641,15 @@ mod tests {
         };
         assert_eq!(
             layer(OverlayKind::Trails),
-            Layer::Hidden("the tier's overlay detail is essential; trails need standard".into())
+            Layer::Hidden(
+                "the tier's overlay detail is essential; the trails overlay needs standard".into()
+            )
         );
         assert_eq!(
             layer(OverlayKind::Lines),
-            Layer::Hidden("the tier's overlay detail is essential; lines need full".into())
+            Layer::Hidden(
+                "the tier's overlay detail is essential; the lines overlay needs full".into()
+            )
         );
         assert!(matches!(layer(OverlayKind::Course), Layer::Draw(_)));
         assert!(!f.labels.is_empty(), "essential keeps the labels");
