@@ -7,7 +7,7 @@ pub mod core;
 #[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
-pub mod overlay;
+pub mod hud;
 pub mod panels;
 #[cfg(not(target_os = "android"))]
 pub mod phone_sim;

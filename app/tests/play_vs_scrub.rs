@@ -11,7 +11,7 @@ use glam::DVec3;
 use regatta::core::gfx::{Profile, race_renderer};
 use regatta::core::scene::{FAR_M, RaceWorld, race_wake};
 use regatta::desktop::pool::PoolMode;
-use regatta::overlay::initial_clock;
+use regatta::hud::initial_clock;
 use render::gpu::Gpu;
 use render::{FRAME_REUSED, OFFSCREEN_FORMAT, OrbitCamera, Renderer};
 

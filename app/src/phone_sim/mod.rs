@@ -20,7 +20,7 @@ use glam::DVec2;
 
 use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
 use crate::core::scene::RaceWorld;
-use crate::overlay::touch::TouchAction;
+use crate::hud::touch::TouchAction;
 use backend::{Availability, Feed, SimArCore, SimControl};
 use ffi::{FfiBackend, SimLibrary};
 use script::{Line, Step};

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::backend::{Availability, FAILURE_REASONS};
-use crate::overlay::SceneChoice;
+use crate::hud::SceneChoice;
 
 /// One step of a script.
 #[derive(Clone, Debug, PartialEq)]

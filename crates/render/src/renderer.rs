@@ -279,7 +279,7 @@ impl Renderer {
         self.passes.push(pass);
     }
 
-    /// Whether a pass named `name` is registered (the app adds its overlay passes once).
+    /// Whether a pass named `name` is registered (the app adds its segment passes once).
     pub fn has_pass(&self, name: &str) -> bool {
         self.passes.iter().any(|p| p.name() == name)
     }

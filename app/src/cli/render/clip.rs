@@ -256,8 +256,8 @@ pub fn write_gif(
     if look.wakes {
         renderer.set_wake(Some(world.wake()?));
     }
-    // The overlay passes keep the handle they were added with: one for every frame.
-    let handle = render::passes::overlay::OverlayHandle::default();
+    // The overlay passes keep the layers they were added with: one for every frame.
+    let layers = render::passes::segments::SegmentLayers::default();
     crate::cli::output::write_atomically(out, |tmp| {
         let file = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
         let mut gif = GifWriter::new(std::io::BufWriter::new(file), look.size)?;
@@ -267,7 +267,7 @@ pub fn write_gif(
             let (img, _) = crate::scene_overlay::render_headless_with(
                 &gpu,
                 &mut renderer,
-                &handle,
+                &layers,
                 (&world.race, look.debrief.as_ref()),
                 &scene,
                 look.size,

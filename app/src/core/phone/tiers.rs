@@ -79,6 +79,7 @@ impl PhoneApp {
             return;
         }
         let tier = TierRender::of(self.tiers.tier());
+        self.overlays.set_detail(tier.overlay);
         let fx = g.race_effects.clone();
         let applied = tier.apply_live(&g.gpu, &mut g.race, fx.as_ref(), Some(&self.world.race));
         if let Err(e) = applied {
