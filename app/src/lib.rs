@@ -8,7 +8,7 @@ pub mod core;
 pub mod desktop;
 pub mod error;
 pub mod feed;
-pub mod overlay;
+pub mod hud;
 pub mod panels;
 #[cfg(not(target_os = "android"))]
 pub mod phone_sim;

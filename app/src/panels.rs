@@ -144,8 +144,9 @@ impl SceneApplier {
 
     /// `tier` onto the running renderer when it, or whether the renderer has its effect
     /// passes (`effects`), changed since it was last applied ([`SceneApplier::apply_tier`]);
-    /// true when it was applied. A failure (the respaced wakes) is logged and the tier counts
-    /// as applied: the next change tries again.
+    /// what the tier set when it was applied (the caller hands its overlay detail to the race
+    /// overlays). A failure (the respaced wakes) is logged and the tier counts as applied: the
+    /// next change tries again.
     #[allow(clippy::too_many_arguments)]
     pub fn follow_tier(
         &mut self,
@@ -155,17 +156,17 @@ impl SceneApplier {
         renderer: &mut render::Renderer,
         effects: Option<&EffectsHandle>,
         race: &race::Race,
-    ) -> bool {
+    ) -> Option<crate::tier_render::TierRender> {
         let key = Some((tier, effects.is_some()));
         if self.tier == key {
-            return false;
+            return None;
         }
         let t = crate::tier_render::TierRender::of(tier);
         if let Err(e) = self.apply_tier(settings, &t, gpu, renderer, effects, race) {
             log::warn!("regatta: quality tier {tier}: {e}");
         }
         self.tier = key;
-        true
+        Some(t)
     }
 
     /// The tier last applied by [`SceneApplier::follow_tier`] (`None` before the first).

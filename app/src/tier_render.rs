@@ -7,8 +7,10 @@
 //! means the same frame everywhere; a tier changed on a running renderer
 //! ([`TierRender::apply_live`]) draws the frame a renderer built at that tier draws.
 //!
-//! The overlay detail is carried for the race-overlay passes; they read
-//! [`TierRender::overlay`] when they land (not yet read: every tier draws the overlays the user chose).
+//! The overlay detail ([`TierRender::overlay`]) decides which race overlays a tier draws (of
+//! those the user chose): the desktop's, the phone's and `regatta render --tier`'s overlays
+//! take it (`scene_overlay::OverlaySettings::detail`; what each detail draws is the
+//! `scene_overlay::OVERLAYS` table).
 
 use std::sync::Arc;
 
@@ -32,6 +34,7 @@ pub struct TierRender {
     pub wake: WakeParams,
     /// Most wake sources a frame draws.
     pub wake_source_budget: usize,
+    /// Which race overlays the tier draws (`scene_overlay::OverlaySettings::detail`).
     pub overlay: OverlayDetail,
 }
 

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use regatta::core::scene::{FAR_M, RaceWorld};
-use regatta::desktop::overlay::initial_clock;
+use regatta::desktop::hud::initial_clock;
 use render::OrbitCamera;
 
 fn orbit() -> OrbitCamera {

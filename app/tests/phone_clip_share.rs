@@ -128,7 +128,7 @@ fn the_clip_goes_into_the_media_store_and_to_the_share_sheet() {
         (uri.as_str(), "image/gif", "Share clip")
     );
     // The pool has no button.
-    sim.app.choose_scene(regatta::overlay::SceneChoice::Pool);
+    sim.app.choose_scene(regatta::hud::SceneChoice::Pool);
     sim.frame(1.0 / 60.0);
     assert!(sim.app.bar.unwrap().share_button.is_none());
 }

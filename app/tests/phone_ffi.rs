@@ -223,7 +223,7 @@ fn the_bar_and_panels_keep_clear_of_the_system_bars() {
         f64::from(c.x * ppp) / f64::from(SIZE[0]),
         f64::from(c.y * ppp) / f64::from(SIZE[1]),
     ]);
-    assert_eq!(sim.app.scene, regatta::overlay::SceneChoice::Pool);
+    assert_eq!(sim.app.scene, regatta::hud::SceneChoice::Pool);
 }
 
 /// Defect 3: the phone turned by 180° sends no window or configuration event; the app reads the

@@ -13,7 +13,7 @@
 use quality::{Target, Tier};
 use regatta::core::phone::{PHONE_START_TIER, PhoneEvent};
 use regatta::feed::CameraFeed;
-use regatta::overlay::touch::TouchAction;
+use regatta::hud::touch::TouchAction;
 use regatta::phone_sim::PhoneSim;
 use regatta::sim_phone::device::Device;
 
@@ -140,6 +140,15 @@ fn a_slow_phone_steps_down_but_never_while_the_timeline_is_scrubbed() {
         at_s - lifted
     );
     assert_eq!(sim.app.tiers.tier(), Tier::Medium);
+    // The overlays drawn follow the tier's detail (quality's table: medium is standard).
+    assert_eq!(
+        sim.app.overlays.settings.detail,
+        Tier::Medium.settings().overlay
+    );
+    assert_eq!(
+        Tier::Medium.settings().overlay,
+        quality::OverlayDetail::Standard
+    );
     // The panel shows the tier drawn.
     assert_eq!(
         sim.app.panels.settings.tier.map(|p| p.current),

@@ -10,7 +10,7 @@ use effects::EffectSet;
 use glam::DVec3;
 use regatta::core::scene::{FAR_M, RaceWorld, race_wake};
 use regatta::desktop::pool::PoolMode;
-use regatta::overlay::initial_clock;
+use regatta::hud::initial_clock;
 use regatta::setup::{Profile, RaceSetup};
 use render::gpu::Gpu;
 use render::{FRAME_REUSED, OFFSCREEN_FORMAT, OrbitCamera, Renderer};

@@ -82,7 +82,11 @@ impl DesktopPath {
     fn set_tier(&mut self, gpu: &render::Gpu, tier: Tier) {
         let race = &self.world.race;
         let (s, r) = (&mut self.settings, &mut self.renderer);
-        assert!(self.scene.follow_tier(tier, s, gpu, r, None, race));
+        assert!(
+            self.scene
+                .follow_tier(tier, s, gpu, r, None, race)
+                .is_some()
+        );
         // The window applies the Scene panel's switches every frame.
         self.scene.apply(&self.settings, &mut self.renderer, None);
     }
@@ -148,7 +152,12 @@ fn a_new_race_on_either_path_has_its_wakes_at_the_tiers_spacing() {
     );
     let race = &desktop.world.race;
     let (s, r) = (&mut desktop.settings, &mut desktop.renderer);
-    assert!(desktop.scene.follow_tier(Tier::Low, s, &gpu, r, None, race));
+    assert!(
+        desktop
+            .scene
+            .follow_tier(Tier::Low, s, &gpu, r, None, race)
+            .is_some()
+    );
     assert!(close(settings_of(&desktop.renderer), defined(Tier::Low)));
 }
 

@@ -16,7 +16,7 @@ use ar::arcore::ffi::{ArCore, JavaObject, Jni};
 use crate::core::gfx::SurfaceMaker;
 use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
-use crate::overlay::touch::{Finger, Touch, TouchAction};
+use crate::hud::touch::{Finger, Touch, TouchAction};
 use crate::wall_clock::Ticker;
 
 mod intents;
@@ -162,7 +162,7 @@ fn input_events(app: &AndroidApp, phone: &mut PhoneApp) {
     }) {}
 }
 
-/// An Android motion event as the overlay's [`Touch`]: the action, and every finger in
+/// An Android motion event as the HUD's [`Touch`]: the action, and every finger in
 /// physical pixels. `None` for actions that are not touches (hover, scroll, buttons).
 fn touch_of(m: &MotionEvent<'_>) -> Option<Touch> {
     let i = m.pointer_index();

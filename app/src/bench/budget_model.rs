@@ -325,7 +325,8 @@ mod tests {
             ar: &t.ar,
             trips: Trips {
                 waves: scene.sea.waves.len() as f64,
-                waves_in_pixel: scene.sea.waves.len() as f64,
+                resolved_waves_in_pixel: scene.sea.waves.len() as f64,
+                fading_waves_in_pixel: 1.0,
                 wake_sources_per_vertex: 4.0,
                 wake_foam_sources_per_vertex: 1.0,
                 marks: scene.marks.len() as f64,

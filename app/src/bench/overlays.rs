@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use render::passes::overlay::{OverlayHandle, add_overlay_passes};
+use render::passes::segments::SegmentLayers;
 use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
 
@@ -38,8 +38,8 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let options = RenderOptions::default();
     let mut plain = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
     let mut with = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
-    let handle = OverlayHandle::default();
-    add_overlay_passes(&mut with, &gpu, &handle);
+    let handle = SegmentLayers::default();
+    scene_overlay::add_passes(&mut with, &gpu, &handle);
     let texture = render::gpu::texture_2d_with_views(
         &gpu.device,
         "bench overlays",
@@ -50,7 +50,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     );
     let view = texture.create_view(&Default::default());
     let mut painter =
-        crate::overlay::EguiPainter::for_format(&gpu.device, OFFSCREEN_FORMAT.remove_srgb_suffix());
+        crate::hud::EguiPainter::for_format(&gpu.device, OFFSCREEN_FORMAT.remove_srgb_suffix());
     let settings = OverlaySettings::default();
     let ppp = scene_overlay::paint::headless_pixels_per_point(size);
     let (mut wall, mut gpu_ms) = ([Vec::new(), Vec::new()], [Vec::new(), Vec::new()]);

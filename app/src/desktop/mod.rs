@@ -26,7 +26,7 @@ use crate::setup::inputs::{load_race, load_sea};
 use crate::setup::{Profile, RaceSetup};
 use crate::wall_clock::Ticker;
 
-pub mod overlay;
+pub mod hud;
 pub mod phone;
 pub mod pool;
 pub mod share_clip;
@@ -155,8 +155,8 @@ struct State {
     gpu: render::Gpu,
     target: gfx::Window,
     renderer: Renderer,
-    /// The egui panels (timeline, leaderboard, overlay); `None` in the pool scene.
-    overlay: Option<overlay::Overlay>,
+    /// The egui panels (timeline, leaderboard, performance); `None` in the pool scene.
+    hud: Option<hud::Hud>,
 }
 
 struct App {
@@ -195,7 +195,7 @@ impl App {
     /// Race time for this frame: the timeline's with the panels, else the app's clock.
     fn tick(&mut self) -> f64 {
         let dt = self.ticker.tick();
-        match self.state.as_mut().and_then(|s| s.overlay.as_mut()) {
+        match self.state.as_mut().and_then(|s| s.hud.as_mut()) {
             Some(o) => o.tick(),
             None => {
                 self.clock.advance(dt);
@@ -209,7 +209,7 @@ impl App {
         let Some(st) = self.state.as_mut() else {
             return;
         };
-        let Some(o) = st.overlay.as_mut() else {
+        let Some(o) = st.hud.as_mut() else {
             return;
         };
         let mut files = std::mem::take(&mut self.dropped);
@@ -254,7 +254,7 @@ impl App {
         }
         let mut scene = self.world.orbit_scene(t, &mut self.orbit);
         // "Follow": the orbit turns about the first selected boat instead of the fleet.
-        if let Some(o) = self.state.as_ref().and_then(|s| s.overlay.as_ref())
+        if let Some(o) = self.state.as_ref().and_then(|s| s.hud.as_ref())
             && o.panels.follow
             && let Some(target) =
                 crate::panels::follow_target(&self.world.race, o.scene_overlays.selected(), t)
@@ -265,7 +265,7 @@ impl App {
         // With a feed, its camera (mapped onto the race) replaces the orbit.
         if let (Some(f), Some(st)) = (self.feed.as_mut(), self.state.as_mut()) {
             let size = st.target.size();
-            let wake = st.overlay.as_ref().and_then(|o| o.wake());
+            let wake = st.hud.as_ref().and_then(|o| o.wake());
             let format = st.target.format().unwrap_or(render::OFFSCREEN_FORMAT);
             let bounds = self.world.race_bounds;
             if let Err(e) = f.prepare(&st.gpu, &mut st.renderer, format, wake, bounds, size) {
@@ -284,7 +284,7 @@ impl App {
         };
         let view = frame.texture().create_view(&Default::default());
         let size = st.target.size();
-        if let Some(o) = st.overlay.as_mut() {
+        if let Some(o) = st.hud.as_mut() {
             let handle = self.feed.as_ref().and_then(|f| f.effects_handle()).cloned();
             let handle = handle.as_ref();
             o.apply_effects(&mut st.renderer, handle);
@@ -312,8 +312,7 @@ impl App {
         }
         // The governor: GPU time where measured, else the present interval; no change while
         // the user drags the view or a panel (the timeline's scrubber).
-        let scrubbing =
-            self.drag.is_some() || st.overlay.as_ref().is_some_and(|o| o.wants_pointer());
+        let scrubbing = self.drag.is_some() || st.hud.as_ref().is_some_and(|o| o.wants_pointer());
         let now = self.started.elapsed().as_secs_f64();
         let gpu_ms = report.as_ref().and_then(|r| r.gpu_ms);
         // The change is applied before the next frame is drawn.
@@ -321,7 +320,7 @@ impl App {
             log::info!("quality tier {}", tier.tier);
         }
         let race = &self.world.race;
-        if let Some(o) = st.overlay.as_mut() {
+        if let Some(o) = st.hud.as_mut() {
             if let Some(c) = o.tier_change.take() {
                 self.tiers.answer(c);
             }
@@ -350,7 +349,7 @@ impl App {
         }
         st.window.pre_present_notify();
         st.target.present(&st.gpu, frame);
-        if let Some(o) = st.overlay.as_mut()
+        if let Some(o) = st.hud.as_mut()
             && o.frame_done()
         {
             // The smoke test's exit: save what the window showed, if asked (REGATTA_SCREENSHOT).
@@ -363,7 +362,7 @@ impl App {
             return;
         }
         let playing = st
-            .overlay
+            .hud
             .as_ref()
             .map_or(self.clock.is_playing(), |o| o.panels.clock.is_playing());
         st.window.set_title(&format!(
@@ -387,7 +386,7 @@ impl ApplicationHandler for App {
         }
         let attrs = Window::default_attributes()
             .with_title("Regatta")
-            .with_inner_size(overlay::window_size());
+            .with_inner_size(hud::window_size());
         let window = match el.create_window(attrs) {
             Ok(w) => Arc::new(w),
             Err(e) => return self.fail(el, format!("cannot open a window: {e}")),
@@ -403,10 +402,10 @@ impl ApplicationHandler for App {
                 let renderer = setup.renderer(&gpu, surface.config.format, wake);
                 // The tier is applied before the first frame is drawn (`draw`).
                 log::info!("window on {}", gpu.describe());
-                let overlay = self.pool.is_none().then(|| {
+                let hud = self.pool.is_none().then(|| {
                     let race = &self.world.race;
                     let fx = self.feed.is_some();
-                    let mut o = overlay::Overlay::new(
+                    let mut o = hud::Hud::new(
                         &window,
                         &gpu.device,
                         &mut surface,
@@ -427,7 +426,7 @@ impl ApplicationHandler for App {
                     gpu,
                     target,
                     renderer,
-                    overlay,
+                    hud,
                 });
             }
             Err(e) => self.fail(el, format!("cannot draw into the window: {e}")),
@@ -436,8 +435,8 @@ impl ApplicationHandler for App {
 
     fn window_event(&mut self, el: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         if let Some(st) = self.state.as_mut()
-            && let Some(o) = st.overlay.as_mut()
-            && overlay::handle_event(o, &st.window, &event)
+            && let Some(o) = st.hud.as_mut()
+            && hud::handle_event(o, &st.window, &event)
         {
             return;
         }
@@ -460,7 +459,7 @@ impl ApplicationHandler for App {
                     && self
                         .press_at
                         .is_some_and(|(x, y)| (x - self.cursor.0).hypot(y - self.cursor.1) < 4.0)
-                    && let Some(o) = self.state.as_mut().and_then(|s| s.overlay.as_mut())
+                    && let Some(o) = self.state.as_mut().and_then(|s| s.hud.as_mut())
                 {
                     o.scene_overlays.click([self.cursor.0, self.cursor.1]);
                 }

@@ -18,7 +18,7 @@ use super::RunArgs;
 use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
-use crate::overlay::touch::TouchAction;
+use crate::hud::touch::TouchAction;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::SimArCore;
 use crate::wall_clock::Ticker;

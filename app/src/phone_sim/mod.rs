@@ -18,7 +18,7 @@ use glam::DVec2;
 use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
 use crate::core::scene::RaceWorld;
 use crate::feed::CameraFeed;
-use crate::overlay::touch::TouchAction;
+use crate::hud::touch::TouchAction;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::{Availability, SimArCore, SimControl};
 use script::{Line, Step};

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::overlay::SceneChoice;
+use crate::hud::SceneChoice;
 use crate::sim_phone::backend::{Availability, FAILURE_REASONS};
 
 /// One step of a script.

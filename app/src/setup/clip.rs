@@ -156,8 +156,8 @@ pub fn write_gif(
     setup.options.error_px = look.error_px;
     setup.wakes = look.wakes;
     let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, setup.wake(&world.race)?);
-    // The overlay passes keep the handle they were added with: one for every frame.
-    let handle = render::passes::overlay::OverlayHandle::default();
+    // The overlay passes keep the layers they were added with: one for every frame.
+    let layers = render::passes::segments::SegmentLayers::default();
     crate::setup::output::write_atomically(out, |tmp| {
         let file = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
         let mut gif = GifWriter::new(std::io::BufWriter::new(file), look.size)?;
@@ -167,7 +167,7 @@ pub fn write_gif(
             let (img, _) = crate::scene_overlay::render_headless_with(
                 &gpu,
                 &mut renderer,
-                &handle,
+                &layers,
                 (&world.race, look.debrief.as_ref()),
                 &scene,
                 look.size,

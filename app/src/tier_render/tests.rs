@@ -177,7 +177,11 @@ fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
         let mut settings = ui::SceneSettings::new(Vec::new());
         let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
         let fx = Some(&live_fx);
-        assert!(applier.follow_tier(to, &mut settings, &gpu, &mut live, fx, &race));
+        assert!(
+            applier
+                .follow_tier(to, &mut settings, &gpu, &mut live, fx, &race)
+                .is_some()
+        );
         let after = draw(&gpu, &mut live, &live_fx, &scene, size);
         let (mut fresh, fresh_fx) = crate::setup::RaceSetup::tier_renderer(
             &TierRender::of(to),

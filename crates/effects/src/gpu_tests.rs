@@ -451,6 +451,50 @@ fn a_paused_still_frame_reuses_the_reflection_and_caustics_and_looks_the_same() 
     assert!(!reason(&report).contains(OFFSCREEN_REUSED));
 }
 
+/// The camera image switched off and on live (the Scene panel's switch) lights the boats as a
+/// renderer built with that set of effects does: by the sun and sky without the image, by the
+/// room's light over it. (The room's light was set once, when the passes were added, so
+/// switching the image off left the boats in the room's light over the sky.)
+#[test]
+fn switching_the_camera_image_live_relights_the_boats_as_a_fresh_build_does() {
+    let Some(gpu) = test_gpu() else { return };
+    let scene = table_scene(40.0);
+    assert!(!scene.boats.is_empty(), "the demo table has boats");
+    let without_image = EffectSet::ALL
+        .iter()
+        .filter(|&e| e != Effect::Background)
+        .fold(EffectSet::NONE, EffectSet::with);
+    let mut r = Renderer::new(&gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+    let cfg = config(EffectSet::ALL);
+    let frame = frame_for(&scene, &cfg);
+    let handle = add_effect_passes(&mut r, &gpu, cfg, frame);
+    handle.set_effects(without_image);
+    let (off, _) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert_eq!(
+        compare(&off, &render_with(&gpu, &scene, Some(without_image))),
+        (0.0, 0.0),
+        "the image switched off live"
+    );
+    handle.set_effects(EffectSet::ALL);
+    let (on, _) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert_eq!(
+        compare(&on, &render_with(&gpu, &scene, Some(EffectSet::ALL))),
+        (0.0, 0.0),
+        "the image switched on again"
+    );
+    // Built without the image and switched on: the room's light.
+    let mut r = Renderer::new(&gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+    let cfg = config(without_image);
+    let frame = frame_for(&scene, &cfg);
+    add_effect_passes(&mut r, &gpu, cfg, frame).set_effects(EffectSet::ALL);
+    let (on, _) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert_eq!(
+        compare(&on, &render_with(&gpu, &scene, Some(EffectSet::ALL))),
+        (0.0, 0.0),
+        "the image switched on in a set built without it"
+    );
+}
+
 #[test]
 fn every_set_of_water_effects_draws_and_each_effect_shows() {
     // The AR water compiles one pipeline per set of effects (FX_MASK a constant): all 16 sets

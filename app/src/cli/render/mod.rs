@@ -74,7 +74,8 @@ pub struct RenderArgs {
         value_parser = crate::cli::inputs::whole_number::<usize>("from 0 to the feed's last frame"))]
     pub frame: Option<usize>,
     /// A quality tier (low, medium, high, ultra; docs/quality.md): its render scale, clip-map
-    /// error target, AR effects and their sizes, wake spacing and budget.
+    /// error target, AR effects and their sizes, wake spacing and budget, and which of the
+    /// race overlays it draws (its overlay detail; docs/overlays.md, "Tiers").
     #[arg(long, conflicts_with_all = ["effects", "error_px"])]
     pub tier: Option<String>,
     /// A clip's first race time, seconds since the start (with --to and a .gif --out).
@@ -211,12 +212,16 @@ pub fn run(a: RenderArgs) -> CliResult {
             input::show_path(&a.out)
         )));
     }
-    let overlays = overlay_settings(&a)?;
+    let mut overlays = overlay_settings(&a)?;
     let tier = a
         .tier
         .as_deref()
         .map(crate::tier_render::parse_tier)
         .transpose()?;
+    if let Some(tier) = tier {
+        // A tier draws the overlays its detail has (docs/overlays.md, "Tiers").
+        overlays.detail = crate::tier_render::TierRender::of(tier).overlay;
+    }
     if tier.is_some() && effects.is_some() {
         return Err(CliError::new(
             "--tier chooses the effects itself: give --tier or --effects, not both",

@@ -13,7 +13,7 @@ use crate::core::camera_frame::{backdrop_with_image, display_of};
 use crate::core::gfx::{self, Acquired, LostFlag, Window};
 use crate::core::table;
 use crate::core::vulkan_marker::{FELL_BACK_NOTE, GOOD_FRAMES, VulkanMarker};
-use crate::overlay::{EguiPainter, SceneChoice, phone_bar, race_panels};
+use crate::hud::{EguiPainter, SceneChoice, phone_bar, race_panels};
 use crate::setup::{Profile, RaceSetup};
 
 /// The device, the window, and what draws into it.
@@ -228,7 +228,7 @@ impl PhoneApp {
             SceneChoice::Race => self.draw_race(g, &target, size, format),
             SceneChoice::Pool => self.draw_pool(g, &target, size, format),
         }
-        self.draw_overlay(g, frame.texture(), size);
+        self.draw_hud(g, frame.texture(), size);
         g.window.present(&g.gpu, frame);
         g.frames_drawn += 1;
         if g.frames_drawn >= GOOD_FRAMES
@@ -345,6 +345,7 @@ impl PhoneApp {
     fn prepare_overlays(&mut self, g: &mut Graphics, scene: &render::Scene, size: [u32; 2]) {
         let ppp = f64::from(self.touch.pixels_per_point);
         let race = &self.world.race;
+        self.overlays.follow_panel(&self.panels.settings);
         let debrief = self.overlays.debrief(&mut self.panels.debrief, race);
         self.overlays
             .prepare(&g.gpu, &mut g.race, (race, debrief), scene, size, ppp);
@@ -385,9 +386,9 @@ impl PhoneApp {
     }
 
     /// The panels (race only), the phone's bar and the banner over the frame.
-    fn draw_overlay(&mut self, g: &mut Graphics, texture: &wgpu::Texture, size: [u32; 2]) {
+    fn draw_hud(&mut self, g: &mut Graphics, texture: &wgpu::Texture, size: [u32; 2]) {
         let message = self.banner();
-        let banner_button = crate::overlay::banner::button(self.ar.session);
+        let banner_button = crate::hud::banner::button(self.ar.session);
         let raw = self.touch.take_raw_input(size, self.now);
         let recording = self.ar.recorder.is_some();
         // "Share clip" in the race scene; off while a clip is drawn.

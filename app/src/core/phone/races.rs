@@ -143,7 +143,7 @@ impl PhoneApp {
                 .transform_point3(table::course_pivot(self.world.race_bounds, depth))
         });
         self.world = self.world.with_race(race);
-        crate::overlay::panels_for_new_race(
+        crate::hud::panels_for_new_race(
             &self.world.race,
             &mut self.panels,
             &mut self.events,

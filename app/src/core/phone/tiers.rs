@@ -76,8 +76,13 @@ impl PhoneApp {
         let tier = self.tiers.tier();
         let settings = &mut self.panels.settings;
         let fx = g.race_effects.as_ref();
-        g.scene
-            .follow_tier(tier, settings, &g.gpu, &mut g.race, fx, &self.world.race);
+        let race = &self.world.race;
+        if let Some(t) = g
+            .scene
+            .follow_tier(tier, settings, &g.gpu, &mut g.race, fx, race)
+        {
+            self.overlays.set_detail(t.overlay);
+        }
     }
 
     /// What the camera image may cost at the governor's tier: the tier's

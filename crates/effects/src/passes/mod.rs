@@ -41,7 +41,7 @@ pub use pipelines::{AR_WATER, AR_WATER_PARTS, CAUSTICS, FLOWMAP, REFLECTION, REF
 use shared::Shared;
 pub use shared::{
     EFFECTS_COMMON, EffectsUniform, FLOW_DETAIL_FORMAT, caustic_region, effect_frame,
-    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler,
+    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler, table_image,
 };
 pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};
 
@@ -164,7 +164,6 @@ pub fn add_effect_passes(
     camera: Backdrop,
 ) -> EffectsHandle {
     let targets = renderer.targets;
-    let feed = cfg.effects.contains(crate::Effect::Background);
     let (image, camera) = camera.split();
     let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera, &image)));
     let handle = EffectsHandle {
@@ -175,8 +174,9 @@ pub fn add_effect_passes(
     let water = ArWaterPass::new(gpu, frame_layout, targets, shared);
     renderer.add_pass(Box::new(background));
     // Over the camera image the AR water takes the room's radiance as the camera's white
-    // (`ar_water.wgsl`'s room): the boats take the same light. Without it, sun and sky.
-    renderer.set_room_light(feed.then_some(AR_ROOM_RADIANCE));
+    // (`ar_water.wgsl`'s room): the boats take the same light, in each frame that shows the
+    // image (the renderer applies it then; switched off live, sun and sky).
+    renderer.set_room_light(Some(AR_ROOM_RADIANCE));
     if !renderer.replace_pass("water", Box::new(water)) {
         log::warn!("no water pass to shade with the effects: the renderer has none");
     }
