@@ -6,12 +6,16 @@ pub mod core;
 #[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
-pub mod overlay;
+pub mod feed;
+pub mod hud;
 pub mod panels;
 #[cfg(not(target_os = "android"))]
 pub mod phone_sim;
 pub mod pool_play;
 pub mod scene_overlay;
+pub mod setup;
+#[cfg(not(target_os = "android"))]
+pub mod sim_phone;
 pub mod tier_control;
 pub mod tier_render;
 pub mod wakes;

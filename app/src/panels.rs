@@ -93,13 +93,23 @@ pub fn set_effect_switches(settings: &mut SceneSettings, effects: EffectSet) {
     }
 }
 
-/// Applies the Scene panel's switches to the renderer, every frame (cheap when nothing
-/// changed): the AR effects through the effect passes' handle, the wakes by taking the race's
-/// wake out of the renderer and putting it back.
+/// Applies the Scene panel's switches and the quality tier to the race renderer: the one way
+/// the desktop window and the phone core change them. The switches every frame (cheap when
+/// nothing changed; a switch the panel does not offer, as the phone's effect switches, acts on
+/// nothing): the AR effects through the effect passes' handle, the wakes by taking the race's
+/// wake out of the renderer and putting it back. The tier when it or the renderer's effect
+/// passes changed ([`SceneApplier::follow_tier`]).
 pub struct SceneApplier {
     /// The race's wakes, kept while the "Wakes" switch is off.
     pub wake: Option<Arc<ocean::wake::Wake>>,
     wakes_shown: bool,
+    /// The tier last applied, and whether the renderer had its effect passes then.
+    tier: Option<(quality::Tier, bool)>,
+}
+
+/// Whether the panel offers the switch `key`.
+fn offers(settings: &SceneSettings, key: &str) -> bool {
+    settings.effects.iter().any(|t| t.key == key)
 }
 
 impl SceneApplier {
@@ -107,6 +117,7 @@ impl SceneApplier {
         Self {
             wake,
             wakes_shown: true,
+            tier: None,
         }
     }
 
@@ -127,12 +138,47 @@ impl SceneApplier {
     ) {
         self.wake = wake;
         renderer.set_wake(self.current_wake());
+        // The tier applies again at the next frame: the new race's wakes at its spacing.
+        self.tier = None;
     }
 
-    /// A quality tier on the running renderer, the window's way (docs/quality.md): the AR
-    /// effect switches of `settings` turned to the tier's effects (applied as a click would,
-    /// and the user may still turn one off after), the race's wakes emitted again at the tier's
-    /// spacing (kept behind the Wakes switch), the rest through `TierRender::apply_live`.
+    /// `tier` onto the running renderer when it, or whether the renderer has its effect
+    /// passes (`effects`), changed since it was last applied ([`SceneApplier::apply_tier`]);
+    /// what the tier set when it was applied (the caller hands its overlay detail to the race
+    /// overlays). A failure (the respaced wakes) is logged and the tier counts as applied: the
+    /// next change tries again.
+    #[allow(clippy::too_many_arguments)]
+    pub fn follow_tier(
+        &mut self,
+        tier: quality::Tier,
+        settings: &mut SceneSettings,
+        gpu: &render::Gpu,
+        renderer: &mut render::Renderer,
+        effects: Option<&EffectsHandle>,
+        race: &race::Race,
+    ) -> Option<crate::tier_render::TierRender> {
+        let key = Some((tier, effects.is_some()));
+        if self.tier == key {
+            return None;
+        }
+        let t = crate::tier_render::TierRender::of(tier);
+        if let Err(e) = self.apply_tier(settings, &t, gpu, renderer, effects, race) {
+            log::warn!("regatta: quality tier {tier}: {e}");
+        }
+        self.tier = key;
+        Some(t)
+    }
+
+    /// The tier last applied by [`SceneApplier::follow_tier`] (`None` before the first).
+    pub fn tier_applied(&self) -> Option<quality::Tier> {
+        self.tier.map(|(t, _)| t)
+    }
+
+    /// A quality tier on the running renderer (docs/quality.md), the same on the desktop and
+    /// the phone: the AR effect switches of `settings` turned to the tier's effects (applied as
+    /// a click would, and the user may still turn one off after), the race's wakes emitted
+    /// again at the tier's spacing (kept behind the Wakes switch), the rest through
+    /// `TierRender::apply_live`.
     pub fn apply_tier(
         &mut self,
         settings: &mut SceneSettings,
@@ -146,7 +192,7 @@ impl SceneApplier {
         if let Some(w) = tier.respaced_wake(race, self.wake.as_deref())? {
             self.set_race_wake(Some(w), renderer);
         }
-        tier.apply_live(gpu, renderer, effects, None)?;
+        tier.apply_live(gpu, renderer, effects);
         self.apply(settings, renderer, effects);
         Ok(())
     }
@@ -157,12 +203,15 @@ impl SceneApplier {
         renderer: &mut render::Renderer,
         effects: Option<&EffectsHandle>,
     ) {
-        let wakes = settings.effect("wakes");
+        let wakes = !offers(settings, "wakes") || settings.effect("wakes");
         if wakes != self.wakes_shown {
             self.wakes_shown = wakes;
             renderer.set_wake(self.current_wake());
         }
-        if let Some(h) = effects {
+        let offers_effects = Effect::ALL.iter().any(|e| offers(settings, e.name()));
+        if let Some(h) = effects
+            && offers_effects
+        {
             h.set_effects(effect_set(settings));
         }
     }

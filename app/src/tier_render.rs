@@ -7,9 +7,10 @@
 //! means the same frame everywhere; a tier changed on a running renderer
 //! ([`TierRender::apply_live`]) draws the frame a renderer built at that tier draws.
 //!
-//! The overlay detail ([`TierRender::overlay`]) is carried but read by nothing: the race
-//! overlays (`scene_overlay`) draw what the user chose at every tier, so a tier does not yet
-//! change the overlays.
+//! The overlay detail ([`TierRender::overlay`]) decides which race overlays a tier draws (of
+//! those the user chose): the desktop's, the phone's and `regatta render --tier`'s overlays
+//! take it (`scene_overlay::OverlaySettings::detail`; what each detail draws is the
+//! `scene_overlay::OVERLAYS` table).
 
 use std::sync::Arc;
 
@@ -33,6 +34,7 @@ pub struct TierRender {
     pub wake: WakeParams,
     /// Most wake sources a frame draws.
     pub wake_source_budget: usize,
+    /// Which race overlays the tier draws (`scene_overlay::OverlaySettings::detail`).
     pub overlay: OverlayDetail,
 }
 
@@ -87,28 +89,22 @@ impl TierRender {
         renderer.invalidate();
     }
 
-    /// A tier change on a running renderer, every setting as [`TierRender::renderer`] builds
-    /// it: the options and wake source budget ([`TierRender::apply_to`]), the AR effects'
-    /// set-up through their handle (which effects run, reflection size, caustic tier and map
-    /// cells: `EffectsHandle::set_quality`), and the renderer's wakes emitted again at the
-    /// tier's spacing ([`TierRender::respaced_wake`]) when `race` is given.
+    /// A tier change on a running renderer, the renderer's part: the options and wake source
+    /// budget ([`TierRender::apply_to`]) and the AR effects' set-up through their handle
+    /// (which effects run, reflection size, caustic tier and map cells:
+    /// `EffectsHandle::set_quality`). The wakes, emitted again at the tier's spacing
+    /// ([`TierRender::respaced_wake`]), and the Scene panel's switches are the window's and the
+    /// phone's one tier path's (`crate::panels::SceneApplier::follow_tier`).
     pub fn apply_live(
         &self,
         gpu: &render::Gpu,
         renderer: &mut Renderer,
         fx: Option<&EffectsHandle>,
-        race: Option<&race::Race>,
-    ) -> CliResult {
+    ) {
         self.apply_to(renderer);
         if let Some(fx) = fx {
             fx.set_quality(gpu, &self.ar);
         }
-        if let Some(race) = race
-            && let Some(w) = self.respaced_wake(race, renderer.wake().map(Arc::as_ref))?
-        {
-            renderer.set_wake(Some(w));
-        }
-        Ok(())
     }
 
     /// `race`'s wakes at this tier's source spacing in hull radii (the other parameters
@@ -131,31 +127,6 @@ impl TierRender {
             ..w.params
         };
         crate::wakes::race_wake(race, params).map(|w| Some(Arc::new(w)))
-    }
-
-    /// A renderer for `scene` at `size` drawn at this tier: its options and wake source
-    /// budget, `race`'s wakes at the tier's spacing (none without a race), and the tier's AR
-    /// effects over the scene's synthetic camera frame.
-    pub fn renderer(
-        &self,
-        gpu: &render::Gpu,
-        race: Option<&race::Race>,
-        scene: &render::Scene,
-        size: [u32; 2],
-    ) -> CliResult<(Renderer, EffectsHandle)> {
-        let mut renderer = Renderer::new(gpu, render::OFFSCREEN_FORMAT, self.options);
-        self.apply_to(&mut renderer);
-        if let Some(race) = race {
-            renderer.set_wake(Some(self.race_wake(race)?));
-        }
-        let fx = effects::passes::add_scene_effects_with(
-            &mut renderer,
-            gpu,
-            scene,
-            size,
-            self.ar.clone(),
-        );
-        Ok((renderer, fx))
     }
 
     /// The race's wakes with this tier's source spacing.

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use regatta::core::scene::{FAR_M, RaceWorld};
-use regatta::desktop::overlay::initial_clock;
+use regatta::desktop::hud::initial_clock;
 use render::OrbitCamera;
 
 fn orbit() -> OrbitCamera {
@@ -204,7 +204,7 @@ fn the_feed_camera_registers_the_scene_with_the_image() {
     // screen where the display transform shows the image pixel that the feed's intrinsics and
     // pose project it to: the race sits on the real table.
     use regatta::core::table::fit_on_table;
-    use regatta::desktop::feed::to_render;
+    use regatta::feed::to_render;
     let cfg = ar::SynthConfig {
         frames: 4,
         width: 160,

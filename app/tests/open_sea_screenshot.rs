@@ -19,7 +19,11 @@ const COASTAL5_HUE: std::ops::RangeInclusive<f64> = 170.0..=205.0;
 const SATURATION: std::ops::RangeInclusive<f64> = 0.35..=0.95;
 
 fn render(out: &Path, water_type: &str) -> image::RgbImage {
-    let args = [
+    render_with(out, water_type, &[])
+}
+
+fn render_with(out: &Path, water_type: &str, extra: &[&str]) -> image::RgbImage {
+    let mut args = vec![
         "render",
         "--t",
         "600",
@@ -32,6 +36,7 @@ fn render(out: &Path, water_type: &str) -> image::RgbImage {
         "--out",
         out.to_str().unwrap(),
     ];
+    args.extend_from_slice(extra);
     let (code, _, err) = regatta(&args);
     assert_eq!(code, 0, "{args:?}: {err}");
     image::open(out).unwrap().to_rgb8()
@@ -92,5 +97,29 @@ fn the_open_seas_hue_follows_the_water_type() {
     assert!(
         got[0].0 >= got[1].0 && got[1].0 > got[2].0 + 15.0,
         "{got:?}"
+    );
+}
+
+/// `--tier` draws the water asked for too: its picture was assembled apart from the still's and
+/// drew the default water whatever `--water-type` said (the two pictures were the same). Now
+/// the scene set-up gives the tier's renderer the open sea's and the table's water alike, so
+/// pure water and coastal 5 differ over the water, as without a tier.
+#[test]
+fn a_tiers_picture_takes_the_water_type() {
+    if render::gpu::test_gpu().is_none() {
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("open_sea_screenshot_tier");
+    std::fs::create_dir_all(&dir).unwrap();
+    let tier = ["--tier", "medium"];
+    let pure = render_with(&dir.join("pure.png"), "pure", &tier);
+    let coastal = render_with(&dir.join("5C.png"), "5C", &tier);
+    let (w, h) = pure.dimensions();
+    let water = differing_pixels(&pure, &coastal, 30.0);
+    assert!(
+        water.len() as f64 > 0.1 * f64::from(w * h),
+        "only {} of {} pixels differ between pure water and coastal 5 at --tier medium",
+        water.len(),
+        w * h
     );
 }

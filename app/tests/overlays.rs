@@ -8,13 +8,15 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
+use regatta::scene_overlay::OverlayKind;
 use regatta::scene_overlay::{self, OverlaySet, OverlaySettings, labels};
+use regatta::setup::{Profile, RaceSetup};
+use render::Scene;
 use render::golden::{Region, differing};
-use render::passes::overlay::{Layer, OverlayKind};
-use render::{RenderOptions, Renderer, Scene};
+use render::passes::segments::Layer;
 
 fn sea() -> ocean::WaveSet {
-    regatta::cli::inputs::drawable_sea(regatta::cli::inputs::load_sea(None).unwrap())
+    regatta::setup::inputs::drawable_sea(regatta::setup::inputs::load_sea(None).unwrap())
 }
 
 /// The desktop's orbit view of `race` at `t`.
@@ -43,7 +45,7 @@ fn masthead_as_drawn(scene: &Scene, position: [f64; 2], heading_deg: f64, length
     let heading = heading_deg.to_radians();
     let pose = render::scene::float_pose(&scene.sea, scene.t, p, heading, length, 0.32 * length);
     render::scene::float_matrix(p, heading, &pose, DVec2::ZERO)
-        .transform_point3(DVec3::from(render::passes::overlay::MASTHEAD) * length)
+        .transform_point3(DVec3::from(render::passes::boats::MASTHEAD) * length)
 }
 
 #[test]
@@ -248,7 +250,10 @@ fn the_frame_reports_each_overlay_and_why_it_was_skipped() {
         "no wind label ending {said}: {:?}",
         f.texts
     );
-    assert_eq!(layer(OverlayKind::Trails), Layer::Off);
+    assert_eq!(
+        layer(OverlayKind::Trails),
+        Layer::Hidden("turned off (\"trails\" not in --overlays)".into())
+    );
     assert!(f.labels.is_empty(), "labels off: none placed");
 }
 
@@ -293,16 +298,16 @@ fn golden_path(name: &str) -> PathBuf {
 /// show the overlays, not the wake model.
 fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaImage {
     let gpu = render::gpu::test_gpu().expect("checked by the caller");
-    let options = RenderOptions::default();
-    let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
+    let setup = RaceSetup::new(Profile::Picture);
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
     let mut scene = orbit_scene(race, t);
     if table {
-        let mut feed = regatta::desktop::feed::FeedView::open(Path::new("synth")).unwrap();
+        let mut feed = regatta::feed::FeedView::open(Path::new("synth")).unwrap();
         feed.prepare_frame(
             &gpu,
             &mut renderer,
             render::OFFSCREEN_FORMAT,
-            options,
+            &setup,
             None,
             regatta::core::scene::RaceWorld::new(race.clone(), sea()).race_bounds,
             GOLDEN_SIZE,
@@ -354,4 +359,55 @@ fn golden_orbit_scene_with_overlays() {
 #[test]
 fn golden_table_scene_with_overlays() {
     golden("overlays_table", true);
+}
+
+/// `regatta render --tier` draws the overlays of the tier's detail (quality's tier table:
+/// low is essential, medium standard), and the frame report says why the others are not
+/// drawn; without `--tier` every overlay the user chose is drawn.
+#[test]
+fn render_at_a_tier_draws_the_overlays_of_its_detail() {
+    if render::gpu::test_gpu().is_none() {
+        return;
+    }
+    let out =
+        std::env::temp_dir().join(format!("regatta-tier-overlays-{}.png", std::process::id()));
+    let out = out.to_str().unwrap();
+    let passes = |tier: Option<&str>| -> Vec<(String, bool, String)> {
+        let mut args = vec!["render", "--out", out, "--size", "320x180", "--t", "600"];
+        if let Some(t) = tier {
+            args.extend(["--tier", t]);
+        }
+        let v = common::ok_json(&args);
+        v["passes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| p["name"].as_str().unwrap().starts_with("overlay-"))
+            .map(|p| {
+                let s = |k: &str| p[k].as_str().unwrap().to_string();
+                (s("name"), p["ran"].as_bool().unwrap(), s("reason"))
+            })
+            .collect()
+    };
+    let hidden_by_tier = |passes: &[(String, bool, String)]| -> Vec<String> {
+        passes
+            .iter()
+            .filter(|(_, _, why)| why.starts_with("the tier's overlay detail"))
+            .map(|(name, _, _)| name.clone())
+            .collect()
+    };
+    let low = passes(Some("low"));
+    assert_eq!(low.len(), 5, "{low:?}");
+    assert_eq!(
+        hidden_by_tier(&low),
+        ["overlay-trails", "overlay-lines", "overlay-wind"],
+        "{low:?}"
+    );
+    let course = low.iter().find(|p| p.0 == "overlay-course").unwrap();
+    assert!(course.1, "the course is drawn at low: {course:?}");
+    let medium = passes(Some("medium"));
+    assert_eq!(hidden_by_tier(&medium), ["overlay-lines"], "{medium:?}");
+    assert!(hidden_by_tier(&passes(None)).is_empty());
+    assert!(hidden_by_tier(&passes(Some("high"))).is_empty());
+    let _ = std::fs::remove_file(out);
 }

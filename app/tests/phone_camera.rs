@@ -14,9 +14,10 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 
 use quality::Tier;
-use regatta::phone_sim::device::Device;
+use regatta::phone_sim::PhoneSim;
 use regatta::phone_sim::script::Step;
-use regatta::phone_sim::{Cues, PhoneSim};
+use regatta::sim_phone::Cues;
+use regatta::sim_phone::device::Device;
 
 static TURN: Mutex<()> = Mutex::new(());
 const SIZE: [u32; 2] = [180, 400];

@@ -10,9 +10,9 @@
 use ar::arcore::ffi::share::NO_SPACE;
 use ar::arcore::ffi::{JavaScript, ScriptedJni};
 use regatta::core::phone::{PhoneClip, ShareState};
+use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::backend::Feed;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 
 /// The A54's layout (360 × 800 dp) on a quarter of its pixels: quick on lavapipe.
 const SIZE: [u32; 2] = [180, 400];
@@ -30,7 +30,7 @@ fn launch(name: &str) -> PhoneSim {
         .join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let feed = Feed::synth(ar::SynthConfig {
+    let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 1,
         width: 320,
         height: 240,
@@ -128,7 +128,7 @@ fn the_clip_goes_into_the_media_store_and_to_the_share_sheet() {
         (uri.as_str(), "image/gif", "Share clip")
     );
     // The pool has no button.
-    sim.app.choose_scene(regatta::overlay::SceneChoice::Pool);
+    sim.app.choose_scene(regatta::hud::SceneChoice::Pool);
     sim.frame(1.0 / 60.0);
     assert!(sim.app.bar.unwrap().share_button.is_none());
 }

@@ -11,8 +11,8 @@ use ar::arcore::Unavailable;
 use ar::arcore::session::tracking_hint;
 use regatta::core::table::{course_pivot, table_depth};
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::device::Device;
 use regatta::phone_sim::script::Step;
+use regatta::sim_phone::device::Device;
 
 static TURN: Mutex<()> = Mutex::new(());
 const SIZE: [u32; 2] = [180, 400];
@@ -76,7 +76,7 @@ fn refusing_the_dialog_says_so() {
 #[test]
 fn an_unsupported_phone_says_so() {
     let Some((sim, _turn)) = session(&[Step::ArCore(
-        regatta::phone_sim::backend::Availability::Unsupported,
+        regatta::sim_phone::backend::Availability::Unsupported,
     )]) else {
         return;
     };
@@ -179,8 +179,8 @@ fn the_banners_button_asks_for_the_camera_again() {
         .expect("the refused banner has a button");
     // The user will accept this time.
     match &sim.cues {
-        regatta::phone_sim::Cues::Ffi { jni, .. } => jni.script(|s| s.dialog_answer = true),
-        regatta::phone_sim::Cues::Scripted(_) => unreachable!("an FFI session"),
+        regatta::sim_phone::Cues::Ffi { jni, .. } => jni.script(|s| s.dialog_answer = true),
+        regatta::sim_phone::Cues::Scripted(_) => unreachable!("an FFI session"),
     }
     let ppp = Device::A54.pixels_per_point(SIZE);
     let at = |p: egui::Pos2| {
@@ -223,7 +223,7 @@ fn the_bar_and_panels_keep_clear_of_the_system_bars() {
         f64::from(c.x * ppp) / f64::from(SIZE[0]),
         f64::from(c.y * ppp) / f64::from(SIZE[1]),
     ]);
-    assert_eq!(sim.app.scene, regatta::overlay::SceneChoice::Pool);
+    assert_eq!(sim.app.scene, regatta::hud::SceneChoice::Pool);
 }
 
 /// Defect 3: the phone turned by 180° sends no window or configuration event; the app reads the
@@ -263,7 +263,7 @@ fn a_launch_killed_on_its_first_vulkan_frames_sends_the_next_to_opengl_es() {
     let dir = out().join("vulkan-marker");
     let _ = std::fs::remove_dir_all(&dir);
     let marker = VulkanMarker::in_dir(&dir);
-    let feed = || regatta::phone_sim::backend::Feed::synth(ar::SynthConfig::default());
+    let feed = || regatta::feed::CameraFeed::synth(ar::SynthConfig::default());
     let ppp = Device::A54.pixels_per_point(SIZE);
     // A good launch: armed on its first frame, cleared after GOOD_FRAMES.
     let mut sim = PhoneSim::launch(feed(), SIZE, ppp, Some(dir.clone()));

@@ -15,9 +15,9 @@
 //! 17 MB, levelling off after about 60 cycles (docs/phone-sim.md, "Memory over pause/resume
 //! cycles"). A leak shows in the heap in use at once: 80 KB forgotten per cycle fail the test.
 
+use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::backend::Feed;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 
 /// Resident set size, bytes (/proc/self/statm: pages).
 fn resident_bytes() -> u64 {
@@ -89,7 +89,7 @@ fn heap_in_use() -> Option<u64> {
 #[ignore = "run by a_hundred_pause_resume_cycles_keep_memory_flat_and_the_surface_configuration"]
 fn pause_resume_cycles_in_a_quiet_process() {
     let size = [120, 266];
-    let feed = Feed::synth(ar::SynthConfig {
+    let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 4,
         width: 160,
         height: 120,

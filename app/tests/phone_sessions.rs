@@ -12,9 +12,9 @@ use ar::arcore::Unavailable;
 use ar::arcore::session::tracking_hint;
 use glam::{DVec2, DVec3};
 use regatta::core::table::{course_pivot, table_depth};
+use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::backend::Feed;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 use serde_json::Value;
 
 /// The A54's layout (360 × 800 dp) on a quarter of its pixels: quick on lavapipe.
@@ -70,8 +70,8 @@ fn last(lines: &[Value]) -> &Value {
 }
 
 /// A one-frame synthetic feed: the camera stands still, so a tap's frame is known.
-fn still_feed() -> Feed {
-    Feed::synth(still_config())
+fn still_feed() -> CameraFeed {
+    CameraFeed::synth(still_config())
 }
 
 fn still_config() -> ar::SynthConfig {
@@ -84,7 +84,7 @@ fn still_config() -> ar::SynthConfig {
     }
 }
 
-fn launch(feed: Feed, data: Option<PathBuf>) -> PhoneSim {
+fn launch(feed: CameraFeed, data: Option<PathBuf>) -> PhoneSim {
     PhoneSim::launch(feed, SIZE, Device::A54.pixels_per_point(SIZE), data)
 }
 
@@ -313,7 +313,7 @@ fn a_recording_passes_replay_check_and_plays_back_with_its_table() {
         return;
     }
     let out = out_dir("record");
-    let feed = Feed::synth(ar::SynthConfig {
+    let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 8,
         ..still_config()
     });
@@ -341,7 +341,7 @@ fn a_recording_passes_replay_check_and_plays_back_with_its_table() {
     assert!(summary["frames"].as_u64().unwrap() >= 4, "{summary}");
     // Played back through the simulated ARCore: the recorded table is detected again, and a
     // tap stands the course on it.
-    let feed = Feed::Replay(ar::ReplayFeed::open(&dir).unwrap());
+    let feed = CameraFeed::Replay(ar::ReplayFeed::open(&dir).unwrap());
     let mut replay = launch(feed, None);
     replay.frame(0.1);
     replay.tap([0.5, 0.6]);

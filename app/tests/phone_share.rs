@@ -10,9 +10,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use regatta::core::phone::Opened;
+use regatta::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::backend::Feed;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 use serde_json::Value;
 
 /// The A54's layout (360 × 800 dp) on a quarter of its pixels: quick on lavapipe.
@@ -28,7 +28,7 @@ fn out_dir(name: &str) -> PathBuf {
 }
 
 fn launch() -> PhoneSim {
-    let feed = Feed::synth(ar::SynthConfig {
+    let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 1,
         width: 320,
         height: 240,

@@ -12,10 +12,10 @@
 
 use quality::{Target, Tier};
 use regatta::core::phone::{PHONE_START_TIER, PhoneEvent};
-use regatta::overlay::touch::TouchAction;
+use regatta::feed::CameraFeed;
+use regatta::hud::touch::TouchAction;
 use regatta::phone_sim::PhoneSim;
-use regatta::phone_sim::backend::Feed;
-use regatta::phone_sim::device::Device;
+use regatta::sim_phone::device::Device;
 
 /// The A54's layout on a quarter of its pixels: quick on lavapipe.
 const SIZE: [u32; 2] = [180, 400];
@@ -34,7 +34,7 @@ fn slow_phone(tier: Tier, i: usize) -> f64 {
 
 fn launch() -> Option<PhoneSim> {
     render::gpu::test_gpu()?;
-    let feed = Feed::synth(ar::SynthConfig {
+    let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 1,
         width: 320,
         height: 240,
@@ -140,6 +140,15 @@ fn a_slow_phone_steps_down_but_never_while_the_timeline_is_scrubbed() {
         at_s - lifted
     );
     assert_eq!(sim.app.tiers.tier(), Tier::Medium);
+    // The overlays drawn follow the tier's detail (quality's table: medium is standard).
+    assert_eq!(
+        sim.app.overlays.settings.detail,
+        Tier::Medium.settings().overlay
+    );
+    assert_eq!(
+        Tier::Medium.settings().overlay,
+        quality::OverlayDetail::Standard
+    );
     // The panel shows the tier drawn.
     assert_eq!(
         sim.app.panels.settings.tier.map(|p| p.current),

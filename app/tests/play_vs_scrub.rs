@@ -1,5 +1,5 @@
 //! Playing against scrubbing, through the app's real per-frame code: one renderer (the window's,
-//! `regatta::core::gfx::race_renderer`, or the pool mode's) draws frame after frame into one
+//! `regatta::setup::RaceSetup::renderer`, or the pool mode's) draws frame after frame into one
 //! surface-like texture while the timeline plays, pauses (the kept still frame re-presented),
 //! jumps back and plays on; a fresh renderer then draws only the last time into a fresh
 //! texture. The pixels must be equal: nothing drawn, kept or reused in one frame may leak into
@@ -8,10 +8,10 @@
 
 use effects::EffectSet;
 use glam::DVec3;
-use regatta::core::gfx::{Profile, race_renderer};
 use regatta::core::scene::{FAR_M, RaceWorld, race_wake};
 use regatta::desktop::pool::PoolMode;
-use regatta::overlay::initial_clock;
+use regatta::hud::initial_clock;
+use regatta::setup::{Profile, RaceSetup};
 use render::gpu::Gpu;
 use render::{FRAME_REUSED, OFFSCREEN_FORMAT, OrbitCamera, Renderer};
 
@@ -53,12 +53,8 @@ fn surface_like(gpu: &Gpu) -> wgpu::Texture {
 
 /// The window's race renderer, with `regatta render --effects`' scene effects when `effects`.
 fn app_renderer(gpu: &Gpu, race: &race::Race, sea: &ocean::WaveSet, effects: bool) -> Renderer {
-    let mut r = race_renderer(
-        gpu,
-        OFFSCREEN_FORMAT,
-        race_wake(race).ok(),
-        Profile::Desktop,
-    );
+    let mut r =
+        RaceSetup::new(Profile::Desktop).renderer(gpu, OFFSCREEN_FORMAT, race_wake(race).ok());
     if effects {
         let scene = race_scene(race, sea, race.time_span().0, &mut orbit());
         effects::passes::add_scene_effects(&mut r, gpu, &scene, SIZE, EffectSet::ALL);

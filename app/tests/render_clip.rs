@@ -9,7 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{fails_with, ok_json, regatta};
-use regatta::cli::render::clip::quant_speed;
+use regatta::setup::clip::quant_speed;
 
 fn tmp_dir(name: &str) -> PathBuf {
     let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);

@@ -7,9 +7,9 @@
 //! Needs a GPU (lavapipe in CI); skipped without one unless `REGATTA_REQUIRE_GPU=true`.
 
 use effects::{EffectSet, demo_table_scene, passes::add_scene_effects};
-use regatta::core::gfx::{Profile, race_renderer};
 use regatta::core::scene::RaceWorld;
 use regatta::panels::{SceneApplier, effect_toggles};
+use regatta::setup::{Profile, RaceSetup};
 use render::{OFFSCREEN_FORMAT, OrbitCamera, Renderer, Scene};
 use ui::SceneSettings;
 
@@ -92,7 +92,8 @@ fn the_wakes_switch_changes_the_picture() {
     };
     let world = RaceWorld::new(race.clone(), sea);
     let scene = world.orbit_scene(300.0, &mut orbit);
-    let mut r = race_renderer(&gpu, OFFSCREEN_FORMAT, world.wake().ok(), Profile::Desktop);
+    let mut r =
+        RaceSetup::new(Profile::Desktop).renderer(&gpu, OFFSCREEN_FORMAT, world.wake().ok());
     let mut settings = SceneSettings::new(effect_toggles(false));
     let mut applier = SceneApplier::new(regatta::core::scene::race_wake(&race).ok());
     let (on, _) = draw(&gpu, &mut r, &scene);

@@ -12,10 +12,11 @@
 use std::path::Path;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::cli::render::replay::TableFrame;
 use regatta::core::scene::RaceWorld;
-use regatta::desktop::feed::{FeedView, SYNTH};
-use render::{Camera, RenderOptions, Renderer};
+use regatta::feed::TableFrame;
+use regatta::feed::{FeedView, SYNTH};
+use regatta::setup::{Profile, RaceSetup};
+use render::Camera;
 
 const SIZE: [u32; 2] = [640, 480];
 /// How far inside or outside the table's edges the probed points are, as a share of each side.
@@ -61,7 +62,7 @@ fn the_water_covers_the_table_to_its_corners_and_stops_at_its_edges() {
         return;
     };
     let race = race::Race::sample();
-    let sea = regatta::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
+    let sea = regatta::setup::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let world = RaceWorld::new(race, sea);
     let table = TableFrame {
         world: &world,
@@ -71,16 +72,14 @@ fn the_water_covers_the_table_to_its_corners_and_stops_at_its_edges() {
         overlays: None,
     };
     let mut feed = FeedView::open(Path::new(SYNTH)).unwrap();
-    let options = RenderOptions {
-        measure_gpu_time: false,
-        ..Default::default()
-    };
-    let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
+    let mut setup = RaceSetup::new(Profile::Picture);
+    setup.options.measure_gpu_time = false;
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
     // `water`: false cuts all of it away (a play area far off the table).
     let mut draw = |water: bool| {
         let mut camera = None;
         let (img, _) = table
-            .draw(&mut feed, &gpu, &mut renderer, options, None, |s| {
+            .draw(&mut feed, &gpu, &mut renderer, &setup, None, |s| {
                 s.boats.clear();
                 if !water {
                     s.play_area = [1e7, 1e7, 1e7 + 1.0, 1e7 + 1.0];

@@ -11,10 +11,11 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::cli::render::replay::TableFrame;
 use regatta::core::scene::{middle_time, race_wake};
-use regatta::desktop::feed::{FeedView, SYNTH};
-use render::{Camera, RenderOptions, Renderer};
+use regatta::feed::TableFrame;
+use regatta::feed::{FeedView, SYNTH};
+use regatta::setup::{Profile, RaceSetup};
+use render::Camera;
 
 const SIZE: [u32; 2] = [1280, 720];
 /// Luma step that counts as visible, of 255.
@@ -65,7 +66,7 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
         return;
     };
     let race = race::Race::sample();
-    let sea = regatta::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
+    let sea = regatta::setup::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let t = middle_time(&race);
     let world = regatta::core::scene::RaceWorld::new(race.clone(), sea.clone());
     let table = TableFrame {
@@ -76,16 +77,14 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
         overlays: None,
     };
     let mut feed = FeedView::open(Path::new(SYNTH)).unwrap();
-    let options = RenderOptions {
-        measure_gpu_time: false,
-        ..Default::default()
-    };
-    let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
+    let mut setup = RaceSetup::new(Profile::Picture);
+    setup.options.measure_gpu_time = false;
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
     // `keep`: draw only the boat at that position (NaN: none).
     let mut draw = |wake: Option<Arc<ocean::wake::Wake>>, keep: Option<DVec2>| {
         let mut camera = None;
         let (img, _) = table
-            .draw(&mut feed, &gpu, &mut renderer, options, wake, |s| {
+            .draw(&mut feed, &gpu, &mut renderer, &setup, wake, |s| {
                 if let Some(p) = keep {
                     // NaN: no boat.
                     s.boats.retain(|b| b.position == p);

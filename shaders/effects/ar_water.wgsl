@@ -89,8 +89,9 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
         table = refracted_table_along(p, view, t);
         q = p + t.xyz * table.w;
     } else {
-        q = table_point_straight(p, view);
-        table = vec4<f32>(sample_camera(camera_uv(q).xy), length(q - p));
+        let straight = table_point_straight(p, view);
+        q = straight.xyz;
+        table = vec4<f32>(sample_camera(camera_uv(q).xy), straight.w);
     }
     var light = 1.0;
     if fx_on(FX_CAUSTICS) {

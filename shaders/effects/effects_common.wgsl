@@ -12,6 +12,9 @@ struct Effects {
     // (render::optics::PinholeCamera::image_projection): (p, 1) -> (u w, v w, w), w the
     // depth in front of the camera, uv as fractions of the image (v grows downwards).
     camera_projection: mat4x3<f32>,
+    // The same projection's constant column for points on the table (y = −table depth):
+    // camera_projection[1]·y + camera_projection[3], formed in f64 on the CPU (xyz; w unused).
+    table_image: vec4<f32>,
     // The display's UV transform: screen uv -> camera-image uv, rows of a 2x3 affine map.
     display_u: vec4<f32>,
     display_v: vec4<f32>,
@@ -63,6 +66,15 @@ fn camera_uv(p: vec3<f32>) -> vec3<f32> {
     // One exit, no early return: Mesa 22.3's lavapipe crashed drawing some AR water pipelines
     // that inlined this function with an early return (see ar_water.wgsl).
     let h = fx.camera_projection * vec4<f32>(p, 1.0);
+    let uv = vec3<f32>(h.xy / h.z, 1.0);
+    return select(uv, vec3<f32>(0.5, 0.5, 0.0), h.z <= 0.0);
+}
+
+// camera_uv of the table point at local (x, z) (on the plane y = −table depth): the plane's
+// height folded into fx.table_image, so two columns and a constant (12 operations) where
+// camera_uv's 3×4 product takes 24.
+fn table_uv(xz: vec2<f32>) -> vec3<f32> {
+    let h = fx.camera_projection[0] * xz.x + fx.camera_projection[2] * xz.y + fx.table_image.xyz;
     let uv = vec3<f32>(h.xy / h.z, 1.0);
     return select(uv, vec3<f32>(0.5, 0.5, 0.0), h.z <= 0.0);
 }

@@ -9,9 +9,19 @@
 // along that segment (in the demo view, under 1 % of the water's pixels are in the band).
 // Returns the table colour (rgb) and the length of the path in the water (w).
 
-fn table_point_straight(p: vec3<f32>, view: vec3<f32>) -> vec3<f32> {
-    let hit = ray_plane(p, view, vec4<f32>(0.0, 1.0, 0.0, fx.table.x));
-    return select(p, hit.xyz, hit.w > 0.0);
+// Where the ray from p along unit d meets the table plane (y = −table depth): its (x, z) and
+// the distance s along d, as ray_plane gives them for that plane (s = −1: parallel to it; s ≤
+// 0: none ahead), with the plane's normal (0, 1, 0) folded in: one division and two products.
+fn table_hit(p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    let s = select(-1.0, -(p.y + fx.table.x) / d.y, abs(d.y) >= 1e-12);
+    return vec3<f32>(p.xz + s * d.xz, s);
+}
+
+// The table point straight through the water from p along the unit view ray, and the path to
+// it in the water (w): where the ray meets no table ahead, p itself and 0.
+fn table_point_straight(p: vec3<f32>, view: vec3<f32>) -> vec4<f32> {
+    let hit = table_hit(p, view);
+    return select(vec4<f32>(p, 0.0), vec4<f32>(hit.x, -fx.table.x, hit.y, hit.z), hit.z > 0.0);
 }
 
 fn refracted_table(p: vec3<f32>, view: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
@@ -21,28 +31,28 @@ fn refracted_table(p: vec3<f32>, view: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
 // refracted_table with the refracted ray t = refract_dir(view, n, N_AIR, N_WATER) given: the
 // AR water needs t again for the table point the caustics light, and refracts once.
 fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
-    let hit = ray_plane(p, t.xyz, vec4<f32>(0.0, 1.0, 0.0, fx.table.x));
+    let hit = table_hit(p, t.xyz);
     // Without a table along the refracted ray (or behind the camera): w = 0, the unrefracted
     // sample and the ray's path along the view direction (ar_water puts q there). No early
     // return: one exit per function (see camera_uv in effects_common.wgsl).
-    let found = t.w != 0.0 && hit.w > 0.0;
-    let uv = camera_uv(hit.xyz);
+    let found = t.w != 0.0 && hit.z > 0.0;
+    let uv = table_uv(hit.xy);
     let w = select(0.0, edge_weight(uv.xy) * uv.z, found);
     let refracted = clamp(uv.xy, vec2<f32>(0.0), vec2<f32>(1.0));
     // At w = 1 (w is 0 where no table is found) the sample is the refracted point and the
     // path the refracted ray's, as mix(straight, refracted, 1) and the select below give:
-    // the straight table point and its projection (a ray-plane solve and a camera_uv, 70
+    // the straight table point and its projection (table_point_straight and a camera_uv, 46
     // ALU operations) only where the refracted point is in the fade band, outside it or
     // missing, under 1 % of the water's pixels in the demo view. (The budget model counts a
     // branch's costlier side, so it does not see this; a GPU skips the block for each SIMD
     // group that has w = 1 throughout.)
     var at = refracted;
-    var path = hit.w;
+    var path = hit.z;
     if w < 1.0 {
         let straight_point = table_point_straight(p, view);
-        let straight = camera_uv(straight_point).xy;
+        let straight = camera_uv(straight_point.xyz).xy;
         at = select(straight, mix(straight, refracted, w), w > 0.0);
-        path = select(length(straight_point - p), hit.w, found);
+        path = select(straight_point.w, hit.z, found);
     }
     return vec4<f32>(sample_camera(at), path);
 }

@@ -90,7 +90,8 @@ fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, spacing: f32
         return vec3<f32>(0.0);
     }
     let k = s.q / r2;
-    let g = k * k * s.gauss;
+    let kk = k * k;
+    let g = kk * s.gauss;
     if (!(g <= WAKE_GAUSS_CUTOFF) || !(k * spacing < WAKE_BAND_END)) {
         return vec3<f32>(0.0);
     }
@@ -99,12 +100,16 @@ fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, spacing: f32
     let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
     let sn = sin(phi_r);
     let cs = cos(phi_r);
-    let c = -s.strength * k * k / r2 * exp(-g) * wake_band_fade(k, spacing);
-    let bracket = sn + (4.0 * g - 3.0) / phi * cs;
+    let c = -s.strength * kk / r2 * exp(-g) * wake_band_fade(k, spacing);
+    // 4g − 3, 4g − 6 and 12g + 3 = 3·4g + 3 from one 4g.
+    let g4 = 4.0 * g;
+    let a = g4 - 3.0;
+    let bracket = sn + a / phi * cs;
     let f = c * bracket;
-    let df = c / r * ((4.0 * g - 6.0) * bracket - phi * cs - (12.0 * g + 3.0) / phi * cs + (4.0 * g - 3.0) * sn);
+    let df = c / r * ((g4 - 6.0) * bracket - phi * cs - (3.0 * g4 + 3.0) / phi * cs + a * sn);
     let proj = dot(d, s.dx);
-    return vec3<f32>(f * proj, df * proj * d / r + f * s.dx);
+    // ∇h = F'(r)·(d·ΔX)·d/r + F·ΔX: the scalar F'·(d·ΔX)/r formed once.
+    return vec3<f32>(f * proj, (df * proj / r) * d + f * s.dx);
 }
 
 // The foam density one source adds at p (a Gaussian strip along the segment).

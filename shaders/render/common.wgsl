@@ -102,45 +102,86 @@ fn foam_coverage(a: f32, b: f32) -> f32 {
     return 1.0 - (1.0 - clamp(a, 0.0, 1.0)) * (1.0 - clamp(b, 0.0, 1.0));
 }
 
+// The running sums of surface_frame over a prefix of the frame's waves (sorted by k), and the
+// index of the first wave not yet summed.
+struct WaveSums {
+    dxdx: f32,
+    dxdz: f32,
+    dzdz: f32,
+    dydx: f32,
+    dydz: f32,
+    variance: f32,
+    next: u32,
+}
+
+// The band-limited sums of every wave at rest point p for a pixel `footprint` metres across
+// (0: no band limit). Band-limit: a wave whose phase changes by more than π/2 across the
+// footprint (wavelength under four footprints) aliases into moiré; it fades out from
+// k·footprint = π/4 to π/2 and keeps its slope variance (a cos wave's mean square slope is
+// (ka)²/2). The frame's waves are sorted by k (render::frame), so the sums run in two loops:
+// the waves the pixel resolves whole (k·footprint < π/4: fade 1, no variance), then the few
+// the filter fades, up to the first faded out entirely, from which every later wave adds its
+// variance and nothing else. The same sums as one loop over every wave with its fade (the
+// fade is exactly 1 below π/4, and every wave past π/2 adds exactly 0 slope), to the
+// rounding of the variance's tail.
 fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
-    var dxdx = 1.0;
-    var dxdz = 0.0;
-    var dzdz = 1.0;
-    var dydx = 0.0;
-    var dydz = 0.0;
-    var variance = 0.0;
-    for (var i = 0u; i < n; i = i + 1u) {
+    let sums = fading_waves(p, n, footprint, resolved_waves(p, n, footprint));
+    let tx = vec3<f32>(sums.dxdx, sums.dydx, sums.dxdz);
+    let tz = vec3<f32>(sums.dxdz, sums.dydz, sums.dzdz);
+    var out: SurfaceFrame;
+    out.up = cross(tz, tx);
+    out.jacobian = sums.dxdx * sums.dzdz - sums.dxdz * sums.dxdz;
+    out.slope_variance = sums.variance;
+    return out;
+}
+
+// The waves from the first up to the first the pixel filter fades (k·footprint ≥ π/4), whole.
+fn resolved_waves(p: vec2<f32>, n: u32, footprint: f32) -> WaveSums {
+    var s = WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u);
+    var i = 0u;
+    for (; i < n; i = i + 1u) {
         let w = waves[i];
-        // Band-limit: a wave whose phase changes by more than π/2 across the pixel's footprint
-        // (wavelength under four footprints) aliases into moiré; fade it out from k·footprint
-        // = π/4 to π/2 and keep its slope variance (a cos wave's mean square slope is (ka)²/2).
-        // The frame's waves are sorted by k (render::frame): from the first one faded out
-        // entirely, every later one is too, and adds its variance and nothing else (the
-        // same sums as running on, to the rounding of the variance).
-        if w.k * footprint >= 0.5 * PI {
-            variance += w.tail_half_slope2;
+        if w.k * footprint >= 0.25 * PI {
             break;
         }
-        let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, w.k * footprint);
-        variance += (1.0 - fade * fade) * w.half_slope2;
+        let theta = wave_phase(w, p);
+        let sn = sin(theta) * w.slope;
+        let cs = cos(theta) * w.slope;
+        s.dxdx -= w.direction_xx * sn;
+        s.dxdz -= w.direction_xz * sn;
+        s.dzdz -= w.direction_zz * sn;
+        s.dydx += w.direction.x * cs;
+        s.dydz += w.direction.y * cs;
+    }
+    s.next = i;
+    return s;
+}
+
+// The waves from `start.next` on, faded by the pixel filter, with their variance; at the first
+// faded out entirely, the variance of it and every later wave (its tail) and nothing else.
+fn fading_waves(p: vec2<f32>, n: u32, footprint: f32, start: WaveSums) -> WaveSums {
+    var s = start;
+    for (var i = start.next; i < n; i = i + 1u) {
+        let w = waves[i];
+        let kf = w.k * footprint;
+        if kf >= 0.5 * PI {
+            s.variance += w.tail_half_slope2;
+            break;
+        }
+        let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, kf);
+        s.variance += (1.0 - fade * fade) * w.half_slope2;
         let theta = wave_phase(w, p);
         // The faded slope k·a·fade scales sin and cos once, not each of the five sums.
         let fka = fade * w.slope;
-        let s = sin(theta) * fka;
-        let c = cos(theta) * fka;
-        dxdx -= w.direction_xx * s;
-        dxdz -= w.direction_xz * s;
-        dzdz -= w.direction_zz * s;
-        dydx += w.direction.x * c;
-        dydz += w.direction.y * c;
+        let sn = sin(theta) * fka;
+        let cs = cos(theta) * fka;
+        s.dxdx -= w.direction_xx * sn;
+        s.dxdz -= w.direction_xz * sn;
+        s.dzdz -= w.direction_zz * sn;
+        s.dydx += w.direction.x * cs;
+        s.dydz += w.direction.y * cs;
     }
-    let tx = vec3<f32>(dxdx, dydx, dxdz);
-    let tz = vec3<f32>(dxdz, dydz, dzdz);
-    var out: SurfaceFrame;
-    out.up = cross(tz, tx);
-    out.jacobian = dxdx * dzdz - dxdz * dxdz;
-    out.slope_variance = variance;
-    return out;
+    return s;
 }
 
 // The sky seen along unit direction dir: a gradient from horizon haze to zenith blue, and the

@@ -15,8 +15,13 @@ fn fresnel_reflectance(cos_i_in: f32, n1: f32, n2: f32) -> f32 {
         return 1.0;
     }
     let cos_t = sqrt(1.0 - sin2_t);
-    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    let rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
+    // Each of the four products once (the same values as written out in both ratios).
+    let i1 = n1 * cos_i;
+    let i2 = n2 * cos_i;
+    let t1 = n1 * cos_t;
+    let t2 = n2 * cos_t;
+    let rs = (i1 - t2) / (i1 + t2);
+    let rp = (t1 - i2) / (t1 + i2);
     return 0.5 * (rs * rs + rp * rp);
 }
 
@@ -43,14 +48,17 @@ fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
 // n2. Returns vec4(t, 1) with the transmitted unit direction, or vec4(0, 0, 0, 0) under total
 // internal reflection (WGSL has no optionals).
 fn refract_dir(d: vec3<f32>, n_in: vec3<f32>, n1: f32, n2: f32) -> vec4<f32> {
-    let n = select(n_in, -n_in, dot(d, n_in) > 0.0);
+    // The normal turned to face the ray is side·n_in; the side goes on the scalars (one dot
+    // product, no turned vector): the same values bit for bit, as negation is exact.
+    let facing = dot(d, n_in);
+    let side = select(1.0, -1.0, facing > 0.0);
     let eta = n1 / n2;
-    let cos_i = -dot(n, d);
+    let cos_i = -(side * facing);
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
     if k < 0.0 {
         return vec4<f32>(0.0);
     }
-    return vec4<f32>(eta * d + (eta * cos_i - sqrt(k)) * n, 1.0);
+    return vec4<f32>(eta * d + ((eta * cos_i - sqrt(k)) * side) * n_in, 1.0);
 }
 
 // Where the ray o + s d (s ≥ 0) meets the plane dot(p.xyz, x) + p.w = 0: vec4(point, s), or

@@ -16,7 +16,7 @@ use ar::arcore::ffi::{ArCore, JavaObject, Jni};
 use crate::core::gfx::SurfaceMaker;
 use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
-use crate::overlay::touch::{Finger, Touch, TouchAction};
+use crate::hud::touch::{Finger, Touch, TouchAction};
 use crate::wall_clock::Ticker;
 
 mod intents;
@@ -30,8 +30,8 @@ use unwinding as _;
 fn android_main(app: AndroidApp) {
     android_logger::init_once(crate::android_log::config());
     log::info!("regatta: android_main started");
-    let world = crate::cli::inputs::load_race(&[])
-        .and_then(|race| Ok(RaceWorld::new(race, crate::cli::inputs::load_sea(None)?)));
+    let world = crate::setup::inputs::load_race(&[])
+        .and_then(|race| Ok(RaceWorld::new(race, crate::setup::inputs::load_sea(None)?)));
     // Two handles on the same Activity: ARCore's glue owns one, the rotation reads use the other.
     let jni = jni_calls::AndroidJni::new(&app);
     let ar_jni = Box::new(jni_calls::AndroidJni::new(&app));
@@ -162,7 +162,7 @@ fn input_events(app: &AndroidApp, phone: &mut PhoneApp) {
     }) {}
 }
 
-/// An Android motion event as the overlay's [`Touch`]: the action, and every finger in
+/// An Android motion event as the HUD's [`Touch`]: the action, and every finger in
 /// physical pixels. `None` for actions that are not touches (hover, scroll, buttons).
 fn touch_of(m: &MotionEvent<'_>) -> Option<Touch> {
     let i = m.pointer_index();

@@ -13,7 +13,6 @@ pub mod probe;
 pub mod race;
 pub mod render;
 pub mod replay;
-pub mod scene_kind;
 pub mod sea;
 
 /// Regatta: a sailing race on a real table, with a living sea drawn over it.

@@ -10,9 +10,9 @@ use clap::Args;
 use serde_json::json;
 
 use crate::error::{CliError, CliResult};
-use crate::phone_sim::backend::Feed;
-use crate::phone_sim::device::Device;
+use crate::feed::CameraFeed;
 use crate::phone_sim::{PhoneSim, run_script, script};
+use crate::sim_phone::device::Device;
 
 #[derive(Debug, Args)]
 pub struct PhoneSimArgs {
@@ -36,22 +36,6 @@ pub struct PhoneSimArgs {
     /// the phone's own ARCore glue runs against it. Without it, a scripted stand-in answers.
     #[arg(long, value_name = "FILE")]
     pub arcore_lib: Option<PathBuf>,
-}
-
-/// The simulated ARCore's feed: `--replay DIR`, or a small synthetic table.
-pub fn open_feed(replay: Option<&std::path::Path>) -> CliResult<Feed> {
-    Ok(match replay {
-        Some(dir) => {
-            Feed::Replay(ar::ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?)
-        }
-        None => Feed::synth(ar::SynthConfig {
-            frames: 32,
-            width: 320,
-            height: 240,
-            supersample: 1,
-            ..ar::SynthConfig::default()
-        }),
-    })
 }
 
 /// Largest phone-sim script, bytes: 1 MiB, thousands of times the longest script in
@@ -92,7 +76,7 @@ pub fn run(a: PhoneSimArgs) -> CliResult {
         Some(lib) => {
             PhoneSim::with_ffi(lib, a.replay.as_deref(), size, ppp, data).map_err(CliError::new)?
         }
-        None => PhoneSim::new(open_feed(a.replay.as_deref())?, size, ppp, data),
+        None => PhoneSim::new(CameraFeed::for_phone(a.replay.as_deref())?, size, ppp, data),
     };
     // The Races panel lists $REGATTA_RACES_DIR, else OUT/races.
     sim.app

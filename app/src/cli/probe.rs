@@ -14,8 +14,8 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::json;
 
-use crate::cli::inputs::{load_race, load_sea};
 use crate::error::{CliError, CliResult};
+use crate::setup::inputs::{load_race, load_sea};
 
 #[derive(Debug, Args)]
 pub struct ProbeArgs {

@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::{Value, json};
 
-use crate::cli::inputs::load_race_with;
 use crate::error::{CliError, CliResult};
+use crate::setup::inputs::load_race_with;
 
 #[derive(Debug, Args)]
 pub struct RaceArgs {

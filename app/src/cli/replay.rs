@@ -14,8 +14,8 @@ use ar::{ReplayFeed, SynthConfig};
 use clap::{Args, Subcommand};
 use serde_json::json;
 
-use crate::cli::inputs::parse_size_in;
 use crate::error::{CliError, CliResult};
+use crate::setup::inputs::parse_frame_size as parse_size;
 
 #[derive(Debug, Args)]
 pub struct ReplayArgs {
@@ -98,16 +98,6 @@ fn synth(a: SynthArgs) -> CliResult {
     cfg.write(&a.out, a.quality)
         .map_err(|e| CliError::new(e.to_string()))?;
     print_summary(&a.out)
-}
-
-/// `WxH` with both in 16..=4096 pixels.
-pub fn parse_size(s: &str) -> CliResult<(u32, u32)> {
-    let [w, h] = parse_size_in(
-        s,
-        16..=4096,
-        "WxH with width and height from 16 to 4096 pixels",
-    )?;
-    Ok((w, h))
 }
 
 /// Opens the feed, decodes every frame (a truncated image is named with its line), and prints

@@ -1,12 +1,12 @@
 //! One conversion of an AR camera frame (`ar::CameraFrame`, AR metres) into the effect passes'
-//! camera frame (`effects::camera_frame::CameraFrame`, race metres) and the render camera,
+//! backdrop (`effects::backdrop::Backdrop`, race metres) and the render camera,
 //! for the desktop feed and the phone. The course placement maps the camera's pose; the display
 //! transform says which part of the image the view shows: ARCore's (`display_uv`, rotation and
 //! crop) on the phone, a crop of the image to the window's aspect on the desktop.
 
 use ar::CameraFrame;
 use ar::arcore::CoursePlacement;
-use effects::camera_frame::{CameraFrame as RenderCameraFrame, CameraImage};
+use effects::backdrop::{Backdrop, CameraImage};
 use glam::{DMat4, DQuat, DVec3};
 use render::Camera;
 use render::optics::PinholeCamera;
@@ -66,15 +66,15 @@ fn race_pose(frame: &CameraFrame, placement: &CoursePlacement) -> (DQuat, DVec3)
     )
 }
 
-/// The effect passes' frame (without its image) for `frame` on the table of `placement`.
-pub fn render_frame(
+/// The effect passes' backdrop (without its image) for `frame` on the table of `placement`.
+pub fn backdrop_of(
     frame: &CameraFrame,
     placement: &CoursePlacement,
     display: Display,
-) -> RenderCameraFrame<()> {
+) -> Backdrop<()> {
     let (rot, eye) = race_pose(frame, placement);
     let k = frame.intrinsics;
-    RenderCameraFrame {
+    Backdrop {
         image: (),
         camera: PinholeCamera {
             fx: k.fx,
@@ -89,13 +89,13 @@ pub fn render_frame(
     }
 }
 
-/// [`render_frame`] with the image as the GPU takes it (YUV planes repacked, or RGBA).
-pub fn render_frame_with_image(
+/// [`backdrop_of`] with the image as the GPU takes it (YUV planes repacked, or RGBA).
+pub fn backdrop_with_image(
     frame: &CameraFrame,
     placement: &CoursePlacement,
     display: Display,
-) -> Result<RenderCameraFrame<CameraImage>, ar::ArError> {
-    Ok(render_frame(frame, placement, display).with_image(frame.image.to_camera_image()?))
+) -> Result<Backdrop<CameraImage>, ar::ArError> {
+    Ok(backdrop_of(frame, placement, display).with_image(frame.image.to_camera_image()?))
 }
 
 /// The render camera (race metres) looking through the physical camera with vertical field of

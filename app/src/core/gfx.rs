@@ -1,4 +1,5 @@
-//! Renderer setup and the window's drawing target, once for every app.
+//! The window's drawing target, once for every app (the race renderer is the scene set-up's:
+//! `crate::setup::RaceSetup`).
 //!
 //! [`Window`] is the current window's target: a wgpu surface (desktop, Android) or an
 //! offscreen texture standing in for one (`regatta phone-sim`). A window goes away on suspend
@@ -13,55 +14,8 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use render::Gpu;
 use render::gpu::SurfaceTarget;
-use render::{Gpu, RenderOptions, Renderer};
-
-/// Who the renderer draws for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Profile {
-    /// The desktop window: full resolution, still frames kept.
-    Desktop,
-    /// The phone: [`PHONE_RENDER_SCALE`], every frame drawn (the camera image changes).
-    Phone,
-}
-
-/// The phone's scene is drawn at this fraction of the screen per side and stretched onto it
-/// (panels are painted at full resolution over it). From the budget bench (docs/phone.md): at ½
-/// the Pixel 2 XL reaches 60 fps on paper, at full size about 17.
-pub const PHONE_RENDER_SCALE: f64 = 0.5;
-
-/// The race renderer for `format`, with the race's wakes: the one setup of the desktop, the
-/// phone and the tests that play frame by frame.
-pub fn race_renderer(
-    gpu: &Gpu,
-    format: wgpu::TextureFormat,
-    wake: Option<Arc<ocean::wake::Wake>>,
-    profile: Profile,
-) -> Renderer {
-    let options = match profile {
-        Profile::Desktop => RenderOptions {
-            measure_gpu_time: false,
-            keep_still_frames: true,
-            ..Default::default()
-        },
-        Profile::Phone => RenderOptions {
-            measure_gpu_time: false,
-            render_scale: PHONE_RENDER_SCALE,
-            ..Default::default()
-        },
-    };
-    let mut renderer = Renderer::new(gpu, format, options);
-    renderer.set_wake(wake);
-    renderer
-}
-
-/// The race's wakes, or none (logged) when they cannot be built.
-pub fn wake_or_none(world: &super::scene::RaceWorld) -> Option<Arc<ocean::wake::Wake>> {
-    world
-        .wake()
-        .map_err(|e| log::warn!("regatta: {e}; drawing no wakes"))
-        .ok()
-}
 
 /// Makes a surface for the current native window on a device's instance (again after the
 /// device was lost).

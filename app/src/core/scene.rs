@@ -239,7 +239,7 @@ mod tests {
 
     #[test]
     fn the_race_bounds_and_the_play_area_cover_every_fix_and_mark_and_the_sea_is_shared() {
-        let race = crate::cli::inputs::load_race(&[]).unwrap();
+        let race = crate::setup::inputs::load_race(&[]).unwrap();
         let world = RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
         // Independent truth: the bounding box of every fix and buoy, scanned here.
         let mut b = [

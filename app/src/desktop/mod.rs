@@ -18,15 +18,15 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
-use crate::cli::inputs::{load_race, load_sea};
-use crate::cli::scene_kind::SceneKind;
-use crate::core::gfx::{self, Acquired, Profile};
+use crate::core::gfx::{self, Acquired};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
+use crate::setup::SceneKind;
+use crate::setup::inputs::{load_race, load_sea};
+use crate::setup::{Profile, RaceSetup};
 use crate::wall_clock::Ticker;
 
-pub mod feed;
-pub mod overlay;
+pub mod hud;
 pub mod phone;
 pub mod pool;
 pub mod share_clip;
@@ -59,7 +59,7 @@ pub struct RunArgs {
     pub phone: bool,
     /// Which phone `--phone` shows.
     #[arg(long, value_enum, default_value_t, requires = "phone")]
-    pub device: crate::phone_sim::device::Device,
+    pub device: crate::sim_phone::device::Device,
     /// With `--phone`: the simulated ARCore library (crates/arcore_sim's cdylib) that the
     /// phone's own ARCore glue loads; a scripted stand-in without it.
     #[arg(long, value_name = "FILE", requires = "phone")]
@@ -75,7 +75,7 @@ impl RunArgs {
     /// feed's table.
     pub fn default_app() -> RunArgs {
         RunArgs {
-            replay: Some(PathBuf::from(feed::SYNTH)),
+            replay: Some(PathBuf::from(crate::feed::SYNTH)),
             ..RunArgs::default()
         }
     }
@@ -87,10 +87,14 @@ pub fn run(a: RunArgs) -> CliResult {
     if a.phone {
         return phone::run(a);
     }
-    let sea = crate::cli::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
+    let sea = crate::setup::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
     let race = load_race(&a.race)?;
     // A bad feed is refused before a window opens (file and line named).
-    let mut feed = a.replay.as_deref().map(feed::FeedView::open).transpose()?;
+    let mut feed = a
+        .replay
+        .as_deref()
+        .map(crate::feed::FeedView::open)
+        .transpose()?;
     let water = match feed.as_mut() {
         Some(f) => {
             f.set_water(a.water.look(f.water())?);
@@ -136,7 +140,6 @@ pub fn run(a: RunArgs) -> CliResult {
             pinned.unwrap_or(quality::Tier::Ultra),
             pinned.is_some(),
         ),
-        tier_applied: None,
         started: Instant::now(),
     };
     event_loop
@@ -153,15 +156,15 @@ struct State {
     gpu: render::Gpu,
     target: gfx::Window,
     renderer: Renderer,
-    /// The egui panels (timeline, leaderboard, overlay); `None` in the pool scene.
-    overlay: Option<overlay::Overlay>,
+    /// The egui panels (timeline, leaderboard, performance); `None` in the pool scene.
+    hud: Option<hud::Hud>,
 }
 
 struct App {
     /// `Some` with `--scene pool`: the pool replaces the race.
     pool: Option<pool::PoolMode>,
     /// `Some` with `--replay`: the feed's camera and image replace the orbit and the sky.
-    feed: Option<feed::FeedView>,
+    feed: Option<crate::feed::FeedView>,
     /// The water the command line chose (the Scene panel starts there; its type colours the
     /// open sea too).
     water: render::water_look::WaterLook,
@@ -181,9 +184,6 @@ struct App {
     dropped: Vec<PathBuf>,
     /// The quality governor: frame times in, the tier's renderer settings out.
     tiers: crate::tier_control::TierControl,
-    /// The tier the renderer draws at and whether its effect passes were there then (a feed
-    /// builds them on its first frame): applied again when either changes.
-    tier_applied: Option<(quality::Tier, bool)>,
     started: Instant,
 }
 
@@ -196,7 +196,7 @@ impl App {
     /// Race time for this frame: the timeline's with the panels, else the app's clock.
     fn tick(&mut self) -> f64 {
         let dt = self.ticker.tick();
-        match self.state.as_mut().and_then(|s| s.overlay.as_mut()) {
+        match self.state.as_mut().and_then(|s| s.hud.as_mut()) {
             Some(o) => o.tick(),
             None => {
                 self.clock.advance(dt);
@@ -210,7 +210,7 @@ impl App {
         let Some(st) = self.state.as_mut() else {
             return;
         };
-        let Some(o) = st.overlay.as_mut() else {
+        let Some(o) = st.hud.as_mut() else {
             return;
         };
         let mut files = std::mem::take(&mut self.dropped);
@@ -230,9 +230,8 @@ impl App {
             Ok(race) => {
                 log::info!("opened {}", race.name);
                 o.set_race(&race, &mut st.renderer);
+                // Its wakes at the tier's spacing from the next frame (`set_race`).
                 self.world = self.world.with_race(race);
-                // Its wakes at the tier's spacing.
-                self.tier_applied = None;
             }
             Err(e) => {
                 log::warn!("{e}");
@@ -256,7 +255,7 @@ impl App {
         }
         let mut scene = self.world.orbit_scene(t, &mut self.orbit);
         // "Follow": the orbit turns about the first selected boat instead of the fleet.
-        if let Some(o) = self.state.as_ref().and_then(|s| s.overlay.as_ref())
+        if let Some(o) = self.state.as_ref().and_then(|s| s.hud.as_ref())
             && o.panels.follow
             && let Some(target) =
                 crate::panels::follow_target(&self.world.race, o.scene_overlays.selected(), t)
@@ -267,7 +266,7 @@ impl App {
         // With a feed, its camera (mapped onto the race) replaces the orbit.
         if let (Some(f), Some(st)) = (self.feed.as_mut(), self.state.as_mut()) {
             let size = st.target.size();
-            let wake = st.overlay.as_ref().and_then(|o| o.wake());
+            let wake = st.hud.as_ref().and_then(|o| o.wake());
             let format = st.target.format().unwrap_or(render::OFFSCREEN_FORMAT);
             let bounds = self.world.race_bounds;
             if let Err(e) = f.prepare(&st.gpu, &mut st.renderer, format, wake, bounds, size) {
@@ -286,7 +285,7 @@ impl App {
         };
         let view = frame.texture().create_view(&Default::default());
         let size = st.target.size();
-        if let Some(o) = st.overlay.as_mut() {
+        if let Some(o) = st.hud.as_mut() {
             let handle = self.feed.as_ref().and_then(|f| f.effects_handle()).cloned();
             let handle = handle.as_ref();
             o.apply_effects(&mut st.renderer, handle);
@@ -303,15 +302,9 @@ impl App {
             let debrief = o.scene_overlays.debrief(&mut o.panels.debrief, race);
             o.scene_overlays
                 .prepare(&st.gpu, r, (race, debrief), &scene, size, ppp);
-            // The tier drawn, every setting, live (the governor's or the panel's pin).
-            let applied = Some((self.tiers.tier(), handle.is_some()));
-            if self.tier_applied != applied {
-                let tier = crate::tier_render::TierRender::of(self.tiers.tier());
-                if let Err(e) = o.apply_tier(&tier, &st.gpu, &mut st.renderer, handle, race) {
-                    log::warn!("quality tier {}: {e}", tier.tier);
-                }
-                self.tier_applied = applied;
-            }
+            // The tier drawn, every setting, live (the governor's or the panel's pin), when it
+            // or the feed's effect passes (built on its first frame) changed.
+            o.follow_tier(self.tiers.tier(), &st.gpu, &mut st.renderer, handle, race);
         }
         // A failed frame is logged by the renderer; the window shows the next one.
         let report = st.renderer.render(&st.gpu, &view, size, &scene).ok();
@@ -320,8 +313,7 @@ impl App {
         }
         // The governor: GPU time where measured, else the present interval; no change while
         // the user drags the view or a panel (the timeline's scrubber).
-        let scrubbing =
-            self.drag.is_some() || st.overlay.as_ref().is_some_and(|o| o.wants_pointer());
+        let scrubbing = self.drag.is_some() || st.hud.as_ref().is_some_and(|o| o.wants_pointer());
         let now = self.started.elapsed().as_secs_f64();
         let gpu_ms = report.as_ref().and_then(|r| r.gpu_ms);
         // The change is applied before the next frame is drawn.
@@ -329,7 +321,7 @@ impl App {
             log::info!("quality tier {}", tier.tier);
         }
         let race = &self.world.race;
-        if let Some(o) = st.overlay.as_mut() {
+        if let Some(o) = st.hud.as_mut() {
             if let Some(c) = o.tier_change.take() {
                 self.tiers.answer(c);
             }
@@ -358,7 +350,7 @@ impl App {
         }
         st.window.pre_present_notify();
         st.target.present(&st.gpu, frame);
-        if let Some(o) = st.overlay.as_mut()
+        if let Some(o) = st.hud.as_mut()
             && o.frame_done()
         {
             // The smoke test's exit: save what the window showed, if asked (REGATTA_SCREENSHOT).
@@ -371,7 +363,7 @@ impl App {
             return;
         }
         let playing = st
-            .overlay
+            .hud
             .as_ref()
             .map_or(self.clock.is_playing(), |o| o.panels.clock.is_playing());
         st.window.set_title(&format!(
@@ -395,7 +387,7 @@ impl ApplicationHandler for App {
         }
         let attrs = Window::default_attributes()
             .with_title("Regatta")
-            .with_inner_size(overlay::window_size());
+            .with_inner_size(hud::window_size());
         let window = match el.create_window(attrs) {
             Ok(w) => Arc::new(w),
             Err(e) => return self.fail(el, format!("cannot open a window: {e}")),
@@ -403,16 +395,18 @@ impl ApplicationHandler for App {
         let size = window.inner_size();
         match render::Gpu::for_window(window.clone(), size.width, size.height) {
             Ok((gpu, mut surface)) => {
-                let wake = gfx::wake_or_none(&self.world);
-                let mut renderer =
-                    gfx::race_renderer(&gpu, surface.config.format, wake, Profile::Desktop);
-                renderer.set_water_look(self.water);
+                let setup = RaceSetup {
+                    sea_water: self.water,
+                    ..RaceSetup::new(Profile::Desktop)
+                };
+                let wake = setup.wake_or_none(&self.world.race);
+                let renderer = setup.renderer(&gpu, surface.config.format, wake);
                 // The tier is applied before the first frame is drawn (`draw`).
                 log::info!("window on {}", gpu.describe());
-                let overlay = self.pool.is_none().then(|| {
+                let hud = self.pool.is_none().then(|| {
                     let race = &self.world.race;
                     let fx = self.feed.is_some();
-                    let mut o = overlay::Overlay::new(
+                    let mut o = hud::Hud::new(
                         &window,
                         &gpu.device,
                         &mut surface,
@@ -433,7 +427,7 @@ impl ApplicationHandler for App {
                     gpu,
                     target,
                     renderer,
-                    overlay,
+                    hud,
                 });
             }
             Err(e) => self.fail(el, format!("cannot draw into the window: {e}")),
@@ -442,8 +436,8 @@ impl ApplicationHandler for App {
 
     fn window_event(&mut self, el: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         if let Some(st) = self.state.as_mut()
-            && let Some(o) = st.overlay.as_mut()
-            && overlay::handle_event(o, &st.window, &event)
+            && let Some(o) = st.hud.as_mut()
+            && hud::handle_event(o, &st.window, &event)
         {
             return;
         }
@@ -466,7 +460,7 @@ impl ApplicationHandler for App {
                     && self
                         .press_at
                         .is_some_and(|(x, y)| (x - self.cursor.0).hypot(y - self.cursor.1) < 4.0)
-                    && let Some(o) = self.state.as_mut().and_then(|s| s.overlay.as_mut())
+                    && let Some(o) = self.state.as_mut().and_then(|s| s.hud.as_mut())
                 {
                     o.scene_overlays.click([self.cursor.0, self.cursor.1]);
                 }

@@ -18,9 +18,9 @@ use super::RunArgs;
 use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
-use crate::overlay::touch::TouchAction;
-use crate::phone_sim::Cues;
-use crate::phone_sim::backend::SimArCore;
+use crate::hud::touch::TouchAction;
+use crate::sim_phone::Cues;
+use crate::sim_phone::backend::SimArCore;
 use crate::wall_clock::Ticker;
 
 /// The tallest window the host gives the phone, pixels (an 800-pixel-high screen keeps its
@@ -30,7 +30,7 @@ const MAX_HEIGHT: u32 = 760;
 const TWO_FINGER_RADIUS: f64 = 60.0;
 
 pub fn run(a: RunArgs) -> CliResult {
-    if !a.race.is_empty() || a.sea.is_some() || a.scene != crate::cli::scene_kind::SceneKind::Race {
+    if !a.race.is_empty() || a.sea.is_some() || a.scene != crate::setup::SceneKind::Race {
         return Err(CliError::new(
             "--race, --sea and --scene have no meaning with --phone (the phone app has its race and a Race | Pool toggle)",
         ));
@@ -38,14 +38,14 @@ pub fn run(a: RunArgs) -> CliResult {
     let (backend, cues) = match &a.arcore_lib {
         Some(lib) => Cues::ffi(lib, a.replay.as_deref()).map_err(CliError::new)?,
         None => {
-            let feed = crate::cli::phone_sim::open_feed(a.replay.as_deref())?;
+            let feed = crate::feed::CameraFeed::for_phone(a.replay.as_deref())?;
             let (backend, control) = SimArCore::new(feed);
             let backend: Box<dyn crate::core::ar::ArBackend> = Box::new(backend);
             (backend, Cues::Scripted(control))
         }
     };
-    let race = crate::cli::inputs::load_race(&[])?;
-    let sea = crate::cli::inputs::load_sea(None)?;
+    let race = crate::setup::inputs::load_race(&[])?;
+    let sea = crate::setup::inputs::load_sea(None)?;
     let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
     app.data_dir = std::env::current_dir().ok();
     // The Races panel lists $REGATTA_RACES_DIR, else ./races.

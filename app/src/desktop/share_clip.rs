@@ -1,5 +1,5 @@
 //! The desktop's "Share clip" button: the last [`ClipRequest::DESKTOP`] seconds of race time
-//! before the playhead written as a GIF (`cli::render::clip::write_gif`, the frames `regatta
+//! before the playhead written as a GIF (`setup::clip::write_gif`, the frames `regatta
 //! render --from --to` draws) into `clips/` under the folder the app runs in, on a worker thread
 //! with its own headless GPU device, so the window keeps drawing; the button shows the
 //! progress, then the file's path or the one-line error.
@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use crate::cli::render::clip::{ClipLook, ClipTimes, write_gif};
 use crate::core::scene::RaceWorld;
+use crate::setup::clip::{ClipLook, ClipTimes, write_gif};
 
 /// What a clip covers and how it is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -174,8 +174,8 @@ mod tests {
         if render::gpu::test_gpu().is_none() {
             return;
         }
-        let race = crate::cli::inputs::load_race(&[]).unwrap();
-        let sea = crate::cli::inputs::drawable_sea(crate::cli::inputs::load_sea(None).unwrap());
+        let race = crate::setup::inputs::load_race(&[]).unwrap();
+        let sea = crate::setup::inputs::drawable_sea(crate::setup::inputs::load_sea(None).unwrap());
         let world = RaceWorld::new(race, sea);
         let folder = std::env::temp_dir().join(format!("regatta-share-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&folder);

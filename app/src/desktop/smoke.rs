@@ -92,7 +92,7 @@ pub fn write_screenshot(
             p.0.swap(0, 2);
         }
     }
-    crate::cli::output::ImageOut::new(path, "REGATTA_SCREENSHOT")
+    crate::setup::output::ImageOut::new(path, "REGATTA_SCREENSHOT")
         .and_then(|out| out.save(&img))
         .map_err(|e| format!("the screenshot could not be written: {e}"))
 }

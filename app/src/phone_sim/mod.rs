@@ -1,18 +1,15 @@
 //! The phone app on the host, headless: `regatta phone-sim --script FILE --out DIR`. The app
 //! core's phone app ([`crate::core::phone::PhoneApp`]) drawn into an offscreen window
-//! (lavapipe in CI), with the simulated ARCore ([`backend`]) as its AR backend, driven by a
+//! (lavapipe in CI), with the simulated ARCore ([`crate::sim_phone`]) as its AR backend, driven by a
 //! script ([`script`], docs/phone-sim.md): the events an Android activity would send, in order,
 //! with time stepped exactly (no wall clock).
 
-pub mod backend;
-pub mod device;
-pub mod ffi;
 pub mod script;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 
 use ar::arcore::ffi::ScriptedJni;
 
@@ -20,54 +17,15 @@ use glam::DVec2;
 
 use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
 use crate::core::scene::RaceWorld;
-use crate::overlay::touch::TouchAction;
-use backend::{Availability, Feed, SimArCore, SimControl};
-use ffi::{FfiBackend, SimLibrary};
+use crate::feed::CameraFeed;
+use crate::hud::touch::TouchAction;
+use crate::sim_phone::Cues;
+use crate::sim_phone::backend::{Availability, SimArCore, SimControl};
 use script::{Line, Step};
 
 /// Display frames per simulated second. Low, so lavapipe runs a minute of session in seconds;
 /// taps (down, one frame, up: 0.1 s) stay under the tap limit of 0.3 s.
 pub const SIM_FPS: f64 = 10.0;
-
-/// Where a script's cues go: the scripted stand-in, or the simulated ARCore behind the
-/// phone's own FFI with its scripted Java side.
-pub enum Cues {
-    Scripted(SimControl),
-    Ffi {
-        sim: SimLibrary,
-        jni: Arc<ScriptedJni>,
-        missing: Arc<AtomicBool>,
-    },
-}
-
-impl Cues {
-    /// The phone's own ARCore glue loading the simulator `library`, playing `replay` or its
-    /// synthetic table; its cues.
-    pub fn ffi(
-        library: &Path,
-        replay: Option<&Path>,
-    ) -> Result<(Box<dyn crate::core::ar::ArBackend>, Cues), String> {
-        let sim = SimLibrary::open(library, replay, [320, 240, 32])?;
-        let jni = ffi::fresh_install();
-        let backend = FfiBackend::new(library, Arc::clone(&jni));
-        let missing = Arc::clone(&backend.missing);
-        Ok((Box::new(backend), Cues::Ffi { sim, jni, missing }))
-    }
-
-    /// Before a display frame `dt` seconds after the last: the scripted feed's time moves on
-    /// (in the foreground); a permission dialog shown pauses and resumes the activity, as
-    /// Android does.
-    pub fn before_frame(&self, app: &mut PhoneApp, dt: f64, foreground: bool) {
-        match self {
-            Cues::Scripted(c) if foreground => c.lock().t += dt,
-            Cues::Ffi { jni, .. } if jni.take_dialog_shown() => {
-                app.on(PhoneEvent::Paused);
-                app.on(PhoneEvent::Resumed);
-            }
-            _ => {}
-        }
-    }
-}
 
 /// A phone session on the host: the app, the simulated ARCore's cues, the screen.
 pub struct PhoneSim {
@@ -92,7 +50,7 @@ impl PhoneSim {
     /// The embedded race on a phone screen of `portrait` pixels at `ppp` pixels per point,
     /// frames from `feed`, not yet launched (cues may be set first). `data_dir` receives
     /// recordings.
-    pub fn new(feed: Feed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
+    pub fn new(feed: CameraFeed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
         let (backend, control) = SimArCore::new(feed);
         Self::with_backend(
             Box::new(backend),
@@ -123,8 +81,8 @@ impl PhoneSim {
         ppp: f32,
         data_dir: Option<PathBuf>,
     ) -> Self {
-        let race = crate::cli::inputs::load_race(&[]).expect("the embedded race loads");
-        let sea = crate::cli::inputs::load_sea(None).expect("the embedded sea loads");
+        let race = crate::setup::inputs::load_race(&[]).expect("the embedded race loads");
+        let sea = crate::setup::inputs::load_sea(None).expect("the embedded sea loads");
         let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
         app.data_dir = data_dir;
         app.on(PhoneEvent::Density(ppp));
@@ -209,7 +167,12 @@ impl PhoneSim {
     }
 
     /// [`PhoneSim::new`], launched: the app resumed with a window and one frame drawn.
-    pub fn launch(feed: Feed, portrait: [u32; 2], ppp: f32, data_dir: Option<PathBuf>) -> Self {
+    pub fn launch(
+        feed: CameraFeed,
+        portrait: [u32; 2],
+        ppp: f32,
+        data_dir: Option<PathBuf>,
+    ) -> Self {
         let mut sim = Self::new(feed, portrait, ppp, data_dir);
         sim.resume();
         sim

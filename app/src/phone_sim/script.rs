@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use super::backend::{Availability, FAILURE_REASONS};
-use crate::overlay::SceneChoice;
+use crate::hud::SceneChoice;
+use crate::sim_phone::backend::{Availability, FAILURE_REASONS};
 
 /// One step of a script.
 #[derive(Clone, Debug, PartialEq)]

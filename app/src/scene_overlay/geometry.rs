@@ -1,10 +1,11 @@
 //! The overlays' world-space geometry: segments on the water (at the sea's height under them,
-//! lifted a little) for the render crate's overlay passes, and the screen projection the
+//! lifted a little) for the render crate's segment passes, and the screen projection the
 //! labels and texts share.
 
 use glam::{DMat4, DVec2, DVec3};
 use race::{MarkKind, Standing};
-use render::passes::overlay::{Layer, MASTHEAD, Segment};
+use render::passes::boats::MASTHEAD;
+use render::passes::segments::{Layer, Segment};
 use render::scene::{float_matrix, float_pose};
 
 use super::{OverlaySettings, SceneText, WindInfo};
@@ -183,7 +184,7 @@ fn ring(v: &View, centre: DVec2, radius: f64, colour: [f32; 4], width: f32) -> V
 /// around each selected boat.
 pub fn rings(v: &View, settings: &OverlaySettings) -> Layer {
     if v.boats.is_empty() {
-        return Layer::Nothing("no boat has data at this time".into());
+        return Layer::Hidden("no boat has data at this time".into());
     }
     let mut out = Vec::new();
     for b in &v.boats {
@@ -270,7 +271,7 @@ pub fn trails(v: &View, window_s: f64) -> Layer {
         }
     }
     if out.is_empty() {
-        return Layer::Nothing(format!("no boat has fixes in the last {:.0} s", window_s));
+        return Layer::Hidden(format!("no boat has fixes in the last {:.0} s", window_s));
     }
     Layer::Draw(out)
 }
@@ -296,7 +297,7 @@ pub const LAYLINE_ANGLE_DEG: f64 = 45.0;
 pub fn course(v: &View, rhumb: bool, wind: Option<WindInfo>) -> Layer {
     let race = v.race;
     if race.marks.is_empty() && race.boundary.is_empty() {
-        return Layer::Nothing("the race has no marks and no boundary".into());
+        return Layer::Hidden("the race has no marks and no boundary".into());
     }
     let mut out = Vec::new();
     let width = v.px(2.0);
@@ -374,7 +375,7 @@ fn next_windward_mark(v: &View, wind: Option<WindInfo>) -> Option<DVec2> {
 pub fn ahead_behind(v: &View, texts: &mut Vec<SceneText>) -> Layer {
     let race = v.race;
     if race.course.len() < 2 {
-        return Layer::Nothing("the race has no course: no legs to measure along".into());
+        return Layer::Hidden("the race has no course: no legs to measure along".into());
     }
     let axis_of = |k: usize| -> Option<(DVec2, f64)> {
         if k == 0 || k >= race.course.len() {
@@ -433,7 +434,7 @@ pub fn ahead_behind(v: &View, texts: &mut Vec<SceneText>) -> Layer {
         });
     }
     if out.is_empty() {
-        return Layer::Nothing("no boat is racing a leg at this time".into());
+        return Layer::Hidden("no boat is racing a leg at this time".into());
     }
     Layer::Draw(out)
 }
@@ -443,7 +444,7 @@ pub fn ahead_behind(v: &View, texts: &mut Vec<SceneText>) -> Layer {
 /// with the wind's figure at its tail.
 pub fn wind_arrow(v: &View, wind: Option<WindInfo>, texts: &mut Vec<SceneText>) -> Layer {
     let Some(w) = wind else {
-        return Layer::Nothing("no wind in the race and a calm sea".into());
+        return Layer::Hidden("no wind in the race and a calm sea".into());
     };
     let cam = &v.scene.camera;
     // Where the view's centre meets the sea level (the AR camera's target is one metre ahead).

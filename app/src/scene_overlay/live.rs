@@ -1,24 +1,37 @@
 //! The overlays of a window (desktop; the phone's loop can hold one the same way): the user's
-//! settings, the overlay passes' handle, this frame's overlay and the labels as last painted,
+//! settings, the overlay passes' layers, this frame's overlay and the labels as last painted,
 //! so a click or tap picks what the user saw.
 
-use render::passes::overlay::{OverlayHandle, OverlayKind, add_overlay_passes};
+use render::passes::segments::SegmentLayers;
 
 use super::labels::{PlacedLabel, pick};
-use super::{OverlayFrame, OverlaySettings, WindInfo};
+use super::{OverlayFrame, OverlayKind, OverlaySettings, WindInfo};
 
 #[derive(Default)]
 pub struct LiveOverlays {
     pub settings: OverlaySettings,
-    handle: OverlayHandle,
+    layers: SegmentLayers,
     frame: Option<OverlayFrame>,
     placed: Vec<PlacedLabel>,
 }
 
 impl LiveOverlays {
-    /// Turns the overlay `name` on or off (labels, trails, course, lines, wind).
+    /// Turns the overlay `name` on or off (a name of [`super::OVERLAYS`]).
     pub fn set_overlay(&mut self, name: &str, on: bool) -> Result<(), String> {
         self.settings.set_overlay(name, on)
+    }
+
+    /// The Scene panel's overlay switches (by the names of [`super::OVERLAYS`]) onto the
+    /// overlays drawn.
+    pub fn follow_panel(&mut self, panel: &ui::SceneSettings) {
+        for o in &super::OVERLAYS {
+            self.settings.set = self.settings.set.with(o.kind, panel.overlay(o.name));
+        }
+    }
+
+    /// A quality tier's overlay detail (`TierRender::overlay`) onto the overlays drawn.
+    pub fn set_detail(&mut self, detail: quality::OverlayDetail) {
+        self.settings.detail = detail;
     }
 
     /// The selected boats (indices into `Race::boats`), oldest first: "compare" takes two.
@@ -39,7 +52,7 @@ impl LiveOverlays {
         cache: &'a mut ui::DebriefView,
         race: &race::Race,
     ) -> Option<&'a race::Debrief> {
-        if !self.settings.set.is_on(OverlayKind::Trails) {
+        if !self.settings.shows(OverlayKind::Trails) {
             return None;
         }
         cache.update(race);
@@ -58,9 +71,9 @@ impl LiveOverlays {
         size: [u32; 2],
         pixels_per_point: f64,
     ) {
-        add_overlay_passes(renderer, gpu, &self.handle);
+        super::add_passes(renderer, gpu, &self.layers);
         let f = super::frame(race, scene, size, pixels_per_point, &self.settings, debrief);
-        f.push(&self.handle);
+        f.push(&self.layers);
         self.frame = Some(f);
     }
 
@@ -91,5 +104,37 @@ impl LiveOverlays {
     /// The labels as last painted.
     pub fn placed_labels(&self) -> &[PlacedLabel] {
         &self.placed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene_overlay::{OverlayKind, OverlaySet, panel_toggles};
+
+    /// The Scene panel's switches (the desktop's and the phone's) decide the overlays drawn,
+    /// and the tier's detail is kept apart from them.
+    #[test]
+    fn the_panel_switches_and_the_tier_detail_set_the_overlays() {
+        let mut live = LiveOverlays::default();
+        let mut panel = ui::SceneSettings::new(Vec::new());
+        panel.overlays = panel_toggles(OverlaySet::ALL);
+        panel
+            .overlays
+            .iter_mut()
+            .filter(|t| t.key == "wind")
+            .for_each(|t| t.enabled = false);
+        live.follow_panel(&panel);
+        assert_eq!(
+            live.settings.set,
+            OverlaySet::ALL.with(OverlayKind::Wind, false)
+        );
+        live.set_detail(quality::OverlayDetail::Essential);
+        assert_eq!(
+            live.settings.shown(),
+            [OverlayKind::Course, OverlayKind::Labels]
+        );
+        live.follow_panel(&panel);
+        assert_eq!(live.settings.detail, quality::OverlayDetail::Essential);
     }
 }

@@ -11,7 +11,7 @@
 
 use glam::{DVec2, DVec3};
 use race::debrief::ManoeuvreKind;
-use render::passes::overlay::Segment;
+use render::passes::segments::Segment;
 
 use super::geometry::View;
 use super::{OverlaySettings, SceneText};
@@ -44,8 +44,7 @@ pub struct ManoeuvreMark {
 /// for a caller that draws one picture or one clip and has no debrief of the race at hand.
 pub fn debrief_if_shown(race: &race::Race, settings: &OverlaySettings) -> Option<race::Debrief> {
     settings
-        .set
-        .is_on(render::passes::overlay::OverlayKind::Trails)
+        .shows(super::OverlayKind::Trails)
         .then(|| race::Debrief::of(race))
 }
 

@@ -1,8 +1,18 @@
-//! The race drawn over the scene: boat labels, team rings, trails, course, ahead/behind lines
-//! and the wind (docs/overlays.md). The same code serves `regatta render` (headless), the
-//! desktop window and the phone: [`SceneOverlay::frame`] turns (race, scene, settings) into
-//! the render crate's overlay layers (world-space segments, `render::passes::overlay`) and
-//! the screen-space labels and texts that egui paints after the frame ([`paint`]).
+//! The race overlays: boat labels, team rings, trails, course, ahead/behind lines and the wind
+//! (docs/overlays.md), drawn over the scene. The same code serves `regatta render` (headless),
+//! the desktop window and the phone: [`frame`] turns (race, scene, settings) into the render
+//! crate's generic segment layers (`render::passes::segments`: world-space lines and discs,
+//! one pass per overlay) and the screen-space labels and texts that egui paints after the
+//! frame ([`paint`]). "Overlay" in this project means these and nothing else (the egui panels
+//! and bars are the `hud`).
+//!
+//! **Adding an overlay touches this file only**: a variant of [`OverlayKind`] and its row of
+//! [`OVERLAYS`] (its `--overlays` name, the Scene panel's text, the least tier detail that
+//! draws it, its pass's name and condition in the frame report, and the function that draws
+//! it, usually in [`geometry`]). Everything else reads the table: `--overlays` parsing
+//! ([`OverlaySet::parse`]), the Scene panel's switches ([`panel_toggles`]), the tiers
+//! ([`OverlaySettings::shows`]), the render passes ([`layer_passes`]) and the drawing
+//! ([`frame`]). The render crate knows no overlay.
 //!
 //! Picking ([`labels::pick`]) maps a screen point to the boat under it (label or hull), so a
 //! click or tap selects; [`OverlaySettings::selected`] keeps up to two boats for "compare".
@@ -13,12 +23,180 @@ pub mod live;
 pub mod manoeuvres;
 pub mod paint;
 
-use render::passes::overlay::{Layer, OverlayHandle, OverlayKind};
+use quality::OverlayDetail;
+use render::passes::segments::{Layer, LayerPass, Segment, SegmentLayers};
+
+/// The race overlays, in drawing order (a later one is drawn over an earlier one: the labels'
+/// rings over the trails).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum OverlayKind {
+    Trails,
+    Course,
+    /// Ahead/behind lines across the current leg's axis.
+    Lines,
+    Wind,
+    /// Boat labels: the GPU part is each boat's team-colour ring and the selected boats'
+    /// highlight; the text is egui's, painted after the frame.
+    Labels,
+}
+
+/// Everything one overlay is, in one row.
+pub struct Overlay {
+    pub kind: OverlayKind,
+    /// The name `--overlays` and the Scene panel's switch use.
+    pub name: &'static str,
+    /// What the Scene panel's switch says.
+    pub label: &'static str,
+    /// The least overlay detail (`quality::OverlayDetail`, a tier's) that draws it.
+    pub detail: OverlayDetail,
+    /// Its segment pass in the frame report: name and what it needs to run.
+    pub pass: LayerPass,
+    /// Its layer this frame (the overlay is on and the tier's detail draws it).
+    draw: fn(&Drawing, &mut Vec<SceneText>) -> Layer,
+}
+
+/// What an overlay's drawing reads.
+struct Drawing<'a> {
+    view: &'a geometry::View<'a>,
+    settings: &'a OverlaySettings,
+    debrief: Option<&'a race::Debrief>,
+    wind: Option<WindInfo>,
+}
+
+/// The overlays, one row each, in the Scene panel's order (the drawing order is
+/// [`OverlayKind`]'s).
+///
+/// The tier details, and why (a phone held over a table, the Low tier's OPPO A54 first):
+/// - essential (Low): the labels and the course. Who is who and where the marks are answer
+///   the first questions anyone asks of a race; both are a few discs and rings per boat or
+///   mark.
+/// - standard (Medium): adds the trails (with their manoeuvre marks) and the wind arrow. The
+///   trails are the largest layer (up to 64 segments per boat) and read with the wind.
+/// - full (High, Ultra): adds the ahead/behind lines: an analysis layer whose gap texts
+///   crowd a small screen, for the phones (and desktops) with room to spare.
+pub const OVERLAYS: [Overlay; 5] = [
+    Overlay {
+        kind: OverlayKind::Labels,
+        name: "labels",
+        label: "Boat labels",
+        detail: OverlayDetail::Essential,
+        pass: LayerPass {
+            name: "overlay-labels",
+            condition: "labels are on and a boat is in view",
+        },
+        draw: |d, _| geometry::rings(d.view, d.settings),
+    },
+    Overlay {
+        kind: OverlayKind::Trails,
+        name: "trails",
+        label: "Trails",
+        detail: OverlayDetail::Standard,
+        pass: LayerPass {
+            name: "overlay-trails",
+            condition: "trails are on and a boat's recent track is in view",
+        },
+        draw: |d, texts| {
+            let trails = geometry::trails(d.view, d.settings.trail_s);
+            let marks = d.debrief.map_or_else(Vec::new, |b| {
+                let s = d.settings;
+                manoeuvres::marks(d.view, b, s.trail_s, &s.selected, texts)
+            });
+            with_marks(trails, marks)
+        },
+    },
+    Overlay {
+        kind: OverlayKind::Course,
+        name: "course",
+        label: "Course and marks",
+        detail: OverlayDetail::Essential,
+        pass: LayerPass {
+            name: "overlay-course",
+            condition: "the course is on, the race has marks and one is in view",
+        },
+        draw: |d, _| geometry::course(d.view, d.settings.rhumb_lines, d.wind),
+    },
+    Overlay {
+        kind: OverlayKind::Lines,
+        name: "lines",
+        label: "Ahead/behind lines",
+        detail: OverlayDetail::Full,
+        pass: LayerPass {
+            name: "overlay-lines",
+            condition: "ahead/behind lines are on, the race has a course and a racing boat is in view",
+        },
+        draw: |d, texts| geometry::ahead_behind(d.view, texts),
+    },
+    Overlay {
+        kind: OverlayKind::Wind,
+        name: "wind",
+        label: "Wind",
+        detail: OverlayDetail::Standard,
+        pass: LayerPass {
+            name: "overlay-wind",
+            condition: "the wind indicator is on and the wind is known (race data or the sea)",
+        },
+        draw: |d, texts| geometry::wind_arrow(d.view, d.wind, texts),
+    },
+];
+
+impl OverlayKind {
+    /// Every overlay, in drawing order, built from [`OVERLAYS`] (a kind with two rows, or
+    /// rows whose kinds leave a gap in the drawing order, does not compile).
+    pub const ALL: [OverlayKind; OVERLAYS.len()] = {
+        let mut all = [OverlayKind::Trails; OVERLAYS.len()];
+        let mut found = [false; OVERLAYS.len()];
+        let mut row = 0;
+        while row < OVERLAYS.len() {
+            let k = OVERLAYS[row].kind as usize;
+            assert!(!found[k], "an overlay kind with two rows in OVERLAYS");
+            found[k] = true;
+            all[k] = OVERLAYS[row].kind;
+            row += 1;
+        }
+        all
+    };
+
+    /// Its row of [`OVERLAYS`].
+    pub fn overlay(self) -> &'static Overlay {
+        OVERLAYS
+            .iter()
+            .find(|o| o.kind == self)
+            .expect("every kind has its row (OverlayKind::ALL checks it)")
+    }
+
+    /// The name `--overlays` and the Scene panel use.
+    pub fn name(self) -> &'static str {
+        self.overlay().name
+    }
+
+    pub fn from_name(name: &str) -> Option<OverlayKind> {
+        OVERLAYS.iter().find(|o| o.name == name).map(|o| o.kind)
+    }
+}
+
+/// The overlays' segment passes in drawing order, for
+/// `render::passes::segments::add_segment_passes`.
+pub fn layer_passes() -> [LayerPass; OVERLAYS.len()] {
+    OverlayKind::ALL.map(|k| k.overlay().pass)
+}
+
+/// Adds the overlays' segment passes to `renderer` (once), fed by `layers`.
+pub fn add_passes(renderer: &mut render::Renderer, gpu: &render::Gpu, layers: &SegmentLayers) {
+    render::passes::segments::add_segment_passes(renderer, gpu, layers, &layer_passes());
+}
+
+/// The Scene panel's overlay switches: every overlay, on or off as `settings` has it.
+pub fn panel_toggles(set: OverlaySet) -> Vec<ui::EffectToggle> {
+    OVERLAYS
+        .iter()
+        .map(|o| ui::EffectToggle::new(o.name, o.label, set.is_on(o.kind)))
+        .collect()
+}
 
 /// Which overlays are drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct OverlaySet {
-    on: [bool; 5],
+    on: [bool; OVERLAYS.len()],
 }
 
 impl Default for OverlaySet {
@@ -28,26 +206,23 @@ impl Default for OverlaySet {
 }
 
 impl OverlaySet {
-    pub const ALL: OverlaySet = OverlaySet { on: [true; 5] };
-    pub const NONE: OverlaySet = OverlaySet { on: [false; 5] };
-
-    fn slot(kind: OverlayKind) -> usize {
-        OverlayKind::ALL
-            .iter()
-            .position(|k| *k == kind)
-            .expect("every kind is in ALL")
-    }
+    pub const ALL: OverlaySet = OverlaySet {
+        on: [true; OVERLAYS.len()],
+    };
+    pub const NONE: OverlaySet = OverlaySet {
+        on: [false; OVERLAYS.len()],
+    };
 
     pub fn is_on(&self, kind: OverlayKind) -> bool {
-        self.on[Self::slot(kind)]
+        self.on[kind as usize]
     }
 
     pub fn with(mut self, kind: OverlayKind, on: bool) -> Self {
-        self.on[Self::slot(kind)] = on;
+        self.on[kind as usize] = on;
         self
     }
 
-    /// `--overlays LIST`: comma-separated names of [`OverlayKind`], or `all` / `none` alone.
+    /// `--overlays LIST`: comma-separated names of [`OVERLAYS`], or `all` / `none` alone.
     pub fn parse(list: &str) -> Result<OverlaySet, String> {
         let names: Vec<&str> = list.split(',').map(str::trim).collect();
         let shown = input::quote(list);
@@ -66,7 +241,7 @@ impl OverlaySet {
                 _ => match OverlayKind::from_name(name) {
                     Some(k) => set = set.with(k, true),
                     None => {
-                        let valid: Vec<&str> = OverlayKind::ALL.iter().map(|k| k.name()).collect();
+                        let valid: Vec<&str> = OverlayKind::ALL.map(OverlayKind::name).to_vec();
                         return Err(format!(
                             "--overlays names the unknown overlay {}; the overlays are: {}, all, none",
                             input::quote(name),
@@ -96,10 +271,15 @@ pub struct SceneText {
     pub colour: [f32; 3],
 }
 
-/// What the user chose: overlays on, trail length, rhumb lines, selected boats.
+/// What the user chose (overlays on, trail length, rhumb lines, selected boats) and the
+/// overlay detail of the tier drawn.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OverlaySettings {
     pub set: OverlaySet,
+    /// The tier's overlay detail (`TierRender::overlay`): an overlay is drawn where it is on
+    /// and its [`Overlay::detail`] is at most this. `Full` (every overlay the user chose) where
+    /// no tier is drawn.
+    pub detail: OverlayDetail,
     /// Trail length, seconds of race time (the last N minutes).
     pub trail_s: f64,
     /// Draw the rhumb lines between consecutive course marks.
@@ -112,6 +292,7 @@ impl Default for OverlaySettings {
     fn default() -> Self {
         OverlaySettings {
             set: OverlaySet::ALL,
+            detail: OverlayDetail::Full,
             trail_s: DEFAULT_TRAIL_S,
             rhumb_lines: true,
             selected: Vec::new(),
@@ -120,6 +301,36 @@ impl Default for OverlaySettings {
 }
 
 impl OverlaySettings {
+    /// Whether `kind` is drawn: on, and at the tier's detail.
+    pub fn shows(&self, kind: OverlayKind) -> bool {
+        self.set.is_on(kind) && kind.overlay().detail <= self.detail
+    }
+
+    /// The overlays drawn, in drawing order.
+    pub fn shown(&self) -> Vec<OverlayKind> {
+        OverlayKind::ALL
+            .into_iter()
+            .filter(|k| self.shows(*k))
+            .collect()
+    }
+
+    /// Why `kind` is not drawn (the frame report's reason), or `None` where it is.
+    fn why_hidden(&self, kind: OverlayKind) -> Option<String> {
+        let o = kind.overlay();
+        if !self.set.is_on(kind) {
+            Some(format!("turned off (\"{}\" not in --overlays)", o.name))
+        } else if o.detail > self.detail {
+            Some(format!(
+                "the tier's overlay detail is {}; the {} overlay needs {}",
+                detail_name(self.detail),
+                o.name,
+                detail_name(o.detail)
+            ))
+        } else {
+            None
+        }
+    }
+
     /// Turns the overlay `name` on or off (the Effects panel's toggles, by name).
     pub fn set_overlay(&mut self, name: &str, on: bool) -> Result<(), String> {
         let kind = OverlayKind::from_name(name)
@@ -219,10 +430,19 @@ pub fn wind_of(race: &race::Race, sea: &ocean::WaveSet) -> Option<WindInfo> {
     })
 }
 
+/// The name `--tier`'s table and docs give an overlay detail.
+pub fn detail_name(detail: OverlayDetail) -> &'static str {
+    match detail {
+        OverlayDetail::Essential => "essential",
+        OverlayDetail::Standard => "standard",
+        OverlayDetail::Full => "full",
+    }
+}
+
 /// Everything the overlays show in one frame: the GPU layers and the screen items.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OverlayFrame {
-    /// Per overlay, in [`OverlayKind::ALL`] order.
+    /// Per overlay, in drawing order ([`OverlayKind::ALL`]).
     pub layers: Vec<(OverlayKind, Layer)>,
     /// The boats' labels to measure and place when egui paints ([`labels::place`]).
     pub labels: Vec<labels::LabelCandidate>,
@@ -236,9 +456,9 @@ pub struct OverlayFrame {
 
 impl OverlayFrame {
     /// Hands the layers to the render passes.
-    pub fn push(&self, handle: &OverlayHandle) {
+    pub fn push(&self, layers: &SegmentLayers) {
         for (kind, layer) in &self.layers {
-            handle.set(*kind, layer.clone());
+            layers.set(kind.overlay().pass.name, layer.clone());
         }
     }
 }
@@ -257,35 +477,24 @@ pub fn frame(
     let view = geometry::View::new(race, scene, size, pixels_per_point);
     let wind = wind_of(race, &scene.sea);
     let mut texts = Vec::new();
-    let mut layers = Vec::new();
-    for kind in OverlayKind::ALL {
-        let layer = if !settings.set.is_on(kind) {
-            Layer::Off
-        } else {
-            match kind {
-                OverlayKind::Labels => geometry::rings(&view, settings),
-                OverlayKind::Trails => {
-                    let trails = geometry::trails(&view, settings.trail_s);
-                    let marks = debrief.map_or_else(Vec::new, |d| {
-                        manoeuvres::marks(
-                            &view,
-                            d,
-                            settings.trail_s,
-                            &settings.selected,
-                            &mut texts,
-                        )
-                    });
-                    with_marks(trails, marks)
-                }
-                OverlayKind::Course => geometry::course(&view, settings.rhumb_lines, wind),
-                OverlayKind::Lines => geometry::ahead_behind(&view, &mut texts),
-                OverlayKind::Wind => geometry::wind_arrow(&view, wind, &mut texts),
-            }
-        };
-        layers.push((kind, layer));
-    }
+    let drawing = Drawing {
+        view: &view,
+        settings,
+        debrief,
+        wind,
+    };
+    let layers = OverlayKind::ALL
+        .into_iter()
+        .map(|kind| {
+            let layer = match settings.why_hidden(kind) {
+                Some(why) => Layer::Hidden(why),
+                None => (kind.overlay().draw)(&drawing, &mut texts),
+            };
+            (kind, layer)
+        })
+        .collect();
     let hulls = labels::hulls(&view);
-    let labels = if settings.set.is_on(OverlayKind::Labels) {
+    let labels = if settings.shows(OverlayKind::Labels) {
         labels::candidates(&view, &hulls, &settings.selected)
     } else {
         Vec::new()
@@ -312,7 +521,7 @@ pub fn frame(
 }
 
 /// The trails' layer with the manoeuvre marks drawn over it.
-fn with_marks(trails: Layer, marks: Vec<render::passes::overlay::Segment>) -> Layer {
+fn with_marks(trails: Layer, marks: Vec<Segment>) -> Layer {
     match trails {
         Layer::Draw(mut segments) => {
             segments.extend(marks);
@@ -338,7 +547,7 @@ pub fn render_headless(
     render_headless_with(
         gpu,
         renderer,
-        &OverlayHandle::default(),
+        &SegmentLayers::default(),
         race,
         scene,
         size,
@@ -346,22 +555,22 @@ pub fn render_headless(
     )
 }
 
-/// [`render_headless`] through `handle`, for a renderer that draws frame after frame (a clip):
+/// [`render_headless`] through `layers`, for a renderer that draws frame after frame (a clip):
 /// the overlay passes are added once and keep the handle they were added with, so every frame
 /// must push its overlays through that same handle, not a fresh one.
 pub fn render_headless_with(
     gpu: &render::Gpu,
     renderer: &mut render::Renderer,
-    handle: &OverlayHandle,
+    layers: &SegmentLayers,
     (race, debrief): (&race::Race, Option<&race::Debrief>),
     scene: &render::Scene,
     size: [u32; 2],
     settings: &OverlaySettings,
 ) -> Result<(image::RgbaImage, render::FrameReport), render::GpuError> {
-    render::passes::overlay::add_overlay_passes(renderer, gpu, handle);
+    add_passes(renderer, gpu, layers);
     let ppp = paint::headless_pixels_per_point(size);
     let f = frame(race, scene, size, ppp, settings, debrief);
-    f.push(handle);
+    f.push(layers);
     let (img, report, _) = paint::render_with_overlays(gpu, renderer, scene, size, &f, ppp)?;
     Ok((img, report))
 }
@@ -369,6 +578,107 @@ pub fn render_headless_with(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each tier draws the overlays its detail has, of those the user chose. Truth: the tier
+    /// table of `crates/quality` (which detail each tier has) and the details as
+    /// docs/overlays.md states them (essential: labels and course; standard: + trails and
+    /// wind; full: + ahead/behind lines).
+    #[test]
+    fn each_tier_draws_the_overlays_its_detail_has() {
+        use OverlayKind::{Course, Labels, Lines, Trails, Wind};
+        use quality::Tier;
+        let stated = |d: OverlayDetail| -> Vec<OverlayKind> {
+            match d {
+                OverlayDetail::Essential => vec![Course, Labels],
+                OverlayDetail::Standard => vec![Trails, Course, Wind, Labels],
+                OverlayDetail::Full => vec![Trails, Course, Lines, Wind, Labels],
+            }
+        };
+        let expected = [
+            (Tier::Low, OverlayDetail::Essential),
+            (Tier::Medium, OverlayDetail::Standard),
+            (Tier::High, OverlayDetail::Full),
+            (Tier::Ultra, OverlayDetail::Full),
+        ];
+        for (tier, detail) in expected {
+            let t = crate::tier_render::TierRender::of(tier);
+            assert_eq!(t.overlay, detail, "{tier}: quality's table changed");
+            let settings = OverlaySettings {
+                detail: t.overlay,
+                ..Default::default()
+            };
+            assert_eq!(settings.shown(), stated(detail), "{tier}");
+            // What the user turned off stays off at every tier.
+            let no_course = OverlaySettings {
+                set: OverlaySet::ALL.with(Course, false),
+                ..settings.clone()
+            };
+            let mut without = stated(detail);
+            without.retain(|k| *k != Course);
+            assert_eq!(no_course.shown(), without, "{tier}");
+        }
+    }
+
+    /// A tier's hidden overlays reach the frame report with the reason, and the labels' egui
+    /// texts go with their rings.
+    #[test]
+    fn an_overlay_the_tier_hides_says_why_and_draws_nothing() {
+        let race = race::Race::sample();
+        let world = crate::core::scene::RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
+        let scene = world.scene_at(world.middle_time(), None);
+        let settings = OverlaySettings {
+            detail: OverlayDetail::Essential,
+            ..Default::default()
+        };
+        let f = frame(&race, &scene, [640, 360], 1.0, &settings, None);
+        let layer = |k: OverlayKind| {
+            f.layers
+                .iter()
+                .find(|(kind, _)| *kind == k)
+                .unwrap()
+                .1
+                .clone()
+        };
+        assert_eq!(
+            layer(OverlayKind::Trails),
+            Layer::Hidden(
+                "the tier's overlay detail is essential; the trails overlay needs standard".into()
+            )
+        );
+        assert_eq!(
+            layer(OverlayKind::Lines),
+            Layer::Hidden(
+                "the tier's overlay detail is essential; the lines overlay needs full".into()
+            )
+        );
+        assert!(matches!(layer(OverlayKind::Course), Layer::Draw(_)));
+        assert!(!f.labels.is_empty(), "essential keeps the labels");
+        let passes: Vec<&str> = layer_passes().iter().map(|p| p.name).collect();
+        assert_eq!(
+            passes,
+            [
+                "overlay-trails",
+                "overlay-course",
+                "overlay-lines",
+                "overlay-wind",
+                "overlay-labels"
+            ],
+            "drawing order: the labels' rings over the trails"
+        );
+    }
+
+    /// The Scene panel's switches are the table's, in its order, and every name round-trips.
+    #[test]
+    fn the_panel_and_the_names_read_the_table() {
+        let toggles = panel_toggles(OverlaySet::ALL.with(OverlayKind::Wind, false));
+        let keys: Vec<&str> = toggles.iter().map(|t| t.key.as_str()).collect();
+        assert_eq!(keys, ["labels", "trails", "course", "lines", "wind"]);
+        assert!(toggles.iter().all(|t| t.enabled == (t.key != "wind")));
+        for k in OverlayKind::ALL {
+            assert_eq!(OverlayKind::from_name(k.name()), Some(k));
+        }
+        assert_eq!(OverlayKind::from_name("wakes"), None);
+    }
 
     #[test]
     fn overlays_parse_and_bad_lists_name_the_flag_and_the_name() {

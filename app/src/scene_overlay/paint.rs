@@ -5,7 +5,7 @@
 
 use super::OverlayFrame;
 use super::labels::{self, BAR_PT, LABEL_TEXT_PT, PAD_PT, PlacedLabel};
-use crate::overlay::EguiPainter;
+use crate::hud::EguiPainter;
 
 /// A text at a framebuffer pixel.
 #[derive(Debug, Clone, PartialEq)]

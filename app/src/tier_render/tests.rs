@@ -12,9 +12,9 @@ fn frame_of(
     let gpu = render::gpu::test_gpu().expect("checked by the caller");
     let race = race::Race::sample();
     let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
-    let (mut renderer, fx) = tier
-        .renderer(&gpu, Some(&race), &scene, size)
-        .expect("renderer");
+    let (mut renderer, fx) =
+        crate::setup::RaceSetup::tier_renderer(tier, &gpu, Some(&race), &scene, size)
+            .expect("renderer");
     let view = render::gpu::texture_2d(
         &gpu.device,
         "tier test frame",
@@ -171,17 +171,33 @@ fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
     // Down across every setting, and back up (the caustic tier, map cells, reflection size,
     // effects, spacing and budget all change both ways).
     for (from, to) in [(Tier::Ultra, Tier::Low), (Tier::Low, Tier::High)] {
-        let (mut live, live_fx) = TierRender::of(from)
-            .renderer(&gpu, Some(&race), &scene, size)
-            .expect("renderer");
+        let (mut live, live_fx) = crate::setup::RaceSetup::tier_renderer(
+            &TierRender::of(from),
+            &gpu,
+            Some(&race),
+            &scene,
+            size,
+        )
+        .expect("renderer");
         let before = draw(&gpu, &mut live, &live_fx, &scene, size);
-        TierRender::of(to)
-            .apply_live(&gpu, &mut live, Some(&live_fx), Some(&race))
-            .expect("the tier applies");
+        // The phone's way: a Scene panel without switches, through the one tier path.
+        let mut settings = ui::SceneSettings::new(Vec::new());
+        let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
+        let fx = Some(&live_fx);
+        assert!(
+            applier
+                .follow_tier(to, &mut settings, &gpu, &mut live, fx, &race)
+                .is_some()
+        );
         let after = draw(&gpu, &mut live, &live_fx, &scene, size);
-        let (mut fresh, fresh_fx) = TierRender::of(to)
-            .renderer(&gpu, Some(&race), &scene, size)
-            .expect("renderer");
+        let (mut fresh, fresh_fx) = crate::setup::RaceSetup::tier_renderer(
+            &TierRender::of(to),
+            &gpu,
+            Some(&race),
+            &scene,
+            size,
+        )
+        .expect("renderer");
         let want = draw(&gpu, &mut fresh, &fresh_fx, &scene, size);
         assert_ne!(before.0, want.0, "{from} → {to}: the tiers' frames differ");
         // The record: size (render scale), clip-map error, every pass's decision with its
@@ -214,9 +230,14 @@ fn a_tier_through_the_scene_panels_switches_draws_that_tiers_frame() {
     let size = [240, 160];
     let race = race::Race::sample();
     let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
-    let (mut live, fx) = TierRender::of(Tier::Ultra)
-        .renderer(&gpu, Some(&race), &scene, size)
-        .expect("renderer");
+    let (mut live, fx) = crate::setup::RaceSetup::tier_renderer(
+        &TierRender::of(Tier::Ultra),
+        &gpu,
+        Some(&race),
+        &scene,
+        size,
+    )
+    .expect("renderer");
     let mut settings = ui::SceneSettings::new(crate::panels::effect_toggles(true));
     let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
     applier.apply(&settings, &mut live, Some(&fx));
@@ -228,9 +249,9 @@ fn a_tier_through_the_scene_panels_switches_draws_that_tiers_frame() {
     // The next frame, as the window draws it: the switches applied first.
     applier.apply(&settings, &mut live, Some(&fx));
     let after = draw(&gpu, &mut live, &fx, &scene, size);
-    let (mut fresh, fresh_fx) = low
-        .renderer(&gpu, Some(&race), &scene, size)
-        .expect("renderer");
+    let (mut fresh, fresh_fx) =
+        crate::setup::RaceSetup::tier_renderer(&low, &gpu, Some(&race), &scene, size)
+            .expect("renderer");
     let want = draw(&gpu, &mut fresh, &fresh_fx, &scene, size);
     assert_eq!(after.0, want.0);
     assert_eq!(after.1, want.1);

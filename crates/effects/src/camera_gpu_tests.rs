@@ -1,13 +1,11 @@
 //! GPU tests of the camera background on lavapipe: YUV 4:2:0 planes converted in the shader
 //! against the CPU reference (`camera_image::Yuv420::to_rgba8`), and new frames, sizes and
-//! kinds going into the same renderer through [`EffectsHandle::set_camera_frame`]. Without an
+//! kinds going into the same renderer through [`EffectsHandle::set_backdrop`]. Without an
 //! adapter they skip, unless `REGATTA_REQUIRE_GPU=true`.
 
 use glam::DVec3;
 
-use super::camera_frame::{
-    CameraFrame, CameraImage, DISPLAY_IDENTITY, StridedYuv420, Yuv420, YuvRange,
-};
+use super::backdrop::{Backdrop, CameraImage, DISPLAY_IDENTITY, StridedYuv420, Yuv420, YuvRange};
 use super::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use super::{Effect, EffectSet};
 use render::gpu::Gpu;
@@ -76,10 +74,10 @@ fn rgba_image(size: [u32; 2], seed: u64) -> CameraImage {
     CameraImage::Rgba(image::RgbaImage::from_raw(size[0], size[1], px).expect("size"))
 }
 
-fn frame(image: CameraImage, display: [[f64; 3]; 2]) -> CameraFrame<CameraImage> {
+fn frame(image: CameraImage, display: [[f64; 3]; 2]) -> Backdrop<CameraImage> {
     let scene = sky_scene();
-    CameraFrame {
-        camera: CameraFrame::pinhole(&scene.camera, image.size()),
+    Backdrop {
+        camera: Backdrop::pinhole(&scene.camera, image.size()),
         image,
         display,
     }
@@ -158,7 +156,7 @@ fn a_yuv_frame_draws_as_the_cpu_reference_converts_it() {
 }
 
 #[test]
-fn set_camera_frame_redraws_the_same_renderer_over_the_new_image() {
+fn set_backdrop_redraws_the_same_renderer_over_the_new_image() {
     let Some(gpu) = render::gpu::test_gpu() else {
         return;
     };
@@ -172,22 +170,22 @@ fn set_camera_frame_redraws_the_same_renderer_over_the_new_image() {
     for _ in 0..3 {
         assert!(worst(&draw(&gpu, &mut r, &scene), &want1) <= TOLERANCE);
     }
-    handle.set_camera_frame(&gpu, frame(second, DISPLAY_IDENTITY));
+    handle.set_backdrop(&gpu, frame(second, DISPLAY_IDENTITY));
     let got = draw(&gpu, &mut r, &scene);
     assert!(
         worst(&got, &want2) <= TOLERANCE,
-        "after set_camera_frame the background shows the new image (the scene stood still)"
+        "after set_backdrop the background shows the new image (the scene stood still)"
     );
     // The display transform comes with the frame: mirrored left to right.
     let mirror = [[-1.0, 0.0, 1.0], [0.0, 1.0, 0.0]];
-    handle.set_camera_frame(&gpu, frame(yuv_image(SIZE, 12), mirror));
+    handle.set_backdrop(&gpu, frame(yuv_image(SIZE, 12), mirror));
     let got = draw(&gpu, &mut r, &scene);
     let flipped = image::imageops::flip_horizontal(&want2);
     assert!(worst(&got, &flipped) <= TOLERANCE, "mirrored display");
 }
 
 #[test]
-fn set_camera_frame_takes_new_sizes_and_kinds() {
+fn set_backdrop_takes_new_sizes_and_kinds() {
     let Some(gpu) = render::gpu::test_gpu() else {
         return;
     };
@@ -198,13 +196,13 @@ fn set_camera_frame_takes_new_sizes_and_kinds() {
     draw(&gpu, &mut r, &scene);
     let yuv = yuv_image(SIZE, 21);
     let want = yuv.to_rgba_image();
-    handle.set_camera_frame(&gpu, frame(yuv, DISPLAY_IDENTITY));
+    handle.set_backdrop(&gpu, frame(yuv, DISPLAY_IDENTITY));
     assert_eq!(handle.camera_image_size(), SIZE);
     let err = worst(&draw(&gpu, &mut r, &scene), &want);
     assert!(err <= TOLERANCE, "YUV after resize off by {err} codes");
     let rgba = rgba_image(SIZE, 22);
     let want = rgba.to_rgba_image();
-    handle.set_camera_frame(&gpu, frame(rgba, DISPLAY_IDENTITY));
+    handle.set_backdrop(&gpu, frame(rgba, DISPLAY_IDENTITY));
     let err = worst(&draw(&gpu, &mut r, &scene), &want);
     assert!(err <= TOLERANCE, "RGBA after YUV off by {err} codes");
     // An odd-sized YUV frame (chroma 3×2 for 5×3 pixels) shown 1:1 in the top-left corner
@@ -212,7 +210,7 @@ fn set_camera_frame_takes_new_sizes_and_kinds() {
     let odd = yuv_image([5, 3], 23);
     let want = odd.to_rgba_image();
     let scale = [[64.0 / 5.0, 0.0, 0.0], [0.0, 48.0 / 3.0, 0.0]];
-    handle.set_camera_frame(&gpu, frame(odd, scale));
+    handle.set_backdrop(&gpu, frame(odd, scale));
     let got = draw(&gpu, &mut r, &scene);
     let corner = image::imageops::crop_imm(&got, 0, 0, 5, 3).to_image();
     let err = worst(&corner, &want);

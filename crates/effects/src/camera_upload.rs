@@ -9,7 +9,7 @@
 //! it decodes them to linear and the sRGB target encodes them again (a power per channel and
 //! texel more).
 
-use super::camera_frame::CameraImage;
+use super::backdrop::CameraImage;
 use render::gpu::Gpu;
 
 pub const CAMERA_YUV: &str = include_str!("../../../shaders/effects/camera_yuv.wgsl");

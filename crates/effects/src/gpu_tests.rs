@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use glam::{DVec2, DVec3};
 use wgpu::util::DeviceExt;
 
-use super::camera_frame::CameraFrame;
+use super::backdrop::Backdrop;
 use super::passes::{ArConfig, OFFSCREEN_REUSED, add_effect_passes};
 use super::{Effect, EffectSet};
 use render::golden::{Region, compare, differing, verify};
@@ -31,10 +31,10 @@ fn config(effects: EffectSet) -> ArConfig {
     }
 }
 
-fn frame_for(scene: &Scene, cfg: &ArConfig) -> CameraFrame {
+fn frame_for(scene: &Scene, cfg: &ArConfig) -> Backdrop {
     let [ax, az, bx, bz] = scene.play_area;
     let centre = DVec2::new(ax + bx, az + bz) / 2.0;
-    CameraFrame::synthetic(
+    Backdrop::synthetic(
         &scene.camera,
         SIZE,
         cfg.table_depth,
@@ -449,6 +449,50 @@ fn a_paused_still_frame_reuses_the_reflection_and_caustics_and_looks_the_same() 
     turned.camera.eye.x += 2.0;
     let (_, report) = render_image(&gpu, &mut r, &turned, SIZE).expect("render");
     assert!(!reason(&report).contains(OFFSCREEN_REUSED));
+}
+
+/// The camera image switched off and on live (the Scene panel's switch) lights the boats as a
+/// renderer built with that set of effects does: by the sun and sky without the image, by the
+/// room's light over it. (The room's light was set once, when the passes were added, so
+/// switching the image off left the boats in the room's light over the sky.)
+#[test]
+fn switching_the_camera_image_live_relights_the_boats_as_a_fresh_build_does() {
+    let Some(gpu) = test_gpu() else { return };
+    let scene = table_scene(40.0);
+    assert!(!scene.boats.is_empty(), "the demo table has boats");
+    let without_image = EffectSet::ALL
+        .iter()
+        .filter(|&e| e != Effect::Background)
+        .fold(EffectSet::NONE, EffectSet::with);
+    let mut r = Renderer::new(&gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+    let cfg = config(EffectSet::ALL);
+    let frame = frame_for(&scene, &cfg);
+    let handle = add_effect_passes(&mut r, &gpu, cfg, frame);
+    handle.set_effects(without_image);
+    let (off, _) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert_eq!(
+        compare(&off, &render_with(&gpu, &scene, Some(without_image))),
+        (0.0, 0.0),
+        "the image switched off live"
+    );
+    handle.set_effects(EffectSet::ALL);
+    let (on, _) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert_eq!(
+        compare(&on, &render_with(&gpu, &scene, Some(EffectSet::ALL))),
+        (0.0, 0.0),
+        "the image switched on again"
+    );
+    // Built without the image and switched on: the room's light.
+    let mut r = Renderer::new(&gpu, OFFSCREEN_FORMAT, RenderOptions::default());
+    let cfg = config(without_image);
+    let frame = frame_for(&scene, &cfg);
+    add_effect_passes(&mut r, &gpu, cfg, frame).set_effects(EffectSet::ALL);
+    let (on, _) = render_image(&gpu, &mut r, &scene, SIZE).expect("render");
+    assert_eq!(
+        compare(&on, &render_with(&gpu, &scene, Some(EffectSet::ALL))),
+        (0.0, 0.0),
+        "the image switched on in a set built without it"
+    );
 }
 
 #[test]

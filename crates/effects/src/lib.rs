@@ -5,7 +5,7 @@
 //! ([`render::optics`]). A crate on the render
 //! core (`render`): its passes implement [`render::Pass`] and draw with the core's helpers.
 //!
-//! Invariant: it knows nothing of ARCore (a camera image arrives as a [`camera_frame`] value),
+//! Invariant: it knows nothing of ARCore (a camera image arrives as a [`backdrop`] value),
 //! egui, the command line, races or the pool scene; `render` knows nothing of it.
 //!
 //! Each effect has a pure, host-tested model here (f64, no GPU): the GPU passes follow these
@@ -18,7 +18,7 @@
 //! - [`flow_detail`]: the detail field the flow map advects, its baked texture and its bound.
 //! - [`planner`]: when each effect pass runs, and why it does not.
 
-pub mod camera_frame;
+pub mod backdrop;
 #[cfg(test)]
 mod camera_gpu_tests;
 pub mod camera_upload;

@@ -263,10 +263,9 @@ fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
 /// the passes fill them (local origin 0); the rest zero.
 fn effects_uniform(camera: &PinholeCamera, table: [f64; 4]) -> EffectsUniform {
     let mut fx: EffectsUniform = bytemuck::Zeroable::zeroed();
-    fx.camera_projection = camera
-        .image_projection(camera.pose.inverse())
-        .as_mat4()
-        .to_cols_array_2d();
+    let image = camera.image_projection(camera.pose.inverse());
+    fx.camera_projection = image.as_mat4().to_cols_array_2d();
+    fx.table_image = effects::passes::table_image(image, table[0]);
     fx.table = table.map(|v| v as f32);
     fx
 }

@@ -2,14 +2,15 @@
 
 use std::fmt;
 
-/// How much of the race overlay is drawn (labels, trails, course lines).
+/// How many of the race overlays a tier draws (of those the user chose); the app's overlay
+/// table says which overlay needs which detail (docs/overlays.md, "Tiers").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum OverlayDetail {
-    /// Labels and marks only.
+    /// Boat labels and the course.
     Essential,
-    /// Labels, marks, trails and the course.
+    /// Adds the trails (with their manoeuvre marks) and the wind.
     Standard,
-    /// Everything, trails at full length and laylines.
+    /// Every overlay: adds the ahead/behind lines.
     Full,
 }
 

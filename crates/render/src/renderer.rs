@@ -178,8 +178,9 @@ pub struct Renderer {
     wake_sources: usize,
     /// The real sea's water (its type colours the open sea's body).
     water_look: crate::water_look::WaterLook,
-    /// The room's diffuse radiance over the camera image (the AR water's and the boats'), or
-    /// none: the open sea under the sun and sky.
+    /// The room's diffuse radiance over the camera image (the AR water's and the boats'), in
+    /// the frames where a pass draws the camera image; none: the open sea under the sun and
+    /// sky.
     room_light: Option<[f64; 3]>,
 }
 
@@ -255,6 +256,11 @@ impl Renderer {
         self.invalidate();
     }
 
+    /// The most wake sources a frame draws ([`Renderer::set_wake_source_budget`]).
+    pub fn wake_source_budget(&self) -> usize {
+        self.wake_sources
+    }
+
     /// The real sea's water: its type sets the open sea's body colour (`view_light`).
     /// Unchanged, nothing happens (callers may hand it every frame).
     pub fn set_water_look(&mut self, look: crate::water_look::WaterLook) {
@@ -265,7 +271,8 @@ impl Renderer {
     }
 
     /// The room's diffuse radiance per band that the water over the camera image takes, so the
-    /// boats take it too (`view_light::boat_in_room`); none: the open sea's sun and sky.
+    /// boats take it too (`view_light::boat_in_room`), in each frame where a pass that fills
+    /// the background (the camera image) runs; none: the open sea's sun and sky.
     pub fn set_room_light(&mut self, radiance: Option<[f64; 3]>) {
         self.room_light = radiance;
         self.invalidate();
@@ -277,7 +284,7 @@ impl Renderer {
         self.passes.push(pass);
     }
 
-    /// Whether a pass named `name` is registered (the app adds its overlay passes once).
+    /// Whether a pass named `name` is registered (the app adds its segment passes once).
     pub fn has_pass(&self, name: &str) -> bool {
         self.passes.iter().any(|p| p.name() == name)
     }
@@ -430,17 +437,20 @@ impl Renderer {
         let scene = raised.as_ref().map_or(scene, |(s, _)| s);
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
         frame.uniform.water_body = crate::view_light::water_body_uniform(&self.water_look);
-        if let Some(l) = self.room_light {
-            frame.uniform.room_light = [l[0] as f32, l[1] as f32, l[2] as f32, 1.0];
-        }
         if let Some(w) = &self.wake {
             gather_wakes(gpu, w, (self.wake_budget, self.wake_sources), &mut frame);
         }
-        self.bindings
-            .upload(&gpu.queue, &frame.uniform, &frame.waves);
         let depth = self.depth.view(gpu, size);
         // Plan.
         let (run, mut records) = self.plan(gpu, &frame);
+        // The room's light only in a frame that shows the camera image: a switch of the
+        // image, live, relights the boats from the next frame on.
+        let image_shown = run.iter().any(|&i| self.passes[i].fills_background());
+        if let Some(l) = self.room_light.filter(|_| image_shown) {
+            frame.uniform.room_light = [l[0] as f32, l[1] as f32, l[2] as f32, 1.0];
+        }
+        self.bindings
+            .upload(&gpu.queue, &frame.uniform, &frame.waves);
         // Record.
         let measure = self.options.measure_gpu_time;
         let timer = self

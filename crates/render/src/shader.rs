@@ -11,8 +11,8 @@ pub const SKY: &str = include_str!("../../../shaders/render/sky.wgsl");
 pub const UPSCALE: &str = include_str!("../../../shaders/render/upscale.wgsl");
 pub const WATER: &str = include_str!("../../../shaders/render/water.wgsl");
 pub const BOATS: &str = include_str!("../../../shaders/render/boats.wgsl");
-/// The scene overlays: world segments as screen-space capsules (`passes::overlay`).
-pub const OVERLAY: &str = include_str!("../../../shaders/render/overlay.wgsl");
+/// Segment layers: world segments as screen-space capsules (`passes::segments`).
+pub const SEGMENTS: &str = include_str!("../../../shaders/render/segments.wgsl");
 pub const WAVE_HEIGHTS: &str = include_str!("../../../shaders/render/wave_heights.wgsl");
 /// The boats' wake sources: `ocean`'s `shaders/wake.wgsl` after its generated constants
 /// (`ocean::wake::wake_wgsl`; `ocean::wake::gpu` mirrors it in f32), assembled once, there.

@@ -1,6 +1,6 @@
 //! The "Scene" panel: one switch per renderer effect and the quality tier control
-//! ([`crate::tier::tier_ui`]), one switch per scene overlay (`labels`,
-//! `trails`, `course`, `lines`, `wind`: the names of `regatta render --overlays`), and the
+//! ([`crate::tier::tier_ui`]), one switch per race overlay (the app gives them, named as
+//! `regatta render --overlays` names them: ui keeps no list of its own), and the
 //! real sea shown on the table (water type, depth, turbidity). ui knows none of the renderer's types: the panel
 //! returns what changed as [`SettingChange`]s named as on the command line, and the app maps
 //! each name onto its renderer (and says which it cannot apply, [`SceneSettings::unavailable`]).
@@ -9,15 +9,6 @@ use egui::{RichText, Ui};
 
 use crate::effects::{EffectToggle, effects_ui};
 use crate::tier::{TierChange, TierPanel, tier_ui};
-
-/// The scene overlays, as `--overlays` names them, with what a person sees.
-pub const OVERLAYS: [(&str, &str); 5] = [
-    ("labels", "Boat labels"),
-    ("trails", "Trails"),
-    ("course", "Course and marks"),
-    ("lines", "Ahead/behind lines"),
-    ("wind", "Wind"),
-];
 
 /// What the water sliders span and start at, in real units (the app gives the renderer's own
 /// ranges: ui keeps no copy of them).
@@ -48,7 +39,7 @@ impl Default for WaterRanges {
 pub enum SettingChange {
     /// An effect (`background`, `reflection`, …, `wakes`) on or off.
     Effect { key: String, enabled: bool },
-    /// An overlay (`labels`, `trails`, `course`, `lines`, `wind`) on or off.
+    /// A race overlay (its `--overlays` name) on or off.
     Overlay { key: String, enabled: bool },
     /// The real sea's water type (`--water-type` name).
     WaterType(String),
@@ -82,15 +73,12 @@ pub struct SceneSettings {
 }
 
 impl SceneSettings {
-    /// `effects` as the app offers them, every overlay on, 5 m of oceanic IB water (the app sets
-    /// the renderer's own defaults and ranges).
+    /// `effects` as the app offers them, no overlay switches (the app sets its own), 5 m of
+    /// oceanic IB water (the app sets the renderer's own defaults and ranges).
     pub fn new(effects: Vec<EffectToggle>) -> Self {
         Self {
             effects,
-            overlays: OVERLAYS
-                .iter()
-                .map(|(k, l)| EffectToggle::new(k, l, true))
-                .collect(),
+            overlays: Vec::new(),
             water_type: "IB".to_string(),
             water_depth_m: 5.0,
             turbidity: 0.0,

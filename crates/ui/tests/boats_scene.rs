@@ -83,6 +83,7 @@ fn the_event_list_jumps_to_the_event() {
 #[test]
 fn the_scene_panel_reports_changes_by_name() {
     let mut s = SceneSettings::new(effects());
+    s.overlays = common::race_overlays();
     s.unavailable
         .push(("wind".into(), "no wind in the race".into()));
     let mut h = Harness::builder()
@@ -126,6 +127,7 @@ struct App {
 
 fn app_harness<'a>(race: &'a race::Race, ev: &'a [TimelineEvent], size: Vec2) -> Harness<'a, App> {
     let mut panels = RegattaUi::new(RaceClock::new(race.time_span()), effects());
+    panels.settings.overlays = common::race_overlays();
     panels.show_boats = true;
     Harness::builder().with_size(size).build_ui_state(
         move |ui, app: &mut App| {
@@ -234,6 +236,7 @@ fn the_races_panel_opens_an_entry_and_shows_the_error() {
 #[test]
 fn snapshot_scene_panel() {
     let mut s = SceneSettings::new(effects());
+    s.overlays = common::race_overlays();
     s.unavailable
         .push(("wind".into(), "no wind in the race".into()));
     s.tier = Some(ui::TierPanel::auto(quality::Tier::High));

@@ -248,6 +248,7 @@ fn snapshot_whole_layout() {
     let mut clock = RaceClock::new((t0, t1));
     clock.scrub_to(t);
     let mut app = RegattaUi::new(clock, toggles());
+    app.settings.overlays = common::race_overlays();
     app.show_scene = true;
     app.show_boats = true;
     let title = format!("{} · synthetic feed", race.name);

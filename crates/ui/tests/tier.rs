@@ -8,6 +8,8 @@ use quality::{Target, Tier};
 use ui::tier::{TierChange, TierPanel, tier_ui};
 use ui::{EffectToggle, RaceClock, RegattaUi, UiFrame};
 
+mod common;
+
 fn harness(panel: TierPanel) -> Harness<'static, (TierPanel, Vec<TierChange>)> {
     Harness::builder().build_ui_state(
         |ui, (p, changes): &mut (TierPanel, Vec<TierChange>)| {
@@ -63,6 +65,7 @@ fn layout(race: &race::Race, size: Vec2, current: Tier) -> Harness<'_, App> {
         RaceClock::new(race.time_span()),
         vec![EffectToggle::new("wakes", "Wakes", true)],
     );
+    panels.settings.overlays = common::race_overlays();
     panels.show_scene = true;
     panels.settings.tier = Some(TierPanel::auto(current));
     Harness::builder().with_size(size).build_ui_state(

@@ -28,7 +28,8 @@ pub fn tier_frame(tier: Tier) -> (&'static PhoneGpu, f64) {
 pub fn camera_image_ms(phone: &PhoneGpu, image: [u32; 2]) -> Result<f64, String> {
     let no_loops = Trips {
         waves: 0.0,
-        waves_in_pixel: 0.0,
+        resolved_waves_in_pixel: 0.0,
+        fading_waves_in_pixel: 0.0,
         wake_sources_per_vertex: 0.0,
         wake_foam_sources_per_vertex: 0.0,
         marks: 0.0,

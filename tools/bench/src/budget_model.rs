@@ -303,9 +303,9 @@ mod tests {
             regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
         let t = TierRender::of(tier);
         let size = [180, 320];
-        let (mut renderer, fx) = t
-            .renderer(gpu, Some(&race), &scene, size)
-            .expect("renderer");
+        let (mut renderer, fx) =
+            regatta::setup::RaceSetup::tier_renderer(&t, gpu, Some(&race), &scene, size)
+                .expect("renderer");
         let view = crate::offscreen(gpu, size);
         let report = renderer.render(gpu, &view, size, &scene).expect("frame");
         assert!(
@@ -325,7 +325,8 @@ mod tests {
             ar: &t.ar,
             trips: Trips {
                 waves: scene.sea.waves.len() as f64,
-                waves_in_pixel: scene.sea.waves.len() as f64,
+                resolved_waves_in_pixel: scene.sea.waves.len() as f64,
+                fading_waves_in_pixel: 1.0,
                 wake_sources_per_vertex: 4.0,
                 wake_foam_sources_per_vertex: 1.0,
                 marks: scene.marks.len() as f64,

@@ -61,9 +61,11 @@ fn trips(
         &mut frame,
     );
     let [height, foam] = wake_sources_per_vertex(&frame);
+    let [resolved, fading] = waves_in_pixel(&frame);
     let trips = Trips {
         waves: scene.sea.waves.len() as f64,
-        waves_in_pixel: waves_in_pixel(&frame),
+        resolved_waves_in_pixel: resolved,
+        fading_waves_in_pixel: fading,
         wake_sources_per_vertex: height,
         wake_foam_sources_per_vertex: foam,
         marks: scene.marks.len() as f64,
@@ -104,30 +106,38 @@ fn sea_surface<'a>(frame: &'a render::frame::FrameContext) -> impl Fn([f64; 2]) 
     }
 }
 
-/// The waves a water fragment's `surface_frame` sums, the mean over the fragments a GPU
-/// shading 2×2 quads runs for the frame's clip-map: the loop runs the waves sorted by
-/// wavenumber up to the first with k·footprint ≥ π/2 (fully faded by the pixel filter).
-fn waves_in_pixel(frame: &render::frame::FrameContext) -> f64 {
+/// The turns of a water fragment's two wave loops in `surface_frame`, the means over the
+/// fragments a GPU shading 2×2 quads runs for the frame's clip-map: `resolved_waves` runs the
+/// waves sorted by wavenumber while k·footprint < π/4 (the pixel filter leaves them whole),
+/// `fading_waves` from there while k·footprint < π/2 (the filter fades them). Each loop's
+/// turn that meets its limit runs its test too: counted as a turn.
+fn waves_in_pixel(frame: &render::frame::FrameContext) -> [f64; 2] {
     let footprints = frame
         .mesh
         .footprints(frame.view_proj, frame.size, sea_surface(frame));
-    let limit = 0.5 * std::f64::consts::PI;
-    let (mut turns, mut fragments) = (0.0, 0.0);
-    for (footprint, n) in footprints {
-        let kept = frame
+    let quarter = 0.25 * std::f64::consts::PI;
+    let n = frame.waves.len();
+    let below = |limit: f64, footprint: f64| {
+        frame
             .waves
             .iter()
             .take_while(|w| f64::from(w.k) * footprint < limit)
-            .count();
-        // The turn that finds the first faded wave runs its test too: counted as a turn.
-        let run = (kept + 1).min(frame.waves.len());
-        turns += run as f64 * n as f64;
-        fragments += n as f64;
+            .count()
+    };
+    let (mut turns, mut fragments) = ([0.0; 2], 0.0);
+    for (footprint, quads) in footprints {
+        let whole = below(quarter, footprint);
+        let fading = below(2.0 * quarter, footprint) - whole;
+        let resolved_turns = (whole + 1).min(n);
+        let fading_turns = (fading + 1).min(n - whole);
+        turns[0] += (resolved_turns * quads as usize) as f64;
+        turns[1] += (fading_turns * quads as usize) as f64;
+        fragments += quads as f64;
     }
     if fragments == 0.0 {
-        frame.waves.len() as f64
+        [n as f64, 0.0]
     } else {
-        turns / fragments
+        turns.map(|t| t / fragments)
     }
 }
 
@@ -176,7 +186,8 @@ pub(crate) fn measure(
         "budget: {} {tier} at {}×{}",
         phone.phone, size[0], size[1]
     ));
-    let (mut renderer, fx) = t.renderer(gpu, Some(&race), &scene, size)?;
+    let (mut renderer, fx) =
+        regatta::setup::RaceSetup::tier_renderer(&t, gpu, Some(&race), &scene, size)?;
     let view = crate::offscreen(gpu, size);
     let failed = |e: render::GpuError| CliError(e.to_string());
     let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up
@@ -357,7 +368,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         tiers.note(format!("{} ({}) rates: {}", p.phone, p.gpu, p.sources));
     }
     let path = ctx.out_dir.join("budget.json");
-    regatta::cli::output::write_text(&path, &serde_json::to_string_pretty(&json_rows)?)?;
+    regatta::setup::output::write_text(&path, &serde_json::to_string_pretty(&json_rows)?)?;
     let passes = passes_table(&rows);
     let accuracy = accuracy_table(ctx, &rows)?;
     let yuv = yuv_table(ctx, &gpu)?;
@@ -521,7 +532,8 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
         water.set_wake(Some(wake.clone()));
         let water_report = water.render(gpu, &view, size, &scene).map_err(failed)?;
         let water_report = as_phone_shades(&water_report, &scene, &ultra);
-        let (mut all, fx) = ultra.renderer(gpu, Some(&race), &scene, size)?;
+        let (mut all, fx) =
+            regatta::setup::RaceSetup::tier_renderer(&ultra, gpu, Some(&race), &scene, size)?;
         let all_report = all.render(gpu, &view, size, &scene).map_err(failed)?;
         let all_report = as_phone_shades(&all_report, &scene, &ultra);
         let (trips, wake_buffer_bytes, clipmap_vertices) = trips(&scene, &ultra, &wake, size);
@@ -597,9 +609,9 @@ mod tests {
         let scene = regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
         let t = TierRender::of(Tier::High);
         let size = [270, 540];
-        let (mut renderer, _) = t
-            .renderer(&gpu, Some(&race), &scene, size)
-            .expect("renderer");
+        let (mut renderer, _) =
+            regatta::setup::RaceSetup::tier_renderer(&t, &gpu, Some(&race), &scene, size)
+                .expect("renderer");
         let view = crate::offscreen(&gpu, size);
         let report = renderer.render(&gpu, &view, size, &scene).expect("frame");
         if report.shader_invocations.is_empty() {

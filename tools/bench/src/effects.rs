@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::Instant;
 
-use effects::camera_frame::{CameraFrame, CameraImage, Yuv420, YuvRange};
+use effects::backdrop::{Backdrop, CameraImage, Yuv420, YuvRange};
 use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use effects::{Effect, EffectSet, demo_table_scene};
 use render::optics::{N_AIR, N_WATER, brewster_angle, critical_angle, fresnel, schlick};
@@ -33,7 +33,7 @@ struct Case {
     view: wgpu::TextureView,
     /// A camera frame handed over before every frame (the YUV case: as ARCore does), with
     /// the handle that takes it.
-    new_frames: Option<(EffectsHandle, CameraFrame)>,
+    new_frames: Option<(EffectsHandle, Backdrop)>,
 }
 
 /// The kind of camera image a case draws over.
@@ -68,7 +68,7 @@ impl Case {
                 ..ArConfig::default()
             };
             let [ax, az, bx, bz] = scene.play_area;
-            let frame = CameraFrame::synthetic(
+            let frame = Backdrop::synthetic(
                 &scene.camera,
                 size,
                 cfg.table_depth,
@@ -103,7 +103,7 @@ impl Case {
         let scene = demo_table_scene(t);
         let t0 = Instant::now();
         if let Some((handle, frame)) = &self.new_frames {
-            handle.set_camera_frame(gpu, frame.clone());
+            handle.set_backdrop(gpu, frame.clone());
         }
         let report = self
             .renderer

@@ -253,8 +253,8 @@ fn write_report(ctx: &BenchContext, tables: &[Table]) -> CliResult {
     let json =
         serde_json::to_string_pretty(&serde_json::json!({ "quick": ctx.quick, "tables": tables }))?;
     // Written whole or not at all, a failure naming the file.
-    regatta::cli::output::write_text(&ctx.out_dir.join("report.json"), &json)?;
-    regatta::cli::output::write_text(&ctx.out_dir.join("report.md"), &markdown(tables))
+    regatta::setup::output::write_text(&ctx.out_dir.join("report.json"), &json)?;
+    regatta::setup::output::write_text(&ctx.out_dir.join("report.md"), &markdown(tables))
 }
 
 /// The tables as Markdown, for the README and for people.

@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use render::passes::overlay::{OverlayHandle, add_overlay_passes};
+use render::passes::segments::SegmentLayers;
 use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
 
@@ -34,12 +34,12 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let race = race::Race::sample();
     // Worked out once per race, as the windows do (not a per-frame cost).
     let debrief = race::Debrief::of(&race);
-    let sea = regatta::cli::inputs::drawable_sea(ocean::WaveSet::default_sea());
+    let sea = regatta::setup::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let options = RenderOptions::default();
     let mut plain = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
     let mut with = Renderer::new(&gpu, OFFSCREEN_FORMAT, options);
-    let handle = OverlayHandle::default();
-    add_overlay_passes(&mut with, &gpu, &handle);
+    let handle = SegmentLayers::default();
+    scene_overlay::add_passes(&mut with, &gpu, &handle);
     let texture = render::gpu::texture_2d_with_views(
         &gpu.device,
         "bench overlays",
@@ -49,10 +49,8 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         &[OFFSCREEN_FORMAT.remove_srgb_suffix()],
     );
     let view = texture.create_view(&Default::default());
-    let mut painter = regatta::overlay::EguiPainter::for_format(
-        &gpu.device,
-        OFFSCREEN_FORMAT.remove_srgb_suffix(),
-    );
+    let mut painter =
+        regatta::hud::EguiPainter::for_format(&gpu.device, OFFSCREEN_FORMAT.remove_srgb_suffix());
     let settings = OverlaySettings::default();
     let ppp = scene_overlay::paint::headless_pixels_per_point(size);
     let (mut wall, mut gpu_ms) = ([Vec::new(), Vec::new()], [Vec::new(), Vec::new()]);

@@ -57,12 +57,15 @@ impl Cost {
 pub struct Trips {
     /// Waves of the sea the shaders sum (`frame.counts.x`).
     pub waves: f64,
-    /// Waves a fragment's `surface_frame` sums, the mean over the water's fragments: its
-    /// loop stops at the first wave its pixel filter fades out (the frame's waves are sorted
-    /// by wavenumber), so a fragment sums the waves longer than about four of its
-    /// footprints. Counted on the CPU from each clip-map triangle's footprint
-    /// (`render::clipmap::ClipMesh::footprints`).
-    pub waves_in_pixel: f64,
+    /// Turns of a fragment's `resolved_waves` loop (surface_frame's waves the pixel filter
+    /// leaves whole, k·footprint < π/4, and the turn that meets the first it fades), the mean
+    /// over the water's fragments. Counted on the CPU from each clip-map triangle's footprint
+    /// (`render::clipmap::ClipMesh::footprints`); the frame's waves are sorted by wavenumber.
+    pub resolved_waves_in_pixel: f64,
+    /// Turns of a fragment's `fading_waves` loop (the waves the filter fades, π/4 ≤
+    /// k·footprint < π/2, and the turn that meets the first it fades out entirely), the
+    /// same mean.
+    pub fading_waves_in_pixel: f64,
     /// Wake sources whose height a clip-map vertex sums (its bin's height list), the mean
     /// over the vertices (0 for a vertex in an empty bin).
     pub wake_sources_per_vertex: f64,
@@ -78,8 +81,13 @@ impl Trips {
     fn of(&self, name: &str, stage: naga::ShaderStage) -> f64 {
         match name {
             // Only a fragment has a footprint; elsewhere the loop runs every wave.
-            "surface_frame" if stage == naga::ShaderStage::Fragment => self.waves_in_pixel,
-            "surface_frame" | "sea_displaced" | "grid_point" | "wave_height" => self.waves,
+            "resolved_waves" if stage == naga::ShaderStage::Fragment => {
+                self.resolved_waves_in_pixel
+            }
+            "fading_waves" if stage == naga::ShaderStage::Fragment => self.fading_waves_in_pixel,
+            // Elsewhere the footprint is 0: every wave is resolved, none fades.
+            "fading_waves" => 0.0,
+            "resolved_waves" | "sea_displaced" | "grid_point" | "wave_height" => self.waves,
             "wake_at" => self.wake_sources_per_vertex,
             "wake_foam_at" => self.wake_foam_sources_per_vertex,
             "current_at" => self.marks.min(8.0),
@@ -428,14 +436,15 @@ mod tests {
 
     const TRIPS: Trips = Trips {
         waves: 10.0,
-        waves_in_pixel: 4.0,
+        resolved_waves_in_pixel: 4.0,
+        fading_waves_in_pixel: 1.0,
         wake_sources_per_vertex: 3.0,
         wake_foam_sources_per_vertex: 1.0,
         marks: 2.0,
     };
 
-    /// Hand-counted: a vec4 fma (8), a scalar add in a loop of `waves_in_pixel` turns in a
-    /// function called `surface_frame` in a fragment stage (4 × 1), one texture sample, a
+    /// Hand-counted: a vec4 fma (8), a scalar add in a loop of `resolved_waves_in_pixel` turns
+    /// in a function called `resolved_waves` in a fragment stage (4 × 1), one texture sample, a
     /// storage load of a vec4 (16 B).
     #[test]
     fn a_small_shader_counts_as_by_hand() {
@@ -443,7 +452,7 @@ mod tests {
 @group(0) @binding(0) var t: texture_2d<f32>;
 @group(0) @binding(1) var s: sampler;
 @group(0) @binding(2) var<storage, read> buf: array<vec4<f32>>;
-fn surface_frame(n: u32) -> f32 {
+fn resolved_waves(n: u32) -> f32 {
     var x = 0.0;
     for (var i = 0u; i < n; i = i + 1u) { x = x + 1.5; }
     return x;
@@ -451,7 +460,7 @@ fn surface_frame(n: u32) -> f32 {
 @fragment
 fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
     let a = fma(p, p, p);
-    let b = surface_frame(u32(p.x));
+    let b = resolved_waves(u32(p.x));
     let c = textureSample(t, s, p.xy);
     let d = buf[0];
     return a + c + d + vec4<f32>(b);
@@ -467,10 +476,10 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
 
     /// The same loop in a compute stage runs every wave (no footprint there): 3 × 10.
     #[test]
-    fn surface_frame_runs_every_wave_outside_a_fragment() {
+    fn resolved_waves_runs_every_wave_outside_a_fragment() {
         let src = r#"
 @group(0) @binding(0) var<storage, read_write> out: array<f32>;
-fn surface_frame(n: u32) -> f32 {
+fn resolved_waves(n: u32) -> f32 {
     var x = 0.0;
     for (var i = 0u; i < n; i = i + 1u) { x = x + 1.5; }
     return x;
@@ -478,7 +487,7 @@ fn surface_frame(n: u32) -> f32 {
 const WG: u32 = 1u;
 @compute @workgroup_size(WG)
 fn cs(@builtin(global_invocation_id) id: vec3<u32>) {
-    out[0] = surface_frame(id.x);
+    out[0] = resolved_waves(id.x);
 }
 "#;
         let c = entry_cost(src, "cs", &TRIPS).unwrap();
@@ -486,20 +495,20 @@ fn cs(@builtin(global_invocation_id) id: vec3<u32>) {
         assert_eq!(c.alu, 30.0, "{c:?}");
     }
 
-    /// The hand-counted shader above by function: `surface_frame`'s loop (3 × 10 turns) is
+    /// The hand-counted shader above by function: `resolved_waves`' loop (3 × 10 turns) is
     /// its share, the rest the entry's own; a function called in a loop counts once per turn.
     #[test]
     fn a_function_share_is_its_calls_work_as_counted_by_hand() {
         let src = r#"
 fn double_up(x: f32) -> f32 { return x * 2.0 + 1.0; }
-fn surface_frame(n: u32) -> f32 {
+fn resolved_waves(n: u32) -> f32 {
     var x = 0.0;
     for (var i = 0u; i < n; i = i + 1u) { x = double_up(x); }
     return x;
 }
 @fragment
 fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(surface_frame(u32(p.x)) + double_up(p.y));
+    return vec4<f32>(resolved_waves(u32(p.x)) + double_up(p.y));
 }
 "#;
         let total = entry_cost(src, "fs", &TRIPS).unwrap();
@@ -508,9 +517,9 @@ fn fs(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
         // double_up: 2 per call, 4 calls in the loop (a fragment's waves) and 1 in the entry;
         // the loop's compare and increment 2 per turn; the entry: u32(p.x) and the add.
         assert_eq!(share("double_up"), 2.0 * 5.0);
-        assert_eq!(share("surface_frame"), (2.0 + 2.0) * 4.0);
+        assert_eq!(share("resolved_waves"), (2.0 + 2.0) * 4.0);
         assert_eq!(total.alu, 16.0 + 2.0 + 2.0, "{total:?}");
-        assert_eq!(shares[0].0, "surface_frame");
+        assert_eq!(shares[0].0, "resolved_waves");
     }
 
     /// A branch on a pipeline constant counts only the branch that runs.

@@ -512,6 +512,38 @@ fn collect(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) -> std::io:
     Ok(())
 }
 
+impl Graph {
+    /// The graph of the crate's top-level folders: each module stands for the top-level
+    /// module it lies in (`core::phone::draw` → `core`); edges inside one folder and edges from
+    /// or to the crate root (which declares every folder and, in a binary, calls into them) are
+    /// left out. A cycle here is a back arrow between folders: `a` names something in `b` and
+    /// `b` (or a folder it names) something in `a`.
+    pub fn folders(&self) -> Graph {
+        let top = |m: &str| m.split("::").next().unwrap_or("").to_string();
+        let mut out = Graph::default();
+        for (from, tos) in &self.edges {
+            let a = top(from);
+            for to in tos {
+                let b = top(to);
+                if !a.is_empty() && !b.is_empty() && a != b {
+                    out.edges.entry(a.clone()).or_default().insert(b);
+                }
+            }
+        }
+        out
+    }
+
+    /// The top-level folders with an edge to `folder` in [`Graph::folders`]: who imports it.
+    pub fn importers_of(&self, folder: &str) -> Vec<String> {
+        self.folders()
+            .edges
+            .iter()
+            .filter(|(_, tos)| tos.contains(folder))
+            .map(|(from, _)| from.clone())
+            .collect()
+    }
+}
+
 /// A cycle as people read it: `a → b → a` (the crate root is `crate`).
 pub fn describe(cycle: &[String]) -> String {
     let name = |m: &String| {
@@ -612,6 +644,44 @@ mod tests {
         // belongs to b.
         assert_eq!(g.edges["a"], BTreeSet::from(["b".to_string()]));
         assert!(g.cycles().is_empty());
+    }
+
+    #[test]
+    fn folders_fold_modules_into_their_top_folder_and_find_back_arrows() {
+        // core::phone → overlay::touch and overlay → core::scene: no module cycle, but a back
+        // arrow between the folders core and overlay; cli is imported by desktop.
+        let g = Graph::from_files(&files(&[
+            (
+                "",
+                "mod core;\nmod overlay;\nmod cli;\nmod desktop;\nfn main() { cli::run(); }\n",
+            ),
+            ("core", "pub mod phone;\npub mod scene;\n"),
+            ("core::phone", "use crate::overlay::touch::Touch;\n"),
+            ("core::scene", "pub struct Scene;\n"),
+            (
+                "overlay",
+                "pub mod touch;\nuse crate::core::scene::Scene;\n",
+            ),
+            ("overlay::touch", "pub struct Touch;\n"),
+            ("cli", "pub fn run() { crate::desktop::go(); }\n"),
+            ("desktop", "pub fn go() {}\nuse crate::cli::run;\n"),
+        ]));
+        assert!(
+            g.cycles().iter().all(|c| !c.contains(&"core".to_string())),
+            "{:?}",
+            g.cycles()
+        );
+        let folders = g.folders();
+        let cycles: Vec<String> = folders.cycles().iter().map(|c| describe(c)).collect();
+        assert!(
+            cycles.contains(&"core → overlay → core".to_string()),
+            "{cycles:?}"
+        );
+        assert_eq!(g.importers_of("cli"), vec!["desktop".to_string()]);
+        assert!(
+            !folders.edges.contains_key(""),
+            "the root's own calls are left out"
+        );
     }
 
     #[test]

@@ -6,14 +6,15 @@ use std::path::PathBuf;
 
 use clap::Args;
 use glam::{DVec2, DVec3};
-use render::{Camera, RenderOptions, Renderer};
+use render::Camera;
 
-use crate::cli::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
-use crate::cli::output::{ImageOut, write_text};
+use crate::setup::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
+use crate::setup::output::{ImageOut, write_text};
+use crate::setup::{Profile, RaceSetup};
 
 pub mod clip;
 pub mod replay;
-use crate::core::scene::{FAR_M, RaceWorld};
+use crate::core::scene::FAR_M;
 use crate::error::{CliError, CliResult};
 
 #[derive(Debug, Args)]
@@ -74,7 +75,8 @@ pub struct RenderArgs {
         value_parser = crate::cli::inputs::whole_number::<usize>("from 0 to the feed's last frame"))]
     pub frame: Option<usize>,
     /// A quality tier (low, medium, high, ultra; docs/quality.md): its render scale, clip-map
-    /// error target, AR effects and their sizes, wake spacing and budget.
+    /// error target, AR effects and their sizes, wake spacing and budget, and which of the
+    /// race overlays it draws (its overlay detail; docs/overlays.md, "Tiers").
     #[arg(long, conflicts_with_all = ["effects", "error_px"])]
     pub tier: Option<String>,
     /// A clip's first race time, seconds since the start (with --to and a .gif --out).
@@ -124,7 +126,7 @@ pub fn note_unmet_error(report: &render::FrameReport) {
     }
 }
 
-pub use super::scene_kind::SceneKind;
+pub use crate::setup::SceneKind;
 
 /// Parse `WIDTHxHEIGHT` (each 1..=8192).
 pub fn parse_size(s: &str) -> CliResult<[u32; 2]> {
@@ -211,12 +213,16 @@ pub fn run(a: RenderArgs) -> CliResult {
             input::show_path(&a.out)
         )));
     }
-    let overlays = overlay_settings(&a)?;
+    let mut overlays = overlay_settings(&a)?;
     let tier = a
         .tier
         .as_deref()
         .map(crate::tier_render::parse_tier)
         .transpose()?;
+    if let Some(tier) = tier {
+        // A tier draws the overlays its detail has (docs/overlays.md, "Tiers").
+        overlays.detail = crate::tier_render::TierRender::of(tier).overlay;
+    }
     if tier.is_some() && effects.is_some() {
         return Err(CliError::new(
             "--tier chooses the effects itself: give --tier or --effects, not both",
@@ -237,75 +243,53 @@ pub fn run(a: RenderArgs) -> CliResult {
                 "--camera has no meaning with --replay: the feed's camera draws",
             ));
         }
-        return replay::run(&a, dir, &out, size, effects, tier, &overlays);
+        return replay::run(
+            &a,
+            dir,
+            &out,
+            size,
+            race_setup(&a, tier, effects, overlays)?,
+        );
     }
     let camera = a
         .camera
         .as_deref()
         .map(|c| parse_camera(c, FAR_M))
         .transpose()?;
-    let world = RaceWorld::new(load_race(&a.race)?, drawable_sea(load_sea(a.sea.as_ref())?));
+    let setup = race_setup(&a, tier, effects, overlays)?;
+    let world = RaceSetup::world(load_race(&a.race)?, load_sea(a.sea.as_ref())?);
     let t = a.t.unwrap_or_else(|| world.middle_time());
     let scene = world.scene_at(t, camera);
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
-    if let Some(tier) = tier {
-        let wakes = (!a.no_wakes).then_some(&world.race);
-        let tier = crate::tier_render::TierRender::of(tier);
-        let (mut renderer, _) = tier.renderer(&gpu, wakes, &scene, size)?;
-        let drawn = (&world.race, &scene);
-        return finish(&a, &out, &gpu, &mut renderer, drawn, size, &overlays);
-    }
-    let mut renderer = Renderer::new(
-        &gpu,
-        render::OFFSCREEN_FORMAT,
-        RenderOptions {
-            error_px: a.error_px,
-            measure_gpu_time: true,
-            ..Default::default()
-        },
-    );
-    if !a.no_wakes {
-        renderer.set_wake(Some(world.wake()?));
-    }
-    let fx = effects::passes::ArConfig::default();
-    let water = a.water.look(fx.water)?;
-    // The open sea's body takes the water type's colour (`render::view_light`).
-    renderer.set_water_look(a.water.look(render::water_look::WaterLook::default())?);
-    if let Some(effects) = effects {
-        let h = effects::passes::add_scene_effects(&mut renderer, &gpu, &scene, size, effects);
-        // The synthetic table stays where its image shows it; the water's optics are asked.
-        h.set_water(water, fx.table_depth);
-    }
-    finish(
-        &a,
-        &out,
-        &gpu,
-        &mut renderer,
-        (&world.race, &scene),
-        size,
-        &overlays,
-    )
-}
-
-/// Draw the frame of `race` (with its `overlays`), save it and print its record.
-fn finish(
-    a: &RenderArgs,
-    out: &ImageOut,
-    gpu: &render::Gpu,
-    renderer: &mut Renderer,
-    (race, scene): (&race::Race, &render::Scene),
-    size: [u32; 2],
-    overlays: &crate::scene_overlay::OverlaySettings,
-) -> CliResult {
-    let debrief = crate::scene_overlay::manoeuvres::debrief_if_shown(race, overlays);
-    let drawn = (race, debrief.as_ref());
-    let (img, report) =
-        crate::scene_overlay::render_headless(gpu, renderer, drawn, scene, size, overlays)
-            .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, setup.wake(&world.race)?);
+    let _effects = setup.scene_effects(&mut renderer, &gpu, &scene, size);
+    let (img, report) = setup.picture(&gpu, &mut renderer, &world, &scene, size)?;
     out.save(&img)?;
     note_unmet_error(&report);
-    print_report(a, &report)
+    print_report(&a, &report)
+}
+
+/// The race scene's set-up the flags ask for: a picture's options with `--error-px` (or the
+/// tier's), the effects, `--no-wakes`, the water flags over the open sea's and the table's
+/// water, and the overlays.
+pub fn race_setup(
+    a: &RenderArgs,
+    tier: Option<quality::Tier>,
+    effects: Option<effects::EffectSet>,
+    overlays: crate::scene_overlay::OverlaySettings,
+) -> CliResult<RaceSetup> {
+    let mut setup = RaceSetup::new(Profile::Picture);
+    setup.options.error_px = a.error_px;
+    if let Some(tier) = tier {
+        setup = setup.with_tier(tier);
+    }
+    setup.effects = effects;
+    setup.wakes = !a.no_wakes;
+    setup.sea_water = a.water.look(setup.sea_water)?;
+    setup.table_water = a.water.look(setup.table_water)?;
+    setup.overlays = overlays;
+    Ok(setup)
 }
 
 /// The overlays `--overlays` asks for (all without it).

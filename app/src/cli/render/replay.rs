@@ -1,41 +1,33 @@
 //! `regatta render --replay DIR [--frame N]`: the table scene as `regatta run --replay` shows
 //! it, headless, over frame N (default 0) of a recorded feed: the race fitted on the feed's
 //! table, the feed's camera, `--effects` (all without it, as in the window) over the real
-//! image. It goes through the window's own [`FeedView`](crate::desktop::feed::FeedView), so
-//! what this draws is what the app draws for that frame. The desktop window module does not
-//! exist on Android, and neither does this path there.
+//! image. It goes through the window's own [`FeedView`](crate::feed::FeedView) (and
+//! [`TableFrame`](crate::feed::TableFrame)), so what this draws is what the app draws for that
+//! frame.
 
 use std::path::Path;
 
-use effects::EffectSet;
-
-use crate::cli::output::ImageOut;
-use crate::cli::render::RenderArgs;
+use crate::cli::render::{RenderArgs, note_unmet_error, print_report};
 use crate::error::{CliError, CliResult};
+use crate::feed::{FeedView, TableFrame};
+use crate::setup::RaceSetup;
+use crate::setup::inputs::{load_race, load_sea};
+use crate::setup::output::ImageOut;
 
-#[cfg(not(target_os = "android"))]
 pub fn run(
     a: &RenderArgs,
     dir: &Path,
     out: &ImageOut,
     size: [u32; 2],
-    effects: Option<EffectSet>,
-    tier: Option<quality::Tier>,
-    overlays: &crate::scene_overlay::OverlaySettings,
+    setup: RaceSetup,
 ) -> CliResult {
-    use crate::cli::inputs::{drawable_sea, load_race, load_sea};
-    use crate::cli::render::{note_unmet_error, print_report};
-    use crate::core::scene::RaceWorld;
-    use render::{RenderOptions, Renderer};
-
-    let mut feed = crate::desktop::feed::FeedView::open(dir)?;
+    let mut feed = FeedView::open(dir)?;
     feed.set_water(a.water.look(feed.water())?);
     // Without --effects, the window's own set; with --tier, the tier's effects and sizes.
-    if let Some(effects) = effects {
+    if let Some(effects) = setup.effects {
         feed = feed.with_effects(effects);
     }
-    let tier = tier.map(crate::tier_render::TierRender::of);
-    if let Some(tier) = &tier {
+    if let Some(tier) = &setup.tier {
         feed = feed.with_quality(&tier.ar);
     }
     let frame = a.frame.unwrap_or(0);
@@ -46,125 +38,22 @@ pub fn run(
             feed.len() - 1
         )));
     }
-    let world = RaceWorld::new(load_race(&a.race)?, drawable_sea(load_sea(a.sea.as_ref())?));
+    let world = RaceSetup::world(load_race(&a.race)?, load_sea(a.sea.as_ref())?);
     let t = a.t.unwrap_or_else(|| world.middle_time());
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
-    let options = match &tier {
-        Some(tier) => RenderOptions {
-            measure_gpu_time: true,
-            ..tier.options
-        },
-        None => RenderOptions {
-            error_px: a.error_px,
-            measure_gpu_time: true,
-            ..Default::default()
-        },
-    };
-    let mut renderer = Renderer::new(&gpu, render::OFFSCREEN_FORMAT, options);
-    let wake = match (&tier, a.no_wakes) {
-        (_, true) => None,
-        (Some(tier), false) => Some(tier.race_wake(&world.race)?),
-        (None, false) => Some(world.wake()?),
-    };
-    if let Some(tier) = &tier {
-        // The feed builds its renderer on the first frame: build it, then set the tier's
-        // options and wake source budget on it (the draw below keeps that renderer).
-        feed.prepare_frame(
-            &gpu,
-            &mut renderer,
-            render::OFFSCREEN_FORMAT,
-            options,
-            wake.clone(),
-            world.race_bounds,
-            size,
-            frame,
-        )?;
-        tier.apply_to(&mut renderer);
-    }
+    // The feed builds the renderer through the set-up on its first frame.
+    let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
+    let wake = setup.wake(&world.race)?;
     let table = TableFrame {
         world: &world,
         t,
         size,
         frame,
-        overlays: Some(overlays),
+        overlays: Some(&setup.overlays),
     };
-    let (img, report) = table.draw(&mut feed, &gpu, &mut renderer, options, wake, |_| {})?;
+    let (img, report) = table.draw(&mut feed, &gpu, &mut renderer, &setup, wake, |_| {})?;
     out.save(&img)?;
     note_unmet_error(&report);
     print_report(a, &report)
-}
-
-/// One picture of the table scene, as `run` draws it: `race` at race time `t` over feed frame
-/// `frame`, `size` pixels.
-#[cfg(not(target_os = "android"))]
-pub struct TableFrame<'a> {
-    pub world: &'a crate::core::scene::RaceWorld,
-    pub t: f64,
-    pub size: [u32; 2],
-    pub frame: usize,
-    /// The scene overlays drawn over it (labels through egui), or none.
-    pub overlays: Option<&'a crate::scene_overlay::OverlaySettings>,
-}
-
-#[cfg(not(target_os = "android"))]
-impl TableFrame<'_> {
-    /// Draws it through `feed` with `renderer` (built anew with `options` on the feed's first
-    /// frame) and `wake` (the boats' own: the feed scales it for the table); `edit` changes the
-    /// scene last (tests leave boats out).
-    pub fn draw(
-        &self,
-        feed: &mut crate::desktop::feed::FeedView,
-        gpu: &render::Gpu,
-        renderer: &mut render::Renderer,
-        options: render::RenderOptions,
-        wake: Option<std::sync::Arc<ocean::wake::Wake>>,
-        edit: impl FnOnce(&mut render::Scene),
-    ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
-        let mut orbit = crate::core::scene::race_orbit();
-        let mut scene = self.world.orbit_scene(self.t, &mut orbit);
-        feed.prepare_frame(
-            gpu,
-            renderer,
-            render::OFFSCREEN_FORMAT,
-            options,
-            wake,
-            self.world.race_bounds,
-            self.size,
-            self.frame,
-        )?;
-        feed.apply(&mut scene);
-        edit(&mut scene);
-        match self.overlays {
-            Some(overlays) => crate::scene_overlay::render_headless(
-                gpu,
-                renderer,
-                (
-                    &self.world.race,
-                    crate::scene_overlay::manoeuvres::debrief_if_shown(&self.world.race, overlays)
-                        .as_ref(),
-                ),
-                &scene,
-                self.size,
-                overlays,
-            ),
-            None => render::render_image(gpu, renderer, &scene, self.size),
-        }
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))
-    }
-}
-
-#[cfg(target_os = "android")]
-pub fn run(
-    _a: &RenderArgs,
-    _dir: &Path,
-    _out: &ImageOut,
-    _size: [u32; 2],
-    _effects: Option<EffectSet>,
-    _tier: Option<quality::Tier>,
-    _overlays: &crate::scene_overlay::OverlaySettings,
-) -> CliResult {
-    Err(CliError::new(
-        "render --replay draws through the desktop window's feed view, which Android does not build",
-    ))
 }

@@ -1,5 +1,5 @@
 //! The phone's "Share clip": the last [`PhoneClip::seconds`] of race time before the playhead,
-//! drawn as `regatta render --from --to` draws a clip (`cli::render::clip::write_gif`, overlays
+//! drawn as `regatta render --from --to` draws a clip (`setup::clip::write_gif`, overlays
 //! and the trails' manoeuvre marks included) from the phone's camera pose at the moment of the
 //! press, on a worker thread with its own headless GPU device, into the app's files folder
 //! (`clips/`); then handed to Android: into the media store (`Pictures/Regatta`) and to the
@@ -21,8 +21,8 @@ use std::sync::{Arc, Mutex};
 use ar::arcore::ffi::share::MEDIA_STORE_MIN_SDK;
 use ar::arcore::ffi::{JavaObject, MediaItem, ShareJni};
 
-use crate::cli::render::clip::{ClipLook, ClipTimes, write_gif};
 use crate::core::scene::RaceWorld;
+use crate::setup::clip::{ClipLook, ClipTimes, write_gif};
 
 /// What a phone clip covers and how large it is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]

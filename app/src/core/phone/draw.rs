@@ -9,11 +9,12 @@ use pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
 use render::{Camera, Gpu, Renderer};
 
 use super::PhoneApp;
-use crate::core::camera_frame::{display_of, render_frame_with_image};
-use crate::core::gfx::{self, Acquired, LostFlag, Profile, Window};
+use crate::core::camera_frame::{backdrop_with_image, display_of};
+use crate::core::gfx::{self, Acquired, LostFlag, Window};
 use crate::core::table;
 use crate::core::vulkan_marker::{FELL_BACK_NOTE, GOOD_FRAMES, VulkanMarker};
-use crate::overlay::{EguiPainter, SceneChoice, phone_bar, race_panels};
+use crate::hud::{EguiPainter, SceneChoice, phone_bar, race_panels};
+use crate::setup::{Profile, RaceSetup};
 
 /// The device, the window, and what draws into it.
 pub struct Graphics {
@@ -38,7 +39,9 @@ pub struct Graphics {
     /// The race renderer's GPU time of the last frame, where measured; the quality tier it
     /// draws at and whether its effect passes were there then (`tiers.rs`).
     pub(super) gpu_ms: Option<f64>,
-    pub(super) tier: Option<(quality::Tier, bool)>,
+    /// The Scene panel's switches and the quality tier on `race`, as the window applies them
+    /// (`crate::panels::SceneApplier`; `tiers.rs`).
+    pub(super) scene: crate::panels::SceneApplier,
     /// The Vulkan crash marker, armed until [`GOOD_FRAMES`] frames were presented.
     marker: Option<VulkanMarker>,
     /// The sea last handed to `race_effects` (`tiers.rs`, `follow_water`); `None` after they
@@ -68,7 +71,7 @@ impl render::Pass for NoSea {
 impl Graphics {
     /// The wakes of a newly opened race (and nothing kept of the last one's frames).
     pub(super) fn set_race_wake(&mut self, wake: Option<std::sync::Arc<ocean::wake::Wake>>) {
-        self.race.set_wake(wake);
+        self.scene.set_race_wake(wake, &mut self.race);
         self.race_upload = None;
     }
 }
@@ -157,9 +160,11 @@ impl PhoneApp {
             }
         };
         let format = window.format().unwrap_or(render::OFFSCREEN_FORMAT);
-        let wake = gfx::wake_or_none(&self.world);
+        let setup = RaceSetup::new(Profile::Phone);
+        let wake = setup.wake_or_none(&self.world.race);
         Ok(Graphics {
-            race: gfx::race_renderer(&gpu, format, wake, Profile::Phone),
+            scene: crate::panels::SceneApplier::new(wake.clone()),
+            race: setup.renderer(&gpu, format, wake),
             race_effects: None,
             backdrop: None,
             pool: None,
@@ -171,7 +176,6 @@ impl PhoneApp {
             frames_drawn: 0,
             water: None,
             gpu_ms: None,
-            tier: None,
             marker,
             gpu,
             window,
@@ -224,7 +228,7 @@ impl PhoneApp {
             SceneChoice::Race => self.draw_race(g, &target, size, format),
             SceneChoice::Pool => self.draw_pool(g, &target, size, format),
         }
-        self.draw_overlay(g, frame.texture(), size);
+        self.draw_hud(g, frame.texture(), size);
         g.window.present(&g.gpu, frame);
         g.frames_drawn += 1;
         if g.frames_drawn >= GOOD_FRAMES
@@ -247,18 +251,17 @@ impl PhoneApp {
         };
         let seq = self.ar.frame_seq;
         if g.backdrop_upload != Some(seq) {
-            let background =
-                match render_frame_with_image(frame, &table::AR_AS_IS, display_of(frame)) {
-                    Ok(b) => b,
-                    Err(e) => {
-                        log::warn!("regatta: {e}");
-                        return false;
-                    }
-                };
+            let background = match backdrop_with_image(frame, &table::AR_AS_IS, display_of(frame)) {
+                Ok(b) => b,
+                Err(e) => {
+                    log::warn!("regatta: {e}");
+                    return false;
+                }
+            };
             match &g.backdrop {
-                Some((_, handle)) => handle.set_camera_frame(&g.gpu, background),
+                Some((_, handle)) => handle.set_backdrop(&g.gpu, background),
                 None => {
-                    let mut r = gfx::race_renderer(&g.gpu, format, None, Profile::Phone);
+                    let mut r = RaceSetup::new(Profile::Phone).renderer(&g.gpu, format, None);
                     let handle = add_effect_passes(&mut r, &g.gpu, ArConfig::default(), background);
                     r.replace_pass("water", Box::new(NoSea));
                     g.backdrop = Some((r, handle));
@@ -302,9 +305,9 @@ impl PhoneApp {
             scene.play_area = self.table_room.area(self.world.race_bounds);
             let upload = (self.ar.frame_seq, p);
             if g.race_upload != Some(upload) {
-                match render_frame_with_image(frame, &p, display_of(frame)) {
+                match backdrop_with_image(frame, &p, display_of(frame)) {
                     Ok(background) => match &g.race_effects {
-                        Some(handle) => handle.set_camera_frame(&g.gpu, background),
+                        Some(handle) => handle.set_backdrop(&g.gpu, background),
                         None => {
                             // The table's sea; the Scene panel's water follows (`follow_water`).
                             let cfg = ArConfig::on_table(render::water_look::WaterLook::default());
@@ -342,6 +345,7 @@ impl PhoneApp {
     fn prepare_overlays(&mut self, g: &mut Graphics, scene: &render::Scene, size: [u32; 2]) {
         let ppp = f64::from(self.touch.pixels_per_point);
         let race = &self.world.race;
+        self.overlays.follow_panel(&self.panels.settings);
         let debrief = self.overlays.debrief(&mut self.panels.debrief, race);
         self.overlays
             .prepare(&g.gpu, &mut g.race, (race, debrief), scene, size, ppp);
@@ -382,9 +386,9 @@ impl PhoneApp {
     }
 
     /// The panels (race only), the phone's bar and the banner over the frame.
-    fn draw_overlay(&mut self, g: &mut Graphics, texture: &wgpu::Texture, size: [u32; 2]) {
+    fn draw_hud(&mut self, g: &mut Graphics, texture: &wgpu::Texture, size: [u32; 2]) {
         let message = self.banner();
-        let banner_button = crate::overlay::banner::button(self.ar.session);
+        let banner_button = crate::hud::banner::button(self.ar.session);
         let raw = self.touch.take_raw_input(size, self.now);
         let recording = self.ar.recorder.is_some();
         // "Share clip" in the race scene; off while a clip is drawn.

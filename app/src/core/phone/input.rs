@@ -9,8 +9,8 @@ use render::OrbitCamera;
 
 use super::PhoneApp;
 use crate::core::table;
-use crate::overlay::SceneChoice;
-use crate::overlay::touch::{Touch, TouchAction, over_egui};
+use crate::hud::SceneChoice;
+use crate::hud::touch::{Touch, TouchAction, over_egui};
 
 /// A touch is a tap when the finger moved less than this (pixels) …
 pub const TAP_MAX_PX: f64 = 20.0;

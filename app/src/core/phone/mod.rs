@@ -25,9 +25,9 @@ use super::ar::{ArBackend, ArState};
 use super::gfx::SurfaceMaker;
 use super::scene::RaceWorld;
 use super::table;
-use crate::overlay::SceneChoice;
-use crate::overlay::banner::{ArStatus, Tone, banner};
-use crate::overlay::touch::{Touch, TouchInput};
+use crate::hud::SceneChoice;
+use crate::hud::banner::{ArStatus, Tone, banner};
+use crate::hud::touch::{Touch, TouchInput};
 use crate::pool_play::PoolPlay;
 
 pub use clip_share::{ClipShare, PhoneClip, ShareState, hand_off};
@@ -70,13 +70,13 @@ pub enum PhoneEvent {
 
 impl PhoneEvent {
     /// A touch of fingers 0, 1, … at `px` (physical pixels).
-    pub fn touch(action: crate::overlay::touch::TouchAction, px: &[[f32; 2]]) -> PhoneEvent {
+    pub fn touch(action: crate::hud::touch::TouchAction, px: &[[f32; 2]]) -> PhoneEvent {
         PhoneEvent::Touch(Touch {
             action,
             fingers: px
                 .iter()
                 .enumerate()
-                .map(|(i, px)| crate::overlay::touch::Finger {
+                .map(|(i, px)| crate::hud::touch::Finger {
                     id: i as i32,
                     px: *px,
                 })
@@ -130,7 +130,7 @@ pub struct PhoneApp {
     /// Frames since the display rotation was last read (a 180° turn sends no event).
     rotation_age: u32,
     /// The phone's bar as last laid out (points): its buttons, for tests and taps.
-    pub bar: Option<crate::overlay::PhoneBar>,
+    pub bar: Option<crate::hud::PhoneBar>,
     /// Where recordings go (the app's storage).
     pub data_dir: Option<PathBuf>,
     /// The surface maker of the current window (kept to rebuild after a lost device).
@@ -162,7 +162,8 @@ pub struct PhoneApp {
 impl PhoneApp {
     /// The embedded race and sea, with `backend` for AR.
     pub fn new(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
-        let mut panels = RegattaUi::new(crate::overlay::initial_clock(&world.race), Vec::new());
+        let mut panels = RegattaUi::new(crate::hud::initial_clock(&world.race), Vec::new());
+        panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
         // The phone's screen is small: the timeline and the bar; the leaderboard behind its
         // toggle in the timeline's header, no frame statistics.
         panels.show_perf = false;

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use super::PhoneApp;
 use crate::core::table;
+use crate::setup::{Profile, RaceSetup};
 
 /// Names the host's races folder.
 pub const RACES_DIR_ENV: &str = "REGATTA_RACES_DIR";
@@ -142,7 +143,7 @@ impl PhoneApp {
                 .transform_point3(table::course_pivot(self.world.race_bounds, depth))
         });
         self.world = self.world.with_race(race);
-        crate::overlay::panels_for_new_race(
+        crate::hud::panels_for_new_race(
             &self.world.race,
             &mut self.panels,
             &mut self.events,
@@ -152,7 +153,7 @@ impl PhoneApp {
             table::place_course(None, at, self.world.race_bounds, depth, self.table_room)
         });
         if let Some(g) = self.graphics.as_mut() {
-            g.set_race_wake(crate::core::gfx::wake_or_none(&self.world));
+            g.set_race_wake(RaceSetup::new(Profile::Phone).wake_or_none(&self.world.race));
         }
     }
 

@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use ar::arcore::ffi::{IntentJni, JavaObject};
 
 use super::PhoneApp;
-use crate::overlay::banner::Tone;
+use crate::hud::banner::Tone;
 
 /// The largest file read from a share, bytes: the whole file is held in memory on the phone
 /// (the importer's own limit for files on disk is 1 GiB; the longest real log here is 3 MB).

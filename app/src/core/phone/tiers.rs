@@ -2,9 +2,9 @@
 //! [`TierControl`] its GPU time where the renderer measured one, else the present interval on
 //! the phone's own clock (the time its events carry, so a `phone-sim` session replays to the
 //! same decisions); nothing changes while a finger is down (scrubbing the timeline, turning the
-//! view). The tier drawn is applied to the race renderer live, every setting
-//! ([`TierRender::apply_live`]), and again when the renderer or its effect passes are built
-//! anew. The Scene panel's tier control shows the tier; a pin or target set there is answered
+//! view). The tier drawn is applied to the race renderer live, every setting, as the window
+//! applies it (`crate::panels::SceneApplier::follow_tier`), and again when the renderer or its
+//! effect passes are built anew or a new race opens. The Scene panel's tier control shows the tier; a pin or target set there is answered
 //! here. The tier also bounds the camera image ARCore delivers, from the next resume on
 //! ([`PhoneApp::camera_budget`]).
 
@@ -13,7 +13,6 @@ use quality::Tier;
 
 use super::PhoneApp;
 use crate::tier_control::TierControl;
-use crate::tier_render::TierRender;
 
 /// The tier the phone starts at before any frame is measured: the Pixel 2 XL's goal (every
 /// effect at ¾ size); a slower phone steps down within its first second or two.
@@ -74,17 +73,16 @@ impl PhoneApp {
         let Some(g) = self.graphics.as_mut() else {
             return;
         };
-        let key = Some((self.tiers.tier(), g.race_effects.is_some()));
-        if g.tier == key {
-            return;
+        let tier = self.tiers.tier();
+        let settings = &mut self.panels.settings;
+        let fx = g.race_effects.as_ref();
+        let race = &self.world.race;
+        if let Some(t) = g
+            .scene
+            .follow_tier(tier, settings, &g.gpu, &mut g.race, fx, race)
+        {
+            self.overlays.set_detail(t.overlay);
         }
-        let tier = TierRender::of(self.tiers.tier());
-        let fx = g.race_effects.clone();
-        let applied = tier.apply_live(&g.gpu, &mut g.race, fx.as_ref(), Some(&self.world.race));
-        if let Err(e) = applied {
-            log::warn!("regatta: quality tier {}: {e}", tier.tier);
-        }
-        g.tier = key;
     }
 
     /// What the camera image may cost at the governor's tier: the tier's
@@ -98,8 +96,13 @@ impl PhoneApp {
         }
     }
 
+    /// The race renderer (`None` before the first window): what a tier set on it.
+    pub fn race_renderer(&self) -> Option<&render::Renderer> {
+        self.graphics.as_ref().map(|g| &g.race)
+    }
+
     /// The tier the race renderer draws at (`None` before the first frame).
     pub fn tier_drawn(&self) -> Option<Tier> {
-        self.graphics.as_ref().and_then(|g| g.tier).map(|(t, _)| t)
+        self.graphics.as_ref().and_then(|g| g.scene.tier_applied())
     }
 }

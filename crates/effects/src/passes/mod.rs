@@ -31,7 +31,7 @@ use std::rc::Rc;
 use glam::DVec2;
 
 use crate::EffectSet;
-use crate::camera_frame::CameraFrame;
+use crate::backdrop::Backdrop;
 use render::gpu::Gpu;
 use render::renderer::Renderer;
 
@@ -41,7 +41,7 @@ pub use pipelines::{AR_WATER, AR_WATER_PARTS, CAUSTICS, FLOWMAP, REFLECTION, REF
 use shared::Shared;
 pub use shared::{
     EFFECTS_COMMON, EffectsUniform, FLOW_DETAIL_FORMAT, caustic_region, effect_frame,
-    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler,
+    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler, table_image,
 };
 pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};
 
@@ -57,7 +57,7 @@ impl EffectsHandle {
     /// already bind (made anew only when the image's kind (RGBA or YUV) or size changes), its
     /// camera and display transform go into the next frame's uniform, and the renderer draws
     /// the next frame even if the scene stands still. No pass or pipeline is rebuilt.
-    pub fn set_camera_frame(&self, gpu: &Gpu, frame: CameraFrame) {
+    pub fn set_backdrop(&self, gpu: &Gpu, frame: Backdrop) {
         let (image, camera) = frame.split();
         let mut shared = self.shared.borrow_mut();
         shared.set_image(gpu, &image);
@@ -156,15 +156,14 @@ pub const AR_ROOM_RADIANCE: [f64; 3] = [1.0; 3];
 /// Add the background pass for `cfg` over `camera`'s frame to `renderer` and put the AR
 /// water pass in the water pass's place. Effects that are not in `cfg.effects` never run (the
 /// passes report "not requested"). Later frames go in through the returned handle
-/// ([`EffectsHandle::set_camera_frame`]).
+/// ([`EffectsHandle::set_backdrop`]).
 pub fn add_effect_passes(
     renderer: &mut Renderer,
     gpu: &Gpu,
     cfg: ArConfig,
-    camera: CameraFrame,
+    camera: Backdrop,
 ) -> EffectsHandle {
     let targets = renderer.targets;
-    let feed = cfg.effects.contains(crate::Effect::Background);
     let (image, camera) = camera.split();
     let shared = Rc::new(RefCell::new(Shared::new(gpu, targets, cfg, camera, &image)));
     let handle = EffectsHandle {
@@ -175,8 +174,9 @@ pub fn add_effect_passes(
     let water = ArWaterPass::new(gpu, frame_layout, targets, shared);
     renderer.add_pass(Box::new(background));
     // Over the camera image the AR water takes the room's radiance as the camera's white
-    // (`ar_water.wgsl`'s room): the boats take the same light. Without it, sun and sky.
-    renderer.set_room_light(feed.then_some(AR_ROOM_RADIANCE));
+    // (`ar_water.wgsl`'s room): the boats take the same light, in each frame that shows the
+    // image (the renderer applies it then; switched off live, sun and sky).
+    renderer.set_room_light(Some(AR_ROOM_RADIANCE));
     if !renderer.replace_pass("water", Box::new(water)) {
         log::warn!("no water pass to shade with the effects: the renderer has none");
     }
@@ -215,7 +215,7 @@ pub fn add_scene_effects_with(
     // The camera image need not be larger than 640 pixels wide: it is sampled, not shown 1:1.
     let scale = (640.0 / f64::from(size[0].max(1))).min(1.0);
     let frame_size = size.map(|v| ((f64::from(v) * scale).round() as u32).max(1));
-    let frame = CameraFrame::synthetic(
+    let frame = Backdrop::synthetic(
         &scene.camera,
         frame_size,
         cfg.table_depth,

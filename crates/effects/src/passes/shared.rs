@@ -2,10 +2,10 @@
 //! `Rc<RefCell>` held by both passes and the handle), the planner's view of a frame and the
 //! caustic map's region.
 
-use glam::{DVec2, DVec3};
+use glam::{DMat4, DVec2, DVec3};
 
 use super::config::ArConfig;
-use crate::camera_frame::{CameraFrame, CameraImage};
+use crate::backdrop::{Backdrop, CameraImage};
 use crate::camera_upload::{CameraTextures, YuvConversion};
 use crate::caustic_map::CAUSTIC_MAP_FORMAT;
 use crate::caustics::CausticRegion;
@@ -26,6 +26,8 @@ pub struct EffectsUniform {
     /// `PinholeCamera::image_projection` for local points: columns of WGSL's mat4x3 (each
     /// padded to 4).
     pub camera_projection: [[f32; 4]; 4],
+    /// [`table_image`]: the projection's constant column for table points.
+    pub table_image: [f32; 4],
     pub display_u: [f32; 4],
     pub display_v: [f32; 4],
     pub table: [f32; 4],
@@ -37,6 +39,15 @@ pub struct EffectsUniform {
     pub marks: [[f32; 4]; 8],
     /// `WaterLook::gpu_optics`: the sea's water over the table (`WaterOptics`).
     pub water: [[f32; 4]; 5],
+}
+
+/// The constant column of `image_projection` (`PinholeCamera::image_projection`, local points
+/// → (u w, v w, w)) for points on the table plane y = −`depth`: column 1 · (−depth) + column 3,
+/// in f64, so that the shader's `table_uv` projects a table point (x, z) with two columns and
+/// this one.
+pub fn table_image(image_projection: DMat4, depth: f64) -> [f32; 4] {
+    let c = image_projection.y_axis * -depth + image_projection.w_axis;
+    [c.x as f32, c.y as f32, c.z as f32, 0.0]
 }
 
 /// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
@@ -89,7 +100,7 @@ pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
 pub(super) struct Shared {
     pub(super) cfg: ArConfig,
     /// The current frame's camera and display transform (its image is on the GPU).
-    pub(super) camera: CameraFrame<()>,
+    pub(super) camera: Backdrop<()>,
     pub(super) layout: wgpu::BindGroupLayout,
     /// Group 2 of the room in the reflection texture: the uniform and the camera image, not
     /// the reflection texture it draws into.
@@ -180,7 +191,7 @@ impl Shared {
         gpu: &Gpu,
         targets: Targets,
         cfg: ArConfig,
-        camera: CameraFrame<()>,
+        camera: Backdrop<()>,
         image: &CameraImage,
     ) -> Shared {
         let device = &gpu.device;
@@ -364,10 +375,8 @@ impl Shared {
         let o = frame.origin;
         let cam = &self.camera.camera;
         let f = |v: f64| v as f32;
-        let projection = cam
-            .image_projection(self.camera.view_local(o))
-            .as_mat4()
-            .to_cols_array_2d();
+        let image = cam.image_projection(self.camera.view_local(o));
+        let projection = image.as_mat4().to_cols_array_2d();
         let d = self.camera.display;
         let ring = self.cfg.ring_radius_for(s.play_area);
         let [ax, az, bx, bz] = s.play_area;
@@ -384,6 +393,7 @@ impl Shared {
         }
         EffectsUniform {
             camera_projection: projection,
+            table_image: table_image(image, self.cfg.table_depth),
             display_u: [f(d[0][0]), f(d[0][1]), f(d[0][2]), 0.0],
             display_v: [f(d[1][0]), f(d[1][1]), f(d[1][2]), 0.0],
             table: [f(self.cfg.table_depth), f(ring), f(centre.x), f(centre.y)],

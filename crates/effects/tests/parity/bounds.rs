@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 use render::optics::{N_AIR, N_WATER, PinholeCamera};
-use render::wgsl_accuracy::{Inexact, add3, dot, length, mix, scale3, sub3};
+use render::wgsl_accuracy::{Inexact, add3, dot, length, mix, scale3};
 
 /// What a case's bound decided: the value (f64) and bound of each output, or `Undecided` when
 /// one of the function's branches may go either way on a conforming GPU (the case is not
@@ -28,16 +28,34 @@ fn vec3(v: [f32; 4]) -> [Inexact; 3] {
 /// entry the f32 of the reference's f64.
 pub struct CameraBound {
     projection: [[Inexact; 4]; 4],
+    /// The same projection in f64, for `table_image`'s column.
+    exact: glam::DMat4,
 }
 
 impl CameraBound {
     pub fn new(camera: &PinholeCamera) -> Self {
-        let m = camera
-            .image_projection(camera.pose.inverse())
-            .to_cols_array_2d();
+        let exact = camera.image_projection(camera.pose.inverse());
         Self {
-            projection: m.map(|col| col.map(input)),
+            projection: exact.to_cols_array_2d().map(|col| col.map(input)),
+            exact,
         }
+    }
+
+    /// `table_uv` of `effects_common.wgsl` for a table `depth` deep: the uv of the table
+    /// point (x, z), or `None` behind the camera. The constant column is formed in f64 on the
+    /// CPU (`effects::passes::table_image`) and reaches the GPU as its f32.
+    fn table_uv(&self, xz: [Inexact; 2], depth: f64) -> Bounded<Option<[Inexact; 2]>> {
+        let c = self.exact.y_axis * -depth + self.exact.w_axis;
+        let constant = [c.x, c.y, c.z].map(input);
+        let row = |i: usize| {
+            let terms = [
+                self.projection[0][i] * xz[0],
+                self.projection[2][i] * xz[1],
+                constant[i],
+            ];
+            render::wgsl_accuracy::sum(&terms)
+        };
+        in_front([row(0), row(1), row(2)])
     }
 
     /// `camera_uv` of `effects_common.wgsl`: the uv of `p`, or `None` behind the camera.
@@ -51,12 +69,17 @@ impl CameraBound {
             ];
             render::wgsl_accuracy::sum(&terms)
         };
-        let h = [row(0), row(1), row(2)];
-        match h[2].above(0.0) {
-            None => Bounded::Undecided,
-            Some(false) => Bounded::Decided(None),
-            Some(true) => Bounded::Decided(Some([h[0] / h[2], h[1] / h[2]])),
-        }
+        in_front([row(0), row(1), row(2)])
+    }
+}
+
+/// (u w, v w, w) → the uv, or `None` behind the camera (w ≤ 0): the division and the select
+/// that `camera_uv` and `table_uv` end with.
+fn in_front(h: [Inexact; 3]) -> Bounded<Option<[Inexact; 2]>> {
+    match h[2].above(0.0) {
+        None => Bounded::Undecided,
+        Some(false) => Bounded::Decided(None),
+        Some(true) => Bounded::Decided(Some([h[0] / h[2], h[1] / h[2]])),
     }
 }
 
@@ -124,10 +147,12 @@ pub fn refracted_table(
     let Bounded::Decided((straight_hit, straight_s)) = ray_table(p, view, depth) else {
         return Bounded::Undecided;
     };
-    let straight_point = match straight_s.above(0.0) {
+    // `table_point_straight`: the hit on the plane (its y the plane's own, −depth), and the
+    // path to it along the unit view ray, s; else p and 0.
+    let (straight_point, straight_path) = match straight_s.above(0.0) {
         None => return Bounded::Undecided,
-        Some(true) => straight_hit,
-        Some(false) => p,
+        Some(true) => ([straight_hit[0], -depth, straight_hit[2]], straight_s),
+        Some(false) => (p, Inexact::exact(0.0)),
     };
     let centre = [Inexact::exact(0.5); 2];
     let straight = match camera.uv(straight_point) {
@@ -144,7 +169,7 @@ pub fn refracted_table(
     let Some(found) = s.above(0.0) else {
         return Bounded::Undecided;
     };
-    let uv = match camera.uv(hit) {
+    let uv = match camera.table_uv([hit[0], hit[2]], depth.value) {
         Bounded::Undecided => return Bounded::Undecided,
         Bounded::Decided(uv) => uv,
     };
@@ -152,11 +177,7 @@ pub fn refracted_table(
         (true, Some(uv)) => edge_weight(uv),
         _ => Inexact::exact(0.0),
     };
-    let path = if found {
-        s
-    } else {
-        length(&sub3(straight_point, p))
-    };
+    let path = if found { s } else { straight_path };
     // mix(straight, clamp(uv), w) where w > 0; mix at w = 0 is `straight` itself, so the
     // select is continuous and needs no decision.
     let at = match uv {

@@ -252,7 +252,8 @@ pub fn source_height_grad_sampled_f32(s: &GpuWakeSource, p: [f32; 2], spacing: f
         return [0.0; 3];
     }
     let k = s.q / r2;
-    let g = k * k * s.gauss;
+    let kk = k * k;
+    let g = kk * s.gauss;
     if g.is_nan() || g > GAUSS_CUTOFF as f32 || k * spacing >= BAND_END || (k * spacing).is_nan() {
         return [0.0; 3];
     }
@@ -261,17 +262,18 @@ pub fn source_height_grad_sampled_f32(s: &GpuWakeSource, p: [f32; 2], spacing: f
     let tau = std::f32::consts::TAU;
     let phi_r = phi - tau * (phi / tau).round_ties_even();
     let (sn, cs) = phi_r.sin_cos();
-    let c = -s.strength * k * k / r2 * (-g).exp() * band_fade_f32(k, spacing);
-    let bracket = sn + (4.0 * g - 3.0) / phi * cs;
+    let c = -s.strength * kk / r2 * (-g).exp() * band_fade_f32(k, spacing);
+    let g4 = 4.0 * g;
+    let a = g4 - 3.0;
+    let bracket = sn + a / phi * cs;
     let f = c * bracket;
-    let df = c / r
-        * ((4.0 * g - 6.0) * bracket - phi * cs - (12.0 * g + 3.0) / phi * cs
-            + (4.0 * g - 3.0) * sn);
+    let df = c / r * ((g4 - 6.0) * bracket - phi * cs - (3.0 * g4 + 3.0) / phi * cs + a * sn);
     let proj = d[0] * s.dx[0] + d[1] * s.dx[1];
+    let radial = df * proj / r;
     [
         f * proj,
-        df * proj * d[0] / r + f * s.dx[0],
-        df * proj * d[1] / r + f * s.dx[1],
+        radial * d[0] + f * s.dx[0],
+        radial * d[1] + f * s.dx[1],
     ]
 }
 

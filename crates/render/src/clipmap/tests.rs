@@ -537,3 +537,75 @@ fn chosen_config_meets_its_error_target() {
         assert!(w[1].kept.iter().all(|i| w[0].kept.contains(i)));
     }
 }
+
+/// Each vertex the mesh emits is used by a drawn cell and is a distinct lattice vertex of its
+/// level (no copy at tile borders), and the mesh draws the triangles the tiles draw when each
+/// tile emits its own (t + 1)² vertices (the construction before vertices were shared): the
+/// same corners, bit for bit, in the same order. Culled by a frustum and a play area, every
+/// ratio, a turned lattice.
+#[test]
+fn shared_vertices_draw_the_per_tile_triangles_and_each_vertex_once() {
+    use crate::camera::Camera;
+    for c in configs() {
+        let eye = DVec2::new(0.7, -1.3);
+        let origin = c.origin_for(eye);
+        let cam = Camera::look_at(DVec3::new(0.7, 6.0, -1.3), DVec3::new(5.0, 0.0, -30.0), 1e3);
+        let culling = Culling {
+            frustum: Some(Frustum::from_matrix(cam.view_proj_local(origin, 1.5))),
+            play_area: Some([-20.0, -25.0, 18.0, 10.0]),
+            max_displacement: 0.5,
+        };
+        let mesh = c.build(eye, &culling);
+        // The oracle: every tile its own vertices.
+        let origin_lattice = c.centre_lattice(c.levels() - 1, eye);
+        let mut expected: Vec<[[u32; 2]; 3]> = Vec::new();
+        let mut lattice_vertices = std::collections::BTreeSet::new();
+        c.visit_tiles(eye, &culling, |l, [i0, i1, j0, j1], cells| {
+            let t = i64::from(TILE_CELLS).min(i64::from(c.cells[l as usize]) / 2);
+            let centre = c.centre_index(l, eye);
+            let corner = |i: i64, j: i64| {
+                let (p, _) = c.morphed_vertex(l, i, j, centre);
+                let q = c.to_world(p - origin_lattice);
+                [(q.x as f32).to_bits(), (q.y as f32).to_bits()]
+            };
+            for j in j0..j1 {
+                for i in i0..i1 {
+                    if cells & (1 << ((j - j0) * t + (i - i0))) != 0 {
+                        for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                            lattice_vertices.insert((l, i + di, j + dj));
+                        }
+                        let (a, b) = (corner(i, j), corner(i + 1, j));
+                        let (d, e) = (corner(i, j + 1), corner(i + 1, j + 1));
+                        expected.extend([[a, d, e], [a, e, b]]);
+                    }
+                }
+            }
+        });
+        let drawn: Vec<[[u32; 2]; 3]> = mesh
+            .indices
+            .chunks(3)
+            .map(|t| [0, 1, 2].map(|c| mesh.vertices[t[c] as usize].rest.map(f32::to_bits)))
+            .collect();
+        assert!(!drawn.is_empty());
+        assert_eq!(drawn, expected, "{:?}", c.ratio);
+        let used: std::collections::BTreeSet<u32> = mesh.indices.iter().copied().collect();
+        assert_eq!(used.len(), mesh.vertices.len(), "every vertex is used");
+        assert_eq!(
+            lattice_vertices.len(),
+            mesh.vertices.len(),
+            "each lattice vertex of a level once"
+        );
+        // Shared across tile borders: far fewer vertices than the tiles' own.
+        let per_tile: u64 = mesh
+            .levels
+            .iter()
+            .map(|s| u64::from(s.tiles_drawn))
+            .sum::<u64>()
+            * u64::from((TILE_CELLS + 1) * (TILE_CELLS + 1));
+        assert!(
+            (mesh.vertices.len() as u64) < per_tile,
+            "{} of {per_tile}",
+            mesh.vertices.len()
+        );
+    }
+}

@@ -19,6 +19,10 @@ pub(crate) struct Instance {
     pub colour: [f32; 4],
 }
 
+/// The masthead of the boats pass's hull (`hull::boat`, length 1, bow along −z): where the app
+/// anchors a boat's label. Multiply by the drawn length.
+pub const MASTHEAD: [f64; 3] = [0.0, 1.3, -0.12];
+
 /// Diameter of a course-mark buoy, metres.
 pub const BUOY_DIAMETER: f64 = 2.0;
 /// Colour of a course-mark buoy (linear RGB).
@@ -163,5 +167,24 @@ impl Pass for BoatsPass {
             tris += u64::from(verts / 3) * u64::from(n);
         }
         tris
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_masthead_is_the_hull_meshes_highest_point() {
+        // Independent truth: the mesh the boats pass draws.
+        let top = hull::boat()
+            .vertices
+            .iter()
+            .map(|v| v.position)
+            .max_by(|a, b| a[1].total_cmp(&b[1]))
+            .unwrap();
+        for k in 0..3 {
+            assert!((f64::from(top[k]) - MASTHEAD[k]).abs() < 0.02, "{top:?}");
+        }
     }
 }

@@ -2,7 +2,7 @@
 //! here; the renderer runs them through [`crate::frame::Pass`].
 
 pub mod boats;
-pub mod overlay;
+pub mod segments;
 pub mod sky;
 pub mod water;
 
@@ -61,7 +61,7 @@ pub struct Raster<'a> {
     pub depth_write: bool,
     pub depth_compare: wgpu::CompareFunction,
     pub cull: Option<wgpu::Face>,
-    /// Colour blending (`None`: replace; the overlays blend over the scene).
+    /// Colour blending (`None`: replace; segment layers blend over the scene).
     pub blend: Option<wgpu::BlendState>,
 }
 

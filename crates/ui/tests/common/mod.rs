@@ -41,3 +41,19 @@ pub fn sample_with_a_start_line() -> race::Race {
     start.ends = Some([[p[0] - dx, p[1] - dz], [p[0] + dx, p[1] + dz]]);
     race
 }
+
+/// Overlay switches as the app gives the Scene panel (its `scene_overlay::OVERLAYS` names and
+/// texts): ui keeps no overlay list, so its tests bring one.
+#[allow(dead_code)]
+pub fn race_overlays() -> Vec<ui::EffectToggle> {
+    [
+        ("labels", "Boat labels"),
+        ("trails", "Trails"),
+        ("course", "Course and marks"),
+        ("lines", "Ahead/behind lines"),
+        ("wind", "Wind"),
+    ]
+    .iter()
+    .map(|(k, l)| ui::EffectToggle::new(k, l, true))
+    .collect()
+}

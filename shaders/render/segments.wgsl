@@ -1,6 +1,5 @@
-// The scene overlays (crates/render/src/passes/overlay.rs): trails, course, ahead/behind lines,
-// the wind arrow and the boats' team rings, all as world-space segments drawn as screen-space
-// capsules `width` pixels wide (a segment of length 0 is a disc: buoys, label anchors).
+// Segment layers (crates/render/src/passes/segments.rs): world-space segments drawn as
+// screen-space capsules `width` pixels wide (a segment of length 0 is a disc).
 // Depth-tested against the water and boats, not written; alpha-blended. Appended to
 // common.wgsl: `frame.view_proj` (local metres) and `frame.viewport`.
 

@@ -1,4 +1,5 @@
-//! The egui overlay both apps draw over the scene: the race panels of `crates/ui` (timeline
+//! The HUD: the egui layer both apps draw over the scene (not the race overlays, which are
+//! drawn in the scene: `scene_overlay`): the race panels of `crates/ui` (timeline
 //! scrubber, leaderboard, performance), painted with egui-wgpu after the scene into the same
 //! surface texture ([`EguiPainter`]). The desktop feeds egui from winit (egui-winit); the phone
 //! from its touch events ([`touch`]), with the AR session's messages on a banner ([`banner`]).
@@ -36,7 +37,7 @@ pub fn panels_for_new_race(
     selected.clear();
 }
 
-/// The overlay's numbers from the renderer's frame record and the app's frame meter.
+/// The performance panel's numbers from the renderer's frame record and the app's frame meter.
 pub fn perf_stats(report: &FrameReport, fps: &FpsMeter) -> PerfStats {
     PerfStats {
         fps: fps.fps(),

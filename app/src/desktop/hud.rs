@@ -1,7 +1,7 @@
-//! The egui panels over the desktop window: the race-timeline scrubber (which owns race time),
-//! the leaderboard, effect toggles and the performance overlay of `crates/ui`, wired to winit
+//! The desktop's HUD: the egui panels over the window: the race-timeline scrubber (which owns race time),
+//! the leaderboard, effect toggles and the performance panel of `crates/ui`, wired to winit
 //! through egui-winit and painted after the scene, into the same surface texture, by the
-//! painter the phone uses too ([`crate::overlay::EguiPainter`]).
+//! painter the phone uses too ([`crate::hud::EguiPainter`]).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -13,11 +13,11 @@ use ui::{FpsMeter, OpenRequest, PerfStats, RegattaUi, TimelineEvent};
 use winit::event::WindowEvent;
 use winit::window::Window;
 
-use crate::overlay::EguiPainter;
-pub use crate::overlay::{initial_clock, perf_stats};
+use crate::hud::EguiPainter;
+pub use crate::hud::{initial_clock, perf_stats};
 
 /// The panels, their egui-winit input and painter.
-pub struct Overlay {
+pub struct Hud {
     input: egui_winit::State,
     painter: EguiPainter,
     pub panels: RegattaUi,
@@ -50,7 +50,7 @@ pub struct Overlay {
 /// the smoke test keeps lavapipe's frames small with it).
 pub fn window_size() -> winit::dpi::Size {
     let env = std::env::var("REGATTA_WINDOW_SIZE").ok();
-    match env.as_deref().map(crate::cli::replay::parse_size) {
+    match env.as_deref().map(crate::setup::inputs::parse_frame_size) {
         Some(Ok((w, h))) => winit::dpi::PhysicalSize::new(w, h).into(),
         Some(Err(e)) => {
             log::warn!("REGATTA_WINDOW_SIZE: {e}; opening 1280x720");
@@ -60,7 +60,7 @@ pub fn window_size() -> winit::dpi::Size {
     }
 }
 
-impl Overlay {
+impl Hud {
     /// Panels for `race` in `window`. The surface gets a non-sRGB view format: egui blends in
     /// gamma space, so it paints through a `*Unorm` view of the `*UnormSrgb` surface texture
     /// (through an sRGB view its translucent panels come out washed out).
@@ -87,6 +87,7 @@ impl Overlay {
             initial_clock(race),
             crate::panels::effect_toggles(with_effect_passes),
         );
+        panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
         crate::panels::set_water_ranges(&mut panels.settings, with_effect_passes);
         let mut scene_overlays = crate::scene_overlay::live::LiveOverlays::default();
         // The selected boats (at most two: follow, the plots, compare, the highlighted labels).
@@ -137,7 +138,7 @@ impl Overlay {
         self.panels.clock.time()
     }
 
-    /// Takes the renderer's record of the frame for the overlay.
+    /// Takes the renderer's record of the frame for the performance panel.
     pub fn record(&mut self, report: &FrameReport) {
         self.perf = perf_stats(report, &self.fps);
     }
@@ -151,27 +152,29 @@ impl Overlay {
     ) {
         let settings = &self.panels.settings;
         self.scene.apply(settings, renderer, effects);
-        for (name, _) in ui::settings::OVERLAYS {
-            // The names are the overlays' own: setting one cannot fail.
-            let _ = self
-                .scene_overlays
-                .set_overlay(name, settings.overlay(name));
-        }
+        self.scene_overlays.follow_panel(settings);
     }
 
-    /// A quality tier on the running renderer, every setting, through the Scene panel's
-    /// switches ([`crate::panels::SceneApplier::apply_tier`]).
-    pub fn apply_tier(
+    /// The quality tier on the running renderer when it changed, every setting, through the
+    /// Scene panel's switches, and its overlay detail onto the race overlays: the phone's path
+    /// too
+    /// ([`crate::panels::SceneApplier::follow_tier`]).
+    pub fn follow_tier(
         &mut self,
-        tier: &crate::tier_render::TierRender,
+        tier: quality::Tier,
         gpu: &render::Gpu,
         renderer: &mut render::Renderer,
         effects: Option<&effects::passes::EffectsHandle>,
         race: &race::Race,
-    ) -> crate::error::CliResult {
+    ) {
         let settings = &mut self.panels.settings;
-        self.scene
-            .apply_tier(settings, tier, gpu, renderer, effects, race)
+        let applied = self
+            .scene
+            .follow_tier(tier, settings, gpu, renderer, effects, race);
+        if let Some(t) = applied {
+            // The tier's overlay detail onto the race overlays drawn.
+            self.scene_overlays.set_detail(t.overlay);
+        }
     }
 
     /// The water the Scene panel asks for (the feed applies it on the table).
@@ -187,7 +190,7 @@ impl Overlay {
     /// Shows `race` from now on: a fresh timeline, events, selection and plots; its wakes in
     /// `renderer`. The title names it.
     pub fn set_race(&mut self, race: &race::Race, renderer: &mut render::Renderer) {
-        crate::overlay::panels_for_new_race(
+        crate::hud::panels_for_new_race(
             race,
             &mut self.panels,
             &mut self.events,
@@ -233,7 +236,7 @@ impl Overlay {
         let (share, mut share_pressed) = (&self.share_clip, false);
         let platform = self.painter.paint(device, queue, texture, size, raw, |ui| {
             scene.paint(ui.ctx(), size);
-            response = Some(crate::overlay::race_panels(
+            response = Some(crate::hud::race_panels(
                 ui,
                 panels,
                 race,
@@ -270,7 +273,7 @@ impl Overlay {
     }
 }
 
-impl Overlay {
+impl Hud {
     /// With `REGATTA_SCREENSHOT=FILE.png`, draws `scene` and the panels once more into an
     /// offscreen texture of the surface's format and writes it as PNG (surface textures cannot
     /// be read back). Errors are one sentence naming the file.
@@ -311,7 +314,7 @@ impl Overlay {
 /// timeline's keys: space plays and pauses, ←/→ step, Home jumps to the start, PgUp/PgDn jump
 /// between events, R plays the other way, [ and ] halve and double the speed, F follows the
 /// selected boat), so the app must not use it too.
-pub fn handle_event(o: &mut Overlay, window: &Window, event: &WindowEvent) -> bool {
+pub fn handle_event(o: &mut Hud, window: &Window, event: &WindowEvent) -> bool {
     use winit::event::ElementState;
     use winit::keyboard::{Key, NamedKey};
     let consumed = o.on_event(window, event);

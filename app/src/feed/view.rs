@@ -1,5 +1,6 @@
-//! `regatta run --replay DIR`: a recorded camera feed (replay folder or TUM RGB-D, `crates/ar`)
-//! as the background, the race on its table.
+//! The race on a camera feed's table (the window's `regatta run --replay DIR`, and `regatta
+//! render --replay` through [`TableFrame`](super::TableFrame)): a recorded feed (replay folder
+//! or TUM RGB-D, `crates/ar`) or the synthetic one as the background.
 //!
 //! The table maps to the race as on the phone (`core::table`): the race's bounds (its tracks
 //! and marks) are fitted onto the table's extent with a margin, the table's centre is the
@@ -11,38 +12,28 @@
 //!
 //! The first feed frame builds the renderer with the effect passes (`add_effect_passes`); each
 //! later frame, and a resized window, goes through the returned `EffectsHandle`
-//! (`set_camera_frame`: the image is written into the same textures, RGBA as it is, YUV planes
+//! (`set_backdrop`: the image is written into the same textures, RGBA as it is, YUV planes
 //! converted in the shader), so nothing is rebuilt per frame.
 
 use std::sync::Arc;
 use std::time::Instant;
 
+use ar::CameraFrame;
 use ar::arcore::CoursePlacement;
-use ar::{CameraFrame, ReplayFeed, SynthConfig};
-use effects::camera_frame::CameraFrame as RenderCameraFrame;
+use effects::backdrop::Backdrop;
 use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
 use glam::{DVec2, DVec3};
-use render::{Camera, RenderOptions, Renderer, Scene};
+use render::{Camera, Renderer, Scene};
 
-use crate::core::camera_frame::{fill_view, physical_camera, render_frame};
+use crate::core::camera_frame::{backdrop_of, fill_view, physical_camera};
 use crate::core::table::{boats_as_models, fit_on_table, table_area};
 
+use super::CameraFeed;
 use crate::error::{CliError, CliResult};
-
-/// Where the frames come from.
-enum Source {
-    Replay(ReplayFeed),
-    /// The synthetic table of `ar::synth`, rendered frame by frame (no files needed) and kept:
-    /// after the first loop, frames cost nothing.
-    Synth(SynthConfig, Vec<Option<CameraFrame>>),
-}
-
-/// The `--replay` value that chooses the built-in synthetic feed.
-pub const SYNTH: &str = "synth";
 
 /// The feed, where it maps in the race, and which frame the renderer holds.
 pub struct FeedView {
-    source: Source,
+    source: CameraFeed,
     start: Instant,
     /// The frame the effects show, and the window size it was fitted to.
     shown: Option<(usize, [u32; 2])>,
@@ -72,21 +63,9 @@ struct TableWake {
 }
 
 impl FeedView {
-    /// Opens a replay or TUM folder, or the synthetic feed for [`SYNTH`].
+    /// Opens a replay or TUM folder, or the synthetic feed for [`SYNTH`](super::SYNTH).
     pub fn open(dir: &std::path::Path) -> CliResult<Self> {
-        let source = if dir.as_os_str() == SYNTH {
-            let cfg = SynthConfig::default();
-            Source::Synth(cfg, vec![None; cfg.frames])
-        } else {
-            let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
-            log::info!(
-                "replay {}: {} frames, {:.1} s",
-                dir.display(),
-                feed.len(),
-                feed.duration()
-            );
-            Source::Replay(feed)
-        };
+        let source = CameraFeed::open(dir)?;
         Ok(FeedView {
             source,
             start: Instant::now(),
@@ -151,10 +130,7 @@ impl FeedView {
 
     /// How many frames the feed has.
     pub fn len(&self) -> usize {
-        match &self.source {
-            Source::Replay(f) => f.len(),
-            Source::Synth(c, _) => c.frames,
-        }
+        self.source.len()
     }
 
     /// Whether the feed has no frames (a feed that opened always has some).
@@ -227,29 +203,22 @@ impl FeedView {
         size: [u32; 2],
     ) -> CliResult {
         let t = self.start.elapsed().as_secs_f64();
-        let i = match &self.source {
-            Source::Replay(f) => f.index_at(t),
-            Source::Synth(c, _) => c.index_at(t),
-        };
-        let options = RenderOptions {
-            measure_gpu_time: false,
-            // A new camera image is drawn even while the scene stands still: the background
-            // pass's revision changes with it.
-            keep_still_frames: true,
-            ..Default::default()
-        };
-        self.prepare_frame(gpu, renderer, format, options, wake, race_bounds, size, i)
+        let i = self.source.index_at(t);
+        // The window's renderer: a new camera image is drawn even while the scene stands
+        // still (the background pass's revision changes with it).
+        let setup = crate::setup::RaceSetup::new(crate::setup::Profile::Desktop);
+        self.prepare_frame(gpu, renderer, format, &setup, wake, race_bounds, size, i)
     }
 
     /// [`FeedView::prepare`] for feed frame `i` (below [`FeedView::len`]), a renderer built
-    /// with `options` the first time: what `regatta render --replay --frame i` draws.
+    /// by `setup` the first time: what `regatta render --replay --frame i` draws.
     #[allow(clippy::too_many_arguments)]
     pub fn prepare_frame(
         &mut self,
         gpu: &render::Gpu,
         renderer: &mut Renderer,
         format: wgpu::TextureFormat,
-        options: RenderOptions,
+        setup: &crate::setup::RaceSetup,
         wake: Option<Arc<ocean::wake::Wake>>,
         race_bounds: [f64; 4],
         size: [u32; 2],
@@ -264,10 +233,10 @@ impl FeedView {
             }
             return Ok(());
         }
-        let frame = match &mut self.source {
-            Source::Replay(f) => f.frame(i).map_err(|e| CliError::new(e.to_string()))?,
-            Source::Synth(c, cache) => cache[i].get_or_insert_with(|| c.frame(i)).clone(),
-        };
+        let frame = self
+            .source
+            .frame(i)
+            .map_err(|e| CliError::new(e.to_string()))?;
         let started = Instant::now();
         let mut cfg = self.config.clone();
         let (extent, centre) = match frame.planes.first() {
@@ -288,20 +257,19 @@ impl FeedView {
             .image
             .to_camera_image()
             .map_err(|e| CliError::new(format!("feed frame {i}: {e}")))?;
-        let render_frame = view.with_image(image);
+        let backdrop = view.with_image(image);
         let (wake, wake_changed) = self.wake_for_table(wake, &map);
         match &self.effects {
             Some(effects) => {
-                effects.set_camera_frame(gpu, render_frame);
+                effects.set_backdrop(gpu, backdrop);
                 effects.set_water(cfg.water, cfg.table_depth);
                 if wake_changed {
                     renderer.set_wake(wake);
                 }
             }
             None => {
-                let mut fresh = Renderer::new(gpu, format, options);
-                fresh.set_wake(wake);
-                self.effects = Some(add_effect_passes(&mut fresh, gpu, cfg, render_frame));
+                let mut fresh = setup.renderer(gpu, format, wake);
+                self.effects = Some(add_effect_passes(&mut fresh, gpu, cfg, backdrop));
                 *renderer = fresh;
             }
         }
@@ -324,10 +292,10 @@ pub fn to_render(
     frame: &CameraFrame,
     map: &CoursePlacement,
     size: [u32; 2],
-) -> (Camera, RenderCameraFrame<()>) {
+) -> (Camera, Backdrop<()>) {
     let (display, fov_y) = fill_view(&frame.intrinsics, size);
     (
         physical_camera(frame, map, fov_y),
-        render_frame(frame, map, display),
+        backdrop_of(frame, map, display),
     )
 }

@@ -8,11 +8,12 @@ use std::sync::{Arc, Mutex, MutexGuard};
 
 use ar::arcore::session::{status, tracking_hint};
 use ar::arcore::{Command, Event};
-use ar::{CameraFrame, ReplayFeed, SynthConfig, TrackingState};
+use ar::{CameraFrame, TrackingState};
 use glam::{DMat4, DVec3};
 
 use crate::core::ar::{ArBackend, DisplayCamera};
 use crate::core::camera_frame::fill_view;
+use crate::feed::CameraFeed;
 
 /// Whether ARCore is there.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,33 +36,6 @@ pub const FAILURE_REASONS: [(&str, i32); 6] = [
     ("camera_unavailable", 5),
 ];
 
-/// Where frames come from.
-pub enum Feed {
-    Synth(SynthConfig, Vec<Option<CameraFrame>>),
-    Replay(ReplayFeed),
-}
-
-impl Feed {
-    /// The synthetic table at `cfg`.
-    pub fn synth(cfg: SynthConfig) -> Feed {
-        Feed::Synth(cfg, vec![None; cfg.frames.max(1)])
-    }
-
-    fn index_at(&self, t: f64) -> usize {
-        match self {
-            Feed::Synth(c, _) => c.index_at(t),
-            Feed::Replay(f) => f.index_at(t),
-        }
-    }
-
-    fn frame(&mut self, i: usize) -> Result<CameraFrame, ar::ArError> {
-        match self {
-            Feed::Synth(c, cache) => Ok(cache[i].get_or_insert_with(|| c.frame(i)).clone()),
-            Feed::Replay(f) => f.frame(i),
-        }
-    }
-}
-
 /// Display rotation and view size, as the app last gave them.
 pub type Geometry = (i32, u32, u32);
 /// What a frame handed out showed: the feed index, the geometry, the tracking cue.
@@ -73,9 +47,9 @@ pub struct SimState {
     pub permission: bool,
     /// `Some(reason)` while tracking is lost.
     pub lost: Option<i32>,
-    /// Feed time, seconds.
+    /// CameraFeed time, seconds.
     pub t: f64,
-    feed: Feed,
+    feed: CameraFeed,
     /// The feed index, geometry and cue last handed out (a frame is new when one changed).
     shown: Option<Shown>,
     /// The display rotation and view size the app last gave.
@@ -102,7 +76,7 @@ impl SimControl {
 pub struct SimArCore(SimControl);
 
 impl SimArCore {
-    pub fn new(feed: Feed) -> (SimArCore, SimControl) {
+    pub fn new(feed: CameraFeed) -> (SimArCore, SimControl) {
         let control = SimControl(Arc::new(Mutex::new(SimState {
             availability: Availability::Ok,
             permission: true,

@@ -1,7 +1,9 @@
-//! The camera frame the effects draw over: the image (RGBA, or YUV 4:2:0 planes that the shader
-//! converts), the pinhole camera that took it (in the scene's world frame) and the display's UV
-//! transform. ARCore and the replay feed (`crates/ar`) hand one over per frame
-//! (`EffectsHandle::set_camera_frame`); without a frame source, [`CameraFrame::synthetic`]
+//! The backdrop: the camera image the effects draw the scene over (RGBA, or YUV 4:2:0 planes
+//! that the shader converts), the pinhole camera that took it (in the scene's world frame) and
+//! the display's UV transform. (A camera frame is what a frame source
+//! delivers: image, tracked pose, intrinsics, planes; the app turns it into a backdrop.) ARCore
+//! and the replay feed (`crates/ar`) hand one over per frame
+//! (`EffectsHandle::set_backdrop`); without a frame source, [`Backdrop::synthetic`]
 //! draws what a camera at the render camera's pose would see of a checkered table under the
 //! water and a striped room around it.
 
@@ -12,9 +14,9 @@ use render::optics::{PinholeCamera, Plane};
 
 pub use camera_image::{CameraImage, LayoutError, StridedYuv420, Yuv420, YuvRange, YuvToRgb};
 
-/// One camera frame; `CameraFrame<()>` is its camera and display transform without the image.
+/// One backdrop; `Backdrop<()>` is its camera and display transform without the image.
 #[derive(Debug, Clone)]
-pub struct CameraFrame<I = CameraImage> {
+pub struct Backdrop<I = CameraImage> {
     /// The image: sRGB-encoded RGBA, or YUV planes.
     pub image: I,
     /// The camera that took it: intrinsics in the image's pixels, pose in world metres.
@@ -27,17 +29,17 @@ pub struct CameraFrame<I = CameraImage> {
 /// The identity display transform.
 pub const DISPLAY_IDENTITY: [[f64; 3]; 2] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
 
-impl<I> CameraFrame<I> {
+impl<I> Backdrop<I> {
     /// The image, and the frame without it.
-    pub fn split(self) -> (I, CameraFrame<()>) {
-        let CameraFrame {
+    pub fn split(self) -> (I, Backdrop<()>) {
+        let Backdrop {
             image,
             camera,
             display,
         } = self;
         (
             image,
-            CameraFrame {
+            Backdrop {
                 image: (),
                 camera,
                 display,
@@ -46,8 +48,8 @@ impl<I> CameraFrame<I> {
     }
 
     /// This frame's camera and display with `image`.
-    pub fn with_image<J>(self, image: J) -> CameraFrame<J> {
-        CameraFrame {
+    pub fn with_image<J>(self, image: J) -> Backdrop<J> {
+        Backdrop {
             image,
             camera: self.camera,
             display: self.display,
@@ -61,7 +63,7 @@ impl<I> CameraFrame<I> {
     }
 }
 
-impl CameraFrame {
+impl Backdrop {
     /// The pinhole camera equivalent to the render camera `cam` on an image of `size` pixels
     /// (square pixels, principal point at the centre).
     pub fn pinhole(cam: &Camera, size: [u32; 2]) -> PinholeCamera {
@@ -89,7 +91,7 @@ impl CameraFrame {
         centre: DVec2,
         ring_radius: f64,
         square: f64,
-    ) -> CameraFrame {
+    ) -> Backdrop {
         let camera = Self::pinhole(cam, size);
         let table = Plane::horizontal(-table_depth);
         let image = image::RgbaImage::from_fn(size[0], size[1], |x, y| {
@@ -121,7 +123,7 @@ impl CameraFrame {
             let s = lin.map(|c: f64| (linear_to_srgb(c) * 255.0).round() as u8);
             image::Rgba([s[0], s[1], s[2], 255])
         });
-        CameraFrame {
+        Backdrop {
             image: CameraImage::Rgba(image),
             camera,
             display: DISPLAY_IDENTITY,
@@ -145,7 +147,7 @@ mod tests {
     #[test]
     fn the_pinhole_matches_the_render_camera() {
         let cam = Camera::look_at(DVec3::new(3.0, 20.0, 30.0), DVec3::new(0.0, 0.0, 0.0), 1e3);
-        let pin = CameraFrame::pinhole(&cam, [320, 200]);
+        let pin = Backdrop::pinhole(&cam, [320, 200]);
         // The target is at the image centre, and a point at the top edge of the field of view
         // at the top row.
         let c = pin.project(cam.target).unwrap();
@@ -163,7 +165,7 @@ mod tests {
     #[test]
     fn the_synthetic_frame_shows_the_table_below_and_the_room_above() {
         let cam = Camera::look_at(DVec3::new(0.0, 10.0, 20.0), DVec3::ZERO, 1e3);
-        let f = CameraFrame::synthetic(&cam, [64, 48], 1.0, DVec2::ZERO, 15.0, 2.0);
+        let f = Backdrop::synthetic(&cam, [64, 48], 1.0, DVec2::ZERO, 15.0, 2.0);
         let CameraImage::Rgba(img) = &f.image else {
             panic!("synthetic frames are RGBA");
         };
