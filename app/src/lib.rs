@@ -21,6 +21,7 @@ pub mod tier_render;
 pub mod wakes;
 pub mod wall_clock;
 pub mod water;
+pub mod world;
 
 #[cfg(target_os = "android")]
 mod android;

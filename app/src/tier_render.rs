@@ -146,6 +146,3 @@ pub fn parse_tier(name: &str) -> CliResult<Tier> {
         ))
     })
 }
-
-#[cfg(test)]
-mod tests;

@@ -7,8 +7,8 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
-use regatta::core::scene::{FAR_M, RaceWorld};
 use regatta::desktop::hud::initial_clock;
+use regatta::world::{FAR_M, RaceWorld};
 use render::OrbitCamera;
 
 fn orbit() -> OrbitCamera {

@@ -202,7 +202,7 @@ fn one_mark_per_manoeuvre_in_the_trail_window_at_its_closed_form_position() {
     // (80 … 200 s: three, the first left behind) and 60 s (−60 … 60 s: one); none of them
     // within 2 s of a crossing, so the detector's second of error cannot move one across.
     for (t, expected) in [(150.0, 3), (200.0, 3), (60.0, 1)] {
-        let scene = regatta::core::scene::scene_at(&race, &sea, t, None);
+        let scene = regatta::world::scene_at(&race, &sea, t, None);
         let view = View::new(&race, &scene, [720, 1600], 2.0);
         let marks = in_trail_window(&race, &debrief, t, window);
         for (boat, (plan, kind)) in plans
@@ -246,7 +246,7 @@ fn one_mark_per_manoeuvre_in_the_trail_window_at_its_closed_form_position() {
                 want.push(view.px(GYBE_HOLE_PT));
             }
             assert_eq!(widths, want, "{m:?}");
-            let colour = regatta::core::scene::linear_colour(&race.boats[m.boat].color);
+            let colour = regatta::world::linear_colour(&race.boats[m.boat].color);
             assert_eq!(
                 here[1].colour_a[..3],
                 colour[..],
@@ -278,7 +278,7 @@ fn one_mark_per_manoeuvre_in_the_trail_window_at_its_closed_form_position() {
 fn the_marks_go_with_the_trails_toggle_and_carry_the_selected_boats_loss() {
     let (race, _) = race();
     let debrief = race::Debrief::of(&race);
-    let scene = regatta::core::scene::scene_at(&race, &sea(), 150.0, None);
+    let scene = regatta::world::scene_at(&race, &sea(), 150.0, None);
     let view = View::new(&race, &scene, [720, 1600], 2.0);
     let mut settings = OverlaySettings {
         selected: vec![0],

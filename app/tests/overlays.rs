@@ -21,8 +21,8 @@ fn sea() -> ocean::WaveSet {
 
 /// The desktop's orbit view of `race` at `t`.
 fn orbit_scene(race: &race::Race, t: f64) -> Scene {
-    let mut orbit = regatta::core::scene::race_orbit();
-    regatta::core::scene::RaceWorld::new(race.clone(), sea()).orbit_scene(t, &mut orbit)
+    let mut orbit = regatta::world::race_orbit();
+    regatta::world::RaceWorld::new(race.clone(), sea()).orbit_scene(t, &mut orbit)
 }
 
 /// A pinhole projection written out from the camera's definition (eye, target, up, vertical
@@ -52,7 +52,7 @@ fn masthead_as_drawn(scene: &Scene, position: [f64; 2], heading_deg: f64, length
 fn every_label_anchor_is_within_two_pixels_of_its_masthead() {
     let race = race::Race::sample();
     // The desktop's orbit view, and `regatta render`'s framing view at phone size.
-    let framing = |t| regatta::core::scene::scene_at(&race, &sea(), t, None);
+    let framing = |t| regatta::world::scene_at(&race, &sea(), t, None);
     for (t, size, scene) in [
         (600.0, [1280, 720], orbit_scene(&race, 600.0)),
         (300.0, [720, 1600], framing(300.0)),
@@ -309,7 +309,7 @@ fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaI
             render::OFFSCREEN_FORMAT,
             &setup,
             None,
-            regatta::core::scene::RaceWorld::new(race.clone(), sea()).race_bounds,
+            regatta::world::RaceWorld::new(race.clone(), sea()).race_bounds,
             GOLDEN_SIZE,
             0,
         )

@@ -47,8 +47,7 @@ fn a_fresh_install_asks_for_the_camera_and_a_tap_places_the_course_on_the_table(
         .app
         .course()
         .expect("the tap found the simulator's table");
-    let world =
-        regatta::core::scene::RaceWorld::new(race::Race::sample(), ocean::WaveSet::default_sea());
+    let world = regatta::world::RaceWorld::new(race::Race::sample(), ocean::WaveSet::default_sea());
     let on_table = course
         .race_to_ar()
         .transform_point3(course_pivot(world.play_area, table_depth()));

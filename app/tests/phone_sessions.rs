@@ -197,8 +197,7 @@ fn touched(s: [f64; 2]) -> DVec2 {
 }
 
 fn pivot_on_table(sim: &PhoneSim) -> DVec3 {
-    let world =
-        regatta::core::scene::RaceWorld::new(race::Race::sample(), ocean::WaveSet::default_sea());
+    let world = regatta::world::RaceWorld::new(race::Race::sample(), ocean::WaveSet::default_sea());
     let p = sim.app.course().expect("the course stands on the table");
     p.race_to_ar()
         .transform_point3(course_pivot(world.play_area, table_depth()))
@@ -525,7 +524,7 @@ fn the_races_folder_is_listed_and_a_chosen_race_loads_or_says_why_in_one_sentenc
     };
     let sample_pivot = pivot(
         &placed,
-        regatta::core::scene::RaceWorld::new(race::Race::sample(), ocean::WaveSet::default_sea())
+        regatta::world::RaceWorld::new(race::Race::sample(), ocean::WaveSet::default_sea())
             .race_bounds,
     );
     // The broken file: one sentence naming it, the race stays.

@@ -8,10 +8,10 @@
 
 use effects::EffectSet;
 use glam::DVec3;
-use regatta::core::scene::{FAR_M, RaceWorld, race_wake};
 use regatta::desktop::pool::PoolMode;
 use regatta::hud::initial_clock;
 use regatta::setup::{Profile, RaceSetup};
+use regatta::world::{FAR_M, RaceWorld, race_wake};
 use render::gpu::Gpu;
 use render::{FRAME_REUSED, OFFSCREEN_FORMAT, OrbitCamera, Renderer};
 

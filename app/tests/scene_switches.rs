@@ -7,9 +7,9 @@
 //! Needs a GPU (lavapipe in CI); skipped without one unless `REGATTA_REQUIRE_GPU=true`.
 
 use effects::{EffectSet, demo_table_scene, passes::add_scene_effects};
-use regatta::core::scene::RaceWorld;
 use regatta::panels::{SceneApplier, effect_toggles};
 use regatta::setup::{Profile, RaceSetup};
+use regatta::world::RaceWorld;
 use render::{OFFSCREEN_FORMAT, OrbitCamera, Renderer, Scene};
 use ui::SceneSettings;
 
@@ -88,14 +88,14 @@ fn the_wakes_switch_changes_the_picture() {
         distance: 90.0,
         yaw: 2.4,
         pitch: 0.5,
-        far: regatta::core::scene::FAR_M,
+        far: regatta::world::FAR_M,
     };
     let world = RaceWorld::new(race.clone(), sea);
     let scene = world.orbit_scene(300.0, &mut orbit);
     let mut r =
         RaceSetup::new(Profile::Desktop).renderer(&gpu, OFFSCREEN_FORMAT, world.wake().ok());
     let mut settings = SceneSettings::new(effect_toggles(false));
-    let mut applier = SceneApplier::new(regatta::core::scene::race_wake(&race).ok());
+    let mut applier = SceneApplier::new(regatta::world::race_wake(&race).ok());
     let (on, _) = draw(&gpu, &mut r, &scene);
     set(&mut settings, "wakes", false);
     applier.apply(&settings, &mut r, None);

@@ -12,10 +12,10 @@
 use std::path::Path;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::core::scene::RaceWorld;
 use regatta::feed::TableFrame;
 use regatta::feed::{FeedView, SYNTH};
 use regatta::setup::{Profile, RaceSetup};
+use regatta::world::RaceWorld;
 use render::Camera;
 
 const SIZE: [u32; 2] = [640, 480];

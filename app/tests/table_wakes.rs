@@ -11,10 +11,10 @@ use std::path::Path;
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::core::scene::{middle_time, race_wake};
 use regatta::feed::TableFrame;
 use regatta::feed::{FeedView, SYNTH};
 use regatta::setup::{Profile, RaceSetup};
+use regatta::world::{middle_time, race_wake};
 use render::Camera;
 
 const SIZE: [u32; 2] = [1280, 720];
@@ -68,7 +68,7 @@ fn every_boat_over_2_mps_leaves_a_wake_twice_its_silhouette_behind_it() {
     let race = race::Race::sample();
     let sea = regatta::setup::inputs::drawable_sea(ocean::WaveSet::default_sea());
     let t = middle_time(&race);
-    let world = regatta::core::scene::RaceWorld::new(race.clone(), sea.clone());
+    let world = regatta::world::RaceWorld::new(race.clone(), sea.clone());
     let table = TableFrame {
         world: &world,
         t,

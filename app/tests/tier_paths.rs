@@ -14,12 +14,12 @@
 
 use ocean::wake::WakeParams;
 use quality::Tier;
-use regatta::core::scene::RaceWorld;
 use regatta::feed::CameraFeed;
 use regatta::panels::{SceneApplier, effect_toggles};
 use regatta::phone_sim::PhoneSim;
 use regatta::setup::{Profile, RaceSetup};
 use regatta::sim_phone::device::Device;
+use regatta::world::RaceWorld;
 use render::Renderer;
 
 /// The settings a tier sets on the race renderer: render scale, error target (px), wake

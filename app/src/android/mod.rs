@@ -15,9 +15,9 @@ use ar::arcore::ffi::{ArCore, JavaObject, Jni};
 
 use crate::core::gfx::SurfaceMaker;
 use crate::core::phone::{PhoneApp, PhoneEvent};
-use crate::core::scene::RaceWorld;
 use crate::hud::touch::{Finger, Touch, TouchAction};
 use crate::wall_clock::Ticker;
+use crate::world::RaceWorld;
 
 mod intents;
 mod jni_calls;

@@ -108,6 +108,6 @@ pub fn physical_camera(frame: &CameraFrame, placement: &CoursePlacement, fov_y: 
         up: rot * DVec3::Y,
         fov_y,
         near: (0.02 / placement.course_to_table).max(0.01),
-        far: super::scene::FAR_M,
+        far: crate::world::FAR_M,
     }
 }

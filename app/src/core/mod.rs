@@ -1,7 +1,8 @@
 //! The app core: everything the desktop window, the phone and the headless phone sessions share,
 //! free of any platform (compiled and tested on the host).
 //!
-//! - [`scene`]: the race at time t ([`scene::RaceWorld`]: play area scanned once, sea shared).
+//! - the race at time t: [`crate::world`] (below the core: the race overlays, the set-up and
+//!   the feed use it too).
 //! - time: race time is the panels' `ui::RaceClock`; the shells feed wall seconds
 //!   (`crate::wall_clock::Ticker`, outside the core).
 //! - [`table`]: one mapping of the race onto the table (`ar::arcore::CoursePlacement`).
@@ -23,6 +24,5 @@ mod ar_ffi;
 pub mod camera_frame;
 pub mod gfx;
 pub mod phone;
-pub mod scene;
 pub mod table;
 pub mod vulkan_marker;

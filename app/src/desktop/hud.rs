@@ -101,7 +101,7 @@ impl Hud {
             perf: PerfStats::default(),
             last: Instant::now(),
             title,
-            scene: crate::panels::SceneApplier::new(crate::core::scene::race_wake(race).ok()),
+            scene: crate::panels::SceneApplier::new(crate::world::race_wake(race).ok()),
             load_error: None,
             open_request: None,
             tier_change: None,
@@ -199,7 +199,7 @@ impl Hud {
         self.load_error = None;
         self.title = race.name.clone();
         self.scene
-            .set_race_wake(crate::core::scene::race_wake(race).ok(), renderer);
+            .set_race_wake(crate::world::race_wake(race).ok(), renderer);
     }
 
     /// Counts a drawn frame; true when the app should exit (`REGATTA_EXIT_AFTER_FRAMES`).

@@ -19,12 +19,12 @@ use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
 use crate::core::gfx::{self, Acquired};
-use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 use crate::setup::SceneKind;
 use crate::setup::inputs::{load_race, load_sea};
 use crate::setup::{Profile, RaceSetup};
 use crate::wall_clock::Ticker;
+use crate::world::RaceWorld;
 
 pub mod hud;
 pub mod phone;
@@ -122,7 +122,7 @@ pub fn run(a: RunArgs) -> CliResult {
     let mut app = App {
         orbit: match pool {
             Some(_) => pool::PoolMode::orbit(),
-            None => crate::core::scene::race_orbit(),
+            None => crate::world::race_orbit(),
         },
         pool,
         feed,

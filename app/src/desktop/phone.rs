@@ -16,12 +16,12 @@ use winit::window::{Window, WindowId};
 
 use super::RunArgs;
 use crate::core::phone::{PhoneApp, PhoneEvent};
-use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 use crate::hud::touch::TouchAction;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::SimArCore;
 use crate::wall_clock::Ticker;
+use crate::world::RaceWorld;
 
 /// The tallest window the host gives the phone, pixels (an 800-pixel-high screen keeps its
 /// title bar).

@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use crate::core::scene::RaceWorld;
 use crate::setup::clip::{ClipLook, ClipTimes, write_gif};
+use crate::world::RaceWorld;
 
 /// What a clip covers and how it is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]

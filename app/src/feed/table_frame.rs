@@ -6,7 +6,7 @@ use crate::error::{CliError, CliResult};
 /// One picture of the table scene, as `run` draws it: `race` at race time `t` over feed frame
 /// `frame`, `size` pixels.
 pub struct TableFrame<'a> {
-    pub world: &'a crate::core::scene::RaceWorld,
+    pub world: &'a crate::world::RaceWorld,
     pub t: f64,
     pub size: [u32; 2],
     pub frame: usize,
@@ -27,7 +27,7 @@ impl TableFrame<'_> {
         wake: Option<std::sync::Arc<ocean::wake::Wake>>,
         edit: impl FnOnce(&mut render::Scene),
     ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
-        let mut orbit = crate::core::scene::race_orbit();
+        let mut orbit = crate::world::race_orbit();
         let mut scene = self.world.orbit_scene(self.t, &mut orbit);
         feed.prepare_frame(
             gpu,

@@ -176,7 +176,7 @@ impl FeedView {
         // Boats are drawn as table models where a model is longer than the hull itself.
         let model = crate::core::table::model_boat_length(map);
         let drawn = match &given {
-            Some(w) if model > crate::core::scene::BOAT_LENGTH_M => {
+            Some(w) if model > crate::world::BOAT_LENGTH_M => {
                 Some(crate::wakes::table_wake(w, model, scale))
             }
             _ => given.clone(),

@@ -16,11 +16,11 @@ use ar::arcore::ffi::ScriptedJni;
 use glam::DVec2;
 
 use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
-use crate::core::scene::RaceWorld;
 use crate::feed::CameraFeed;
 use crate::hud::touch::TouchAction;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::{Availability, SimArCore, SimControl};
+use crate::world::RaceWorld;
 use script::{Line, Step};
 
 /// Display frames per simulated second. Low, so lavapipe runs a minute of session in seconds;

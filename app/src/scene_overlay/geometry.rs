@@ -51,7 +51,7 @@ impl<'a> View<'a> {
             .map(|(index, b)| BoatAt {
                 index,
                 state: b.state_at(scene.t),
-                colour: crate::core::scene::linear_colour(&b.color),
+                colour: crate::world::linear_colour(&b.color),
             })
             .filter(|b| !b.state.in_gap)
             .collect();
@@ -59,7 +59,7 @@ impl<'a> View<'a> {
             .boats
             .iter()
             .map(|b| b.length)
-            .fold(crate::core::scene::BOAT_LENGTH_M, f64::max);
+            .fold(crate::world::BOAT_LENGTH_M, f64::max);
         let origin = DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
         let aspect = f64::from(size[0].max(1)) / f64::from(size[1].max(1));
         View {
@@ -249,7 +249,7 @@ pub fn trails(v: &View, window_s: f64) -> Layer {
         if b.fixes().is_empty() {
             continue;
         }
-        let colour = crate::core::scene::linear_colour(&b.color);
+        let colour = crate::world::linear_colour(&b.color);
         let fade = |tp: f64| {
             rgba(
                 colour,

@@ -177,7 +177,7 @@ pub fn candidates(v: &View, hulls: &[Hull], selected: &[usize]) -> Vec<LabelCand
             LabelCandidate {
                 boat: h.boat,
                 text: label_text(boat, rank),
-                colour: crate::core::scene::linear_colour(&boat.color),
+                colour: crate::world::linear_colour(&boat.color),
                 rank,
                 selected: selected.iter().position(|&s| s == h.boat),
                 anchor: h.anchor,

@@ -126,7 +126,7 @@ pub fn marks(
     let t = v.scene.t;
     let mut out = Vec::new();
     for m in in_trail_window(v.race, debrief, t, window_s) {
-        let colour = crate::core::scene::linear_colour(&v.race.boats[m.boat].color);
+        let colour = crate::world::linear_colour(&v.race.boats[m.boat].color);
         let alpha = (0.5 + 0.45 * (1.0 - (t - m.t) / window_s)).clamp(0.5, 0.95) as f32;
         let p = mark_point(v, m.position);
         out.push(Segment::disc(

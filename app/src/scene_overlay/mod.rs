@@ -624,7 +624,7 @@ mod tests {
     #[test]
     fn an_overlay_the_tier_hides_says_why_and_draws_nothing() {
         let race = race::Race::sample();
-        let world = crate::core::scene::RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
+        let world = crate::world::RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
         let scene = world.scene_at(world.middle_time(), None);
         let settings = OverlaySettings {
             detail: OverlayDetail::Essential,

@@ -12,8 +12,8 @@ use std::io::Write;
 use std::path::Path;
 
 use super::{Profile, RaceSetup};
-use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
+use crate::world::RaceWorld;
 
 /// Frame rate without `--fps`, frames per second.
 pub const DEFAULT_FPS: f64 = 15.0;

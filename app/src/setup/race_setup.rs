@@ -15,10 +15,10 @@ use quality::Tier;
 use render::water_look::WaterLook;
 use render::{Gpu, RenderOptions, Renderer};
 
-use crate::core::scene::RaceWorld;
 use crate::error::{CliError, CliResult};
 use crate::scene_overlay::OverlaySettings;
 use crate::tier_render::TierRender;
+use crate::world::RaceWorld;
 
 /// Who the renderer draws for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,7 +127,7 @@ impl RaceSetup {
         }
         match &self.tier {
             Some(t) => t.race_wake(race).map(Some),
-            None => crate::core::scene::race_wake(race).map(Some),
+            None => crate::world::race_wake(race).map(Some),
         }
     }
 

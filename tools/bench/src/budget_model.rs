@@ -299,8 +299,7 @@ mod tests {
     /// model's work per pass.
     fn work_of(gpu: &render::Gpu, tier: Tier) -> Vec<PassWork> {
         let race = race::Race::sample();
-        let scene =
-            regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+        let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
         let t = TierRender::of(tier);
         let size = [180, 320];
         let (mut renderer, fx) =

@@ -179,7 +179,7 @@ pub(crate) fn measure(
     reps: usize,
 ) -> CliResult<Row> {
     let race = race::Race::sample();
-    let scene = regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+    let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
     let t = TierRender::of(tier);
     let size = phone.screen;
     ctx.progress(format!(
@@ -517,7 +517,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
         &["phone", "case", "model ms (slow spec)", "× water only"],
     );
     let race = race::Race::sample();
-    let scene = regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+    let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
     let ultra = TierRender::of(Tier::Ultra);
     let wake = ultra.race_wake(&race)?;
     for phone in &PHONES {
@@ -606,7 +606,7 @@ mod tests {
             return;
         };
         let race = race::Race::sample();
-        let scene = regatta::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
+        let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
         let t = TierRender::of(Tier::High);
         let size = [270, 540];
         let (mut renderer, _) =

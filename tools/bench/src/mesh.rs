@@ -225,7 +225,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
 /// GPU milliseconds per pass (timestamp queries) for the sample race at its middle, framed by
 /// the default camera, with and without wakes: the ratio is what wakes cost.
 fn gpu_time_table(ctx: &BenchContext) -> CliResult<Table> {
-    use regatta::core::scene::{middle_time, race_wake, scene_at};
+    use regatta::world::{middle_time, race_wake, scene_at};
     let mut table = Table::new(
         "render_gpu",
         "GPU time per pass: the sample race with and without wakes",

@@ -60,7 +60,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
         ctx.progress(format!("overlays: frame {i} of {}", frames + 2));
         // Race time moves 1/30 s per frame, as in a playing race.
         let t = 600.0 + f64::from(i) / 30.0;
-        let scene = regatta::core::scene::scene_at(&race, &sea, t, None);
+        let scene = regatta::world::scene_at(&race, &sea, t, None);
         let t0 = Instant::now();
         let water = plain.render(&gpu, &view, size, &scene).map_err(fail)?;
         gpu.wait();

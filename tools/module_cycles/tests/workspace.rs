@@ -70,3 +70,23 @@ fn no_crate_has_an_import_cycle_between_its_modules() {
         found.join("\n")
     );
 }
+
+/// The app's top-level folders import one way only: no back arrow between them (a cycle in
+/// `Graph::folders`), and nothing outside `cli` imports `cli` (the command line is flags and
+/// glue over the app; the crate root's `main` alone calls it).
+#[test]
+fn the_app_folders_have_no_back_arrow_and_only_the_root_imports_cli() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let graph = Graph::of_crate(&root.join("app/src")).expect("readable sources");
+    let folders = graph.folders();
+    assert!(folders.edges.len() >= 5, "{:?}", folders.edges.keys());
+    let back: Vec<String> = folders.cycles().iter().map(|c| describe(c)).collect();
+    let cli_importers = graph.importers_of("cli");
+    println!("app folders: {:?}", folders.edges);
+    assert!(
+        back.is_empty() && cli_importers.is_empty(),
+        "back arrows between app folders (move what both need below both):\n{}\n\
+         folders importing cli: {cli_importers:?}",
+        back.join("\n")
+    );
+}

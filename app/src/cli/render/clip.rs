@@ -11,10 +11,10 @@
 use std::path::Path;
 
 use super::RenderArgs;
-use crate::core::scene::{FAR_M, RaceWorld};
 use crate::error::{CliError, CliResult};
 use crate::setup::clip::{ClipLook, ClipTimes, DEFAULT_FPS, write_gif};
 use crate::setup::inputs::{drawable_sea, load_race, load_sea};
+use crate::world::{FAR_M, RaceWorld};
 
 /// The file kind a clip's `--out` names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

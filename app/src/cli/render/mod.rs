@@ -14,8 +14,8 @@ use crate::setup::{Profile, RaceSetup};
 
 pub mod clip;
 pub mod replay;
-use crate::core::scene::FAR_M;
 use crate::error::{CliError, CliResult};
+use crate::world::FAR_M;
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {

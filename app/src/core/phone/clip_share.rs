@@ -21,8 +21,8 @@ use std::sync::{Arc, Mutex};
 use ar::arcore::ffi::share::MEDIA_STORE_MIN_SDK;
 use ar::arcore::ffi::{JavaObject, MediaItem, ShareJni};
 
-use crate::core::scene::RaceWorld;
 use crate::setup::clip::{ClipLook, ClipTimes, write_gif};
+use crate::world::RaceWorld;
 
 /// What a phone clip covers and how large it is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -23,12 +23,12 @@ use ui::{RegattaUi, TimelineEvent};
 
 use super::ar::{ArBackend, ArState};
 use super::gfx::SurfaceMaker;
-use super::scene::RaceWorld;
 use super::table;
 use crate::hud::SceneChoice;
 use crate::hud::banner::{ArStatus, Tone, banner};
 use crate::hud::touch::{Touch, TouchInput};
 use crate::pool_play::PoolPlay;
+use crate::world::RaceWorld;
 
 pub use clip_share::{ClipShare, PhoneClip, ShareState, hand_off};
 pub use draw::Graphics;
@@ -177,7 +177,7 @@ impl PhoneApp {
             pool_t: 0.0,
             now: 0.0,
             scene: SceneChoice::Race,
-            orbit: super::scene::race_orbit(),
+            orbit: crate::world::race_orbit(),
             pool_orbit: PoolPlay::orbit(),
             pool: PoolPlay::new(None),
             course: None,

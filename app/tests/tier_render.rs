@@ -1,7 +1,12 @@
 //! Every field of a tier changes the frame the renderer draws: read back from the frame
-//! record and the effect passes' offscreen targets of the sample race at 600 s.
+//! record and the effect passes' offscreen targets of the sample race at 600 s. (Outside the
+//! crate: it drives the tier through the scene set-up and the panels, which sit above
+//! `tier_render`.)
 
-use super::*;
+use effects::passes::EffectsHandle;
+use quality::Tier;
+use regatta::tier_render::*;
+use render::Renderer;
 
 /// The sample race's frame at 600 s at `size` for `tier` (with `budget` wake sources when
 /// given instead of the tier's): the record and the offscreen targets' sizes.
@@ -11,9 +16,9 @@ fn frame_of(
 ) -> (render::FrameReport, effects::passes::OffscreenSizes) {
     let gpu = render::gpu::test_gpu().expect("checked by the caller");
     let race = race::Race::sample();
-    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+    let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
     let (mut renderer, fx) =
-        crate::setup::RaceSetup::tier_renderer(tier, &gpu, Some(&race), &scene, size)
+        regatta::setup::RaceSetup::tier_renderer(tier, &gpu, Some(&race), &scene, size)
             .expect("renderer");
     let view = render::gpu::texture_2d(
         &gpu.device,
@@ -167,11 +172,11 @@ fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
     };
     let size = [240, 160];
     let race = race::Race::sample();
-    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+    let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
     // Down across every setting, and back up (the caustic tier, map cells, reflection size,
     // effects, spacing and budget all change both ways).
     for (from, to) in [(Tier::Ultra, Tier::Low), (Tier::Low, Tier::High)] {
-        let (mut live, live_fx) = crate::setup::RaceSetup::tier_renderer(
+        let (mut live, live_fx) = regatta::setup::RaceSetup::tier_renderer(
             &TierRender::of(from),
             &gpu,
             Some(&race),
@@ -182,7 +187,7 @@ fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
         let before = draw(&gpu, &mut live, &live_fx, &scene, size);
         // The phone's way: a Scene panel without switches, through the one tier path.
         let mut settings = ui::SceneSettings::new(Vec::new());
-        let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
+        let mut applier = regatta::panels::SceneApplier::new(live.wake().cloned());
         let fx = Some(&live_fx);
         assert!(
             applier
@@ -190,7 +195,7 @@ fn a_live_tier_change_draws_the_frame_of_a_renderer_built_at_that_tier() {
                 .is_some()
         );
         let after = draw(&gpu, &mut live, &live_fx, &scene, size);
-        let (mut fresh, fresh_fx) = crate::setup::RaceSetup::tier_renderer(
+        let (mut fresh, fresh_fx) = regatta::setup::RaceSetup::tier_renderer(
             &TierRender::of(to),
             &gpu,
             Some(&race),
@@ -229,8 +234,8 @@ fn a_tier_through_the_scene_panels_switches_draws_that_tiers_frame() {
     };
     let size = [240, 160];
     let race = race::Race::sample();
-    let scene = crate::core::scene::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
-    let (mut live, fx) = crate::setup::RaceSetup::tier_renderer(
+    let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), 600.0, None);
+    let (mut live, fx) = regatta::setup::RaceSetup::tier_renderer(
         &TierRender::of(Tier::Ultra),
         &gpu,
         Some(&race),
@@ -238,8 +243,8 @@ fn a_tier_through_the_scene_panels_switches_draws_that_tiers_frame() {
         size,
     )
     .expect("renderer");
-    let mut settings = ui::SceneSettings::new(crate::panels::effect_toggles(true));
-    let mut applier = crate::panels::SceneApplier::new(live.wake().cloned());
+    let mut settings = ui::SceneSettings::new(regatta::panels::effect_toggles(true));
+    let mut applier = regatta::panels::SceneApplier::new(live.wake().cloned());
     applier.apply(&settings, &mut live, Some(&fx));
     draw(&gpu, &mut live, &fx, &scene, size);
     let low = TierRender::of(Tier::Low);
@@ -250,7 +255,7 @@ fn a_tier_through_the_scene_panels_switches_draws_that_tiers_frame() {
     applier.apply(&settings, &mut live, Some(&fx));
     let after = draw(&gpu, &mut live, &fx, &scene, size);
     let (mut fresh, fresh_fx) =
-        crate::setup::RaceSetup::tier_renderer(&low, &gpu, Some(&race), &scene, size)
+        regatta::setup::RaceSetup::tier_renderer(&low, &gpu, Some(&race), &scene, size)
             .expect("renderer");
     let want = draw(&gpu, &mut fresh, &fresh_fx, &scene, size);
     assert_eq!(after.0, want.0);

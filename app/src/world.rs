@@ -4,6 +4,10 @@
 //! [`RaceWorld`] holds what does not change during a race: the marks and the play area (one
 //! scan of every fix, made once) and the sea behind an `Arc`, so a frame costs the boats' states
 //! and nothing else.
+//!
+//! Invariant: the bottom of the app's folders: it names only `error` and `wakes` of the app
+//! (the race overlays, the set-up, the feed and the core all stand on it; the folder-level
+//! module test, `tools/module_cycles`, holds it).
 
 use std::sync::Arc;
 
@@ -239,7 +243,7 @@ mod tests {
 
     #[test]
     fn the_race_bounds_and_the_play_area_cover_every_fix_and_mark_and_the_sea_is_shared() {
-        let race = crate::setup::inputs::load_race(&[]).unwrap();
+        let race = race::Race::sample();
         let world = RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
         // Independent truth: the bounding box of every fix and buoy, scanned here.
         let mut b = [
