@@ -16,6 +16,7 @@ pub mod scene_overlay;
 pub mod setup;
 #[cfg(not(target_os = "android"))]
 pub mod sim_phone;
+pub mod terminal;
 pub mod tier_control;
 pub mod tier_render;
 pub mod wakes;

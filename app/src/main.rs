@@ -3,7 +3,8 @@
 //! Every subcommand lives in its own module under `cli/`. Output that a program reads is JSON
 //! on stdout; messages for people go to stderr. A bad input exits non-zero with one sentence.
 
-use regatta::cli::{dispatch, parse_args, stdout_is_closed};
+use regatta::cli::{dispatch, parse_args};
+use regatta::terminal::stdout_is_closed;
 
 /// Warnings for people print as every other message does, `regatta: <one line>` (the
 /// logger's `[time WARN module]` prefix broke that style, and a failing phone-sim printed two
@@ -17,7 +18,7 @@ fn init_logging() {
             writeln!(
                 buf,
                 "{}",
-                regatta::cli::user_line(&record.args().to_string())
+                regatta::terminal::user_line(&record.args().to_string())
             )
         });
     }
@@ -31,7 +32,7 @@ fn main() {
     // With stdout closed (`regatta race --t 10 >&-`) the JSON would vanish and the exit be 0:
     // Rust's stdout ignores EBADF. Refuse before anything opens a file into descriptor 1.
     let result = if stdout_is_closed() && cli.writes_stdout() {
-        Err(regatta::error::CliError::new(
+        Err(regatta::error::AppError::new(
             "stdout is closed, so the output has nowhere to go (was it run with >&-?)",
         ))
     } else {

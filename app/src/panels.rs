@@ -187,7 +187,7 @@ impl SceneApplier {
         renderer: &mut render::Renderer,
         effects: Option<&EffectsHandle>,
         race: &race::Race,
-    ) -> crate::error::CliResult {
+    ) -> crate::error::AppResult {
         set_effect_switches(settings, tier.ar.effects);
         if let Some(w) = tier.respaced_wake(race, self.wake.as_deref())? {
             self.set_race_wake(Some(w), renderer);

@@ -20,7 +20,7 @@ use ocean::wake::{Wake, WakeParams};
 use quality::{OverlayDetail, Tier, TierSettings};
 use render::{RenderOptions, Renderer};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// What one tier sets on the renderer.
 #[derive(Debug, Clone, PartialEq)]
@@ -114,7 +114,7 @@ impl TierRender {
         &self,
         race: &race::Race,
         current: Option<&Wake>,
-    ) -> CliResult<Option<Arc<Wake>>> {
+    ) -> AppResult<Option<Arc<Wake>>> {
         let Some(w) = current else {
             return Ok(None);
         };
@@ -130,16 +130,16 @@ impl TierRender {
     }
 
     /// The race's wakes with this tier's source spacing.
-    pub fn race_wake(&self, race: &race::Race) -> CliResult<Arc<Wake>> {
+    pub fn race_wake(&self, race: &race::Race) -> AppResult<Arc<Wake>> {
         crate::wakes::race_wake(race, self.wake).map(Arc::new)
     }
 }
 
 /// `--tier NAME`: a tier by name; the error lists the names.
-pub fn parse_tier(name: &str) -> CliResult<Tier> {
+pub fn parse_tier(name: &str) -> AppResult<Tier> {
     Tier::from_name(name.trim()).ok_or_else(|| {
         let names: Vec<&str> = Tier::ALL.iter().map(|t| t.name()).collect();
-        CliError::new(format!(
+        AppError::new(format!(
             "--tier {} is not a quality tier; the tiers are: {}",
             input::quote(name),
             names.join(", ")

@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use ocean::wake::{TableModel, TrackSample, Wake, WakeParams};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// Each boat's fixes as wake samples, in race order.
 pub fn race_tracks(race: &race::Race) -> Vec<Vec<TrackSample>> {
@@ -30,7 +30,7 @@ pub fn race_tracks(race: &race::Race) -> Vec<Vec<TrackSample>> {
 }
 
 /// The Kelvin wakes of a race's boats.
-pub fn race_wake(race: &race::Race, params: WakeParams) -> CliResult<Wake> {
+pub fn race_wake(race: &race::Race, params: WakeParams) -> AppResult<Wake> {
     let tracks = race_tracks(race);
     let refs: Vec<&[TrackSample]> = tracks.iter().map(Vec::as_slice).collect();
     Wake::new(&refs, params).map_err(|e| {
@@ -43,7 +43,7 @@ pub fn race_wake(race: &race::Race, params: WakeParams) -> CliResult<Wake> {
                 .unwrap_or_else(|| e.to_string()),
             _ => e.to_string(),
         };
-        CliError::new(msg)
+        AppError::new(msg)
     })
 }
 

@@ -5,7 +5,7 @@
 use clap::Args;
 use render::water_look::{MAX_DEPTH_M, MAX_TURBIDITY_NTU, MIN_DEPTH_M, WaterLook, WaterType};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// The water settings of the command line.
 #[derive(Debug, Args, Default, Clone)]
@@ -32,11 +32,11 @@ fn type_names() -> String {
 impl WaterArgs {
     /// The look asked for over `base` (what the scene uses without the flags); a one-line
     /// error naming the flag when out of range or unknown.
-    pub fn look(&self, base: WaterLook) -> CliResult<WaterLook> {
+    pub fn look(&self, base: WaterLook) -> AppResult<WaterLook> {
         let water_type = match &self.water_type {
             None => base.water_type,
             Some(name) => WaterType::from_name(name).ok_or_else(|| {
-                CliError::new(format!(
+                AppError::new(format!(
                     "--water-type {} is not a water type: {}",
                     input::quote(name),
                     type_names()
@@ -46,7 +46,7 @@ impl WaterArgs {
         if let Some(d) = self.water_depth
             && !(d.is_finite() && (MIN_DEPTH_M..=MAX_DEPTH_M).contains(&d))
         {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "--water-depth {} is outside {MIN_DEPTH_M} to {MAX_DEPTH_M} metres (the real sea's depth)",
                 input::show_number(d)
             )));
@@ -54,7 +54,7 @@ impl WaterArgs {
         if let Some(t) = self.turbidity
             && !(t.is_finite() && (0.0..=MAX_TURBIDITY_NTU).contains(&t))
         {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "--turbidity {} is outside 0 to {MAX_TURBIDITY_NTU} NTU",
                 input::show_number(t)
             )));

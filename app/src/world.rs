@@ -14,7 +14,7 @@ use std::sync::Arc;
 use glam::{DVec2, DVec3};
 use render::{Boat, Camera, Mark, OrbitCamera, Scene};
 
-use crate::error::CliResult;
+use crate::error::AppResult;
 
 /// Hull length drawn for every boat, metres (the tracks do not say).
 pub const BOAT_LENGTH_M: f64 = 10.0;
@@ -123,7 +123,7 @@ impl RaceWorld {
     }
 
     /// The race's wakes (default parameters), for `Renderer::set_wake`.
-    pub fn wake(&self) -> CliResult<Arc<ocean::wake::Wake>> {
+    pub fn wake(&self) -> AppResult<Arc<ocean::wake::Wake>> {
         race_wake(&self.race)
     }
 }
@@ -197,7 +197,7 @@ pub fn race_orbit() -> OrbitCamera {
 }
 
 /// The wakes of every boat of `race` (default wake parameters), for `Renderer::set_wake`.
-pub fn race_wake(race: &race::Race) -> CliResult<Arc<ocean::wake::Wake>> {
+pub fn race_wake(race: &race::Race) -> AppResult<Arc<ocean::wake::Wake>> {
     crate::wakes::race_wake(race, ocean::wake::WakeParams::default()).map(Arc::new)
 }
 

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// The bench's own arguments (`regatta bench --help` prints them): passed on untouched.
 #[derive(Debug, Args)]
@@ -46,17 +46,17 @@ pub fn missing_bench(path: &Path) -> String {
 
 /// Runs the bench with `a`'s arguments; returns only on success or when it could not start, and
 /// otherwise exits with the bench's own exit code.
-pub fn run(a: BenchArgs) -> CliResult {
+pub fn run(a: BenchArgs) -> AppResult {
     let exe = std::env::current_exe()
-        .map_err(|e| CliError::new(format!("cannot tell where this program is: {e}")))?;
+        .map_err(|e| AppError::new(format!("cannot tell where this program is: {e}")))?;
     let bench = bench_beside(&exe);
     if !bench.is_file() {
-        return Err(CliError::new(missing_bench(&bench)));
+        return Err(AppError::new(missing_bench(&bench)));
     }
     let status = std::process::Command::new(&bench)
         .args(&a.args)
         .status()
-        .map_err(|e| CliError::new(format!("could not start {}: {e}", input::show_path(&bench))))?;
+        .map_err(|e| AppError::new(format!("could not start {}: {e}", input::show_path(&bench))))?;
     match status.code() {
         Some(0) => Ok(()),
         Some(code) => std::process::exit(code),

@@ -2,7 +2,7 @@
 //! The race, the sea and sizes are the scene set-up's (`crate::setup::inputs`): the desktop
 //! window and the phone read them too.
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// clap's parser for a whole-number option: `--waves -1` or `--seed x` is refused by saying
 /// the values the option takes (`takes`, e.g. "from 1 to 4096"), where clap took `-1` for an
@@ -27,11 +27,11 @@ pub const MAX_TIME_S: f64 = 1.0e9;
 
 /// `--t` of `race` and `render`: the same cap `probe` has (±[`MAX_TIME_S`], 31
 /// years), where they took `--t 1e300` before.
-pub fn check_race_time(t: f64) -> CliResult<f64> {
+pub fn check_race_time(t: f64) -> AppResult<f64> {
     if t.abs() <= MAX_TIME_S {
         Ok(t)
     } else {
-        Err(CliError::new(format!(
+        Err(AppError::new(format!(
             "--t {} is not a finite number of seconds within ±{:e}",
             input::show_number(t),
             MAX_TIME_S

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::json;
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::feed::CameraFeed;
 use crate::phone_sim::{PhoneSim, run_script, script};
 use crate::sim_phone::device::Device;
@@ -42,16 +42,16 @@ pub struct PhoneSimArgs {
 /// app/tests/phone (a few KiB); `/dev/zero` read until memory ran out (2.1 GB) before.
 pub const MAX_SCRIPT_BYTES: u64 = 1 << 20;
 
-pub fn run(a: PhoneSimArgs) -> CliResult {
+pub fn run(a: PhoneSimArgs) -> AppResult {
     let bytes = input::read_capped(
         &a.script,
         MAX_SCRIPT_BYTES,
         "a phone-sim script",
         input::text_sniff,
     )
-    .map_err(|e| CliError::new(e.to_string()))?;
+    .map_err(|e| AppError::new(e.to_string()))?;
     let text = String::from_utf8(bytes).map_err(|e| {
-        CliError::new(format!(
+        AppError::new(format!(
             "{} is not UTF-8 text (byte {})",
             input::show_path(&a.script),
             e.utf8_error().valid_up_to()
@@ -69,19 +69,19 @@ pub fn run(a: PhoneSimArgs) -> CliResult {
         None => a.device.host_size(),
     };
     std::fs::create_dir_all(&a.out)
-        .map_err(|e| CliError::new(format!("{}: {e}", input::show_path(&a.out))))?;
+        .map_err(|e| AppError::new(format!("{}: {e}", input::show_path(&a.out))))?;
     let ppp = a.device.pixels_per_point(size);
     let data = Some(a.out.clone());
     let mut sim = match &a.arcore_lib {
         Some(lib) => {
-            PhoneSim::with_ffi(lib, a.replay.as_deref(), size, ppp, data).map_err(CliError::new)?
+            PhoneSim::with_ffi(lib, a.replay.as_deref(), size, ppp, data).map_err(AppError::new)?
         }
         None => PhoneSim::new(CameraFeed::for_phone(a.replay.as_deref())?, size, ppp, data),
     };
     // The Races panel lists $REGATTA_RACES_DIR, else OUT/races.
     sim.app
         .set_races_dir(crate::core::phone::host_races_dir(Some(&a.out)));
-    let failed = run_script(&mut sim, &lines, &a.out).map_err(CliError::new)?;
+    let failed = run_script(&mut sim, &lines, &a.out).map_err(AppError::new)?;
     let summary = json!({
         "steps": lines.len(),
         "failed": failed,
@@ -89,12 +89,12 @@ pub fn run(a: PhoneSimArgs) -> CliResult {
         "gpu": sim.app.describe_gpu(),
         "status": sim.app.status(),
     });
-    super::output::print_stdout(
+    crate::terminal::print_stdout(
         "the session summary",
         &serde_json::to_string_pretty(&summary)?,
     )?;
     if failed > 0 {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "{failed} of {} steps failed (see {})",
             lines.len(),
             input::show_path(&a.out.join("log.jsonl"))

@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::json;
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::setup::inputs::{load_race, load_sea};
 
 #[derive(Debug, Args)]
@@ -52,15 +52,15 @@ pub const MAX_WORLD_M: f64 = 1.0e6;
 pub use super::inputs::MAX_TIME_S;
 
 /// The race time of `--t`: a number of seconds within ±[`MAX_TIME_S`].
-pub fn parse_time(t: Option<&str>) -> CliResult<f64> {
+pub fn parse_time(t: Option<&str>) -> AppResult<f64> {
     let Some(t) = t else {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "probe needs the race time: --t SECONDS is missing",
         ));
     };
     match t.trim().parse::<f64>() {
         Ok(v) if v.abs() <= MAX_TIME_S => Ok(v),
-        _ => Err(CliError::new(format!(
+        _ => Err(AppError::new(format!(
             "--t {} is not a finite number of seconds within ±{MAX_TIME_S:e}",
             input::quote(t)
         ))),
@@ -68,7 +68,7 @@ pub fn parse_time(t: Option<&str>) -> CliResult<f64> {
 }
 
 /// A world point of `--at X,Z`: two numbers of metres within ±[`MAX_WORLD_M`].
-pub fn parse_point(s: &str) -> CliResult<[f64; 2]> {
+pub fn parse_point(s: &str) -> AppResult<[f64; 2]> {
     let parts: Vec<&str> = s.split(',').collect();
     let nums: Vec<Option<f64>> = parts
         .iter()
@@ -76,11 +76,11 @@ pub fn parse_point(s: &str) -> CliResult<[f64; 2]> {
         .collect();
     match nums[..] {
         [Some(x), Some(z)] if x.abs().max(z.abs()) <= MAX_WORLD_M => Ok([x, z]),
-        [Some(_), Some(_)] => Err(CliError::new(format!(
+        [Some(_), Some(_)] => Err(AppError::new(format!(
             "--at {} lies outside the world: x and z must lie within ±{MAX_WORLD_M:e} m",
             input::quote(s)
         ))),
-        _ => Err(CliError::new(format!(
+        _ => Err(AppError::new(format!(
             "--at {} is not a point X,Z of two finite numbers of metres",
             input::quote(s)
         ))),
@@ -93,10 +93,10 @@ pub fn probe_point(
     t: f64,
     at: [f64; 2],
     wake: WakeSample,
-) -> CliResult<serde_json::Value> {
+) -> AppResult<serde_json::Value> {
     let s = sea
         .sample_at(at, t, ocean::DEFAULT_TOLERANCE)
-        .map_err(|e| CliError::new(e.to_string()))?;
+        .map_err(|e| AppError::new(e.to_string()))?;
     let gx = s.gradient[0] + wake.gradient[0];
     let gz = s.gradient[1] + wake.gradient[1];
     let len = (gx * gx + 1.0 + gz * gz).sqrt();
@@ -112,17 +112,17 @@ pub fn probe_point(
     }))
 }
 
-pub fn run(a: ProbeArgs) -> CliResult {
+pub fn run(a: ProbeArgs) -> AppResult {
     let t = parse_time(a.t.as_deref())?;
     if a.at.is_empty() {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "probe needs at least one world point: --at X,Z is missing",
         ));
     }
     let points =
         a.at.iter()
             .map(|s| parse_point(s))
-            .collect::<CliResult<Vec<_>>>()?;
+            .collect::<AppResult<Vec<_>>>()?;
     let sea = load_sea(a.sea.as_ref())?;
     // The race's Kelvin wakes (ocean::wake), added at the world point; slopes by central
     // differences over R/20, far below the wake's shortest waves (≈ R).
@@ -136,8 +136,8 @@ pub fn run(a: ProbeArgs) -> CliResult {
     let out = points
         .iter()
         .map(|&at| probe_point(&sea, t, at, wake_at(at)))
-        .collect::<CliResult<Vec<_>>>()?;
-    super::output::print_stdout("the probe JSON", &json!({ "t": t, "points": out }))
+        .collect::<AppResult<Vec<_>>>()?;
+    crate::terminal::print_stdout("the probe JSON", &json!({ "t": t, "points": out }))
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::{Value, json};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::setup::inputs::load_race_with;
 
 #[derive(Debug, Args)]
@@ -43,26 +43,26 @@ pub struct RaceArgs {
 
 impl RaceArgs {
     /// The load options these flags ask for.
-    pub fn load_options(&self) -> CliResult<race::LoadOptions> {
+    pub fn load_options(&self) -> AppResult<race::LoadOptions> {
         // `--course FILE`: one value naming a file is a course file (a race XML), read as marks.
         let course_file = match self.course.as_slice() {
             [one] if std::path::Path::new(one).is_file() => Some(PathBuf::from(one)),
             _ => None,
         };
         if course_file.is_some() && self.marks.is_some() {
-            return Err(CliError::new(
+            return Err(AppError::new(
                 "--course names a file and --marks gives marks too; give the course file once",
             ));
         }
         let marks = match self.marks.as_ref().or(course_file.as_ref()) {
             Some(p) => Some((
                 p.display().to_string(),
-                race::read_file(p).map_err(|e| CliError::new(e.to_string()))?,
+                race::read_file(p).map_err(|e| AppError::new(e.to_string()))?,
             )),
             None => None,
         };
         if self.session == Some(0) {
-            return Err(CliError::new("--session counts from 1"));
+            return Err(AppError::new("--session counts from 1"));
         }
         Ok(race::LoadOptions {
             keep_going: self.keep_going,
@@ -73,9 +73,9 @@ impl RaceArgs {
     }
 }
 
-pub fn run(a: RaceArgs) -> CliResult {
+pub fn run(a: RaceArgs) -> AppResult {
     if !a.report && a.t.is_none() {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "regatta race needs --t SECONDS (or --report for the import report)",
         ));
     }
@@ -88,7 +88,7 @@ pub fn run(a: RaceArgs) -> CliResult {
     } else {
         states_json(&race, a.t.unwrap_or(0.0))
     };
-    super::output::print_stdout("the race JSON", &out)
+    crate::terminal::print_stdout("the race JSON", &out)
 }
 
 /// The docs/command-line.md JSON of `regatta race --t T`.

@@ -14,7 +14,7 @@ use ar::{ReplayFeed, SynthConfig};
 use clap::{Args, Subcommand};
 use serde_json::json;
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::setup::inputs::parse_frame_size as parse_size;
 
 #[derive(Debug, Args)]
@@ -62,23 +62,23 @@ pub struct SynthArgs {
     pub quality: u8,
 }
 
-pub fn run(args: ReplayArgs) -> CliResult {
+pub fn run(args: ReplayArgs) -> AppResult {
     match args.command {
         ReplayCommand::Synth(a) => synth(a),
         ReplayCommand::Check { dir } => print_summary(&dir),
     }
 }
 
-fn synth(a: SynthArgs) -> CliResult {
+fn synth(a: SynthArgs) -> AppResult {
     let (width, height) = parse_size(&a.size)?;
     if a.frames == 0 || a.frames > 100_000 {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--frames {} is out of range: give 1 to 100000 frames",
             a.frames
         )));
     }
     if !(1..=100).contains(&a.quality) {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--quality {} is out of range: give 1 to 100",
             a.quality
         )));
@@ -96,16 +96,16 @@ fn synth(a: SynthArgs) -> CliResult {
         input::show_path(&a.out)
     );
     cfg.write(&a.out, a.quality)
-        .map_err(|e| CliError::new(e.to_string()))?;
+        .map_err(|e| AppError::new(e.to_string()))?;
     print_summary(&a.out)
 }
 
 /// Opens the feed, decodes every frame (a truncated image is named with its line), and prints
 /// the summary.
-fn print_summary(dir: &Path) -> CliResult {
-    let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
+fn print_summary(dir: &Path) -> AppResult {
+    let feed = ReplayFeed::open(dir).map_err(|e| AppError::new(e.to_string()))?;
     feed.check_decodes()
-        .map_err(|e| CliError::new(e.to_string()))?;
+        .map_err(|e| AppError::new(e.to_string()))?;
     let k = feed.intrinsics;
     let planes: Vec<_> = feed
         .planes
@@ -124,5 +124,5 @@ fn print_summary(dir: &Path) -> CliResult {
                        "width": k.width, "height": k.height},
         "planes": planes,
     });
-    super::output::print_stdout("the replay summary", &out)
+    crate::terminal::print_stdout("the replay summary", &out)
 }

@@ -15,7 +15,7 @@ use clap::Args;
 use ocean::ndbc::{NdbcSpectrum, NdbcTable, NdbcTime};
 use ocean::spectrum::{SeaState, SpectralOptions, SpectralSea, travel_direction_from_compass};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 #[derive(Debug, Args)]
 pub struct SeaArgs {
@@ -82,13 +82,13 @@ fn in_range(
     (lo, hi): (f64, f64),
     unit: &str,
     open_low: bool,
-) -> CliResult<f64> {
+) -> AppResult<f64> {
     let low_ok = if open_low { v > lo } else { v >= lo };
     if low_ok && v <= hi {
         Ok(v)
     } else {
         let open = if open_low { "(" } else { "[" };
-        Err(CliError::new(format!(
+        Err(AppError::new(format!(
             "--{name} is {}{unit}, outside {open}{lo}, {hi}]{unit}",
             input::show_number(v)
         )))
@@ -96,9 +96,9 @@ fn in_range(
 }
 
 /// "YYYY-MM-DD hh:mm" as an NDBC record time.
-pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
+pub fn parse_time(s: &str) -> AppResult<NdbcTime> {
     let bad = || {
-        CliError::new(format!(
+        AppError::new(format!(
             "--time {} is not a time \"YYYY-MM-DD hh:mm\"",
             input::quote(s)
         ))
@@ -107,11 +107,11 @@ pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
     let d: Vec<u32> = date
         .split('-')
         .map(|p| p.parse().map_err(|_| bad()))
-        .collect::<CliResult<_>>()?;
+        .collect::<AppResult<_>>()?;
     let c: Vec<u32> = clock
         .split(':')
         .map(|p| p.parse().map_err(|_| bad()))
-        .collect::<CliResult<_>>()?;
+        .collect::<AppResult<_>>()?;
     let time = match (&d[..], &c[..]) {
         ([year, month, day], [hour, minute]) => NdbcTime {
             year: *year,
@@ -123,7 +123,7 @@ pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
         _ => return Err(bad()),
     };
     match time.invalid_because() {
-        Some(why) => Err(CliError::new(format!(
+        Some(why) => Err(AppError::new(format!(
             "--time {} is not a real time: {why}",
             input::quote(s)
         ))),
@@ -132,9 +132,9 @@ pub fn parse_time(s: &str) -> CliResult<NdbcTime> {
 }
 
 /// The sea the arguments describe.
-pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
+pub fn generate(a: &SeaArgs) -> AppResult<SpectralSea> {
     if !(a.max_steepness > 0.0 && a.max_steepness < 1.0) {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--max-steepness must lie in (0, 1) or the surface folds over, got {}",
             a.max_steepness
         )));
@@ -143,7 +143,7 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
         // The sea file's own range: a depth written here must read back.
         let range = ocean::sea_file::DEPTH_RANGE;
         if !range.contains(&h) {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "--depth must lie in {}..={} m (a centimetre of water to the deepest trench; a sea file holds no other), got {}",
                 range.start(),
                 range.end(),
@@ -157,7 +157,7 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
         depth: a.depth,
         ..Default::default()
     };
-    let ndbc_err = |e: ocean::ndbc::NdbcError| CliError::new(e.to_string());
+    let ndbc_err = |e: ocean::ndbc::NdbcError| AppError::new(e.to_string());
     match (&a.ndbc, a.hs, a.tp) {
         (Some(density), None, None) => {
             let density = NdbcTable::read(density).map_err(ndbc_err)?;
@@ -190,12 +190,12 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
             in_range("gamma", a.gamma, GAMMA_RANGE, "", false)?;
             in_range("spreading", a.spreading, SPREADING_RANGE, "", false)?;
             if !a.from_deg.is_finite() {
-                return Err(CliError::new(
+                return Err(AppError::new(
                     "--from-deg must be a finite number of degrees",
                 ));
             }
             if a.waves == 0 || a.waves > 4096 {
-                return Err(CliError::new(format!(
+                return Err(AppError::new(format!(
                     "--waves must be between 1 and 4096, got {}",
                     a.waves
                 )));
@@ -209,13 +209,13 @@ pub fn generate(a: &SeaArgs) -> CliResult<SpectralSea> {
             };
             Ok(state.to_sea(a.waves, &opts))
         }
-        _ => Err(CliError::new(
+        _ => Err(AppError::new(
             "sea needs either --hs and --tp (a JONSWAP spectrum) or --ndbc FILE (a buoy spectrum), not both",
         )),
     }
 }
 
-pub fn run(a: SeaArgs) -> CliResult {
+pub fn run(a: SeaArgs) -> AppResult {
     let g = generate(&a)?;
     eprintln!(
         "regatta sea: {} waves, Hs {:.3} m of the spectrum, {:.3} m in the waves (amplitude scale {:.4}: Σ kA {:.3} → {:.3})",
@@ -226,5 +226,5 @@ pub fn run(a: SeaArgs) -> CliResult {
         g.unscaled_total_steepness,
         g.sea.total_steepness()
     );
-    super::output::print_stdout("the sea file", &g.sea.to_json_string())
+    crate::terminal::print_stdout("the sea file", &g.sea.to_json_string())
 }

@@ -19,7 +19,7 @@ use winit::keyboard::{Key, NamedKey};
 use winit::window::{Window, WindowId};
 
 use crate::core::gfx::{self, Acquired};
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::setup::SceneKind;
 use crate::setup::inputs::{load_race, load_sea};
 use crate::setup::{Profile, RaceSetup};
@@ -82,8 +82,8 @@ impl RunArgs {
 }
 
 /// Open the window and run until it is closed.
-pub fn run(a: RunArgs) -> CliResult {
-    smoke::check_exit_after_env().map_err(CliError::new)?;
+pub fn run(a: RunArgs) -> AppResult {
+    smoke::check_exit_after_env().map_err(AppError::new)?;
     if a.phone {
         return phone::run(a);
     }
@@ -108,7 +108,7 @@ pub fn run(a: RunArgs) -> CliResult {
         .map(crate::tier_render::parse_tier)
         .transpose()?;
     let event_loop = EventLoop::new().map_err(|e| {
-        CliError::new(format!(
+        AppError::new(format!(
             "cannot open a window (no display?): {}",
             smoke::window_error(&e)
         ))
@@ -144,7 +144,7 @@ pub fn run(a: RunArgs) -> CliResult {
     };
     event_loop
         .run_app(&mut app)
-        .map_err(|e| CliError::new(format!("the window's event loop failed: {e}")))?;
+        .map_err(|e| AppError::new(format!("the window's event loop failed: {e}")))?;
     match app.error {
         Some(e) => Err(e),
         None => Ok(()),
@@ -178,7 +178,7 @@ struct App {
     /// Where the left button went down (a release there is a click).
     press_at: Option<(f64, f64)>,
     cursor: (f64, f64),
-    error: Option<CliError>,
+    error: Option<AppError>,
     /// Files dropped on the window since the last frame (one drop of several files arrives as
     /// several events): loaded together as one race at the next frame.
     dropped: Vec<PathBuf>,
@@ -189,7 +189,7 @@ struct App {
 
 impl App {
     fn fail(&mut self, el: &ActiveEventLoop, msg: String) {
-        self.error = Some(CliError::new(msg));
+        self.error = Some(AppError::new(msg));
         el.exit();
     }
 

@@ -16,7 +16,7 @@ use winit::window::{Window, WindowId};
 
 use super::RunArgs;
 use crate::core::phone::{PhoneApp, PhoneEvent};
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::hud::touch::TouchAction;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::SimArCore;
@@ -29,14 +29,14 @@ const MAX_HEIGHT: u32 = 760;
 /// Half the distance between the two fingers a right-drag or the wheel makes, pixels.
 const TWO_FINGER_RADIUS: f64 = 60.0;
 
-pub fn run(a: RunArgs) -> CliResult {
+pub fn run(a: RunArgs) -> AppResult {
     if !a.race.is_empty() || a.sea.is_some() || a.scene != crate::setup::SceneKind::Race {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "--race, --sea and --scene have no meaning with --phone (the phone app has its race and a Race | Pool toggle)",
         ));
     }
     let (backend, cues) = match &a.arcore_lib {
-        Some(lib) => Cues::ffi(lib, a.replay.as_deref()).map_err(CliError::new)?,
+        Some(lib) => Cues::ffi(lib, a.replay.as_deref()).map_err(AppError::new)?,
         None => {
             let feed = crate::feed::CameraFeed::for_phone(a.replay.as_deref())?;
             let (backend, control) = SimArCore::new(feed);
@@ -58,7 +58,7 @@ pub fn run(a: RunArgs) -> CliResult {
     };
     app.on(PhoneEvent::Density(a.device.pixels_per_point(size)));
     let event_loop = EventLoop::new().map_err(|e| {
-        CliError::new(format!(
+        AppError::new(format!(
             "cannot open a window (no display?): {}",
             super::smoke::window_error(&e)
         ))
@@ -78,7 +78,7 @@ pub fn run(a: RunArgs) -> CliResult {
     };
     event_loop
         .run_app(&mut shell)
-        .map_err(|e| CliError::new(format!("the window's event loop failed: {e}")))?;
+        .map_err(|e| AppError::new(format!("the window's event loop failed: {e}")))?;
     shell.error.map_or(Ok(()), Err)
 }
 
@@ -95,7 +95,7 @@ struct Shell {
     right: Option<DVec2>,
     modifiers: ModifiersState,
     exit_after: super::smoke::ExitAfter,
-    error: Option<CliError>,
+    error: Option<AppError>,
 }
 
 impl Shell {
@@ -162,7 +162,7 @@ impl ApplicationHandler for Shell {
                 match el.create_window(attrs) {
                     Ok(w) => Arc::new(w),
                     Err(e) => {
-                        self.error = Some(CliError::new(format!("cannot open a window: {e}")));
+                        self.error = Some(AppError::new(format!("cannot open a window: {e}")));
                         return el.exit();
                     }
                 }
@@ -245,7 +245,7 @@ impl ApplicationHandler for Shell {
                 self.app.frame(dt);
                 if self.exit_after.frame_done() {
                     if let Err(e) = self.screenshot() {
-                        self.error = Some(CliError::new(e));
+                        self.error = Some(AppError::new(e));
                     }
                     el.exit();
                 }

@@ -16,7 +16,7 @@ use std::path::Path;
 
 use ar::{CameraFrame, ReplayFeed, SynthConfig};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// The `--replay` value that chooses the built-in synthetic feed.
 pub const SYNTH: &str = "synth";
@@ -36,11 +36,11 @@ impl CameraFeed {
     }
 
     /// A replay or TUM folder, or the synthetic feed at its default size for [`SYNTH`].
-    pub fn open(dir: &Path) -> CliResult<CameraFeed> {
+    pub fn open(dir: &Path) -> AppResult<CameraFeed> {
         if dir.as_os_str() == SYNTH {
             return Ok(CameraFeed::synth(SynthConfig::default()));
         }
-        let feed = ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?;
+        let feed = ReplayFeed::open(dir).map_err(|e| AppError::new(e.to_string()))?;
         log::info!(
             "replay {}: {} frames, {:.1} s",
             dir.display(),
@@ -52,10 +52,10 @@ impl CameraFeed {
 
     /// The simulated phone camera's feed: the replay folder `replay`, or without one a small
     /// synthetic table (320 × 240, 32 frames).
-    pub fn for_phone(replay: Option<&Path>) -> CliResult<CameraFeed> {
+    pub fn for_phone(replay: Option<&Path>) -> AppResult<CameraFeed> {
         Ok(match replay {
             Some(dir) => {
-                CameraFeed::Replay(ReplayFeed::open(dir).map_err(|e| CliError::new(e.to_string()))?)
+                CameraFeed::Replay(ReplayFeed::open(dir).map_err(|e| AppError::new(e.to_string()))?)
             }
             None => CameraFeed::synth(SynthConfig {
                 frames: 32,

@@ -1,7 +1,7 @@
 //! One picture of the race on a feed's table, headless, as the window draws it for that feed
 //! frame: `regatta render --replay` and the tests that look at the table.
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// One picture of the table scene, as `run` draws it: `race` at race time `t` over feed frame
 /// `frame`, `size` pixels.
@@ -26,7 +26,7 @@ impl TableFrame<'_> {
         setup: &crate::setup::RaceSetup,
         wake: Option<std::sync::Arc<ocean::wake::Wake>>,
         edit: impl FnOnce(&mut render::Scene),
-    ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
+    ) -> AppResult<(image::RgbaImage, render::FrameReport)> {
         let mut orbit = crate::world::race_orbit();
         let mut scene = self.world.orbit_scene(self.t, &mut orbit);
         feed.prepare_frame(
@@ -56,6 +56,6 @@ impl TableFrame<'_> {
             ),
             None => render::render_image(gpu, renderer, &scene, self.size),
         }
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))
+        .map_err(|e| AppError::new(format!("cannot render: {e}")))
     }
 }

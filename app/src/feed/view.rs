@@ -29,7 +29,7 @@ use crate::core::camera_frame::{backdrop_of, fill_view, physical_camera};
 use crate::core::table::{boats_as_models, fit_on_table, table_area};
 
 use super::CameraFeed;
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// The feed, where it maps in the race, and which frame the renderer holds.
 pub struct FeedView {
@@ -64,7 +64,7 @@ struct TableWake {
 
 impl FeedView {
     /// Opens a replay or TUM folder, or the synthetic feed for [`SYNTH`](super::SYNTH).
-    pub fn open(dir: &std::path::Path) -> CliResult<Self> {
+    pub fn open(dir: &std::path::Path) -> AppResult<Self> {
         let source = CameraFeed::open(dir)?;
         Ok(FeedView {
             source,
@@ -201,7 +201,7 @@ impl FeedView {
         wake: Option<Arc<ocean::wake::Wake>>,
         race_bounds: [f64; 4],
         size: [u32; 2],
-    ) -> CliResult {
+    ) -> AppResult {
         let t = self.start.elapsed().as_secs_f64();
         let i = self.source.index_at(t);
         // The window's renderer: a new camera image is drawn even while the scene stands
@@ -223,7 +223,7 @@ impl FeedView {
         race_bounds: [f64; 4],
         size: [u32; 2],
         i: usize,
-    ) -> CliResult {
+    ) -> AppResult {
         if self.shown == Some((i, size)) {
             if let Some(map) = self.map {
                 let (w, changed) = self.wake_for_table(wake, &map);
@@ -236,7 +236,7 @@ impl FeedView {
         let frame = self
             .source
             .frame(i)
-            .map_err(|e| CliError::new(e.to_string()))?;
+            .map_err(|e| AppError::new(e.to_string()))?;
         let started = Instant::now();
         let mut cfg = self.config.clone();
         let (extent, centre) = match frame.planes.first() {
@@ -256,7 +256,7 @@ impl FeedView {
         let image = frame
             .image
             .to_camera_image()
-            .map_err(|e| CliError::new(format!("feed frame {i}: {e}")))?;
+            .map_err(|e| AppError::new(format!("feed frame {i}: {e}")))?;
         let backdrop = view.with_image(image);
         let (wake, wake_changed) = self.wake_for_table(wake, &map);
         match &self.effects {

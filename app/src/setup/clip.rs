@@ -12,7 +12,7 @@ use std::io::Write;
 use std::path::Path;
 
 use super::{Profile, RaceSetup};
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::world::RaceWorld;
 
 /// Frame rate without `--fps`, frames per second.
@@ -49,17 +49,17 @@ pub struct ClipTimes {
 
 impl ClipTimes {
     /// Checks the span against the race's `(start, end)` (seconds) and the frame cap.
-    pub fn new(from: f64, to: f64, fps: f64, race_span: (f64, f64)) -> CliResult<ClipTimes> {
+    pub fn new(from: f64, to: f64, fps: f64, race_span: (f64, f64)) -> AppResult<ClipTimes> {
         let show = input::show_number;
         if !from.is_finite() || !to.is_finite() {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "--from {} --to {}: both must be finite seconds since the start",
                 show(from),
                 show(to)
             )));
         }
         if from >= to {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "--from {} is not before --to {}: a clip needs a span of race time",
                 show(from),
                 show(to)
@@ -68,7 +68,7 @@ impl ClipTimes {
         let (start, end) = race_span;
         if from < start || to > end {
             let flag = if from < start { "--from" } else { "--to" };
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "{flag}: {} to {} s lies outside the race, which runs {} to {} s",
                 show(from),
                 show(to),
@@ -77,14 +77,14 @@ impl ClipTimes {
             )));
         }
         if !(MIN_FPS..=MAX_FPS).contains(&fps) {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "--fps {} is outside {MIN_FPS} to {MAX_FPS} frames per second (GIF delays are whole centiseconds)",
                 show(fps)
             )));
         }
         let steps = ((to - from) * fps + 1e-9).floor();
         if steps + 1.0 > MAX_FRAMES as f64 {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "--from {} --to {} at --fps {} is {} frames, more than the {MAX_FRAMES} a clip may have: shorten the span or lower --fps",
                 show(from),
                 show(to),
@@ -106,7 +106,7 @@ impl ClipTimes {
         seconds: f64,
         fps: f64,
         race_span: (f64, f64),
-    ) -> CliResult<ClipTimes> {
+    ) -> AppResult<ClipTimes> {
         let to = playhead.clamp(race_span.0, race_span.1);
         ClipTimes::new((to - seconds).max(race_span.0), to, fps, race_span)
     }
@@ -149,9 +149,9 @@ pub fn write_gif(
     look: &ClipLook,
     out: &Path,
     progress: &mut dyn FnMut(usize, usize, f64),
-) -> CliResult {
+) -> AppResult {
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+        .map_err(|e| AppError::new(format!("cannot render: {e}")))?;
     let mut setup = RaceSetup::new(Profile::Picture);
     setup.options.error_px = look.error_px;
     setup.wakes = look.wakes;

@@ -8,12 +8,12 @@ use std::path::PathBuf;
 
 use ocean::WaveSet;
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// Parse `--size WxH` (or `WXH`) with each side in `sides` pixels; a bad size is the sentence
 /// `--size "S" is not {expected}`.
-pub fn parse_size_in(s: &str, sides: RangeInclusive<u32>, expected: &str) -> CliResult<[u32; 2]> {
-    let bad = || CliError::new(format!("--size \"{s}\" is not {expected}"));
+pub fn parse_size_in(s: &str, sides: RangeInclusive<u32>, expected: &str) -> AppResult<[u32; 2]> {
+    let bad = || AppError::new(format!("--size \"{s}\" is not {expected}"));
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let w: u32 = w.trim().parse().map_err(|_| bad())?;
     let h: u32 = h.trim().parse().map_err(|_| bad())?;
@@ -25,7 +25,7 @@ pub fn parse_size_in(s: &str, sides: RangeInclusive<u32>, expected: &str) -> Cli
 
 /// A camera frame's or window's size `WxH`, both 16 to 4096 pixels: the synthetic feed's
 /// images (`regatta replay synth --size`) and the window's first size (`REGATTA_WINDOW_SIZE`).
-pub fn parse_frame_size(s: &str) -> CliResult<(u32, u32)> {
+pub fn parse_frame_size(s: &str) -> AppResult<(u32, u32)> {
     let [w, h] = parse_size_in(
         s,
         16..=4096,
@@ -36,9 +36,9 @@ pub fn parse_frame_size(s: &str) -> CliResult<(u32, u32)> {
 
 /// The sea of `sea` (`--sea FILE`, read capped and validated by [`WaveSet::read_file`]), or the
 /// embedded default sea.
-pub fn load_sea(sea: Option<&PathBuf>) -> CliResult<WaveSet> {
+pub fn load_sea(sea: Option<&PathBuf>) -> AppResult<WaveSet> {
     match sea {
-        Some(p) => WaveSet::read_file(p).map_err(|e| CliError::new(e.to_string())),
+        Some(p) => WaveSet::read_file(p).map_err(|e| AppError::new(e.to_string())),
         None => Ok(WaveSet::default_sea()),
     }
 }
@@ -73,18 +73,18 @@ pub fn drawn_waves_note(total: usize, c: &ocean::Culled) -> String {
 
 /// The race of `paths` (`--race PATH ...`: files combined into one race), or the embedded
 /// sample race without any.
-pub fn load_race(paths: &[PathBuf]) -> CliResult<race::Race> {
+pub fn load_race(paths: &[PathBuf]) -> AppResult<race::Race> {
     load_race_with(paths, &race::LoadOptions::default())
 }
 
 /// [`load_race`] with options (`regatta race --keep-going --session --marks --course`). What
 /// the import dropped or changed is said on stderr, one escaped line each, so nothing is lost
 /// silently (the same warnings are in `regatta race --report`).
-pub fn load_race_with(paths: &[PathBuf], opts: &race::LoadOptions) -> CliResult<race::Race> {
+pub fn load_race_with(paths: &[PathBuf], opts: &race::LoadOptions) -> AppResult<race::Race> {
     if paths.is_empty() {
         return Ok(race::Race::sample());
     }
-    let r = race::Race::load_with(paths, opts).map_err(|e| CliError::new(e.to_string()))?;
+    let r = race::Race::load_with(paths, opts).map_err(|e| AppError::new(e.to_string()))?;
     for w in &r.report.warnings {
         eprintln!("regatta: warning: {}", race::text::escape(w));
     }

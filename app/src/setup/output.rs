@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use image::ImageFormat;
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 
 /// The temporary file beside `path` (same folder, so the rename cannot cross file systems);
 /// its name keeps the extension and is hidden.
@@ -25,17 +25,17 @@ fn temp_beside(path: &Path) -> PathBuf {
 
 /// Writes `path` through `write` (which gets the temporary path), then renames it into place;
 /// on error nothing is left behind.
-pub fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<(), String>) -> CliResult {
+pub fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<(), String>) -> AppResult {
     let tmp = temp_beside(path);
     let done = write(&tmp).and_then(|()| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
     done.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        CliError::new(format!("could not write {}: {e}", input::show_path(path)))
+        AppError::new(format!("could not write {}: {e}", input::show_path(path)))
     })
 }
 
 /// Writes text to `path` atomically.
-pub fn write_text(path: &Path, text: &str) -> CliResult {
+pub fn write_text(path: &Path, text: &str) -> AppResult {
     write_atomically(path, |tmp| {
         std::fs::write(tmp, text).map_err(|e| e.to_string())
     })
@@ -50,7 +50,7 @@ pub struct ImageOut {
 
 impl ImageOut {
     /// `flag` names the option in the message when the extension is not .png, .jpg or .jpeg.
-    pub fn new(path: &Path, flag: &str) -> CliResult<ImageOut> {
+    pub fn new(path: &Path, flag: &str) -> AppResult<ImageOut> {
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -58,7 +58,7 @@ impl ImageOut {
             Some("png") => ImageFormat::Png,
             Some("jpg" | "jpeg") => ImageFormat::Jpeg,
             _ => {
-                return Err(CliError::new(format!(
+                return Err(AppError::new(format!(
                     "{flag} {} must name a .png or .jpg file",
                     input::quote(&path.display().to_string())
                 )));
@@ -71,7 +71,7 @@ impl ImageOut {
     }
 
     /// Writes `img` atomically (JPEG has no alpha: its RGB is written).
-    pub fn save(&self, img: &image::RgbaImage) -> CliResult {
+    pub fn save(&self, img: &image::RgbaImage) -> AppResult {
         let image = image::DynamicImage::ImageRgba8(img.clone());
         let image = match self.format {
             ImageFormat::Jpeg => image::DynamicImage::ImageRgb8(image.to_rgb8()),

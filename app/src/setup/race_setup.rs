@@ -15,7 +15,7 @@ use quality::Tier;
 use render::water_look::WaterLook;
 use render::{Gpu, RenderOptions, Renderer};
 
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::scene_overlay::OverlaySettings;
 use crate::tier_render::TierRender;
 use crate::world::RaceWorld;
@@ -121,7 +121,7 @@ impl RaceSetup {
 
     /// The race's wakes as drawn: none without wakes, else emitted at the tier's source spacing
     /// (the default spacing without a tier).
-    pub fn wake(&self, race: &race::Race) -> CliResult<Option<Arc<Wake>>> {
+    pub fn wake(&self, race: &race::Race) -> AppResult<Option<Arc<Wake>>> {
         if !self.wakes {
             return Ok(None);
         }
@@ -189,7 +189,7 @@ impl RaceSetup {
         race: Option<&race::Race>,
         scene: &render::Scene,
         size: [u32; 2],
-    ) -> CliResult<(Renderer, Option<EffectsHandle>)> {
+    ) -> AppResult<(Renderer, Option<EffectsHandle>)> {
         let wake = match race {
             Some(race) => self.wake(race)?,
             None => None,
@@ -208,13 +208,13 @@ impl RaceSetup {
         race: Option<&race::Race>,
         scene: &render::Scene,
         size: [u32; 2],
-    ) -> CliResult<(Renderer, EffectsHandle)> {
+    ) -> AppResult<(Renderer, EffectsHandle)> {
         let setup = RaceSetup {
             tier: Some(tier.clone()),
             ..RaceSetup::new(Profile::Picture)
         };
         let (renderer, fx) = setup.scene_renderer(gpu, race, scene, size)?;
-        let fx = fx.ok_or_else(|| CliError::new("a tier's renderer has its AR effects"))?;
+        let fx = fx.ok_or_else(|| AppError::new("a tier's renderer has its AR effects"))?;
         Ok((renderer, fx))
     }
 
@@ -228,11 +228,11 @@ impl RaceSetup {
         world: &RaceWorld,
         scene: &render::Scene,
         size: [u32; 2],
-    ) -> CliResult<(image::RgbaImage, render::FrameReport)> {
+    ) -> AppResult<(image::RgbaImage, render::FrameReport)> {
         let debrief =
             crate::scene_overlay::manoeuvres::debrief_if_shown(&world.race, &self.overlays);
         let drawn = (&world.race, debrief.as_ref());
         crate::scene_overlay::render_headless(gpu, renderer, drawn, scene, size, &self.overlays)
-            .map_err(|e| CliError::new(format!("cannot render: {e}")))
+            .map_err(|e| AppError::new(format!("cannot render: {e}")))
     }
 }

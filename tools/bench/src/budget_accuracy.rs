@@ -16,7 +16,7 @@ use effects::passes::{ArConfig, caustic_region};
 
 use crate::BenchContext;
 use quality::Tier;
-use regatta::error::CliResult;
+use regatta::error::AppResult;
 
 /// One tier's accuracy.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,7 +84,7 @@ pub fn tier_accuracy(
     ctx: &BenchContext,
     tier: Tier,
     report: &render::FrameReport,
-) -> CliResult<TierAccuracy> {
+) -> AppResult<TierAccuracy> {
     let s = tier.settings();
     let mesh_drawn = report
         .clipmap

@@ -12,7 +12,7 @@ use super::budget_model::{PHONES, PhoneGpu, camera_yuv_work};
 use super::budget_run::Row;
 use super::shader_cost::Trips;
 use crate::Table;
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 /// The phone and frame rate a tier is made for (quality's tier docs): `low` and `medium` the
 /// OPPO A54 at 30 fps, `high` and `ultra` the Pixel 2 XL at 60 fps.
@@ -57,7 +57,7 @@ pub fn chosen_config(tier: Tier, screen: [u32; 2]) -> CameraConfigSize {
 
 /// Per phone and tier: the tier's camera budget, the config chosen, its cost per camera frame
 /// and its share of the tier's frame on that phone (the model's `rows`).
-pub(crate) fn camera_table(rows: &[Row]) -> CliResult<Table> {
+pub(crate) fn camera_table(rows: &[Row]) -> AppResult<Table> {
     let mut t = Table::new(
         "budget_camera",
         "The camera image per tier: the largest ARCore CPU image the budget affords, its upload and conversion on the model",
@@ -74,7 +74,7 @@ pub(crate) fn camera_table(rows: &[Row]) -> CliResult<Table> {
             "model fps with the image",
         ],
     );
-    let err = CliError::new;
+    let err = AppError::new;
     for r in rows {
         let (goal_phone, fps) = tier_frame(r.tier);
         let chosen = chosen_config(r.tier, r.phone.screen);

@@ -12,13 +12,13 @@ use super::budget_model::{PHONES, pass_shaders};
 use super::budget_run::{Row, goal, measure, passes_table};
 use super::shader_cost::{entry_cost, function_costs};
 use crate::{BenchContext, Table};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 use regatta::tier_render::TierRender;
 
 /// Section `budget-model`.
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("the budget model needs a GPU adapter: {e}")))?;
+        .map_err(|e| AppError::new(format!("the budget model needs a GPU adapter: {e}")))?;
     let mut rows = Vec::new();
     for phone in &PHONES {
         for tier in Tier::ALL {
@@ -73,7 +73,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
 
 /// The AR water's work per invocation of each stage at `ultra` on the first phone, by shader
 /// function ([`function_costs`]).
-fn functions_table(rows: &[Row]) -> CliResult<Table> {
+fn functions_table(rows: &[Row]) -> AppResult<Table> {
     let mut t = Table::new(
         "budget_functions",
         "Where the AR water's work goes: ALU operations per invocation by shader function (ultra)",
@@ -95,7 +95,7 @@ fn functions_table(rows: &[Row]) -> CliResult<Table> {
             ("vertex", src.as_str(), vs),
             ("compute (per vertex)", cs.as_str(), "cs_displace"),
         ] {
-            let total = entry_cost(source, entry, &r.trips).map_err(CliError::new)?;
+            let total = entry_cost(source, entry, &r.trips).map_err(AppError::new)?;
             t.row(vec![
                 json!(r.phone.phone),
                 json!(stage),
@@ -104,7 +104,7 @@ fn functions_table(rows: &[Row]) -> CliResult<Table> {
                 json!(1.0),
                 json!(total.tex),
             ]);
-            for (name, c) in function_costs(source, entry, &r.trips).map_err(CliError::new)? {
+            for (name, c) in function_costs(source, entry, &r.trips).map_err(AppError::new)? {
                 t.row(vec![
                     json!(r.phone.phone),
                     json!(stage),

@@ -11,7 +11,7 @@ use super::budget_model::{FrameInputs, PHONES, PassWork, PhoneGpu, frame_ms, fra
 use super::shader_cost::Trips;
 use super::work_clock::WorkClock;
 use crate::{Axes, BenchContext, Series, Table};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 use regatta::tier_render::TierRender;
 
 /// Race time of the budget's frame, s: the sample race's busiest wakes.
@@ -177,7 +177,7 @@ pub(crate) fn measure(
     phone: &'static PhoneGpu,
     tier: Tier,
     reps: usize,
-) -> CliResult<Row> {
+) -> AppResult<Row> {
     let race = race::Race::sample();
     let scene = regatta::world::scene_at(&race, &ocean::WaveSet::default_sea(), T, None);
     let t = TierRender::of(tier);
@@ -189,7 +189,7 @@ pub(crate) fn measure(
     let (mut renderer, fx) =
         regatta::setup::RaceSetup::tier_renderer(&t, gpu, Some(&race), &scene, size)?;
     let view = crate::offscreen(gpu, size);
-    let failed = |e: render::GpuError| CliError(e.to_string());
+    let failed = |e: render::GpuError| AppError(e.to_string());
     let report = renderer.render(gpu, &view, size, &scene).map_err(failed)?; // warm-up
     let mut timed_ms = Vec::with_capacity(reps);
     for k in 0..kernel.map_or(0, |_| reps) {
@@ -231,8 +231,8 @@ pub(crate) fn measure(
         screen: size,
         yuv: None,
     };
-    let (full, unmodelled) = frame_work(&inputs, false).map_err(CliError::new)?;
-    let (hsr, _) = frame_work(&inputs, true).map_err(CliError::new)?;
+    let (full, unmodelled) = frame_work(&inputs, false).map_err(AppError::new)?;
+    let (hsr, _) = frame_work(&inputs, true).map_err(AppError::new)?;
     // The range: fast spec with every occluded fragment removed, to slow spec shading all
     // the depth test lets through; the phone's own figure: slow spec, its architecture.
     let range = (frame_ms(&hsr, phone).0, frame_ms(&full, phone).1);
@@ -248,7 +248,7 @@ pub(crate) fn measure(
         ));
     }
     if report.shader_invocations.is_empty() {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "budget: the adapter counts no shader invocations (pipeline-statistics queries): \
              the model needs them",
         ));
@@ -275,9 +275,9 @@ pub(crate) fn goal(phone: &PhoneGpu, tier: Tier) -> Option<(f64, &'static str)> 
 }
 
 /// Section `budget`.
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("the budget bench needs a GPU adapter: {e}")))?;
+        .map_err(|e| AppError::new(format!("the budget bench needs a GPU adapter: {e}")))?;
     let kernel = FmaKernel::new(&gpu);
     // A dispatch of about a tenth of a second: long enough that a scheduling blip of the
     // shared machine is a small part of it, like the frame's.
@@ -435,7 +435,7 @@ pub(crate) fn passes_table(rows: &[Row]) -> Table {
 }
 
 /// Each tier's accuracy against its cost on both phones, and the plot.
-fn accuracy_table(ctx: &BenchContext, rows: &[Row]) -> CliResult<Table> {
+fn accuracy_table(ctx: &BenchContext, rows: &[Row]) -> AppResult<Table> {
     let mut t = Table::new(
         "budget_accuracy",
         "Quality tiers: run time against error (f64 references)",
@@ -510,7 +510,7 @@ fn accuracy_table(ctx: &BenchContext, rows: &[Row]) -> CliResult<Table> {
 
 /// The AR effects' cost over water only on the model, with a 640×480 YUV camera image
 /// converted for every frame and at 30 Hz into a 60 fps frame.
-fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
+fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> AppResult<Table> {
     let mut t = Table::new(
         "budget_yuv",
         "All effects with a YUV camera image against water only, on the machine-independent model",
@@ -527,7 +527,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
             phone.phone
         ));
         let view = crate::offscreen(gpu, size);
-        let failed = |e: render::GpuError| CliError(e.to_string());
+        let failed = |e: render::GpuError| AppError(e.to_string());
         let mut water = render::Renderer::new(gpu, render::OFFSCREEN_FORMAT, ultra.options);
         water.set_wake(Some(wake.clone()));
         let water_report = water.render(gpu, &view, size, &scene).map_err(failed)?;
@@ -545,7 +545,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
             reflection_px: None,
             caustic_map_cells: None,
         };
-        let ms = |report, offscreen, ar, yuv| -> CliResult<f64> {
+        let ms = |report, offscreen, ar, yuv| -> AppResult<f64> {
             let i = FrameInputs {
                 report,
                 offscreen,
@@ -556,7 +556,7 @@ fn yuv_table(ctx: &BenchContext, gpu: &render::Gpu) -> CliResult<Table> {
                 screen: size,
                 yuv,
             };
-            let work = frame_work(&i, phone.hidden_surface_removal).map_err(CliError::new)?;
+            let work = frame_work(&i, phone.hidden_surface_removal).map_err(AppError::new)?;
             Ok(frame_ms(&work.0, phone).1)
         };
         let fx_sizes = fx.offscreen_sizes();

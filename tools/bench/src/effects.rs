@@ -21,7 +21,7 @@ use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
 
 use crate::{Axes, BenchContext, Series, Table, time_ns};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 /// Goal of the issue: every effect on costs at most this much of a water-only frame.
 const GOAL_RATIO: f64 = 1.6;
@@ -99,7 +99,7 @@ impl Case {
     /// Plan, draw and wait for one frame at race time `t`: wall seconds, and the passes'
     /// GPU milliseconds (all, and each pass's) from timestamp queries where the adapter has
     /// them.
-    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> CliResult<Timing> {
+    fn frame(&mut self, gpu: &render::Gpu, size: [u32; 2], t: f64) -> AppResult<Timing> {
         let scene = demo_table_scene(t);
         let t0 = Instant::now();
         if let Some((handle, frame)) = &self.new_frames {
@@ -108,7 +108,7 @@ impl Case {
         let report = self
             .renderer
             .render(gpu, &self.view, size, &scene)
-            .map_err(|e| CliError(e.to_string()))?;
+            .map_err(|e| AppError(e.to_string()))?;
         gpu.wait();
         Ok(Timing {
             wall_s: t0.elapsed().as_secs_f64(),
@@ -138,9 +138,9 @@ struct Timing {
 }
 
 /// Section `effects`.
-pub fn effects_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn effects_section(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("the effects bench needs a GPU adapter: {e}")))?;
+        .map_err(|e| AppError::new(format!("the effects bench needs a GPU adapter: {e}")))?;
     let (size, frames) = if ctx.quick {
         ([320, 240], 8usize)
     } else {
@@ -448,7 +448,7 @@ fn caustic_resolution_table(ctx: &BenchContext, size: [u32; 2]) -> Table {
 }
 
 /// Section `fresnel`.
-pub fn fresnel_section(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn fresnel_section(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let mut t = Table::new(
         "fresnel_schlick",
         "Fresnel: Schlick's approximation against the full equations (n = 1.333)",

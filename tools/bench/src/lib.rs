@@ -12,7 +12,7 @@ use std::time::Instant;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 pub mod budget;
 pub mod budget_accuracy;
@@ -95,10 +95,10 @@ impl BenchContext {
     }
 
     /// Draw `series` as lines with markers into `<out_dir>/<file>` (SVG). Returns the file name.
-    pub fn plot(&self, file: &str, axes: &Axes, series: &[Series]) -> CliResult<String> {
+    pub fn plot(&self, file: &str, axes: &Axes, series: &[Series]) -> AppResult<String> {
         let path = self.out_dir.join(file);
         draw_plot(&path, axes, series)
-            .map_err(|e| CliError::new(format!("could not draw {}: {e}", path.display())))?;
+            .map_err(|e| AppError::new(format!("could not draw {}: {e}", path.display())))?;
         Ok(file.to_string())
     }
 }
@@ -184,7 +184,7 @@ fn draw_plot(
 }
 
 /// A section of the report: a name for `--only` and progress, and the function that runs it.
-pub type Section = (&'static str, fn(&BenchContext) -> CliResult<Vec<Table>>);
+pub type Section = (&'static str, fn(&BenchContext) -> AppResult<Vec<Table>>);
 
 /// Every section, in report order. Add yours here (one line).
 pub const SECTIONS: &[Section] = &[
@@ -214,17 +214,17 @@ pub fn offscreen(gpu: &render::Gpu, size: [u32; 2]) -> wgpu::TextureView {
 }
 
 /// Run the sections (all, or those named in `only`) and write the report.
-pub fn run_all(ctx: &BenchContext, only: &[String]) -> CliResult<Vec<Table>> {
+pub fn run_all(ctx: &BenchContext, only: &[String]) -> AppResult<Vec<Table>> {
     if let Some(bad) = only.iter().find(|o| !SECTIONS.iter().any(|(n, _)| n == o)) {
         let names: Vec<&str> = SECTIONS.iter().map(|(n, _)| *n).collect();
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--only names the unknown section {}; the sections are: {}",
             input::quote(bad),
             names.join(", ")
         )));
     }
     std::fs::create_dir_all(&ctx.out_dir).map_err(|e| {
-        CliError::new(format!(
+        AppError::new(format!(
             "could not create the bench folder {}: {e}",
             input::show_path(&ctx.out_dir)
         ))
@@ -249,7 +249,7 @@ pub fn run_all(ctx: &BenchContext, only: &[String]) -> CliResult<Vec<Table>> {
     Ok(tables)
 }
 
-fn write_report(ctx: &BenchContext, tables: &[Table]) -> CliResult {
+fn write_report(ctx: &BenchContext, tables: &[Table]) -> AppResult {
     let json =
         serde_json::to_string_pretty(&serde_json::json!({ "quick": ctx.quick, "tables": tables }))?;
     // Written whole or not at all, a failure naming the file.

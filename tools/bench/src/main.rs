@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::Parser;
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 use regatta_bench::{BenchContext, run_all};
 
 /// Run time against error: writes JSON, Markdown and SVG plots into a folder.
@@ -23,7 +23,7 @@ struct BenchArgs {
     only: Vec<String>,
 }
 
-fn run(a: BenchArgs) -> CliResult {
+fn run(a: BenchArgs) -> AppResult {
     let ctx = BenchContext {
         out_dir: a.out.clone(),
         quick: a.quick,
@@ -34,7 +34,7 @@ fn run(a: BenchArgs) -> CliResult {
         tables.len(),
         input::show_path(&a.out.join("report.md"))
     );
-    regatta::cli::print_stdout(
+    regatta::terminal::print_stdout(
         "the bench summary",
         &serde_json::json!({ "out": a.out, "tables": tables.len() }),
     )
@@ -50,7 +50,7 @@ fn init_logging() {
             writeln!(
                 buf,
                 "{}",
-                regatta::cli::user_line(&record.args().to_string())
+                regatta::terminal::user_line(&record.args().to_string())
             )
         });
     }
@@ -64,12 +64,15 @@ fn main() {
         Ok(a) => a,
         Err(e) if !e.use_stderr() => e.exit(),
         Err(e) => {
-            eprintln!("regatta: {}", regatta::cli::clap_one_line(&e.to_string()));
+            eprintln!(
+                "regatta: {}",
+                regatta::terminal::clap_one_line(&e.to_string())
+            );
             std::process::exit(2);
         }
     };
-    let result = if regatta::cli::stdout_is_closed() {
-        Err(CliError::new(
+    let result = if regatta::terminal::stdout_is_closed() {
+        Err(AppError::new(
             "stdout is closed, so the output has nowhere to go (was it run with >&-?)",
         ))
     } else {

@@ -21,7 +21,7 @@ use render::mesh_error::{bench_view, measure, regatta_triangles};
 use serde_json::json;
 
 use crate::{BenchContext, Table};
-use regatta::error::CliResult;
+use regatta::error::AppResult;
 
 /// Published triangle counts of the Sailing+ wave-model thesis (TU Delft 2022), Table 2: (levels, resolution, triangles).
 pub const SOURCE_TABLE_2: [(u32, u32, u64); 9] = [
@@ -115,7 +115,7 @@ fn cheapest_within(
     best
 }
 
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let sea = WaveSet::default_sea();
     let view = bench_view();
     let t = 1234.5;
@@ -224,7 +224,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
 
 /// GPU milliseconds per pass (timestamp queries) for the sample race at its middle, framed by
 /// the default camera, with and without wakes: the ratio is what wakes cost.
-fn gpu_time_table(ctx: &BenchContext) -> CliResult<Table> {
+fn gpu_time_table(ctx: &BenchContext) -> AppResult<Table> {
     use regatta::world::{middle_time, race_wake, scene_at};
     let mut table = Table::new(
         "render_gpu",
@@ -249,11 +249,11 @@ fn gpu_time_table(ctx: &BenchContext) -> CliResult<Table> {
         render::OFFSCREEN_FORMAT,
         render::RenderOptions::default(),
     );
-    let per_pass = |r: &mut render::Renderer| -> CliResult<Vec<(String, Option<f64>)>> {
+    let per_pass = |r: &mut render::Renderer| -> AppResult<Vec<(String, Option<f64>)>> {
         let mut runs = Vec::new();
         for _ in 0..reps {
             let (_, rep) = render::render_image(&gpu, r, &scene, size)
-                .map_err(|e| regatta::error::CliError::new(format!("bench render: {e}")))?;
+                .map_err(|e| regatta::error::AppError::new(format!("bench render: {e}")))?;
             runs.push(rep.passes);
         }
         let names: Vec<String> = runs[0].iter().map(|p| p.name.clone()).collect();

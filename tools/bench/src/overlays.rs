@@ -14,7 +14,7 @@ use render::{OFFSCREEN_FORMAT, RenderOptions, Renderer};
 use serde_json::json;
 
 use crate::{BenchContext, Table};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 use regatta::scene_overlay::{self, OverlaySettings};
 
 /// Goal: all overlays together cost at most this fraction over the water-only frame.
@@ -26,9 +26,9 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 /// Section `overlays`.
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("the overlays bench needs a GPU adapter: {e}")))?;
+        .map_err(|e| AppError::new(format!("the overlays bench needs a GPU adapter: {e}")))?;
     let size = [1280u32, 720];
     let frames = if ctx.quick { 6 } else { 20 };
     let race = race::Race::sample();
@@ -55,7 +55,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     let ppp = scene_overlay::paint::headless_pixels_per_point(size);
     let (mut wall, mut gpu_ms) = ([Vec::new(), Vec::new()], [Vec::new(), Vec::new()]);
     let mut overlay_gpu = Vec::new();
-    let fail = |e: render::GpuError| CliError::new(e.to_string());
+    let fail = |e: render::GpuError| AppError::new(e.to_string());
     for i in 0..frames + 2 {
         ctx.progress(format!("overlays: frame {i} of {}", frames + 2));
         // Race time moves 1/30 s per frame, as in a playing race.

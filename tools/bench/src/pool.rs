@@ -10,7 +10,7 @@ use render::{Gpu, OFFSCREEN_FORMAT, RenderOptions, Renderer, Scene};
 use serde_json::json;
 
 use crate::{BenchContext, Table, offscreen};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 /// The race scene with nothing but its sea: no boats, no marks, a camera over the water.
 fn water_only_scene(t: f64) -> Scene {
@@ -98,7 +98,7 @@ fn ratio_table(ctx: &BenchContext, gpu: &Gpu) -> Table {
     table
 }
 
-fn caustics_table(ctx: &BenchContext, gpu: &Gpu) -> CliResult<Table> {
+fn caustics_table(ctx: &BenchContext, gpu: &Gpu) -> AppResult<Table> {
     let mut table = Table::new(
         "pool_caustics",
         "Caustics map: resolution against conserved light and GPU f32 error",
@@ -141,9 +141,9 @@ fn caustics_table(ctx: &BenchContext, gpu: &Gpu) -> CliResult<Table> {
         let mut r = PoolRenderer::new(gpu, OFFSCREEN_FORMAT, settings);
         let frame = PoolFrame::new(&scene, t, &PoolView::default_desktop([64, 64]), &settings);
         render_pool_image(gpu, &mut r, &frame)
-            .map_err(|e| CliError::new(format!("the pool bench could not render: {e}")))?;
+            .map_err(|e| AppError::new(format!("the pool bench could not render: {e}")))?;
         let got = r.read_caustics(gpu).map_err(|e| {
-            CliError::new(format!("the pool bench could not read the caustics: {e}"))
+            AppError::new(format!("the pool bench could not read the caustics: {e}"))
         })?;
         let texel = reference.texel_size(0) * reference.texel_size(1);
         let flux = reference.total_flux();
@@ -176,7 +176,7 @@ fn caustics_table(ctx: &BenchContext, gpu: &Gpu) -> CliResult<Table> {
 }
 
 /// The `pool` section.
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let gpu = match Gpu::headless(wgpu::Backends::all()) {
         Ok(g) => g,
         Err(e) => {

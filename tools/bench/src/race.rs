@@ -14,7 +14,7 @@ use race::track::{hermite, pchip_slopes};
 use serde_json::json;
 
 use crate::{BenchContext, Table, time_ns};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 const BOATS: usize = 50;
 const HZ: f64 = 10.0;
@@ -57,7 +57,7 @@ fn race_json(seconds: f64) -> String {
     s
 }
 
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let seconds = if ctx.quick { 1200.0 } else { 3.0 * 3600.0 };
     ctx.progress(format!(
         "race: writing a {BOATS}-boat, {seconds} s, {HZ} Hz race"
@@ -70,7 +70,7 @@ pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     ));
     let t0 = Instant::now();
     let race = Race::from_files(&[("bench.json", text.as_bytes())])
-        .map_err(|e| CliError::new(format!("the bench race did not load: {e}")))?;
+        .map_err(|e| AppError::new(format!("the bench race did not load: {e}")))?;
     let load_s = t0.elapsed().as_secs_f64();
     let json_mb = text.len() as f64 / 1e6;
     drop(text);

@@ -11,12 +11,12 @@ use race::synth_logs::fleet_csv;
 use serde_json::json;
 
 use crate::{BenchContext, Table};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 /// Fixes per boat in the generated fleet.
 const FIXES: usize = 10;
 
-pub fn table(ctx: &BenchContext) -> CliResult<Table> {
+pub fn table(ctx: &BenchContext) -> AppResult<Table> {
     let fleets: &[usize] = if ctx.quick {
         &[2_500, 5_000, 10_000]
     } else {
@@ -39,10 +39,10 @@ pub fn table(ctx: &BenchContext) -> CliResult<Table> {
         let text = fleet_csv(boats, FIXES);
         let t0 = Instant::now();
         let race = Race::from_files(&[("fleet.csv", text.as_bytes())])
-            .map_err(|e| CliError::new(format!("the bench fleet did not load: {e}")))?;
+            .map_err(|e| AppError::new(format!("the bench fleet did not load: {e}")))?;
         let secs = t0.elapsed().as_secs_f64();
         if race.boats.len() != boats {
-            return Err(CliError::new(format!(
+            return Err(AppError::new(format!(
                 "the bench fleet loaded {} boats of {boats}",
                 race.boats.len()
             )));

@@ -15,7 +15,7 @@ use race::synth_logs::{csv_log, nmea_log};
 use serde_json::json;
 
 use crate::{BenchContext, Table};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 /// A field of /proc/self/status in kB, as bytes.
 fn status_bytes(field: &str) -> Option<u64> {
@@ -41,7 +41,7 @@ fn reset_peak() -> bool {
     std::fs::write("/proc/self/clear_refs", "5").is_ok()
 }
 
-pub fn table(ctx: &BenchContext) -> CliResult<Table> {
+pub fn table(ctx: &BenchContext) -> AppResult<Table> {
     let bytes = if ctx.quick { 10_000_000 } else { 100_000_000 };
     let mut t = Table::new(
         "race_import",
@@ -86,7 +86,7 @@ pub fn table(ctx: &BenchContext) -> CliResult<Table> {
         let start = status_bytes("VmRSS:").unwrap_or(0);
         let (t0, c0) = (Instant::now(), cpu_seconds());
         let race = Race::from_files(&[(file, &text)])
-            .map_err(|e| CliError::new(format!("the bench {name} log did not load: {e}")))?;
+            .map_err(|e| AppError::new(format!("the bench {name} log did not load: {e}")))?;
         let secs = t0.elapsed().as_secs_f64();
         let cpu = cpu_seconds().zip(c0).map(|(b, a)| b - a);
         let peak = status_bytes("VmHWM:").filter(|_| measured);

@@ -22,7 +22,7 @@ use ocean::wake::{
 use serde_json::json;
 
 use crate::{Axes, BenchContext, Series, Table, time_ns};
-use regatta::error::{CliError, CliResult};
+use regatta::error::{AppError, AppResult};
 
 const KELVIN_DEG: f64 = 19.471_220_634_490_69;
 
@@ -115,8 +115,8 @@ fn sample(
     (values, ns, angle)
 }
 
-fn kelvin_wake(f: &Field, prm: WakeParams) -> CliResult<Wake> {
-    Wake::new(&[&f.track], prm).map_err(|e| CliError::new(e.to_string()))
+fn kelvin_wake(f: &Field, prm: WakeParams) -> AppResult<Wake> {
+    Wake::new(&[&f.track], prm).map_err(|e| AppError::new(e.to_string()))
 }
 
 fn reps(ctx: &BenchContext) -> usize {
@@ -126,7 +126,7 @@ fn reps(ctx: &BenchContext) -> usize {
 /// The Kelvin wake's RMS height error against the Havelock reference relative to the
 /// reference's RMS, for sources `fac` hull radii apart (the spacing table's measurement at
 /// 5 m/s with the default boat; the quality tiers' wake accuracy).
-pub(crate) fn spacing_relative_rms(ctx: &BenchContext, fac: f64) -> CliResult<f64> {
+pub(crate) fn spacing_relative_rms(ctx: &BenchContext, fac: f64) -> AppResult<f64> {
     let boat = WakeParams::default();
     let f = field(ctx, 5.0, &boat);
     let spacing = fac * boat.hull_radius;
@@ -142,7 +142,7 @@ pub(crate) fn spacing_relative_rms(ctx: &BenchContext, fac: f64) -> CliResult<f6
     Ok(rms / rref)
 }
 
-fn spacing_table(ctx: &BenchContext) -> CliResult<Table> {
+fn spacing_table(ctx: &BenchContext) -> AppResult<Table> {
     let boat = WakeParams::default();
     let f = field(ctx, 5.0, &boat);
     let mut t = Table::new(
@@ -241,7 +241,7 @@ fn spacing_table(ctx: &BenchContext) -> CliResult<Table> {
     Ok(t)
 }
 
-fn models_table(ctx: &BenchContext) -> CliResult<Table> {
+fn models_table(ctx: &BenchContext) -> AppResult<Table> {
     let boat = WakeParams::default();
     let ring0 = RingParams::default();
     let mut t = Table::new(
@@ -290,7 +290,7 @@ fn models_table(ctx: &BenchContext) -> CliResult<Table> {
                 interval,
                 ..ring0
             };
-            let ring = RingWake::new(&[&f.track], rp).map_err(|e| CliError::new(e.to_string()))?;
+            let ring = RingWake::new(&[&f.track], rp).map_err(|e| AppError::new(e.to_string()))?;
             let (rv, r_ns, r_angle) = sample(ctx, &f, |p| ring.strength(p, T_END));
             // Least-squares scale of the ring strength onto the reference.
             let num: f64 = rv.iter().zip(&f.reference).map(|(a, b)| a * b).sum();
@@ -381,7 +381,7 @@ fn models_table(ctx: &BenchContext) -> CliResult<Table> {
     Ok(t)
 }
 
-fn distance_table(ctx: &BenchContext) -> CliResult<Table> {
+fn distance_table(ctx: &BenchContext) -> AppResult<Table> {
     let boat = WakeParams::default();
     let mut t = Table::new(
         "wake_distance",
@@ -409,7 +409,7 @@ fn distance_table(ctx: &BenchContext) -> CliResult<Table> {
         let max_age = 2.5 * 31.0 * lambda / u / 0.8;
         let prm = WakeParams { max_age, ..boat };
         let track = straight(u, max_age + 10.0);
-        let wake = Wake::new(&[&track], prm).map_err(|e| CliError::new(e.to_string()))?;
+        let wake = Wake::new(&[&track], prm).map_err(|e| AppError::new(e.to_string()))?;
         for (d0, d1) in [(2.0, 8.0), (8.0, 16.0), (16.0, 30.0)] {
             ctx.progress(format!("wakes: {u} m/s, {d0}–{d1} λ behind"));
             let (mut e2, mut r2) = (0.0, 0.0);
@@ -445,7 +445,7 @@ fn distance_table(ctx: &BenchContext) -> CliResult<Table> {
     Ok(t)
 }
 
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     Ok(vec![
         spacing_table(ctx)?,
         distance_table(ctx)?,

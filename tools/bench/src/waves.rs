@@ -13,7 +13,7 @@ use ocean::{WaveSet, displace_f32, f32_error_bound};
 use serde_json::json;
 
 use crate::{Axes, BenchContext, Series, Table, time_ns};
-use regatta::error::CliResult;
+use regatta::error::AppResult;
 
 /// A patch of the course: `n`×`n` points over `size` metres centred at `centre`.
 fn grid(centre: [f64; 2], size: f64, n: usize) -> Vec<[f64; 2]> {
@@ -81,7 +81,7 @@ fn scaled_sea(total: f64) -> WaveSet {
     s
 }
 
-fn f32_table(ctx: &BenchContext) -> CliResult<Table> {
+fn f32_table(ctx: &BenchContext) -> AppResult<Table> {
     let sea = WaveSet::default_sea();
     // A 400 m patch 2.5 km from the course origin: realistic for a camera over a course.
     let centre = [2000.0, -1500.0];
@@ -197,7 +197,7 @@ fn f32_table(ctx: &BenchContext) -> CliResult<Table> {
     Ok(t)
 }
 
-fn cull_table(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+fn cull_table(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let state = SeaState {
         hs: 2.0,
         tp: 8.0,
@@ -353,7 +353,7 @@ fn cull_table(ctx: &BenchContext) -> CliResult<Vec<Table>> {
     Ok(vec![t, lod])
 }
 
-fn inverse_table(ctx: &BenchContext) -> CliResult<Table> {
+fn inverse_table(ctx: &BenchContext) -> AppResult<Table> {
     let pts = grid([-700.0, 1200.0], 200.0, if ctx.quick { 40 } else { 120 });
     let reps = if ctx.quick { 3 } else { 7 };
     let time = 4321.0;
@@ -387,7 +387,7 @@ fn inverse_table(ctx: &BenchContext) -> CliResult<Table> {
             for p in &pts {
                 let r = sea
                     .rest_point(*p, time, tol)
-                    .map_err(|e| regatta::error::CliError::new(format!("bench waves: {e}")))?;
+                    .map_err(|e| regatta::error::AppError::new(format!("bench waves: {e}")))?;
                 it += r.iterations as u64;
                 ev += r.evaluations as u64;
                 max_it = max_it.max(r.iterations);
@@ -450,7 +450,7 @@ fn inverse_table(ctx: &BenchContext) -> CliResult<Table> {
 }
 
 /// The `waves` section.
-pub fn run(ctx: &BenchContext) -> CliResult<Vec<Table>> {
+pub fn run(ctx: &BenchContext) -> AppResult<Vec<Table>> {
     let mut tables = vec![f32_table(ctx)?];
     tables.extend(cull_table(ctx)?);
     tables.push(inverse_table(ctx)?);

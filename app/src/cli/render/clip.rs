@@ -11,7 +11,7 @@
 use std::path::Path;
 
 use super::RenderArgs;
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::setup::clip::{ClipLook, ClipTimes, DEFAULT_FPS, write_gif};
 use crate::setup::inputs::{drawable_sea, load_race, load_sea};
 use crate::world::{FAR_M, RaceWorld};
@@ -34,9 +34,9 @@ pub fn clip_format(path: &Path) -> Option<ClipFormat> {
 }
 
 /// `render` with a `.gif` or `.mp4` `--out`.
-pub fn run(a: &RenderArgs, format: ClipFormat) -> CliResult {
+pub fn run(a: &RenderArgs, format: ClipFormat) -> AppResult {
     if format == ClipFormat::Mp4 {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--out {}: MP4 is not available in this build (no maintained pure-Rust H.264 encoder); write a .gif instead",
             input::show_path(&a.out)
         )));
@@ -50,12 +50,12 @@ pub fn run(a: &RenderArgs, format: ClipFormat) -> CliResult {
         (a.scene != super::SceneKind::Race, "--scene pool"),
     ];
     if let Some((_, flag)) = refused.iter().find(|(given, _)| *given) {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "{flag} has no meaning for a clip (--out .gif): clips draw the race scene with its overlays"
         )));
     }
     let (Some(from), Some(to)) = (a.from, a.to) else {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "--out .gif writes a clip: give --from SECONDS and --to SECONDS",
         ));
     };
@@ -97,7 +97,7 @@ pub fn run(a: &RenderArgs, format: ClipFormat) -> CliResult {
         "to": times.time(times.count - 1),
         "size": size,
     });
-    crate::cli::output::print_stdout("the clip summary", &summary)
+    crate::terminal::print_stdout("the clip summary", &summary)
 }
 
 #[cfg(test)]

@@ -14,7 +14,7 @@ use crate::setup::{Profile, RaceSetup};
 
 pub mod clip;
 pub mod replay;
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::world::FAR_M;
 
 #[derive(Debug, Args)]
@@ -98,11 +98,11 @@ pub const MIN_ERROR_PX: f64 = 0.1;
 pub const MAX_ERROR_PX: f64 = 100.0;
 
 /// `--error-px` within [`MIN_ERROR_PX`, `MAX_ERROR_PX`].
-pub fn check_error_px(px: f64) -> CliResult {
+pub fn check_error_px(px: f64) -> AppResult {
     if (MIN_ERROR_PX..=MAX_ERROR_PX).contains(&px) {
         Ok(())
     } else {
-        Err(CliError::new(format!(
+        Err(AppError::new(format!(
             "--error-px {} is outside {MIN_ERROR_PX} to {MAX_ERROR_PX} pixels: finer targets are invisible and beyond what the clip-map can meet",
             input::show_number(px)
         )))
@@ -129,7 +129,7 @@ pub fn note_unmet_error(report: &render::FrameReport) {
 pub use crate::setup::SceneKind;
 
 /// Parse `WIDTHxHEIGHT` (each 1..=8192).
-pub fn parse_size(s: &str) -> CliResult<[u32; 2]> {
+pub fn parse_size(s: &str) -> AppResult<[u32; 2]> {
     parse_size_in(
         s,
         1..=8192,
@@ -153,24 +153,24 @@ fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
 
 /// Parse `--camera` (six finite numbers; the eye must differ from the target and not look
 /// straight down the vertical).
-pub fn parse_camera(s: &str, far: f64) -> CliResult<Camera> {
+pub fn parse_camera(s: &str, far: f64) -> AppResult<Camera> {
     let v: Vec<f64> = s
         .split(',')
         .map(|x| x.trim().parse::<f64>())
         .collect::<Result<_, _>>()
         .map_err(|_| {
-            CliError::new(format!(
+            AppError::new(format!(
                 "--camera \"{s}\" is not six numbers EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z"
             ))
         })?;
     if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--camera \"{s}\" needs exactly six finite numbers EYE_X,EYE_Y,EYE_Z,TARGET_X,TARGET_Y,TARGET_Z"
         )));
     }
     let max = crate::cli::probe::MAX_WORLD_M;
     if v.iter().any(|x| x.abs() > max) {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--camera \"{s}\" lies outside the world: every coordinate must lie within ±{max:e} m, as probe's --at"
         )));
     }
@@ -178,19 +178,19 @@ pub fn parse_camera(s: &str, far: f64) -> CliResult<Camera> {
     let target = DVec3::new(v[3], v[4], v[5]);
     let d = target - eye;
     if d.length() < 1e-6 || DVec2::new(d.x, d.z).length() < 1e-6 * d.length() {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--camera \"{s}\": the eye must differ from the target and not look straight up or down"
         )));
     }
     Ok(Camera::look_at(eye, target, far))
 }
 
-pub fn run(a: RenderArgs) -> CliResult {
+pub fn run(a: RenderArgs) -> AppResult {
     if let Some(format) = clip::clip_format(&a.out) {
         return clip::run(&a, format);
     }
     if a.from.is_some() || a.to.is_some() || a.fps.is_some() {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "--from, --to and --fps make a clip: --out must name a .gif file",
         ));
     }
@@ -201,14 +201,14 @@ pub fn run(a: RenderArgs) -> CliResult {
         .as_deref()
         .map(effects::EffectSet::parse)
         .transpose()
-        .map_err(CliError::new)?;
+        .map_err(AppError::new)?;
     if let Some(t) = a.t {
         crate::cli::inputs::check_race_time(t)?;
     }
     if let Some(report) = &a.report
         && same_file(&a.out, report)
     {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--out and --report are the same file ({}): the frame record would overwrite the image; give two paths",
             input::show_path(&a.out)
         )));
@@ -224,13 +224,13 @@ pub fn run(a: RenderArgs) -> CliResult {
         overlays.detail = crate::tier_render::TierRender::of(tier).overlay;
     }
     if tier.is_some() && effects.is_some() {
-        return Err(CliError::new(
+        return Err(AppError::new(
             "--tier chooses the effects itself: give --tier or --effects, not both",
         ));
     }
     if a.scene == SceneKind::Pool {
         if effects.is_some() || a.replay.is_some() || a.overlays.is_some() || tier.is_some() {
-            return Err(CliError::new(
+            return Err(AppError::new(
                 "--effects, --overlays, --tier and --replay have no meaning with --scene pool (the pool traces its own)",
             ));
         }
@@ -239,7 +239,7 @@ pub fn run(a: RenderArgs) -> CliResult {
     check_error_px(a.error_px)?;
     if let Some(dir) = &a.replay {
         if a.camera.is_some() {
-            return Err(CliError::new(
+            return Err(AppError::new(
                 "--camera has no meaning with --replay: the feed's camera draws",
             ));
         }
@@ -261,7 +261,7 @@ pub fn run(a: RenderArgs) -> CliResult {
     let t = a.t.unwrap_or_else(|| world.middle_time());
     let scene = world.scene_at(t, camera);
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+        .map_err(|e| AppError::new(format!("cannot render: {e}")))?;
     let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, setup.wake(&world.race)?);
     let _effects = setup.scene_effects(&mut renderer, &gpu, &scene, size);
     let (img, report) = setup.picture(&gpu, &mut renderer, &world, &scene, size)?;
@@ -278,7 +278,7 @@ pub fn race_setup(
     tier: Option<quality::Tier>,
     effects: Option<effects::EffectSet>,
     overlays: crate::scene_overlay::OverlaySettings,
-) -> CliResult<RaceSetup> {
+) -> AppResult<RaceSetup> {
     let mut setup = RaceSetup::new(Profile::Picture);
     setup.options.error_px = a.error_px;
     if let Some(tier) = tier {
@@ -293,9 +293,9 @@ pub fn race_setup(
 }
 
 /// The overlays `--overlays` asks for (all without it).
-pub fn overlay_settings(a: &RenderArgs) -> CliResult<crate::scene_overlay::OverlaySettings> {
+pub fn overlay_settings(a: &RenderArgs) -> AppResult<crate::scene_overlay::OverlaySettings> {
     let set = match a.overlays.as_deref() {
-        Some(list) => crate::scene_overlay::OverlaySet::parse(list).map_err(CliError::new)?,
+        Some(list) => crate::scene_overlay::OverlaySet::parse(list).map_err(AppError::new)?,
         None => crate::scene_overlay::OverlaySet::ALL,
     };
     Ok(crate::scene_overlay::OverlaySettings {
@@ -305,19 +305,19 @@ pub fn overlay_settings(a: &RenderArgs) -> CliResult<crate::scene_overlay::Overl
 }
 
 /// Print the frame record and write it to `--report`.
-pub fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> CliResult {
+pub fn print_report(a: &RenderArgs, report: &impl serde::Serialize) -> AppResult {
     let json = serde_json::to_string_pretty(report)?;
     if let Some(p) = &a.report {
         write_text(p, &json)?;
     }
-    super::output::print_stdout("the frame record", &json)
+    crate::terminal::print_stdout("the frame record", &json)
 }
 
 /// `--scene pool`: the pool at `--t` (default [`pool::DEFAULT_T`]).
-fn run_pool(a: &RenderArgs, out: &ImageOut, size: [u32; 2]) -> CliResult {
+fn run_pool(a: &RenderArgs, out: &ImageOut, size: [u32; 2]) -> AppResult {
     use pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView};
     if !a.race.is_empty() {
-        return Err(CliError::new("--race has no meaning with --scene pool"));
+        return Err(AppError::new("--race has no meaning with --scene pool"));
     }
     let t = a.t.unwrap_or(pool::DEFAULT_T);
     let mut scene = PoolScene::default();
@@ -329,12 +329,12 @@ fn run_pool(a: &RenderArgs, out: &ImageOut, size: [u32; 2]) -> CliResult {
         view.camera = parse_camera(c, pool::FAR_M)?;
     }
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+        .map_err(|e| AppError::new(format!("cannot render: {e}")))?;
     let settings = PoolSettings::default();
     let mut renderer = PoolRenderer::new(&gpu, render::OFFSCREEN_FORMAT, settings);
     let frame = PoolFrame::new(&scene, t, &view, &settings);
     let (img, report) = pool::render_pool_image(&gpu, &mut renderer, &frame)
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+        .map_err(|e| AppError::new(format!("cannot render: {e}")))?;
     out.save(&img)?;
     print_report(a, &report)
 }

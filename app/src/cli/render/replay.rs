@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use crate::cli::render::{RenderArgs, note_unmet_error, print_report};
-use crate::error::{CliError, CliResult};
+use crate::error::{AppError, AppResult};
 use crate::feed::{FeedView, TableFrame};
 use crate::setup::RaceSetup;
 use crate::setup::inputs::{load_race, load_sea};
@@ -20,7 +20,7 @@ pub fn run(
     out: &ImageOut,
     size: [u32; 2],
     setup: RaceSetup,
-) -> CliResult {
+) -> AppResult {
     let mut feed = FeedView::open(dir)?;
     feed.set_water(a.water.look(feed.water())?);
     // Without --effects, the window's own set; with --tier, the tier's effects and sizes.
@@ -32,7 +32,7 @@ pub fn run(
     }
     let frame = a.frame.unwrap_or(0);
     if frame >= feed.len() {
-        return Err(CliError::new(format!(
+        return Err(AppError::new(format!(
             "--frame {frame} is past the feed's last frame: {} has frames 0 to {}",
             input::show_path(dir),
             feed.len() - 1
@@ -41,7 +41,7 @@ pub fn run(
     let world = RaceSetup::world(load_race(&a.race)?, load_sea(a.sea.as_ref())?);
     let t = a.t.unwrap_or_else(|| world.middle_time());
     let gpu = render::Gpu::headless(wgpu::Backends::all())
-        .map_err(|e| CliError::new(format!("cannot render: {e}")))?;
+        .map_err(|e| AppError::new(format!("cannot render: {e}")))?;
     // The feed builds the renderer through the set-up on its first frame.
     let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
     let wake = setup.wake(&world.race)?;
