@@ -6,28 +6,9 @@
 use regatta::cli::{dispatch, parse_args};
 use regatta::terminal::stdout_is_closed;
 
-/// Warnings for people print as every other message does, `regatta: <one line>` (the
-/// logger's `[time WARN module]` prefix broke that style, and a failing phone-sim printed two
-/// lines); with `RUST_LOG` set, a developer gets the logger's own format.
-#[cfg(not(target_os = "android"))]
-fn init_logging() {
-    let mut b = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"));
-    if std::env::var_os("RUST_LOG").is_none() {
-        b.format(|buf, record| {
-            use std::io::Write;
-            writeln!(
-                buf,
-                "{}",
-                regatta::terminal::user_line(&record.args().to_string())
-            )
-        });
-    }
-    b.init();
-}
-
 fn main() {
     #[cfg(not(target_os = "android"))]
-    init_logging();
+    regatta::terminal::init_logging();
     let cli = parse_args(std::env::args_os());
     // With stdout closed (`regatta race --t 10 >&-`) the JSON would vanish and the exit be 0:
     // Rust's stdout ignores EBADF. Refuse before anything opens a file into descriptor 1.

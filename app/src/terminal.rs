@@ -81,6 +81,22 @@ pub fn print_stdout(what: &str, text: &dyn std::fmt::Display) -> AppResult {
         .map_err(|e| AppError::new(format!("could not write {what} to stdout: {e}")))
 }
 
+/// Warnings for people print as every other message does, `regatta: <one line>` (the
+/// logger's `[time WARN module]` prefix broke that style, and a failing phone-sim printed two
+/// lines); with `RUST_LOG` set, a developer gets the logger's own format. For `regatta` and
+/// `regatta-bench` alike.
+#[cfg(not(target_os = "android"))]
+pub fn init_logging() {
+    let mut b = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"));
+    if std::env::var_os("RUST_LOG").is_none() {
+        b.format(|buf, record| {
+            use std::io::Write;
+            writeln!(buf, "{}", user_line(&record.args().to_string()))
+        });
+    }
+    b.init();
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

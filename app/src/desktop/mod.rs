@@ -269,7 +269,16 @@ impl App {
             let wake = st.hud.as_ref().and_then(|o| o.wake());
             let format = st.target.format().unwrap_or(render::OFFSCREEN_FORMAT);
             let bounds = self.world.race_bounds;
-            if let Err(e) = f.prepare(&st.gpu, &mut st.renderer, format, wake, bounds, size) {
+            let played_s = self.started.elapsed().as_secs_f64();
+            if let Err(e) = f.prepare(
+                &st.gpu,
+                &mut st.renderer,
+                format,
+                wake,
+                bounds,
+                size,
+                played_s,
+            ) {
                 self.fail(el, e.to_string());
                 return;
             }

@@ -16,7 +16,6 @@
 //! converted in the shader), so nothing is rebuilt per frame.
 
 use std::sync::Arc;
-use std::time::Instant;
 
 use ar::CameraFrame;
 use ar::arcore::CoursePlacement;
@@ -34,7 +33,6 @@ use crate::error::{AppError, AppResult};
 /// The feed, where it maps in the race, and which frame the renderer holds.
 pub struct FeedView {
     source: CameraFeed,
-    start: Instant,
     /// The frame the effects show, and the window size it was fitted to.
     shown: Option<(usize, [u32; 2])>,
     /// The effects' camera frame, once the renderer has them.
@@ -68,7 +66,6 @@ impl FeedView {
         let source = CameraFeed::open(dir)?;
         Ok(FeedView {
             source,
-            start: Instant::now(),
             shown: None,
             effects: None,
             camera: None,
@@ -189,10 +186,12 @@ impl FeedView {
         (drawn, true)
     }
 
-    /// Picks the feed frame for the wall clock; when it or the window's `size` changed, hands
+    /// Picks the feed frame for `played_s`, the wall seconds the feed has played (the shell's
+    /// clock: the feed names none); when it or the window's `size` changed, hands
     /// it to the effects. The first time, `renderer` is built anew (for `format`, with `wake`)
     /// with the effect passes; later frames only go through their handle. `race_bounds`
     /// (`RaceWorld::race_bounds`) are what is fitted on the table.
+    #[allow(clippy::too_many_arguments)]
     pub fn prepare(
         &mut self,
         gpu: &render::Gpu,
@@ -201,9 +200,9 @@ impl FeedView {
         wake: Option<Arc<ocean::wake::Wake>>,
         race_bounds: [f64; 4],
         size: [u32; 2],
+        played_s: f64,
     ) -> AppResult {
-        let t = self.start.elapsed().as_secs_f64();
-        let i = self.source.index_at(t);
+        let i = self.source.index_at(played_s);
         // The window's renderer: a new camera image is drawn even while the scene stands
         // still (the background pass's revision changes with it).
         let setup = crate::setup::RaceSetup::new(crate::setup::Profile::Desktop);
@@ -237,7 +236,6 @@ impl FeedView {
             .source
             .frame(i)
             .map_err(|e| AppError::new(e.to_string()))?;
-        let started = Instant::now();
         let mut cfg = self.config.clone();
         let (extent, centre) = match frame.planes.first() {
             Some(p) => (
@@ -273,10 +271,7 @@ impl FeedView {
                 *renderer = fresh;
             }
         }
-        log::debug!(
-            "feed frame {i}: handed to the effects in {:.1} ms",
-            started.elapsed().as_secs_f64() * 1e3
-        );
+        log::debug!("feed frame {i}: handed to the effects");
         self.camera = Some(camera);
         self.map = Some(map);
         self.table_area = Some(table_area(race_bounds, extent));

@@ -66,6 +66,8 @@ fn phone_harness<'a>(
         EffectToggle::new("wakes", "Wakes", true),
     ];
     let mut panels = RegattaUi::new(RaceClock::new(race.time_span()), effects);
+    // The race overlays' switches, as the app hands them in (ui keeps no list).
+    panels.settings.overlays = common::race_overlays();
     panels.clock.scrub_to(600.0);
     builder.build_ui_state(
         move |ui, app: &mut App| {

@@ -40,25 +40,8 @@ fn run(a: BenchArgs) -> AppResult {
     )
 }
 
-/// Warnings print as `regatta: <one line>`, as the app's do; with `RUST_LOG` set, a developer
-/// gets the logger's own format.
-fn init_logging() {
-    let mut b = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn"));
-    if std::env::var_os("RUST_LOG").is_none() {
-        b.format(|buf, record| {
-            use std::io::Write;
-            writeln!(
-                buf,
-                "{}",
-                regatta::terminal::user_line(&record.args().to_string())
-            )
-        });
-    }
-    b.init();
-}
-
 fn main() {
-    init_logging();
+    regatta::terminal::init_logging();
     // Help and version print as clap prints them; every other clap error is one line, exit 2.
     let args = match BenchArgs::try_parse() {
         Ok(a) => a,
