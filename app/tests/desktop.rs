@@ -8,18 +8,7 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use regatta::desktop::hud::initial_clock;
-use regatta::world::{FAR_M, RaceWorld};
-use render::OrbitCamera;
-
-fn orbit() -> OrbitCamera {
-    OrbitCamera {
-        target: DVec3::ZERO,
-        distance: 90.0,
-        yaw: 2.4,
-        pitch: 0.35,
-        far: FAR_M,
-    }
-}
+use regatta::world::{RaceWorld, race_orbit};
 
 /// Plays the app's clock for `frames` frames of `dt` wall seconds; returns the race times seen.
 fn play(race: &race::Race, frames: usize, dt: f64) -> Vec<f64> {
@@ -39,7 +28,7 @@ fn playing_to_t_and_scrubbing_to_t_give_the_same_scene() {
     let times = play(&race, 240, 1.0 / 60.0);
     let t = *times.last().unwrap();
     // Playing: the scene of every frame in turn (the orbit's target follows the fleet).
-    let mut played_orbit = orbit();
+    let mut played_orbit = race_orbit();
     let mut played = None;
     for &ti in &times {
         played = Some(world.orbit_scene(ti, &mut played_orbit));
@@ -49,7 +38,7 @@ fn playing_to_t_and_scrubbing_to_t_give_the_same_scene() {
     clock.pause();
     clock.scrub_to(t);
     let fresh = RaceWorld::new(race.clone(), ocean::WaveSet::default_sea());
-    let scrubbed = fresh.orbit_scene(clock.time(), &mut orbit());
+    let scrubbed = fresh.orbit_scene(clock.time(), &mut race_orbit());
     assert_eq!(clock.time(), t);
     // Debug prints every f64 in shortest round-trip form: equal strings are bit-equal scenes.
     assert_eq!(format!("{:?}", played.unwrap()), format!("{scrubbed:?}"));

@@ -7,25 +7,14 @@
 //! pool's uniforms and rings).
 
 use effects::EffectSet;
-use glam::DVec3;
 use regatta::desktop::pool::PoolMode;
 use regatta::hud::initial_clock;
 use regatta::setup::{Profile, RaceSetup};
-use regatta::world::{FAR_M, RaceWorld, race_wake};
+use regatta::world::{RaceWorld, race_orbit, race_wake};
 use render::gpu::Gpu;
 use render::{FRAME_REUSED, OFFSCREEN_FORMAT, OrbitCamera, Renderer};
 
 const SIZE: [u32; 2] = [96, 64];
-
-fn orbit() -> OrbitCamera {
-    OrbitCamera {
-        target: DVec3::ZERO,
-        distance: 90.0,
-        yaw: 2.4,
-        pitch: 0.35,
-        far: FAR_M,
-    }
-}
 
 /// The scene the window draws at `t` (the app core's, from a world built once per call).
 fn race_scene(
@@ -56,7 +45,7 @@ fn app_renderer(gpu: &Gpu, race: &race::Race, sea: &ocean::WaveSet, effects: boo
     let mut r =
         RaceSetup::new(Profile::Desktop).renderer(gpu, OFFSCREEN_FORMAT, race_wake(race).ok());
     if effects {
-        let scene = race_scene(race, sea, race.time_span().0, &mut orbit());
+        let scene = race_scene(race, sea, race.time_span().0, &mut race_orbit());
         effects::passes::add_scene_effects(&mut r, gpu, &scene, SIZE, EffectSet::ALL);
     }
     r
@@ -76,7 +65,7 @@ fn played_equals_scrubbed(effects: bool) {
     let mut player = app_renderer(&gpu, &race, &sea, effects);
     let target = surface_like(&gpu);
     let view = target.create_view(&Default::default());
-    let mut o = orbit();
+    let mut o = race_orbit();
     let mut draw = |player: &mut Renderer, t: f64| {
         let scene = race_scene(&race, &sea, t, &mut o);
         player
@@ -113,7 +102,7 @@ fn played_equals_scrubbed(effects: bool) {
     // Scrubbing straight to t: a fresh renderer, camera and target draw one frame.
     let mut fresh = app_renderer(&gpu, &race, &sea, effects);
     let target = surface_like(&gpu);
-    let scene = race_scene(&race, &sea, t, &mut orbit());
+    let scene = race_scene(&race, &sea, t, &mut race_orbit());
     fresh
         .render(&gpu, &target.create_view(&Default::default()), SIZE, &scene)
         .expect("the frame draws");

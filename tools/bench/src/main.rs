@@ -41,6 +41,7 @@ fn run(a: BenchArgs) -> AppResult {
 }
 
 fn main() {
+    #[cfg(not(target_os = "android"))]
     regatta::terminal::init_logging();
     // Help and version print as clap prints them; every other clap error is one line, exit 2.
     let args = match BenchArgs::try_parse() {
