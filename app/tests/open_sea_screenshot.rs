@@ -9,7 +9,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{differing_pixels, hsv, regatta};
+use common::{differing_pixels, hsv, rendered_png};
 
 /// Hue of the water's mean colour per type, degrees (blue is 240°, cyan 180°), and its HSV
 /// saturation: pure water and oceanic IB deep blue, coastal 5 blue-green.
@@ -33,13 +33,9 @@ fn render_with(out: &Path, water_type: &str, extra: &[&str]) -> image::RgbImage 
         "none",
         "--water-type",
         water_type,
-        "--out",
-        out.to_str().unwrap(),
     ];
     args.extend_from_slice(extra);
-    let (code, _, err) = regatta(&args);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    image::open(out).unwrap().to_rgb8()
+    rendered_png(&args, out)
 }
 
 #[test]

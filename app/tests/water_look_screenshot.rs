@@ -8,7 +8,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{differing_pixels, hsv, regatta};
+use common::{differing_pixels, hsv, rendered_png};
 
 /// Hue of the water's mean colour, degrees: blue-green (cyan is 180°; green 120°, blue 240°).
 const HUE_DEG: std::ops::RangeInclusive<f64> = 160.0..=200.0;
@@ -41,13 +41,9 @@ fn render(out: &Path, extra: &[&str]) -> image::RgbImage {
         "480x270",
         "--overlays",
         "none",
-        "--out",
-        out.to_str().unwrap(),
     ];
     args.extend_from_slice(extra);
-    let (code, _, err) = regatta(&args);
-    assert_eq!(code, 0, "{args:?}: {err}");
-    image::open(out).unwrap().to_rgb8()
+    rendered_png(&args, out)
 }
 
 fn luma(p: &image::Rgb<u8>) -> f64 {

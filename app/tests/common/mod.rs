@@ -143,6 +143,15 @@ pub fn hsv(c: [f64; 3]) -> (f64, f64, f64) {
     (h, s, max / 255.0)
 }
 
+/// `regatta render ARGS --out OUT` (a PNG): exit 0, and the picture read back.
+pub fn rendered_png(args: &[&str], out: &std::path::Path) -> image::RgbImage {
+    let out_arg = out.to_str().expect("a UTF-8 path");
+    let args: Vec<&str> = args.iter().copied().chain(["--out", out_arg]).collect();
+    let (code, _, err) = regatta(&args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    image::open(out).unwrap().to_rgb8()
+}
+
 /// The pixels where two pictures of the same size differ by more than `levels`, summed over
 /// the three channels (0–255 each).
 pub fn differing_pixels(a: &image::RgbImage, b: &image::RgbImage, levels: f64) -> Vec<(u32, u32)> {
