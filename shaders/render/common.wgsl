@@ -144,14 +144,7 @@ fn resolved_waves(p: vec2<f32>, n: u32, footprint: f32) -> WaveSums {
         if w.k * footprint >= 0.25 * PI {
             break;
         }
-        let theta = wave_phase(w, p);
-        let sn = sin(theta) * w.slope;
-        let cs = cos(theta) * w.slope;
-        s.dxdx -= w.direction_xx * sn;
-        s.dxdz -= w.direction_xz * sn;
-        s.dzdz -= w.direction_zz * sn;
-        s.dydx += w.direction.x * cs;
-        s.dydz += w.direction.y * cs;
+        s = with_wave(s, w, p, w.slope);
     }
     s.next = i;
     return s;
@@ -170,17 +163,23 @@ fn fading_waves(p: vec2<f32>, n: u32, footprint: f32, start: WaveSums) -> WaveSu
         }
         let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, kf);
         s.variance += (1.0 - fade * fade) * w.half_slope2;
-        let theta = wave_phase(w, p);
-        // The faded slope k·a·fade scales sin and cos once, not each of the five sums.
-        let fka = fade * w.slope;
-        let sn = sin(theta) * fka;
-        let cs = cos(theta) * fka;
-        s.dxdx -= w.direction_xx * sn;
-        s.dxdz -= w.direction_xz * sn;
-        s.dzdz -= w.direction_zz * sn;
-        s.dydx += w.direction.x * cs;
-        s.dydz += w.direction.y * cs;
+        s = with_wave(s, w, p, fade * w.slope);
     }
+    return s;
+}
+
+// `s` with wave `w`'s slope terms at p added, its slope k·a scaled to `ka` (the pixel filter's
+// fade): ka scales sin and cos once, not each of the five sums.
+fn with_wave(sums: WaveSums, w: Wave, p: vec2<f32>, ka: f32) -> WaveSums {
+    var s = sums;
+    let theta = wave_phase(w, p);
+    let sn = sin(theta) * ka;
+    let cs = cos(theta) * ka;
+    s.dxdx -= w.direction_xx * sn;
+    s.dxdz -= w.direction_xz * sn;
+    s.dzdz -= w.direction_zz * sn;
+    s.dydx += w.direction.x * cs;
+    s.dydz += w.direction.y * cs;
     return s;
 }
 
