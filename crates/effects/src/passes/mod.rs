@@ -41,7 +41,7 @@ pub use pipelines::{AR_WATER, AR_WATER_PARTS, CAUSTICS, FLOWMAP, REFLECTION, REF
 use shared::Shared;
 pub use shared::{
     EFFECTS_COMMON, EffectsUniform, FLOW_DETAIL_FORMAT, caustic_region, effect_frame,
-    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler, table_image,
+    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler, table_column, table_image,
 };
 pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};
 

@@ -2,7 +2,7 @@
 //! `Rc<RefCell>` held by both passes and the handle), the planner's view of a frame and the
 //! caustic map's region.
 
-use glam::{DMat4, DVec2, DVec3};
+use glam::{DMat4, DVec2, DVec3, DVec4};
 
 use super::config::ArConfig;
 use crate::backdrop::{Backdrop, CameraImage};
@@ -44,9 +44,14 @@ pub struct EffectsUniform {
 /// The constant column of `image_projection` (`PinholeCamera::image_projection`, local points
 /// → (u w, v w, w)) for points on the table plane y = −`depth`: column 1 · (−depth) + column 3,
 /// in f64, so that the shader's `table_uv` projects a table point (x, z) with two columns and
-/// this one.
+/// this one (xyz; w is 0).
+pub fn table_column(image_projection: DMat4, depth: f64) -> DVec4 {
+    image_projection.y_axis * -depth + image_projection.w_axis
+}
+
+/// [`table_column`] as the effects' uniform holds it.
 pub fn table_image(image_projection: DMat4, depth: f64) -> [f32; 4] {
-    let c = image_projection.y_axis * -depth + image_projection.w_axis;
+    let c = table_column(image_projection, depth);
     [c.x as f32, c.y as f32, c.z as f32, 0.0]
 }
 

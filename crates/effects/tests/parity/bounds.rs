@@ -43,9 +43,9 @@ impl CameraBound {
 
     /// `table_uv` of `effects_common.wgsl` for a table `depth` deep: the uv of the table
     /// point (x, z), or `None` behind the camera. The constant column is formed in f64 on the
-    /// CPU (`effects::passes::table_image`) and reaches the GPU as its f32.
+    /// CPU (`effects::passes::table_column`) and reaches the GPU as its f32.
     fn table_uv(&self, xz: [Inexact; 2], depth: f64) -> Bounded<Option<[Inexact; 2]>> {
-        let c = self.exact.y_axis * -depth + self.exact.w_axis;
+        let c = effects::passes::table_column(self.exact, depth);
         let constant = [c.x, c.y, c.z].map(input);
         let row = |i: usize| {
             let terms = [
