@@ -97,6 +97,48 @@ pub fn init_logging() {
     b.init();
 }
 
+/// The command line as `P`, or exit: help and version print as clap prints them; every other
+/// clap error (unknown or repeated flag, bad value, missing argument) is one line on stderr,
+/// exit 2.
+pub fn parse_or_exit<P, I, T>(args: I) -> P
+where
+    P: clap::Parser,
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    use clap::error::ErrorKind;
+    match P::try_parse_from(args) {
+        Ok(parsed) => parsed,
+        Err(e) => match e.kind() {
+            ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+            _ => {
+                eprintln!("regatta: {}", clap_one_line(&e.to_string()));
+                std::process::exit(2);
+            }
+        },
+    }
+}
+
+/// A program's run and end: with stdout closed (`regatta race --t 10 >&-`) a run that
+/// `writes_stdout` is refused before anything opens a file into descriptor 1 (Rust's stdout
+/// ignores EBADF: the output would vanish and the exit be 0); an error prints as one line of
+/// safe text, whatever it holds, and exits 1.
+pub fn run_and_exit(writes_stdout: bool, run: impl FnOnce() -> AppResult) {
+    let result = if writes_stdout && stdout_is_closed() {
+        Err(AppError::new(
+            "stdout is closed, so the output has nowhere to go (was it run with >&-?)",
+        ))
+    } else {
+        run()
+    };
+    if let Err(e) = result {
+        eprintln!("regatta: {}", input::one_line(&e.to_string()));
+        std::process::exit(1);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

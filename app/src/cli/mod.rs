@@ -57,29 +57,13 @@ impl Cli {
     }
 }
 
-/// The command line, or exit: help and version print as clap prints them; every other clap
-/// error (unknown or repeated flag, bad value, missing argument) is one line on stderr, exit 2.
+/// The command line, or exit ([`crate::terminal::parse_or_exit`]).
 pub fn parse_args<I, T>(args: I) -> Cli
 where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    use clap::error::ErrorKind;
-    match Cli::try_parse_from(args) {
-        Ok(cli) => cli,
-        Err(e) => match e.kind() {
-            ErrorKind::DisplayHelp
-            | ErrorKind::DisplayVersion
-            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
-            _ => {
-                eprintln!(
-                    "regatta: {}",
-                    crate::terminal::clap_one_line(&e.to_string())
-                );
-                std::process::exit(2);
-            }
-        },
-    }
+    crate::terminal::parse_or_exit(args)
 }
 
 pub fn dispatch(cli: Cli) -> AppResult {

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::Parser;
-use regatta::error::{AppError, AppResult};
+use regatta::error::AppResult;
 use regatta_bench::{BenchContext, run_all};
 
 /// Run time against error: writes JSON, Markdown and SVG plots into a folder.
@@ -43,27 +43,6 @@ fn run(a: BenchArgs) -> AppResult {
 fn main() {
     #[cfg(not(target_os = "android"))]
     regatta::terminal::init_logging();
-    // Help and version print as clap prints them; every other clap error is one line, exit 2.
-    let args = match BenchArgs::try_parse() {
-        Ok(a) => a,
-        Err(e) if !e.use_stderr() => e.exit(),
-        Err(e) => {
-            eprintln!(
-                "regatta: {}",
-                regatta::terminal::clap_one_line(&e.to_string())
-            );
-            std::process::exit(2);
-        }
-    };
-    let result = if regatta::terminal::stdout_is_closed() {
-        Err(AppError::new(
-            "stdout is closed, so the output has nowhere to go (was it run with >&-?)",
-        ))
-    } else {
-        run(args)
-    };
-    if let Err(e) = result {
-        eprintln!("regatta: {}", input::one_line(&e.to_string()));
-        std::process::exit(1);
-    }
+    let args: BenchArgs = regatta::terminal::parse_or_exit(std::env::args_os());
+    regatta::terminal::run_and_exit(true, || run(args));
 }
