@@ -375,10 +375,7 @@ impl Graph {
 
     /// The graph of the crate whose sources are under `src` (every `*.rs` but `src/bin/`).
     pub fn of_crate(src: &Path) -> std::io::Result<Graph> {
-        let mut files = Vec::new();
-        collect(src, src, &mut files)?;
-        files.sort();
-        Ok(Graph::from_files(&files))
+        Ok(Graph::from_files(&module_files(src)?))
     }
 
     /// Every cycle, one per strongly connected set of modules: a closed path through it,
@@ -495,6 +492,15 @@ impl Graph {
         }
         component.iter().cloned().collect()
     }
+}
+
+/// Every module file of the crate whose sources are in `src`: (module path, text), in module
+/// order ([`module_of`]).
+pub fn module_files(src: &Path) -> std::io::Result<Vec<(String, String)>> {
+    let mut files = Vec::new();
+    collect(src, src, &mut files)?;
+    files.sort();
+    Ok(files)
 }
 
 fn collect(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) -> std::io::Result<()> {

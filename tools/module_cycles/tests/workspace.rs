@@ -98,7 +98,7 @@ fn the_app_folders_have_no_back_arrow_and_only_the_root_imports_cli() {
 #[test]
 fn only_the_shells_name_winit_android_activity_or_the_os_clock() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../app/src");
-    let shells = ["desktop", "android", "phone_sim"];
+    let shells = ["desktop", "android", "phone_sim", "wall_clock"];
     let words = [
         "winit::",
         "android_activity",
@@ -106,37 +106,20 @@ fn only_the_shells_name_winit_android_activity_or_the_os_clock() {
         "Instant::now",
         "SystemTime",
     ];
-    let mut files = Vec::new();
-    let mut stack = vec![root.clone()];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(&dir).expect("app/src is readable") {
-            let path = entry.expect("a directory entry").path();
-            if path.is_dir() {
-                stack.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                files.push(path);
-            }
-        }
-    }
+    let files = module_cycles::module_files(&root).expect("readable sources");
     assert!(files.len() > 50, "read only {} files", files.len());
     let mut found = Vec::new();
-    for path in files {
-        let relative = path.strip_prefix(&root).expect("under app/src");
-        let first = relative
-            .iter()
-            .next()
-            .and_then(|c| c.to_str())
-            .unwrap_or("");
-        let shell = shells
-            .iter()
-            .any(|s| first == *s || first == format!("{s}.rs"));
-        if shell || first == "wall_clock.rs" {
+    for (module, text) in &files {
+        let folder = module.split("::").next().unwrap_or("");
+        if shells.contains(&folder) {
             continue;
         }
-        let text = std::fs::read_to_string(&path).expect("readable source");
         for w in words {
             if text.contains(w) {
-                found.push(format!("{}: {w}", relative.display()));
+                found.push(format!(
+                    "{}: {w}",
+                    if module.is_empty() { "crate" } else { module }
+                ));
             }
         }
     }
