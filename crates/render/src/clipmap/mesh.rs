@@ -2,8 +2,8 @@
 
 use glam::{DVec2, I64Vec2};
 
+use super::ClipMapConfig;
 use super::tiles::{Culling, LevelStats};
-use super::{ClipMapConfig, TILE_CELLS};
 
 /// One vertex of the clip-map mesh (16 bytes), as the water pass reads it.
 #[repr(C)]
@@ -60,17 +60,17 @@ impl ClipMapConfig {
         const NONE: u32 = u32::MAX;
         let (mut slots, mut slots_level) = (Vec::new(), None);
         let levels = self.visit_tiles(eye, culling, |l, [i0, i1, j0, j1], cells| {
-            let n = i64::from(self.cells[l as usize]);
-            let t = i64::from(TILE_CELLS).min(n / 2);
+            let t = self.tile_cells(l);
             let c = centres[l as usize];
-            let (lo_i, lo_j, side) = (c.x - n / 2, c.y - n / 2, n as usize + 1);
+            let lo = self.lattice_min(l, c);
+            let side = self.cells[l as usize] as usize + 1;
             if slots_level != Some(l) {
                 slots.clear();
                 slots.resize(side * side, NONE);
                 slots_level = Some(l);
             }
             let mut vertex = |i: i64, j: i64| -> u32 {
-                let slot = &mut slots[(j - lo_j) as usize * side + (i - lo_i) as usize];
+                let slot = &mut slots[(j - lo.y) as usize * side + (i - lo.x) as usize];
                 if *slot == NONE {
                     let (p, fade) = self.morphed_vertex(l, i, j, c);
                     let q = self.to_world(p - origin_lattice);

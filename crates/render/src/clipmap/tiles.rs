@@ -1,7 +1,7 @@
 //! Tile culling: which tiles and cells of each level survive the view frustum and the play
 //! area ([`ClipMapConfig::visit_tiles`]), with the per-level stats of a frame.
 
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, I64Vec2};
 
 use super::{ClipMapConfig, TILE_CELLS};
 use crate::camera::Frustum;
@@ -34,6 +34,17 @@ pub struct LevelStats {
 }
 
 impl ClipMapConfig {
+    /// Cells per side of level `l`'s tiles (its cells' bit set has a bit per cell).
+    pub(super) fn tile_cells(&self, l: u32) -> i64 {
+        i64::from(TILE_CELLS).min(i64::from(self.cells[l as usize]) / 2)
+    }
+
+    /// Level `l`'s lowest lattice index (i, j) for its centre index `centre`: its n × n cells
+    /// span indices `min` to `min + n`.
+    pub(super) fn lattice_min(&self, l: u32, centre: I64Vec2) -> I64Vec2 {
+        centre - I64Vec2::splat(i64::from(self.cells[l as usize]) / 2)
+    }
+
     /// Every tile of every level that survives `culling` for an eye at world (x, z) `eye`:
     /// `visit(level, [i0, i1, j0, j1], cells)` in lattice indices, `cells` having bit
     /// (j − j0) t + (i − i0) set for each cell (i, j) to draw (outside the hole, meeting the
@@ -120,7 +131,7 @@ impl ClipMapConfig {
         let mut levels = Vec::new();
         for l in 0..self.levels() {
             let n = i64::from(self.cells[l as usize]);
-            let t = i64::from(TILE_CELLS).min(n / 2);
+            let t = self.tile_cells(l);
             let s = self.cell(l);
             let ci = self.centre_index(l, eye);
             let hole = self.hole(l, eye);
@@ -128,7 +139,8 @@ impl ClipMapConfig {
                 hole.is_some_and(|(x0, x1, z0, z1)| i >= x0 && i < x1 && j >= z0 && j < z1)
             };
             let mut stats = LevelStats::default();
-            let (lo_i, lo_j) = (ci.x - n / 2, ci.y - n / 2);
+            let lo = self.lattice_min(l, ci);
+            let (lo_i, lo_j) = (lo.x, lo.y);
             let mut tj = 0;
             while tj < n {
                 let mut ti = 0;
