@@ -48,20 +48,7 @@ pub fn fuzz_config(name: &str, seed: u64, cases: u32) -> proptest::test_runner::
 }
 
 /// A test whose input (a file of `../shared/data`) is missing: under CI (`CI=true`) it fails;
-/// elsewhere it skips, printing "skipped: REASON" and appending "TEST: REASON" to the file
-/// named by `REGATTA_SKIP_LOG`, which scripts/test.sh counts (docs/testing.md).
+/// elsewhere it skips and is counted (`skip_log::unless_ci`, docs/testing.md).
 pub fn skip(reason: &str) {
-    use std::io::Write;
-    let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
-    assert!(!ci, "CI=true but {reason}");
-    eprintln!("skipped: {reason}");
-    if let Some(log) = std::env::var_os("REGATTA_SKIP_LOG") {
-        let test = std::thread::current().name().unwrap_or("?").to_owned();
-        std::fs::OpenOptions::new()
-            .create(true)
-            .append(true)
-            .open(&log)
-            .and_then(|mut f| f.write_all(format!("{test}: {reason}\n").as_bytes()))
-            .unwrap_or_else(|e| panic!("REGATTA_SKIP_LOG {}: {e}", log.display()));
-    }
+    skip_log::unless_ci(reason);
 }

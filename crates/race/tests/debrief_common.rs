@@ -23,23 +23,10 @@ pub fn read_shared(rel: &str) -> Option<String> {
     Some(std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display())))
 }
 
-/// A test without its data: fails under `CI=true`, elsewhere prints `skipped: ...` and appends
-/// `TEST: REASON` to the file `REGATTA_SKIP_LOG` names (scripts/test.sh counts them).
+/// A test without its data: fails under `CI=true`, elsewhere skips and is counted
+/// (`skip_log::unless_ci`, docs/testing.md).
 pub fn skip(test: &str, missing: &str) {
-    let reason = format!("{missing} is absent");
-    if std::env::var("CI").is_ok_and(|v| v == "true") {
-        panic!("{test}: {reason}, and CI must have it");
-    }
-    eprintln!("skipped: {reason}");
-    if let Some(log) = std::env::var_os("REGATTA_SKIP_LOG") {
-        use std::io::Write;
-        let mut f = std::fs::OpenOptions::new()
-            .create(true)
-            .append(true)
-            .open(&log)
-            .unwrap_or_else(|e| panic!("REGATTA_SKIP_LOG {}: {e}", log.to_string_lossy()));
-        writeln!(f, "{test}: {reason}").unwrap();
-    }
+    skip_log::unless_ci(&format!("{test}: {missing} is absent"));
 }
 
 /// Seconds of a time of day "HH:MM:SS(.fff)".

@@ -544,34 +544,9 @@ pub fn test_gpu_on(backends: Backends) -> Option<Arc<Gpu>> {
     }
 }
 
-/// The environment variable naming a file that gets one line per skipped test;
-/// scripts/test.sh sets it, prints the count at the end and fails under CI when it is not 0.
-pub(crate) const SKIP_LOG_ENV: &str = "REGATTA_SKIP_LOG";
-
-/// Report a test that skips (no adapter, no display server): "skipped: REASON" on stderr, which
-/// the harness hides for a passing test, and a line "TEST: REASON" appended to the file named
-/// by [`SKIP_LOG_ENV`], which does not hide it.
-pub fn record_skip(reason: &str) {
-    eprintln!("skipped: {reason}");
-    if let Some(log) = std::env::var_os(SKIP_LOG_ENV) {
-        let test = std::thread::current().name().unwrap_or("?").to_owned();
-        if let Err(e) = append_skip(std::path::Path::new(&log), &test, reason) {
-            panic!("{SKIP_LOG_ENV}: cannot append to {}: {e}", log.display());
-        }
-    }
-}
-
-/// Append "TEST: REASON" as one line (newlines in the reason become spaces). One short
-/// `O_APPEND` write, so test binaries running at once do not interleave their lines.
-fn append_skip(log: &std::path::Path, test: &str, reason: &str) -> std::io::Result<()> {
-    use std::io::Write;
-    let line = format!("{test}: {}\n", reason.replace(['\n', '\r'], " "));
-    std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(log)?
-        .write_all(line.as_bytes())
-}
+/// Report a test that skips (no adapter, no display server): `skip_log::record`, the protocol
+/// scripts/test.sh counts.
+pub use skip_log::record as record_skip;
 
 /// The device for a GPU test on any backend (lavapipe in CI); see [`test_gpu_on`].
 pub fn test_gpu() -> Option<Arc<Gpu>> {
@@ -697,22 +672,5 @@ pub(crate) fn upload(
         && !bytes.is_empty()
     {
         gpu.queue.write_buffer(b, 0, bytes);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn each_skip_is_one_line_of_the_skip_log() {
-        let log = std::env::temp_dir().join(format!("regatta-skip-log-{}", std::process::id()));
-        let _ = std::fs::remove_file(&log);
-        super::append_skip(&log, "a::test", "no GPU adapter (line one\nline two)").unwrap();
-        super::append_skip(&log, "b::test", "xvfb-run is not installed").unwrap();
-        let text = std::fs::read_to_string(&log).unwrap();
-        std::fs::remove_file(&log).unwrap();
-        assert_eq!(
-            text,
-            "a::test: no GPU adapter (line one line two)\nb::test: xvfb-run is not installed\n"
-        );
     }
 }

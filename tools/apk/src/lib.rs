@@ -31,22 +31,6 @@ impl std::fmt::Display for ApkError {
 impl std::error::Error for ApkError {}
 
 /// For a test whose prerequisite (an Android C toolchain, `../shared/data/android`) is missing:
-/// under CI (`CI=true`, as scripts/test.sh passes it on) the test fails with `reason`; elsewhere
-/// it skips, printing "skipped: REASON" and appending "TEST: REASON" to the file named by
-/// `REGATTA_SKIP_LOG`, which scripts/test.sh counts (see docs/testing.md).
+/// under CI it fails, elsewhere it skips and is counted (`skip_log`, docs/testing.md).
 #[doc(hidden)]
-pub fn skip_unless_ci(reason: &str) {
-    use std::io::Write;
-    let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
-    assert!(!ci, "CI=true but {reason}");
-    eprintln!("skipped: {reason}");
-    if let Some(log) = std::env::var_os("REGATTA_SKIP_LOG") {
-        let test = std::thread::current().name().unwrap_or("?").to_owned();
-        std::fs::OpenOptions::new()
-            .create(true)
-            .append(true)
-            .open(&log)
-            .and_then(|mut f| f.write_all(format!("{test}: {reason}\n").as_bytes()))
-            .unwrap_or_else(|e| panic!("REGATTA_SKIP_LOG {}: {e}", log.display()));
-    }
-}
+pub use skip_log::unless_ci as skip_unless_ci;
