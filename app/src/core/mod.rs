@@ -11,7 +11,7 @@
 //!   the OpenGL ES fallback.
 //! - [`ar`]: the AR backend trait and the session's state; ARCore's C API implements it
 //!   (`ar_ffi`: Google's library on the phone, `crates/arcore_sim` on the host).
-//! - [`phone`]: the phone app, driven by events ([`phone::PhoneEvent`]).
+//! - [`phone`]: the phone app, driven by events ([`phone::AppEvent`]).
 //! - [`vulkan_marker`]: a launch that crashed on its first Vulkan frames sends the next one to
 //!   OpenGL ES.
 //!
@@ -19,10 +19,11 @@
 //! adapters (`desktop`, `android`, `phone_sim`) translate their platform's events and wall time
 //! into calls on this core and hold no decision of their own.
 
+pub mod app;
 pub mod ar;
 mod ar_ffi;
 pub mod camera_frame;
+pub mod feed;
 pub mod gfx;
-pub mod phone;
 pub mod table;
 pub mod vulkan_marker;
