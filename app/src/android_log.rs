@@ -1,6 +1,6 @@
 //! The Android logger's configuration: every line of the app under one logcat tag, so that
 //! `adb logcat -s regatta` shows them (issue 26, defect 4). Without `with_tag`, android_logger
-//! tags each line with its module path (`regatta::core::phone`, `ar::arcore::ffi::session`, …)
+//! tags each line with its module path (`regatta::core::app`, `ar::arcore::ffi::session`, …)
 //! and a `-s regatta` filter shows none of them. Built on the host too (android_logger compiles
 //! there as a dev-dependency) so the configuration is tested without a phone.
 

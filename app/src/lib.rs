@@ -6,7 +6,6 @@ pub mod core;
 #[cfg(not(target_os = "android"))]
 pub mod desktop;
 pub mod error;
-pub mod feed;
 pub mod hud;
 pub mod panels;
 #[cfg(not(target_os = "android"))]

@@ -4,7 +4,7 @@
 //! (`PoolScene::grab`, `PoolScene::drag`), leaving ripples.
 
 use glam::DVec3;
-use pool::{PoolScene, PoolView, pointer_ray};
+use pool::{PoolFrame, PoolRenderer, PoolScene, PoolSettings, PoolView, pointer_ray};
 use render::OrbitCamera;
 
 /// The pool, the view its last frame was drawn with, and the sphere being dragged.
@@ -66,13 +66,43 @@ impl PoolPlay {
     pub fn grabbed(&self) -> Option<usize> {
         self.grabbed
     }
+
+    /// One frame of the pool at time `t` (seconds) seen through `view`, drawn into `target`
+    /// by `renderer` (made for `format` on the first frame); the view kept for the pointer.
+    /// The app's pool frame on both profiles (the phone's before it is placed, and the
+    /// desktop's), and the play-versus-scrub test's.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render(
+        &mut self,
+        renderer: &mut Option<PoolRenderer>,
+        gpu: &render::Gpu,
+        format: wgpu::TextureFormat,
+        target: &wgpu::TextureView,
+        view: PoolView,
+        t: f64,
+    ) -> PoolFrame {
+        let settings = PoolSettings::default();
+        let frame = PoolFrame::new(&self.scene, t, &view, &settings);
+        renderer
+            .get_or_insert_with(|| PoolRenderer::new(gpu, format, settings))
+            .render(gpu, target, &frame);
+        self.view = Some(view);
+        frame
+    }
+
+    /// The view of the 3D pool under `orbit` in a window of `size` pixels.
+    pub fn orbit_view(orbit: &OrbitCamera, size: [u32; 2]) -> PoolView {
+        PoolView {
+            camera: orbit.camera(),
+            ..PoolView::default_desktop(size)
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::{DMat4, DQuat, DVec2};
-    use pool::PoolSettings;
     use render::Camera;
 
     /// A phone 40 cm above a table, looking down at 50° and rolled 20°, the pool stood on the

@@ -7,7 +7,7 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
-use regatta::desktop::hud::initial_clock;
+use regatta::hud::initial_clock;
 use regatta::world::{RaceWorld, race_orbit};
 
 /// Plays the app's clock for `frames` frames of `dt` wall seconds; returns the race times seen.
@@ -192,8 +192,8 @@ fn the_feed_camera_registers_the_scene_with_the_image() {
     // A table point seen through the render camera (window aspect, wgpu clip space) lands on the
     // screen where the display transform shows the image pixel that the feed's intrinsics and
     // pose project it to: the race sits on the real table.
+    use regatta::core::feed::to_render;
     use regatta::core::table::fit_on_table;
-    use regatta::feed::to_render;
     let cfg = ar::SynthConfig {
         frames: 4,
         width: 160,

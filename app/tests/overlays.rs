@@ -302,7 +302,7 @@ fn draw(race: &race::Race, t: f64, set: OverlaySet, table: bool) -> image::RgbaI
     let mut renderer = setup.renderer(&gpu, render::OFFSCREEN_FORMAT, None);
     let mut scene = orbit_scene(race, t);
     if table {
-        let mut feed = regatta::feed::FeedView::open(Path::new("synth")).unwrap();
+        let mut feed = regatta::core::feed::FeedView::open(Path::new("synth")).unwrap();
         feed.prepare_frame(
             &gpu,
             &mut renderer,

@@ -9,8 +9,8 @@
 
 use ar::arcore::ffi::share::NO_SPACE;
 use ar::arcore::ffi::{JavaScript, ScriptedJni};
-use regatta::core::phone::{PhoneClip, ShareState};
-use regatta::feed::CameraFeed;
+use regatta::core::app::{PhoneClip, ShareState};
+use regatta::core::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
 use regatta::sim_phone::device::Device;
 

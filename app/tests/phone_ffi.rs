@@ -262,7 +262,7 @@ fn a_launch_killed_on_its_first_vulkan_frames_sends_the_next_to_opengl_es() {
     let dir = out().join("vulkan-marker");
     let _ = std::fs::remove_dir_all(&dir);
     let marker = VulkanMarker::in_dir(&dir);
-    let feed = || regatta::feed::CameraFeed::synth(ar::SynthConfig::default());
+    let feed = || regatta::core::feed::CameraFeed::synth(ar::SynthConfig::default());
     let ppp = Device::A54.pixels_per_point(SIZE);
     // A good launch: armed on its first frame, cleared after GOOD_FRAMES.
     let mut sim = PhoneSim::launch(feed(), SIZE, ppp, Some(dir.clone()));

@@ -15,7 +15,7 @@
 //! 17 MB, levelling off after about 60 cycles (docs/phone-sim.md, "Memory over pause/resume
 //! cycles"). A leak shows in the heap in use at once: 80 KB forgotten per cycle fail the test.
 
-use regatta::feed::CameraFeed;
+use regatta::core::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
 use regatta::sim_phone::device::Device;
 

@@ -9,8 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use regatta::core::phone::Opened;
-use regatta::feed::CameraFeed;
+use regatta::core::app::Opened;
+use regatta::core::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
 use regatta::sim_phone::device::Device;
 use serde_json::Value;

@@ -11,8 +11,8 @@
 //! predicted under 0.85 × 33.3 ms from the priors high 0.60, medium 0.30).
 
 use quality::{Target, Tier};
-use regatta::core::phone::{PHONE_START_TIER, PhoneEvent};
-use regatta::feed::CameraFeed;
+use regatta::core::app::{AppEvent, PHONE_START_TIER};
+use regatta::core::feed::CameraFeed;
 use regatta::hud::touch::TouchAction;
 use regatta::phone_sim::PhoneSim;
 use regatta::sim_phone::device::Device;
@@ -109,12 +109,12 @@ fn a_slow_phone_steps_down_but_never_while_the_timeline_is_scrubbed() {
     };
     let race_time_before = sim.app.race_time();
     sim.app
-        .on(PhoneEvent::touch(TouchAction::Down(0), &[at(0.2)]));
+        .on(AppEvent::touch(TouchAction::Down(0), &[at(0.2)]));
     // The finger moves along the track for 3 s of phone time, a step per frame.
     let mut during = Vec::new();
     while t < 3.0 {
         let s = 0.2 + 0.5 * (t / 3.0) as f32;
-        sim.app.on(PhoneEvent::touch(TouchAction::Move, &[at(s)]));
+        sim.app.on(AppEvent::touch(TouchAction::Move, &[at(s)]));
         during.extend(run(&mut sim, &mut t, 0.001));
     }
     assert!(
@@ -126,8 +126,7 @@ fn a_slow_phone_steps_down_but_never_while_the_timeline_is_scrubbed() {
         "no change mid-scrub: {:?}",
         changes(&during, Tier::High)
     );
-    sim.app
-        .on(PhoneEvent::touch(TouchAction::Up(0), &[at(0.7)]));
+    sim.app.on(AppEvent::touch(TouchAction::Up(0), &[at(0.7)]));
     let lifted = t;
     let after = run(&mut sim, &mut t, 12.0);
     let c = changes(&after, Tier::High);

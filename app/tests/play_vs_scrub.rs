@@ -1,5 +1,5 @@
 //! Playing against scrubbing, through the app's real per-frame code: one renderer (the window's,
-//! `regatta::setup::RaceSetup::renderer`, or the pool mode's) draws frame after frame into one
+//! `regatta::setup::RaceSetup::renderer`, or the pool's `PoolPlay::render`) draws frame after frame into one
 //! surface-like texture while the timeline plays, pauses (the kept still frame re-presented),
 //! jumps back and plays on; a fresh renderer then draws only the last time into a fresh
 //! texture. The pixels must be equal: nothing drawn, kept or reused in one frame may leak into
@@ -7,8 +7,8 @@
 //! pool's uniforms and rings).
 
 use effects::EffectSet;
-use regatta::desktop::pool::PoolMode;
 use regatta::hud::initial_clock;
+use regatta::pool_play::PoolPlay;
 use regatta::setup::{Profile, RaceSetup};
 use regatta::world::{RaceWorld, race_orbit, race_wake};
 use render::gpu::Gpu;
@@ -128,20 +128,20 @@ fn playing_the_race_with_every_effect_equals_scrubbing_to_the_same_time() {
     played_equals_scrubbed(true);
 }
 
-/// The pool mode's per-frame code (`PoolMode::render`: frame, rings and uniforms at t, drawn
-/// by the mode's renderer) played at 30 frames a second, back and forth, against a fresh mode
-/// drawing only the last time: the same rings and uniforms, the same pixels.
+/// The app's pool frame (`PoolPlay::render`: frame, rings and uniforms at t, drawn by the
+/// pool's renderer, the desktop's orbit view) played at 30 frames a second, back and forth,
+/// against a fresh pool drawing only the last time: the same rings and uniforms, the same
+/// pixels.
 #[test]
 fn playing_the_pool_equals_scrubbing_to_the_same_time() {
     let Some(gpu) = render::gpu::test_gpu() else {
         return;
     };
-    let orbit = PoolMode::orbit();
-    let mut player = PoolMode::new(None);
+    let view = PoolPlay::orbit_view(&PoolPlay::orbit(), SIZE);
+    let mut player = PoolPlay::new(None);
+    let mut renderer = None;
     let target = surface_like(&gpu);
-    let view = target.create_view(&Default::default());
-    let draw =
-        |mode: &mut PoolMode, t: f64| mode.render(&gpu, OFFSCREEN_FORMAT, &view, SIZE, t, &orbit);
+    let target_view = target.create_view(&Default::default());
     let times: Vec<f64> = (0..60)
         .map(|i| 2.0 + i as f64 / 30.0)
         .chain([9.0, 0.5])
@@ -149,22 +149,23 @@ fn playing_the_pool_equals_scrubbing_to_the_same_time() {
         .collect();
     let mut played = None;
     for &t in &times {
-        played = Some(draw(&mut player, t));
+        let f = player.render(&mut renderer, &gpu, OFFSCREEN_FORMAT, &target_view, view, t);
+        played = Some(f);
     }
     let played = played.unwrap();
     let t = *times.last().unwrap();
     assert!(played.pool.counts[1] > 0, "no ripple rings at t = {t}");
     let played_pixels = gpu.read_texture(&target).unwrap();
 
-    let mut fresh = PoolMode::new(None);
+    let mut fresh = PoolPlay::new(None);
     let target = surface_like(&gpu);
     let scrubbed = fresh.render(
+        &mut None,
         &gpu,
         OFFSCREEN_FORMAT,
         &target.create_view(&Default::default()),
-        SIZE,
+        view,
         t,
-        &orbit,
     );
     // Debug prints every number in shortest round-trip form: equal strings, equal bits.
     assert_eq!(format!("{played:?}"), format!("{scrubbed:?}"));

@@ -12,8 +12,8 @@
 use std::path::Path;
 
 use glam::{DVec2, DVec3, DVec4};
-use regatta::feed::TableFrame;
-use regatta::feed::{FeedView, SYNTH};
+use regatta::core::feed::TableFrame;
+use regatta::core::feed::{FeedView, SYNTH};
 use regatta::setup::{Profile, RaceSetup};
 use regatta::world::RaceWorld;
 use render::Camera;

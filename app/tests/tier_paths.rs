@@ -1,25 +1,27 @@
-//! One tier path for both apps (issue 27). A quality tier changed on the desktop's path (the
-//! window's renderer as the scene set-up builds it, its Scene panel with the Wakes switch,
-//! `SceneApplier::follow_tier` as `desktop::Overlay::follow_tier` calls it) and on the phone's
-//! (the phone core driven headless by phone-sim, the tier pinned in its Scene panel) sets the
-//! same renderer settings, and they are the tier's own definition in `crates/quality`
-//! (`Tier::settings`: render scale, clip-map error target, wake source spacing in hull radii and
-//! the wake source budget). Before, the desktop applied a tier through the panel's switches
-//! and the phone through `TierRender::apply_live` with the race, and a race opened on the phone
-//! kept its wakes at the default spacing whatever the tier.
+//! One app for the desktop and the phone (issue 27), driven here as the shells drive it: the
+//! desktop profile (`App::desktop`, what the `regatta` window runs) and the phone profile
+//! (`App::phone`, what the Android activity, `regatta run --phone` and `phone-sim` run), both
+//! headless on lavapipe with offscreen windows.
 //!
-//! And a desktop and a phone renderer at the same race time, camera and tier draw the same
-//! frame: the profiles differ only in what a tier sets (render scale) and in what does not
-//! change pixels (GPU timestamps, re-presenting a still frame).
+//! - A quality tier changed on either profile (pinned in its Scene panel, as a user does) sets
+//!   the same renderer settings, and they are the tier's own definition in `crates/quality`
+//!   (`Tier::settings`: render scale, clip-map error target, wake source spacing in hull radii
+//!   and the wake source budget). Before the one app, the desktop applied a tier through the
+//!   panel's switches and the phone through `TierRender::apply_live` with the race, and a race
+//!   opened on the phone kept its wakes at the default spacing whatever the tier.
+//! - A race opened on either profile takes the tier's wake spacing.
+//! - The two profiles at the same race time, camera (the orbit view) and tier draw the same
+//!   water, byte for byte: one code path draws both (the profiles' renderers differ only in
+//!   what does not change pixels: GPU timestamps, re-presenting a still frame).
 
 use ocean::wake::WakeParams;
 use quality::Tier;
-use regatta::feed::CameraFeed;
-use regatta::panels::{SceneApplier, effect_toggles};
+use regatta::core::app::{App, AppEvent, DesktopStart};
+use regatta::core::feed::CameraFeed;
+use regatta::hud::SceneChoice;
 use regatta::phone_sim::PhoneSim;
 use regatta::setup::{Profile, RaceSetup};
 use regatta::sim_phone::device::Device;
-use regatta::world::RaceWorld;
 use render::Renderer;
 
 /// The settings a tier sets on the race renderer: render scale, error target (px), wake
@@ -56,48 +58,83 @@ fn close(a: Settings, b: Settings) -> bool {
 /// The tiers changed to, in order: down from the phone's start, across, and up.
 const CHANGES: [Tier; 3] = [Tier::Low, Tier::Ultra, Tier::Medium];
 
-/// The desktop window's renderer and Scene panel (no feed: the Wakes switch only), through
-/// the window's tier path.
-struct DesktopPath {
-    world: RaceWorld,
-    renderer: Renderer,
-    settings: ui::SceneSettings,
-    scene: SceneApplier,
+/// The phone's AR backend where there is no ARCore: the session never runs, so the phone
+/// draws the race in 3D under its orbit view, as the desktop does without a feed.
+struct NoArCore;
+
+impl regatta::core::ar::ArBackend for NoArCore {
+    fn is_loaded(&self) -> bool {
+        false
+    }
+    fn carry_out(&mut self, _: ar::arcore::Command) -> Option<ar::arcore::Event> {
+        None
+    }
+    fn set_display_geometry(&mut self, _: i32, _: u32, _: u32) {}
+    fn update(&mut self) -> Option<ar::arcore::Event> {
+        None
+    }
+    fn next_frame(
+        &mut self,
+    ) -> Result<Option<(ar::CameraFrame, regatta::core::ar::DisplayCamera)>, ar::ArError> {
+        Ok(None)
+    }
 }
 
-impl DesktopPath {
-    fn new(gpu: &render::Gpu, profile: Profile) -> DesktopPath {
-        let world = RaceSetup::world(race::Race::sample(), ocean::WaveSet::default_sea());
-        let setup = RaceSetup::new(profile);
-        let wake = setup.wake_or_none(&world.race);
-        let renderer = setup.renderer(gpu, render::OFFSCREEN_FORMAT, wake.clone());
-        DesktopPath {
-            world,
-            renderer,
-            settings: ui::SceneSettings::new(effect_toggles(false)),
-            scene: SceneApplier::new(wake),
-        }
-    }
+/// The sample race on the default sea, as both shells load it.
+fn world() -> regatta::world::RaceWorld {
+    RaceSetup::world(race::Race::sample(), ocean::WaveSet::default_sea())
+}
 
-    fn set_tier(&mut self, gpu: &render::Gpu, tier: Tier) {
-        let race = &self.world.race;
-        let (s, r) = (&mut self.settings, &mut self.renderer);
-        assert!(
-            self.scene
-                .follow_tier(tier, s, gpu, r, None, race)
-                .is_some()
-        );
-        // The window applies the Scene panel's switches every frame.
-        self.scene.apply(&self.settings, &mut self.renderer, None);
-    }
+/// The app in an offscreen window of `size` pixels at one pixel per point, in the foreground.
+fn shown(mut app: App, size: [u32; 2]) -> App {
+    app.on_all([
+        AppEvent::Density(1.0),
+        AppEvent::Resumed,
+        AppEvent::WindowCreated {
+            surface: None,
+            size,
+        },
+    ]);
+    app
+}
+
+/// The desktop profile without a feed (the orbit view over the sky), `tier` pinned.
+fn desktop(size: [u32; 2], tier: Tier) -> App {
+    let start = DesktopStart {
+        feed: None,
+        water: render::water_look::WaterLook::default(),
+        tier: Some(tier),
+        scene: SceneChoice::Race,
+        pool_sea: None,
+    };
+    shown(App::desktop(world(), start), size)
+}
+
+/// The phone profile without ARCore, `tier` pinned.
+fn phone(size: [u32; 2], tier: Tier) -> App {
+    let mut app = App::phone(world(), Box::new(NoArCore));
+    app.tiers = regatta::tier_control::TierControl::new(tier, true);
+    shown(app, size)
+}
+
+/// Pins `tier` in the app's Scene panel, as a click there does.
+fn pin_in_panel(app: &mut App, tier: Tier) {
+    let panel = app
+        .panels
+        .settings
+        .tier
+        .as_mut()
+        .expect("a frame was drawn");
+    panel.pinned = Some(tier);
 }
 
 #[test]
-fn a_tier_change_sets_the_tiers_definition_on_the_desktops_and_the_phones_path() {
-    let Some(gpu) = render::gpu::test_gpu() else {
+fn a_tier_change_sets_the_tiers_definition_on_both_profiles() {
+    if render::gpu::test_gpu().is_none() {
         return;
-    };
-    let mut desktop = DesktopPath::new(&gpu, Profile::Desktop);
+    }
+    let mut desktop = desktop([160, 96], Tier::Ultra);
+    assert_eq!(desktop.profile(), Profile::Desktop);
     let size = [180, 400];
     let feed = CameraFeed::synth(ar::SynthConfig {
         frames: 1,
@@ -106,87 +143,104 @@ fn a_tier_change_sets_the_tiers_definition_on_the_desktops_and_the_phones_path()
         supersample: 1,
         ..ar::SynthConfig::default()
     });
+    // The phone as phone-sim runs it (the simulated ARCore, the camera image unplaced).
     let mut phone = PhoneSim::launch(feed, size, Device::A54.pixels_per_point(size), None);
+    assert_eq!(phone.app.profile(), Profile::Phone);
     phone.app.panels.show_scene = true;
     phone.frame(1.0 / 60.0);
+    desktop.frame(1.0 / 60.0);
     for tier in CHANGES {
-        desktop.set_tier(&gpu, tier);
-        if let Some(p) = phone.app.panels.settings.tier.as_mut() {
-            p.pinned = Some(tier);
-        }
+        pin_in_panel(&mut desktop, tier);
+        pin_in_panel(&mut phone.app, tier);
         // The pin is answered after a frame and applied before the next.
-        phone.frame(1.0 / 60.0);
-        phone.frame(1.0 / 60.0);
-        assert_eq!(phone.app.tier_drawn(), Some(tier));
-        let on_phone = settings_of(phone.app.race_renderer().expect("the phone draws"));
-        let on_desktop = settings_of(&desktop.renderer);
+        for _ in 0..2 {
+            phone.frame(1.0 / 60.0);
+            desktop.frame(1.0 / 60.0);
+        }
+        for (name, app) in [("desktop", &desktop), ("phone", &phone.app)] {
+            assert_eq!(app.tier_drawn(), Some(tier), "{name}");
+            let got = settings_of(app.race_renderer().expect("a frame was drawn"));
+            assert!(
+                close(got, defined(tier)),
+                "{tier} on the {name}: {got:?}, quality {:?}",
+                defined(tier)
+            );
+        }
+    }
+}
+
+/// A race opened on either profile takes the tier's wake spacing (the phone kept the default
+/// spacing until the tier next changed).
+#[test]
+fn a_race_opened_on_either_profile_has_its_wakes_at_the_tiers_spacing() {
+    if render::gpu::test_gpu().is_none() {
+        return;
+    }
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/races/valencia/2025-06-21-ESP30782-P01.gpx");
+    for mut app in [desktop([96, 64], Tier::Low), phone([96, 64], Tier::Low)] {
+        app.frame(1.0 / 60.0);
+        app.open_race(std::slice::from_ref(&file))
+            .expect("the race opens");
+        assert_ne!(app.race().name, race::Race::sample().name);
+        app.frame(1.0 / 60.0);
+        let got = settings_of(app.race_renderer().expect("a frame was drawn"));
         assert!(
-            close(on_desktop, defined(tier)),
-            "{tier}: desktop {on_desktop:?}, quality {:?}",
-            defined(tier)
-        );
-        assert!(
-            close(on_phone, defined(tier)),
-            "{tier}: phone {on_phone:?}, quality {:?}",
-            defined(tier)
+            close(got, defined(Tier::Low)),
+            "{:?}: {got:?}, quality {:?}",
+            app.profile(),
+            defined(Tier::Low)
         );
     }
 }
 
-/// A race opened on the phone takes the tier's wake spacing, as on the desktop (the phone kept
-/// the default spacing until the tier next changed).
-#[test]
-fn a_new_race_on_either_path_has_its_wakes_at_the_tiers_spacing() {
-    let Some(gpu) = render::gpu::test_gpu() else {
-        return;
-    };
-    let mut desktop = DesktopPath::new(&gpu, Profile::Phone);
-    desktop.set_tier(&gpu, Tier::Low);
-    // A race opened: its wakes at the default spacing, as `RaceSetup` emits them.
-    let wake = RaceSetup::new(Profile::Phone).wake_or_none(&desktop.world.race);
-    let spacing = |r: &Renderer| r.wake().map(|w| w.params.spacing);
-    desktop.scene.set_race_wake(wake, &mut desktop.renderer);
-    assert_eq!(
-        spacing(&desktop.renderer),
-        Some(WakeParams::default().spacing)
-    );
-    let race = &desktop.world.race;
-    let (s, r) = (&mut desktop.settings, &mut desktop.renderer);
-    assert!(
-        desktop
-            .scene
-            .follow_tier(Tier::Low, s, &gpu, r, None, race)
-            .is_some()
-    );
-    assert!(close(settings_of(&desktop.renderer), defined(Tier::Low)));
-}
+/// The rows of a 320 × 400 frame that neither profile's panels cover (the phone's bar and
+/// its banner's shaded strip end 115 px down, both timelines begin about 215 px down): the
+/// water, the boats and the race overlays with their labels.
+const WATER_ROWS: std::ops::Range<u32> = 120..210;
 
-/// The desktop's and the phone's renderer (their profiles from the scene set-up, each through
-/// its shell's Scene panel) at one tier, race time and camera draw the same pixels.
+/// The desktop's and the phone's app at one tier, race time and camera draw the same water.
 #[test]
-fn a_desktop_and_a_phone_renderer_at_one_tier_draw_the_same_frame() {
-    let Some(gpu) = render::gpu::test_gpu() else {
+fn the_desktop_and_the_phone_profile_draw_the_same_frame() {
+    if render::gpu::test_gpu().is_none() {
         return;
-    };
-    let size = [160, 96];
-    let mut desktop = DesktopPath::new(&gpu, Profile::Desktop);
-    let mut phone = DesktopPath::new(&gpu, Profile::Phone);
-    // The phone's Scene panel offers no switches.
-    phone.settings = ui::SceneSettings::new(Vec::new());
-    let t = desktop.world.middle_time();
-    let scene = desktop.world.scene_at(t, None);
+    }
+    let size = [320, 400];
     for tier in [Tier::Medium, Tier::Ultra] {
-        desktop.set_tier(&gpu, tier);
-        phone.set_tier(&gpu, tier);
-        assert_eq!(settings_of(&desktop.renderer), settings_of(&phone.renderer));
-        let (a, ra) = render::render_image(&gpu, &mut desktop.renderer, &scene, size).unwrap();
-        let (b, rb) = render::render_image(&gpu, &mut phone.renderer, &scene, size).unwrap();
-        assert_eq!(ra.size, rb.size, "{tier}");
-        let first = *a.get_pixel(0, 0);
+        let mut d = desktop(size, tier);
+        let mut p = phone(size, tier);
+        // The desktop's side panels off: the phone has none.
+        d.panels.show_leaderboard = false;
+        d.panels.show_perf = false;
+        for _ in 0..3 {
+            d.frame(1.0 / 30.0);
+            p.frame(1.0 / 30.0);
+        }
+        assert_eq!(d.race_time(), p.race_time(), "{tier}");
+        assert!(d.race_time() > 0.0, "{tier}: the race played");
+        assert_eq!(d.tier_drawn(), Some(tier));
+        assert_eq!(p.tier_drawn(), Some(tier));
+        let (rd, rp) = (d.race_renderer().unwrap(), p.race_renderer().unwrap());
+        assert_eq!(settings_of(rd), settings_of(rp), "{tier}");
+        let a = d.screenshot().expect("an offscreen window").unwrap();
+        let b = p.screenshot().expect("an offscreen window").unwrap();
+        let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("tier_paths");
+        std::fs::create_dir_all(&dir).unwrap();
+        a.save(dir.join(format!("desktop-{tier}.png"))).unwrap();
+        b.save(dir.join(format!("phone-{tier}.png"))).unwrap();
+        let band = |img: &image::RgbaImage| {
+            let w = img.width() as usize * 4;
+            img.as_raw()[WATER_ROWS.start as usize * w..WATER_ROWS.end as usize * w].to_vec()
+        };
+        let (wa, wb) = (band(&a), band(&b));
         assert!(
-            a.pixels().any(|p| *p != first),
-            "{tier}: a frame of one colour"
+            wa.chunks(4).any(|p| p != &wa[..4]),
+            "{tier}: the band is one colour"
         );
-        assert!(a.as_raw() == b.as_raw(), "{tier}: the frames differ");
+        assert!(
+            wa == wb,
+            "{tier}: the profiles' water differs (images in {})",
+            dir.display()
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! Android entry point (native activity, android-activity 0.6): a thin adapter. It translates
 //! the activity's lifecycle, window, configuration and input events into the app core's
-//! [`PhoneEvent`]s and measures wall time; every decision (surfaces and their configuration,
-//! the AR session, touch, drawing) is the core's (`crate::core::phone`), run on the host by
+//! [`AppEvent`]s and measures wall time; every decision (surfaces and their configuration,
+//! the AR session, touch, drawing) is the core's (`crate::core::app`), run on the host by
 //! `regatta phone-sim` and `regatta run --phone`.
 //!
 //! AR: `ar::arcore::ffi::ArCore` loads `libarcore_sdk_c.so` with libloading and is the core's
@@ -13,8 +13,8 @@ use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction, Moti
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent};
 use ar::arcore::ffi::{ArCore, JavaObject, Jni};
 
+use crate::core::app::{App, AppEvent};
 use crate::core::gfx::SurfaceMaker;
-use crate::core::phone::{PhoneApp, PhoneEvent};
 use crate::hud::touch::{Finger, Touch, TouchAction};
 use crate::wall_clock::Ticker;
 use crate::world::RaceWorld;
@@ -36,7 +36,7 @@ fn android_main(app: AndroidApp) {
     let jni = jni_calls::AndroidJni::new(&app);
     let ar_jni = Box::new(jni_calls::AndroidJni::new(&app));
     let mut phone = match world {
-        Ok(w) => PhoneApp::new(w, Box::new(ArCore::load(ar_jni))),
+        Ok(w) => App::phone(w, Box::new(ArCore::load(ar_jni))),
         Err(e) => return log::error!("regatta: {e}"),
     };
     phone.data_dir = app.internal_data_path();
@@ -67,36 +67,33 @@ fn android_main(app: AndroidApp) {
 }
 
 /// The core's events for one activity event.
-fn translate(app: &AndroidApp, jni: &dyn Jni, event: &MainEvent<'_>) -> Vec<PhoneEvent> {
+fn translate(app: &AndroidApp, jni: &dyn Jni, event: &MainEvent<'_>) -> Vec<AppEvent> {
     match event {
         MainEvent::InitWindow { .. } => {
             let mut events = configuration(app, jni);
-            events.extend(app.native_window().map(|w| PhoneEvent::WindowCreated {
+            events.extend(app.native_window().map(|w| AppEvent::WindowCreated {
                 size: size_of(&w),
                 surface: Some(surface_maker(w)),
             }));
             events
         }
         // The core drops the surface while its window still exists (wgpu issue 2302).
-        MainEvent::TerminateWindow { .. } => vec![PhoneEvent::WindowDestroyed],
+        MainEvent::TerminateWindow { .. } => vec![AppEvent::WindowDestroyed],
         MainEvent::WindowResized { .. } | MainEvent::ConfigChanged { .. } => {
             let mut events = configuration(app, jni);
-            events.extend(
-                app.native_window()
-                    .map(|w| PhoneEvent::Resized(size_of(&w))),
-            );
+            events.extend(app.native_window().map(|w| AppEvent::Resized(size_of(&w))));
             events
         }
         // The system bars or the cutout moved (issue 26, defect 5).
         MainEvent::ContentRectChanged { .. } => vec![content_rect(app)],
-        MainEvent::Resume { .. } => vec![PhoneEvent::Resumed],
-        MainEvent::Pause => vec![PhoneEvent::Paused],
+        MainEvent::Resume { .. } => vec![AppEvent::Resumed],
+        MainEvent::Pause => vec![AppEvent::Paused],
         _ => vec![],
     }
 }
 
 /// Display rotation (read on the Activity) and density, as they are now.
-fn configuration(app: &AndroidApp, jni: &dyn Jni) -> Vec<PhoneEvent> {
+fn configuration(app: &AndroidApp, jni: &dyn Jni) -> Vec<AppEvent> {
     let dpi = app.config().density().unwrap_or(160);
     let rotation = jni
         .display_rotation(JavaObject::Activity)
@@ -105,18 +102,18 @@ fn configuration(app: &AndroidApp, jni: &dyn Jni) -> Vec<PhoneEvent> {
             0
         });
     vec![
-        PhoneEvent::Rotation(rotation),
+        AppEvent::Rotation(rotation),
         // Physical pixels per egui point: the display's density over Android's 160 dpi.
-        PhoneEvent::Density(dpi as f32 / 160.0),
+        AppEvent::Density(dpi as f32 / 160.0),
         content_rect(app),
     ]
 }
 
 /// The window's part free of the status bar, navigation bar and cutout (NativeActivity's
 /// content rect, pixels): the bar and the panels are laid out inside it.
-fn content_rect(app: &AndroidApp) -> PhoneEvent {
+fn content_rect(app: &AndroidApp) -> AppEvent {
     let r = app.content_rect();
-    PhoneEvent::ContentRect([r.left, r.top, r.right, r.bottom])
+    AppEvent::ContentRect([r.left, r.top, r.right, r.bottom])
 }
 
 fn size_of(w: &ndk::native_window::NativeWindow) -> [u32; 2] {
@@ -144,18 +141,18 @@ fn surface_maker(window: ndk::native_window::NativeWindow) -> SurfaceMaker {
 }
 
 /// Touches to the core; volume-up toggles recording.
-fn input_events(app: &AndroidApp, phone: &mut PhoneApp) {
+fn input_events(app: &AndroidApp, phone: &mut App) {
     let Ok(mut iter) = app.input_events_iter() else {
         return;
     };
     while iter.next(|event| match event {
         InputEvent::KeyEvent(k) if k.key_code() == Keycode::VolumeUp => {
             let down = k.action() == KeyAction::Down;
-            phone.on_all(down.then_some(PhoneEvent::RecordKey));
+            phone.on_all(down.then_some(AppEvent::RecordKey));
             InputStatus::Handled
         }
         InputEvent::MotionEvent(m) => {
-            phone.on_all(touch_of(m).map(PhoneEvent::Touch));
+            phone.on_all(touch_of(m).map(AppEvent::Touch));
             InputStatus::Handled
         }
         _ => InputStatus::Unhandled,

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 use clap::Args;
 use serde_json::json;
 
+use crate::core::feed::CameraFeed;
 use crate::error::{AppError, AppResult};
-use crate::feed::CameraFeed;
 use crate::phone_sim::{PhoneSim, run_script, script};
 use crate::sim_phone::device::Device;
 
@@ -80,7 +80,7 @@ pub fn run(a: PhoneSimArgs) -> AppResult {
     };
     // The Races panel lists $REGATTA_RACES_DIR, else OUT/races.
     sim.app
-        .set_races_dir(crate::core::phone::host_races_dir(Some(&a.out)));
+        .set_races_dir(crate::core::app::host_races_dir(Some(&a.out)));
     let failed = run_script(&mut sim, &lines, &a.out).map_err(AppError::new)?;
     let summary = json!({
         "steps": lines.len(),

@@ -1,35 +1,36 @@
-//! The desktop window (`regatta`, `regatta run`): the embedded race and sea (or the files
-//! given) under an orbiting camera. Left-drag orbits, the wheel zooms, space pauses, the arrow
-//! keys step race time by ±10 s. Race time plays at real speed from the start and loops.
-//! Race files dropped on the window (or chosen in the Races panel's dialog) replace the race;
-//! one that fails to load leaves the race shown and says why in the panel.
+//! The desktop window (`regatta`, `regatta run`): a shell over the app's desktop profile
+//! ([`App::desktop`]: the embedded race and sea, or the files given, under the orbit view or on
+//! a camera feed's table). It opens the window and translates winit's events into
+//! [`AppEvent`]s: the left button as one finger (a click selects a boat, a drag orbits: the
+//! app's one tap threshold), the wheel, the keys, dropped files, and the panels' input through
+//! egui-winit; each redraw hands the app the wall seconds since the last frame and the app draws
+//! and presents. What the app asks of the window (its title, egui's cursor and clipboard,
+//! quitting) is carried out here; nothing else is decided here.
 //!
-//! winit 0.30's `ApplicationHandler`; the device comes from `render::Gpu::for_window`.
+//! winit 0.30's `ApplicationHandler`; the device comes from the app's first window
+//! (`core::gfx`). `--phone` opens the phone profile instead (`phone.rs`).
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
 
 use clap::Args;
-use render::{OrbitCamera, Renderer};
+use glam::DVec2;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
-use winit::keyboard::{Key, NamedKey};
+use winit::keyboard::{Key as WinitKey, NamedKey};
 use winit::window::{Window, WindowId};
 
-use crate::core::gfx::{self, Acquired};
+use crate::core::app::{App, AppEvent, DesktopStart, Key};
 use crate::error::{AppError, AppResult};
+use crate::hud::SceneChoice;
+use crate::hud::touch::TouchAction;
 use crate::setup::SceneKind;
 use crate::setup::inputs::{load_race, load_sea};
-use crate::setup::{Profile, RaceSetup};
 use crate::wall_clock::Ticker;
 use crate::world::RaceWorld;
 
-pub mod hud;
 pub mod phone;
-pub mod pool;
-pub mod share_clip;
 pub mod smoke;
 
 #[derive(Debug, Args, Default)]
@@ -75,7 +76,7 @@ impl RunArgs {
     /// feed's table.
     pub fn default_app() -> RunArgs {
         RunArgs {
-            replay: Some(PathBuf::from(crate::feed::SYNTH)),
+            replay: Some(PathBuf::from(crate::core::feed::SYNTH)),
             ..RunArgs::default()
         }
     }
@@ -93,7 +94,7 @@ pub fn run(a: RunArgs) -> AppResult {
     let mut feed = a
         .replay
         .as_deref()
-        .map(crate::feed::FeedView::open)
+        .map(crate::core::feed::FeedView::open)
         .transpose()?;
     let water = match feed.as_mut() {
         Some(f) => {
@@ -102,7 +103,7 @@ pub fn run(a: RunArgs) -> AppResult {
         }
         None => a.water.look(render::water_look::WaterLook::default())?,
     };
-    let pinned = a
+    let tier = a
         .tier
         .as_deref()
         .map(crate::tier_render::parse_tier)
@@ -113,383 +114,225 @@ pub fn run(a: RunArgs) -> AppResult {
             smoke::window_error(&e)
         ))
     })?;
-    let pool = (a.scene == SceneKind::Pool)
-        .then(|| pool::PoolMode::new(a.sea.is_some().then(|| sea.clone())));
-    // Without the panels (the pool), race time plays at real speed from the start and loops.
-    let mut clock = ui::RaceClock::new(race.time_span());
-    clock.looping = true;
-    clock.play();
-    let mut app = App {
-        orbit: match pool {
-            Some(_) => pool::PoolMode::orbit(),
-            None => crate::world::race_orbit(),
-        },
-        pool,
+    let pool = a.scene == SceneKind::Pool;
+    let start = DesktopStart {
         feed,
         water,
-        world: RaceWorld::new(race, sea),
-        state: None,
-        clock,
+        tier,
+        scene: if pool {
+            SceneChoice::Pool
+        } else {
+            SceneChoice::Race
+        },
+        pool_sea: (pool && a.sea.is_some()).then(|| sea.clone()),
+    };
+    let mut shell = Shell {
+        app: App::desktop(RaceWorld::new(race, sea), start),
+        window: None,
+        egui: None,
+        size: [1, 1],
         ticker: Ticker::default(),
-        drag: None,
-        press_at: None,
-        cursor: (0.0, 0.0),
+        cursor: DVec2::ZERO,
+        left: false,
+        exit_after: smoke::ExitAfter::from_env(),
         error: None,
-        dropped: Vec::new(),
-        tiers: crate::tier_control::TierControl::new(
-            pinned.unwrap_or(quality::Tier::Ultra),
-            pinned.is_some(),
-        ),
-        started: Instant::now(),
     };
     event_loop
-        .run_app(&mut app)
+        .run_app(&mut shell)
         .map_err(|e| AppError::new(format!("the window's event loop failed: {e}")))?;
-    match app.error {
-        Some(e) => Err(e),
-        None => Ok(()),
+    shell.error.map_or(Ok(()), Err)
+}
+
+/// The window's first size: 1280×720 points, or `REGATTA_WINDOW_SIZE=WxH` (physical pixels;
+/// the smoke test keeps lavapipe's frames small with it).
+pub fn window_size() -> winit::dpi::Size {
+    let env = std::env::var("REGATTA_WINDOW_SIZE").ok();
+    match env.as_deref().map(crate::setup::inputs::parse_frame_size) {
+        Some(Ok((w, h))) => winit::dpi::PhysicalSize::new(w, h).into(),
+        Some(Err(e)) => {
+            log::warn!("REGATTA_WINDOW_SIZE: {e}; opening 1280x720");
+            winit::dpi::LogicalSize::new(1280.0, 720.0).into()
+        }
+        None => winit::dpi::LogicalSize::new(1280.0, 720.0).into(),
     }
 }
 
-struct State {
-    window: Arc<Window>,
-    gpu: render::Gpu,
-    target: gfx::Window,
-    renderer: Renderer,
-    /// The egui panels (timeline, leaderboard, performance); `None` in the pool scene.
-    hud: Option<hud::Hud>,
-}
-
-struct App {
-    /// `Some` with `--scene pool`: the pool replaces the race.
-    pool: Option<pool::PoolMode>,
-    /// `Some` with `--replay`: the feed's camera and image replace the orbit and the sky.
-    feed: Option<crate::feed::FeedView>,
-    /// The water the command line chose (the Scene panel starts there; its type colours the
-    /// open sea too).
-    water: render::water_look::WaterLook,
-    world: RaceWorld,
-    state: Option<State>,
-    orbit: OrbitCamera,
-    /// Race time without the panels (with them, the timeline's clock).
-    clock: ui::RaceClock,
+/// Translates winit's events into the app's.
+struct Shell {
+    app: App,
+    window: Option<Arc<Window>>,
+    /// The panels' input from winit (egui-winit), on the app's egui context.
+    egui: Option<egui_winit::State>,
+    /// The window's size, physical pixels.
+    size: [u32; 2],
     ticker: Ticker,
-    drag: Option<(f64, f64)>,
-    /// Where the left button went down (a release there is a click).
-    press_at: Option<(f64, f64)>,
-    cursor: (f64, f64),
+    /// The pointer, physical pixels.
+    cursor: DVec2,
+    /// The left button is down (the app's one finger).
+    left: bool,
+    exit_after: smoke::ExitAfter,
     error: Option<AppError>,
-    /// Files dropped on the window since the last frame (one drop of several files arrives as
-    /// several events): loaded together as one race at the next frame.
-    dropped: Vec<PathBuf>,
-    /// The quality governor: frame times in, the tier's renderer settings out.
-    tiers: crate::tier_control::TierControl,
-    started: Instant,
 }
 
-impl App {
+/// The app's key for a winit key, where the app has one.
+fn key_of(key: &WinitKey) -> Option<Key> {
+    Some(match key {
+        WinitKey::Named(NamedKey::Space) => Key::Space,
+        WinitKey::Named(NamedKey::ArrowLeft) => Key::Left,
+        WinitKey::Named(NamedKey::ArrowRight) => Key::Right,
+        WinitKey::Named(NamedKey::Home) => Key::Home,
+        WinitKey::Named(NamedKey::PageUp) => Key::PageUp,
+        WinitKey::Named(NamedKey::PageDown) => Key::PageDown,
+        WinitKey::Named(NamedKey::Escape) => Key::Escape,
+        WinitKey::Character(c) => Key::Char(c.chars().next()?),
+        _ => return None,
+    })
+}
+
+impl Shell {
     fn fail(&mut self, el: &ActiveEventLoop, msg: String) {
         self.error = Some(AppError::new(msg));
         el.exit();
     }
 
-    /// Race time for this frame: the timeline's with the panels, else the app's clock.
-    fn tick(&mut self) -> f64 {
-        let dt = self.ticker.tick();
-        match self.state.as_mut().and_then(|s| s.hud.as_mut()) {
-            Some(o) => o.tick(),
-            None => {
-                self.clock.advance(dt);
-                self.clock.time()
-            }
-        }
+    fn finger(&mut self, action: TouchAction) {
+        let c = self.cursor.as_vec2().to_array();
+        self.app.on(AppEvent::touch(action, &[c]));
     }
 
-    /// Opens what was dropped on the window or asked for in the Races panel.
-    fn open_requested(&mut self) {
-        let Some(st) = self.state.as_mut() else {
-            return;
+    /// With `REGATTA_SCREENSHOT`: surface textures cannot be read back, so the app draws the
+    /// same frame (no time passes) once more into an offscreen window of the same
+    /// configuration, and that is written.
+    fn screenshot(&mut self) -> Result<(), String> {
+        let Some(path) = smoke::screenshot_path() else {
+            return Ok(());
         };
-        let Some(o) = st.hud.as_mut() else {
-            return;
-        };
-        let mut files = std::mem::take(&mut self.dropped);
-        match o.open_request.take() {
-            Some(ui::OpenRequest::Files(f)) => files = f,
-            Some(ui::OpenRequest::Dialog) => {
-                if let Some(f) = crate::panels::pick_race_files() {
-                    files = f;
-                }
-            }
-            Some(ui::OpenRequest::Rescan) | None => {}
-        }
-        if files.is_empty() {
-            return;
-        }
-        match crate::panels::load_race_files(&files) {
-            Ok(race) => {
-                log::info!("opened {}", race.name);
-                o.set_race(&race, &mut st.renderer);
-                // Its wakes at the tier's spacing from the next frame (`set_race`).
-                self.world = self.world.with_race(race);
-            }
-            Err(e) => {
-                log::warn!("{e}");
-                o.load_error = Some(e);
-            }
-        }
+        self.app.on(AppEvent::WindowDestroyed);
+        self.app.on(AppEvent::WindowCreated {
+            surface: None,
+            size: self.size,
+        });
+        self.app.frame(0.0);
+        let format = self
+            .app
+            .window_config()
+            .map_or(render::OFFSCREEN_FORMAT, |c| c.format);
+        let img = self.app.screenshot().ok_or("no frame to save")??;
+        smoke::write_screenshot(img, format, &path)
     }
 
-    fn draw(&mut self, el: &ActiveEventLoop) {
-        self.open_requested();
-        let t = self.tick();
-        if let Some(p) = self.pool.as_mut() {
-            if let Some(st) = self.state.as_mut() {
-                match p.draw(&st.gpu, &mut st.target, &st.window, t, &self.orbit) {
-                    Ok(false) => {}
-                    Ok(true) => el.exit(),
-                    Err(e) => self.fail(el, e),
-                }
-            }
-            return;
-        }
-        let mut scene = self.world.orbit_scene(t, &mut self.orbit);
-        // "Follow": the orbit turns about the first selected boat instead of the fleet.
-        if let Some(o) = self.state.as_ref().and_then(|s| s.hud.as_ref())
-            && o.panels.follow
-            && let Some(target) =
-                crate::panels::follow_target(&self.world.race, o.scene_overlays.selected(), t)
-        {
-            self.orbit.target = target;
-            scene.camera = self.orbit.camera();
-        }
-        // With a feed, its camera (mapped onto the race) replaces the orbit.
-        if let (Some(f), Some(st)) = (self.feed.as_mut(), self.state.as_mut()) {
-            let size = st.target.size();
-            let wake = st.hud.as_ref().and_then(|o| o.wake());
-            let format = st.target.format().unwrap_or(render::OFFSCREEN_FORMAT);
-            let bounds = self.world.race_bounds;
-            let played_s = self.started.elapsed().as_secs_f64();
-            if let Err(e) = f.prepare(
-                &st.gpu,
-                &mut st.renderer,
-                format,
-                wake,
-                bounds,
-                size,
-                played_s,
-            ) {
-                self.fail(el, e.to_string());
-                return;
-            }
-            f.apply(&mut scene);
-        }
-        let Some(st) = self.state.as_mut() else {
+    fn redraw(&mut self, el: &ActiveEventLoop) {
+        let Some(window) = self.window.clone() else {
             return;
         };
-        let frame = match st.target.acquire(&st.gpu) {
-            Acquired::Frame(f) => f,
-            Acquired::Skip => return,
-            Acquired::Failed(e) => return self.fail(el, e),
-        };
-        let view = frame.texture().create_view(&Default::default());
-        let size = st.target.size();
-        if let Some(o) = st.hud.as_mut() {
-            let handle = self.feed.as_ref().and_then(|f| f.effects_handle()).cloned();
-            let handle = handle.as_ref();
-            o.apply_effects(&mut st.renderer, handle);
-            // The open sea's body colour follows the Scene panel's water type.
-            st.renderer.set_water_look(o.water_look());
-            if let Some(feed) = self.feed.as_mut() {
-                let look = o.water_look();
-                if feed.water() != look {
-                    feed.set_water(look);
-                }
-            }
-            let ppp = st.window.scale_factor();
-            let (race, r) = (&self.world.race, &mut st.renderer);
-            let debrief = o.scene_overlays.debrief(&mut o.panels.debrief, race);
-            o.scene_overlays
-                .prepare(&st.gpu, r, (race, debrief), &scene, size, ppp);
-            // The tier drawn, every setting, live (the governor's or the panel's pin), when it
-            // or the feed's effect passes (built on its first frame) changed.
-            o.follow_tier(self.tiers.tier(), &st.gpu, &mut st.renderer, handle, race);
+        if let Some(e) = self.egui.as_mut() {
+            self.app
+                .on(AppEvent::PanelInput(e.take_egui_input(&window)));
         }
-        // A failed frame is logged by the renderer; the window shows the next one.
-        let report = st.renderer.render(&st.gpu, &view, size, &scene).ok();
-        if let Some(r) = &report {
-            log::debug!("frame: {} triangles", r.triangles);
+        self.app.frame(self.ticker.tick());
+        if let Some(e) = self.app.take_failure() {
+            return self.fail(el, e);
         }
-        // The governor: GPU time where measured, else the present interval; no change while
-        // the user drags the view or a panel (the timeline's scrubber).
-        let scrubbing = self.drag.is_some() || st.hud.as_ref().is_some_and(|o| o.wants_pointer());
-        let now = self.started.elapsed().as_secs_f64();
-        let gpu_ms = report.as_ref().and_then(|r| r.gpu_ms);
-        // The change is applied before the next frame is drawn.
-        if let Some(tier) = self.tiers.frame(now, gpu_ms, scrubbing) {
-            log::info!("quality tier {}", tier.tier);
+        if let (Some(e), Some(out)) = (self.egui.as_mut(), self.app.take_platform_output()) {
+            e.handle_platform_output(&window, out);
         }
-        let race = &self.world.race;
-        if let Some(o) = st.hud.as_mut() {
-            if let Some(c) = o.tier_change.take() {
-                self.tiers.answer(c);
-            }
-            o.panels.settings.tier = Some(self.tiers.panel());
-            if let Some(r) = &report {
-                o.record(r);
-            }
-            o.paint(
-                &st.window,
-                &st.gpu.device,
-                &st.gpu.queue,
-                frame.texture(),
-                size,
-                race,
-            );
-            if std::mem::take(&mut o.share_requested) {
-                let folder = std::env::current_dir().unwrap_or_default();
-                let t = o.panels.clock.time();
-                let request = share_clip::ClipRequest::DESKTOP;
-                let debrief = o.scene_overlays.debrief(&mut o.panels.debrief, race);
-                let world = (&self.world, debrief);
-                if let Err(e) = o.share_clip.start(world, t, &folder, request) {
-                    o.share_clip.set_failed(e);
-                }
-            }
-        }
-        st.window.pre_present_notify();
-        st.target.present(&st.gpu, frame);
-        if let Some(o) = st.hud.as_mut()
-            && o.frame_done()
-        {
-            // The smoke test's exit: save what the window showed, if asked (REGATTA_SCREENSHOT).
-            let saved =
-                o.save_screenshot(&st.window, &st.gpu, &mut st.renderer, &scene, size, race);
-            if let Err(e) = saved {
-                self.fail(el, e);
+        window.set_title(&self.app.title());
+        if self.exit_after.frame_done() {
+            // The smoke test's exit: save what the window showed, if asked.
+            if let Err(e) = self.screenshot() {
+                return self.fail(el, e);
             }
             el.exit();
-            return;
         }
-        let playing = st
-            .hud
-            .as_ref()
-            .map_or(self.clock.is_playing(), |o| o.panels.clock.is_playing());
-        st.window.set_title(&format!(
-            "Regatta: {} at t = {t:.0} s{}, quality {} ({})",
-            race.name,
-            if playing { "" } else { " (paused)" },
-            self.tiers.tier(),
-            if self.tiers.pinned().is_some() {
-                "pinned"
-            } else {
-                "auto"
-            }
-        ));
+        if self.app.quit_requested() {
+            el.exit();
+        }
     }
 }
 
-impl ApplicationHandler for App {
+impl ApplicationHandler for Shell {
     fn resumed(&mut self, el: &ActiveEventLoop) {
-        if self.state.is_some() {
-            return;
-        }
-        let attrs = Window::default_attributes()
-            .with_title("Regatta")
-            .with_inner_size(hud::window_size());
-        let window = match el.create_window(attrs) {
-            Ok(w) => Arc::new(w),
-            Err(e) => return self.fail(el, format!("cannot open a window: {e}")),
-        };
-        let size = window.inner_size();
-        match render::Gpu::for_window(window.clone(), size.width, size.height) {
-            Ok((gpu, mut surface)) => {
-                let setup = RaceSetup {
-                    sea_water: self.water,
-                    ..RaceSetup::new(Profile::Desktop)
-                };
-                let wake = setup.wake_or_none(&self.world.race);
-                let renderer = setup.renderer(&gpu, surface.config.format, wake);
-                // The tier is applied before the first frame is drawn (`draw`).
-                log::info!("window on {}", gpu.describe());
-                let hud = self.pool.is_none().then(|| {
-                    let race = &self.world.race;
-                    let fx = self.feed.is_some();
-                    let mut o = hud::Hud::new(
-                        &window,
-                        &gpu.device,
-                        &mut surface,
-                        race,
-                        race.name.clone(),
-                        fx,
-                    );
-                    // The sliders start at the water the command line chose.
-                    o.panels.settings.water_type = self.water.water_type.name().to_string();
-                    o.panels.settings.water_depth_m = self.water.depth_m;
-                    o.panels.settings.turbidity = self.water.turbidity_ntu;
-                    o
-                });
-                let mut target = gfx::Window::default();
-                target.first_surface(surface);
-                self.state = Some(State {
-                    window,
-                    gpu,
-                    target,
-                    renderer,
-                    hud,
-                });
+        let window = match &self.window {
+            Some(w) => w.clone(),
+            None => {
+                let attrs = Window::default_attributes()
+                    .with_title("Regatta")
+                    .with_inner_size(window_size());
+                match el.create_window(attrs) {
+                    Ok(w) => Arc::new(w),
+                    Err(e) => return self.fail(el, format!("cannot open a window: {e}")),
+                }
             }
-            Err(e) => self.fail(el, format!("cannot draw into the window: {e}")),
+        };
+        let s = window.inner_size();
+        self.size = [s.width.max(1), s.height.max(1)];
+        self.window = Some(window.clone());
+        self.app.on(AppEvent::Density(window.scale_factor() as f32));
+        self.app.on(AppEvent::Resumed);
+        let surface_window = window.clone();
+        self.app.on(AppEvent::WindowCreated {
+            surface: Some(Box::new(move |i: &wgpu::Instance| {
+                i.create_surface(surface_window.clone())
+                    .map_err(|e| e.to_string())
+            })),
+            size: self.size,
+        });
+        let Some(ctx) = self.app.egui_context() else {
+            return self.fail(el, "cannot draw into the window: no GPU device".into());
+        };
+        if let Some(gpu) = self.app.describe_gpu() {
+            log::info!("window on {gpu}");
         }
+        self.egui = Some(egui_winit::State::new(
+            ctx,
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            None,
+        ));
+        self.ticker.stop();
+    }
+
+    fn suspended(&mut self, _el: &ActiveEventLoop) {
+        self.app.on(AppEvent::Paused);
+        self.app.on(AppEvent::WindowDestroyed);
     }
 
     fn window_event(&mut self, el: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
-        if let Some(st) = self.state.as_mut()
-            && let Some(o) = st.hud.as_mut()
-            && hud::handle_event(o, &st.window, &event)
-        {
-            return;
+        // The panels see every event; the app decides which reach the scene.
+        if let (Some(e), Some(w)) = (self.egui.as_mut(), self.window.as_ref()) {
+            let _ = e.on_window_event(w, &event);
         }
         match event {
             WindowEvent::CloseRequested => el.exit(),
-            WindowEvent::DroppedFile(path) => self.dropped.push(path),
+            WindowEvent::DroppedFile(path) => self.app.on(AppEvent::FileDropped(path)),
             WindowEvent::Resized(s) => {
-                if let Some(st) = self.state.as_mut() {
-                    st.target.resize(&st.gpu, s.width, s.height);
-                }
+                self.size = [s.width.max(1), s.height.max(1)];
+                self.app.on(AppEvent::Resized(self.size));
+            }
+            WindowEvent::ScaleFactorChanged { scale_factor, .. } => {
+                self.app.on(AppEvent::Density(scale_factor as f32));
             }
             WindowEvent::MouseInput {
                 state,
                 button: MouseButton::Left,
                 ..
-            } => {
-                let pressed = state == ElementState::Pressed;
-                // A click without a drag on the scene selects the boat under it.
-                if !pressed
-                    && self
-                        .press_at
-                        .is_some_and(|(x, y)| (x - self.cursor.0).hypot(y - self.cursor.1) < 4.0)
-                    && let Some(o) = self.state.as_mut().and_then(|s| s.hud.as_mut())
-                {
-                    o.scene_overlays.click([self.cursor.0, self.cursor.1]);
+            } => match (state, self.left) {
+                (ElementState::Pressed, false) => {
+                    self.left = true;
+                    self.finger(TouchAction::Down(0));
                 }
-                self.press_at = pressed.then_some(self.cursor);
-                // In the pool, a press on a moving ball grabs the ball instead of the camera.
-                let t = self.clock.time();
-                let grabbed = self
-                    .pool
-                    .as_mut()
-                    .is_some_and(|p| p.press(pressed, self.cursor, t));
-                self.drag = (pressed && !grabbed).then_some(self.cursor);
-            }
+                (ElementState::Released, true) => {
+                    self.left = false;
+                    self.finger(TouchAction::Up(0));
+                }
+                _ => {}
+            },
             WindowEvent::CursorMoved { position, .. } => {
-                self.cursor = (position.x, position.y);
-                if let Some(p) = self.pool.as_mut() {
-                    p.pointer_moved(self.cursor, self.clock.time());
-                }
-                if let Some((x, y)) = self.drag {
-                    self.orbit.drag(position.x - x, position.y - y);
-                    self.drag = Some(self.cursor);
+                self.cursor = DVec2::new(position.x, position.y);
+                if self.left {
+                    self.finger(TouchAction::Move);
                 }
             }
             WindowEvent::MouseWheel { delta, .. } => {
@@ -497,29 +340,25 @@ impl ApplicationHandler for App {
                     MouseScrollDelta::LineDelta(_, y) => f64::from(y),
                     MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
                 };
-                self.orbit.zoom(steps);
+                let px = self.cursor.as_vec2().to_array();
+                self.app.on(AppEvent::Wheel { steps, px });
             }
             WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
-                match event.logical_key {
-                    Key::Named(NamedKey::Space) => self.clock.toggle(),
-                    Key::Named(NamedKey::ArrowRight) => {
-                        self.clock.scrub_to(self.clock.time() + 10.0);
+                if let Some(key) = key_of(&event.logical_key) {
+                    self.app.on(AppEvent::Key(key));
+                    if self.app.quit_requested() {
+                        el.exit();
                     }
-                    Key::Named(NamedKey::ArrowLeft) => {
-                        self.clock.scrub_to(self.clock.time() - 10.0);
-                    }
-                    Key::Named(NamedKey::Escape) => el.exit(),
-                    _ => {}
                 }
             }
-            WindowEvent::RedrawRequested => self.draw(el),
+            WindowEvent::RedrawRequested => self.redraw(el),
             _ => {}
         }
     }
 
     fn about_to_wait(&mut self, _el: &ActiveEventLoop) {
-        if let Some(st) = &self.state {
-            st.window.request_redraw();
+        if let Some(w) = &self.window {
+            w.request_redraw();
         }
     }
 }

@@ -15,7 +15,7 @@ use winit::keyboard::ModifiersState;
 use winit::window::{Window, WindowId};
 
 use super::RunArgs;
-use crate::core::phone::{PhoneApp, PhoneEvent};
+use crate::core::app::{App, AppEvent};
 use crate::error::{AppError, AppResult};
 use crate::hud::touch::TouchAction;
 use crate::sim_phone::Cues;
@@ -38,7 +38,7 @@ pub fn run(a: RunArgs) -> AppResult {
     let (backend, cues) = match &a.arcore_lib {
         Some(lib) => Cues::ffi(lib, a.replay.as_deref()).map_err(AppError::new)?,
         None => {
-            let feed = crate::feed::CameraFeed::for_phone(a.replay.as_deref())?;
+            let feed = crate::core::feed::CameraFeed::for_phone(a.replay.as_deref())?;
             let (backend, control) = SimArCore::new(feed);
             let backend: Box<dyn crate::core::ar::ArBackend> = Box::new(backend);
             (backend, Cues::Scripted(control))
@@ -46,17 +46,17 @@ pub fn run(a: RunArgs) -> AppResult {
     };
     let race = crate::setup::inputs::load_race(&[])?;
     let sea = crate::setup::inputs::load_sea(None)?;
-    let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
+    let mut app = App::phone(RaceWorld::new(race, sea), backend);
     app.data_dir = std::env::current_dir().ok();
     // The Races panel lists $REGATTA_RACES_DIR, else ./races.
-    app.set_races_dir(crate::core::phone::host_races_dir(app.data_dir.as_deref()));
+    app.set_races_dir(crate::core::app::host_races_dir(app.data_dir.as_deref()));
     let [w, h] = a.device.host_size();
     let size = if h > MAX_HEIGHT {
         [w * MAX_HEIGHT / h, MAX_HEIGHT]
     } else {
         [w, h]
     };
-    app.on(PhoneEvent::Density(a.device.pixels_per_point(size)));
+    app.on(AppEvent::Density(a.device.pixels_per_point(size)));
     let event_loop = EventLoop::new().map_err(|e| {
         AppError::new(format!(
             "cannot open a window (no display?): {}",
@@ -84,7 +84,7 @@ pub fn run(a: RunArgs) -> AppResult {
 
 /// Translates winit's events into the phone app's.
 struct Shell {
-    app: PhoneApp,
+    app: App,
     cues: Cues,
     size: [u32; 2],
     window: Option<Arc<Window>>,
@@ -101,7 +101,7 @@ struct Shell {
 impl Shell {
     fn touch(&mut self, action: TouchAction, fingers: &[DVec2]) {
         let px: Vec<[f32; 2]> = fingers.iter().map(|p| p.as_vec2().to_array()).collect();
-        self.app.on(PhoneEvent::touch(action, &px));
+        self.app.on(AppEvent::touch(action, &px));
     }
 
     /// Two fingers about `centre`, `spread` times apart and turned by `twist` radians.
@@ -133,9 +133,9 @@ impl Shell {
         };
         // Surface textures cannot be read back: the same app draws once into an offscreen
         // window of the same configuration.
-        self.app.on(PhoneEvent::WindowDestroyed);
+        self.app.on(AppEvent::WindowDestroyed);
         let size = self.app.view_size();
-        self.app.on(PhoneEvent::WindowCreated {
+        self.app.on(AppEvent::WindowCreated {
             surface: None,
             size: self.size,
         });
@@ -171,8 +171,8 @@ impl ApplicationHandler for Shell {
         let s = window.inner_size();
         self.size = [s.width.max(1), s.height.max(1)];
         self.window = Some(window.clone());
-        self.app.on(PhoneEvent::Resumed);
-        self.app.on(PhoneEvent::WindowCreated {
+        self.app.on(AppEvent::Resumed);
+        self.app.on(AppEvent::WindowCreated {
             surface: Some(Box::new(move |i: &wgpu::Instance| {
                 i.create_surface(window.clone()).map_err(|e| e.to_string())
             })),
@@ -182,8 +182,8 @@ impl ApplicationHandler for Shell {
     }
 
     fn suspended(&mut self, _el: &ActiveEventLoop) {
-        self.app.on(PhoneEvent::Paused);
-        self.app.on(PhoneEvent::WindowDestroyed);
+        self.app.on(AppEvent::Paused);
+        self.app.on(AppEvent::WindowDestroyed);
     }
 
     fn window_event(&mut self, el: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
@@ -191,7 +191,7 @@ impl ApplicationHandler for Shell {
             WindowEvent::CloseRequested => el.exit(),
             WindowEvent::Resized(s) => {
                 self.size = [s.width.max(1), s.height.max(1)];
-                self.app.on(PhoneEvent::Resized(self.size));
+                self.app.on(AppEvent::Resized(self.size));
             }
             WindowEvent::ModifiersChanged(m) => self.modifiers = m.state(),
             WindowEvent::CursorMoved { position, .. } => {

@@ -1,5 +1,5 @@
 //! The phone app on the host, headless: `regatta phone-sim --script FILE --out DIR`. The app
-//! core's phone app ([`crate::core::phone::PhoneApp`]) drawn into an offscreen window
+//! core's phone app ([`crate::core::app::App`]) drawn into an offscreen window
 //! (lavapipe in CI), with the simulated ARCore ([`crate::sim_phone`]) as its AR backend, driven by a
 //! script ([`script`], docs/phone-sim.md): the events an Android activity would send, in order,
 //! with time stepped exactly (no wall clock).
@@ -15,8 +15,8 @@ use ar::arcore::ffi::ScriptedJni;
 
 use glam::DVec2;
 
-use crate::core::phone::{PhoneApp, PhoneEvent, PhoneStatus};
-use crate::feed::CameraFeed;
+use crate::core::app::{App, AppEvent, PhoneStatus};
+use crate::core::feed::CameraFeed;
 use crate::hud::touch::TouchAction;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::{Availability, SimArCore, SimControl};
@@ -29,7 +29,7 @@ pub const SIM_FPS: f64 = 10.0;
 
 /// A phone session on the host: the app, the simulated ARCore's cues, the screen.
 pub struct PhoneSim {
-    pub app: PhoneApp,
+    pub app: App,
     pub cues: Cues,
     /// The screen in its natural (portrait) orientation, pixels.
     portrait: [u32; 2],
@@ -83,9 +83,9 @@ impl PhoneSim {
     ) -> Self {
         let race = crate::setup::inputs::load_race(&[]).expect("the embedded race loads");
         let sea = crate::setup::inputs::load_sea(None).expect("the embedded sea loads");
-        let mut app = PhoneApp::new(RaceWorld::new(race, sea), backend);
+        let mut app = App::phone(RaceWorld::new(race, sea), backend);
         app.data_dir = data_dir;
-        app.on(PhoneEvent::Density(ppp));
+        app.on(AppEvent::Density(ppp));
         let intents = match &cues {
             Cues::Ffi { jni, .. } => Arc::clone(jni),
             Cues::Scripted(_) => Arc::new(ScriptedJni::default()),
@@ -207,7 +207,7 @@ impl PhoneSim {
     }
 
     fn touch(&mut self, action: TouchAction, fingers: &[[f32; 2]]) {
-        self.app.on(PhoneEvent::touch(action, fingers));
+        self.app.on(AppEvent::touch(action, fingers));
     }
 
     /// A finger down at `p` (screen units), one frame, up.
@@ -266,20 +266,20 @@ impl PhoneSim {
 
     /// To the background: paused, then the window destroyed (its surface dropped).
     pub fn pause(&mut self) {
-        self.app.on(PhoneEvent::Paused);
-        self.app.on(PhoneEvent::WindowDestroyed);
+        self.app.on(AppEvent::Paused);
+        self.app.on(AppEvent::WindowDestroyed);
         self.foreground = false;
     }
 
     /// Back: resumed, a new window, one frame.
     pub fn resume(&mut self) {
         self.launched = true;
-        self.app.on(PhoneEvent::Resumed);
-        self.app.on(PhoneEvent::WindowCreated {
+        self.app.on(AppEvent::Resumed);
+        self.app.on(AppEvent::WindowCreated {
             surface: None,
             size: self.size(),
         });
-        self.app.on(PhoneEvent::ContentRect(self.content_rect()));
+        self.app.on(AppEvent::ContentRect(self.content_rect()));
         self.foreground = true;
         self.frame(0.0);
     }
@@ -288,9 +288,9 @@ impl PhoneSim {
     pub fn rotate(&mut self, degrees: u32) {
         self.rotation = degrees / 90 % 4;
         self.set_display_rotation(self.rotation);
-        self.app.on(PhoneEvent::Rotation(self.rotation as i32));
-        self.app.on(PhoneEvent::Resized(self.size()));
-        self.app.on(PhoneEvent::ContentRect(self.content_rect()));
+        self.app.on(AppEvent::Rotation(self.rotation as i32));
+        self.app.on(AppEvent::Resized(self.size()));
+        self.app.on(AppEvent::ContentRect(self.content_rect()));
         self.frame(1.0 / SIM_FPS);
     }
 
@@ -305,14 +305,14 @@ impl PhoneSim {
     /// Shares the host file `path` with the app as a chat app does ("Share": `ACTION_SEND`
     /// with a `content://` URI showing the file's name), and the app reads it through the
     /// ContentResolver as on Android; one frame.
-    pub fn open(&mut self, path: &Path) -> Result<crate::core::phone::Opened, String> {
+    pub fn open(&mut self, path: &Path) -> Result<crate::core::app::Opened, String> {
         let bytes = std::fs::read(path)
             .map_err(|e| format!("{} could not be read ({e})", input::show_path(path)))?;
         let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        let mime = crate::core::phone::EXTENSION_OF_MIME
+        let mime = crate::core::app::EXTENSION_OF_MIME
             .iter()
             .find(|(_, e)| Some(*e) == ext.as_deref())
             .map_or("application/octet-stream", |(m, _)| m);
@@ -325,7 +325,7 @@ impl PhoneSim {
     }
 
     /// The app reads the intent the scripted Java side holds now (as at an Activity's start).
-    pub fn open_intent(&mut self) -> Option<Result<crate::core::phone::Opened, String>> {
+    pub fn open_intent(&mut self) -> Option<Result<crate::core::app::Opened, String>> {
         self.app.open_intent(&*self.intents)
     }
 
@@ -356,7 +356,7 @@ impl PhoneSim {
             Step::Bars(status, nav) => {
                 self.bars_dp = [*status, *nav];
                 if self.launched {
-                    self.app.on(PhoneEvent::ContentRect(self.content_rect()));
+                    self.app.on(AppEvent::ContentRect(self.content_rect()));
                     self.frame(1.0 / SIM_FPS);
                 }
             }

@@ -13,7 +13,7 @@ use glam::{DMat4, DVec3};
 
 use crate::core::ar::{ArBackend, DisplayCamera};
 use crate::core::camera_frame::fill_view;
-use crate::feed::CameraFeed;
+use crate::core::feed::CameraFeed;
 
 /// Whether ARCore is there.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

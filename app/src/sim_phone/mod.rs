@@ -16,7 +16,7 @@ use std::sync::atomic::AtomicBool;
 
 use ar::arcore::ffi::ScriptedJni;
 
-use crate::core::phone::{PhoneApp, PhoneEvent};
+use crate::core::app::{App, AppEvent};
 use backend::SimControl;
 use ffi::{FfiBackend, SimLibrary};
 
@@ -48,12 +48,12 @@ impl Cues {
     /// Before a display frame `dt` seconds after the last: the scripted feed's time moves on
     /// (in the foreground); a permission dialog shown pauses and resumes the activity, as
     /// Android does.
-    pub fn before_frame(&self, app: &mut PhoneApp, dt: f64, foreground: bool) {
+    pub fn before_frame(&self, app: &mut App, dt: f64, foreground: bool) {
         match self {
             Cues::Scripted(c) if foreground => c.lock().t += dt,
             Cues::Ffi { jni, .. } if jni.take_dialog_shown() => {
-                app.on(PhoneEvent::Paused);
-                app.on(PhoneEvent::Resumed);
+                app.on(AppEvent::Paused);
+                app.on(AppEvent::Resumed);
             }
             _ => {}
         }

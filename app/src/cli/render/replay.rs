@@ -1,15 +1,15 @@
 //! `regatta render --replay DIR [--frame N]`: the table scene as `regatta run --replay` shows
 //! it, headless, over frame N (default 0) of a recorded feed: the race fitted on the feed's
 //! table, the feed's camera, `--effects` (all without it, as in the window) over the real
-//! image. It goes through the window's own [`FeedView`](crate::feed::FeedView) (and
-//! [`TableFrame`](crate::feed::TableFrame)), so what this draws is what the app draws for that
+//! image. It goes through the window's own [`FeedView`](crate::core::feed::FeedView) (and
+//! [`TableFrame`](crate::core::feed::TableFrame)), so what this draws is what the app draws for that
 //! frame.
 
 use std::path::Path;
 
 use crate::cli::render::{RenderArgs, note_unmet_error, print_report};
+use crate::core::feed::{FeedView, TableFrame};
 use crate::error::{AppError, AppResult};
-use crate::feed::{FeedView, TableFrame};
 use crate::setup::RaceSetup;
 use crate::setup::inputs::{load_race, load_sea};
 use crate::setup::output::ImageOut;

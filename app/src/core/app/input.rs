@@ -1,5 +1,7 @@
-//! Touch on the phone: every gesture goes to egui; one that began outside the panels also goes
-//! to the scene. A tap places the course (or the pool) on the table under the finger; two
+//! Touch on the phone, and the desktop's mouse as one finger: every gesture goes to egui (the
+//! desktop's through the window system's own panel input); one that began outside the panels
+//! also goes to the scene. A press that lifts within [`TAP_MAX_S`] and [`TAP_MAX_PX`] is a tap
+//! (a click): it selects a boat; a longer or farther one drags the orbit. A tap places the course (or the pool) on the table under the finger; two
 //! fingers scale and turn what stands on the table (or, before it is placed, zoom and turn the
 //! 3D view); one finger orbits the 3D view or, in the pool, drags a moving ball.
 
@@ -7,12 +9,12 @@ use ar::arcore::TwoFingerGesture;
 use glam::DVec2;
 use render::OrbitCamera;
 
-use super::PhoneApp;
+use super::App;
 use crate::core::table;
 use crate::hud::SceneChoice;
 use crate::hud::touch::{Touch, TouchAction, over_egui};
 
-/// A touch is a tap when the finger moved less than this (pixels) …
+/// A touch (or a click) is a tap when the finger moved less than this (pixels) …
 pub const TAP_MAX_PX: f64 = 20.0;
 /// … and lifted within this many seconds.
 pub const TAP_MAX_S: f64 = 0.3;
@@ -29,7 +31,7 @@ pub(super) struct Gesture {
     holding_ball: bool,
 }
 
-impl PhoneApp {
+impl App {
     pub(super) fn on_touch(&mut self, touch: &Touch) {
         let ctx = self.graphics.as_ref().map(|g| g.egui.ctx.clone());
         let free = self.ui_free;
@@ -100,7 +102,7 @@ impl PhoneApp {
         self.gesture = Gesture::default();
     }
 
-    fn active_orbit(&mut self) -> &mut OrbitCamera {
+    pub(super) fn active_orbit(&mut self) -> &mut OrbitCamera {
         match self.scene {
             SceneChoice::Race => &mut self.orbit,
             SceneChoice::Pool => &mut self.pool_orbit,
@@ -124,12 +126,22 @@ impl PhoneApp {
         }
     }
 
-    /// A tap on the scene at `px` (view pixels). Once the course stands on the table, a tap
+    /// A tap (or the desktop's click: the same thresholds) on the scene at `px` (view
+    /// pixels). On the desktop it selects the boat under it or clears the selection. On the
+    /// phone, once the course stands on the table, a tap
     /// on a boat's label or within its pick radius (the hull's drawn size, at least a
     /// fingertip: `scene_overlay::labels::MIN_PICK_RADIUS_PT`) selects or deselects that boat,
     /// as the desktop's click does. Anywhere else it stands the course (or the pool) on the
     /// table under the finger, where the backend's hit test finds one; the selection stays.
     fn tap(&mut self, px: DVec2) {
+        if self.desktop.is_some() {
+            // The desktop shows no table: a click selects the boat under it (or clears the
+            // selection on the water).
+            if self.scene == SceneChoice::Race {
+                self.overlays.click(px.to_array());
+            }
+            return;
+        }
         if self.scene == SceneChoice::Race
             && self.course.is_some()
             && let Some(boat) = self.overlays.pick(px.to_array())

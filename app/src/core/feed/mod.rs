@@ -1,10 +1,10 @@
 //! The camera feed: recorded or synthetic camera frames over time, and the race on the feed's
-//! table ([`FeedView`]: the window's `regatta run --replay`, `regatta render --replay`, the
+//! table ([`FeedView`]: the desktop app's `regatta run --replay`, `regatta render --replay`, the
 //! tests that draw the table). The phone's simulated ARCore (`phone_sim`) plays the same
 //! [`CameraFeed`].
 //!
-//! It never knows a platform (winit, android-activity) or the command line: both shells and the
-//! `render` command reach the feed here, and none of them borrows another's.
+//! It never knows a platform (winit, android-activity) or the command line: the app, the shells
+//! and the `render` command reach the feed here, and none of them borrows another's.
 
 mod table_frame;
 mod view;

@@ -1,15 +1,16 @@
-//! The phone's race list (the Races panel): the races in a folder, read again on resume, when
+//! The Races panel: on the phone the races in a folder, read again on resume, when
 //! the panel opens and on its ⟳. On Android the folder is `races/` in the app's external files
 //! folder, where `adb push` puts files (docs/panels.md); on the host (`regatta run --phone`,
 //! `regatta phone-sim`) it is `$REGATTA_RACES_DIR`, else `races/` in the app's data folder. A
 //! race chosen there replaces the one shown; one that fails to load is said in the panel in
-//! one sentence and the race shown before stays.
+//! one sentence and the race shown before stays. On the desktop the panel opens the file dialog
+//! instead, and files dropped on the window open through the same [`App::open_race`].
 
 use std::path::{Path, PathBuf};
 
-use super::PhoneApp;
+use super::App;
 use crate::core::table;
-use crate::setup::{Profile, RaceSetup};
+use crate::setup::RaceSetup;
 
 /// Names the host's races folder.
 pub const RACES_DIR_ENV: &str = "REGATTA_RACES_DIR";
@@ -38,23 +39,27 @@ pub(super) struct RaceList {
     folder: String,
     /// The panel was open in the last frame (opening it reads the folder again).
     was_open: bool,
+    /// The panel offers the platform's file dialog (the desktop).
+    pub(super) dialog: bool,
 }
 
 impl RaceList {
-    /// The panel's contents, showing `current`; `None` without a folder.
+    /// The panel's contents, showing `current`; `None` without a folder or a dialog.
     pub(super) fn panel<'a>(&'a self, current: &'a str) -> Option<ui::RacesPanel<'a>> {
-        self.dir.as_ref()?;
+        if self.dir.is_none() && !self.dialog {
+            return None;
+        }
         Some(ui::RacesPanel {
             current,
             error: self.error.as_deref(),
             entries: &self.entries,
-            folder: Some(&self.folder),
-            dialog: false,
+            folder: self.dir.is_some().then_some(self.folder.as_str()),
+            dialog: self.dialog,
         })
     }
 }
 
-impl PhoneApp {
+impl App {
     /// Where the Races panel lists races from (`None`: no Races panel), read now.
     pub fn set_races_dir(&mut self, dir: Option<PathBuf>) {
         self.races.folder = dir.as_deref().map(input::show_path).unwrap_or_default();
@@ -92,7 +97,7 @@ impl PhoneApp {
         &self.world.race
     }
 
-    /// Opens the listed race `name` (the panel's button): see [`PhoneApp::open_race`].
+    /// Opens the listed race `name` (the panel's button): see [`App::open_race`].
     pub fn choose_race(&mut self, name: &str) -> Result<(), String> {
         let files = self
             .races
@@ -152,8 +157,9 @@ impl PhoneApp {
         self.course = pivot_on_table.map(|at| {
             table::place_course(None, at, self.world.race_bounds, depth, self.table_room)
         });
+        let wake = RaceSetup::new(self.profile()).wake_or_none(&self.world.race);
         if let Some(g) = self.graphics.as_mut() {
-            g.set_race_wake(RaceSetup::new(Profile::Phone).wake_or_none(&self.world.race));
+            g.set_race_wake(wake);
         }
     }
 
@@ -174,7 +180,16 @@ impl PhoneApp {
                 let _ = self.open_race(&files);
             }
             Some(ui::OpenRequest::Rescan) => self.rescan_races(),
-            Some(ui::OpenRequest::Dialog) | None => {}
+            // The desktop's file dialog (the phone's panel offers none).
+            #[cfg(not(target_os = "android"))]
+            Some(ui::OpenRequest::Dialog) => {
+                if let Some(files) = crate::panels::pick_race_files() {
+                    let _ = self.open_race(&files);
+                }
+            }
+            #[cfg(target_os = "android")]
+            Some(ui::OpenRequest::Dialog) => {}
+            None => {}
         }
     }
 }

@@ -1,4 +1,5 @@
-//! The quality governor on the phone (docs/quality.md): each drawn frame feeds the phone's
+//! The quality governor of both profiles (docs/quality.md; the phone starts at
+//! [`PHONE_START_TIER`], the desktop at ultra or its `--tier`): each drawn frame feeds the phone's
 //! [`TierControl`] its GPU time where the renderer measured one, else the present interval on
 //! the phone's own clock (the time its events carry, so a `phone-sim` session replays to the
 //! same decisions); nothing changes while a finger is down (scrubbing the timeline, turning the
@@ -6,12 +7,12 @@
 //! applies it (`crate::panels::SceneApplier::follow_tier`), and again when the renderer or its
 //! effect passes are built anew or a new race opens. The Scene panel's tier control shows the tier; a pin or target set there is answered
 //! here. The tier also bounds the camera image ARCore delivers, from the next resume on
-//! ([`PhoneApp::camera_budget`]).
+//! ([`App::camera_budget`]).
 
 use ar::arcore::ffi::CameraBudget;
 use quality::Tier;
 
-use super::PhoneApp;
+use super::App;
 use crate::tier_control::TierControl;
 
 /// The tier the phone starts at before any frame is measured: the Pixel 2 XL's goal (every
@@ -23,7 +24,7 @@ pub(super) fn phone_tiers() -> TierControl {
     TierControl::new(PHONE_START_TIER, false)
 }
 
-impl PhoneApp {
+impl App {
     /// After a drawn frame: the panel's pin or target, the frame to the governor, the tier
     /// applied, and the panel told the tier drawn.
     pub(super) fn govern(&mut self) {
@@ -58,6 +59,13 @@ impl PhoneApp {
         if look.check().is_ok() {
             g.race.set_water_look(look);
         }
+        // The desktop's feed refits its table to the new depth at its next frame.
+        if let Some(feed) = self.desktop.as_mut().and_then(|d| d.feed.as_mut()) {
+            if feed.water() != look {
+                feed.set_water(look);
+            }
+            return;
+        }
         let Some(fx) = g.race_effects.as_ref() else {
             return;
         };
@@ -70,16 +78,22 @@ impl PhoneApp {
     /// The governor's tier onto the race renderer, when it or the renderer's effect passes
     /// changed since it was last applied.
     fn apply_tier(&mut self) {
-        let Some(g) = self.graphics.as_mut() else {
-            return;
-        };
+        if let Some(mut g) = self.graphics.take() {
+            self.apply_tier_to(&mut g);
+            self.graphics = Some(g);
+        }
+    }
+
+    /// [`App::apply_tier`] onto `g` (the frame's graphics, taken out of the app while it draws):
+    /// the one tier path of both profiles, with the effect passes' handle of the profile.
+    pub(super) fn apply_tier_to(&mut self, g: &mut super::Graphics) {
         let tier = self.tiers.tier();
+        let fx = self.effects_handle(g).cloned();
         let settings = &mut self.panels.settings;
-        let fx = g.race_effects.as_ref();
         let race = &self.world.race;
         if let Some(t) = g
             .scene
-            .follow_tier(tier, settings, &g.gpu, &mut g.race, fx, race)
+            .follow_tier(tier, settings, &g.gpu, &mut g.race, fx.as_ref(), race)
         {
             self.overlays.set_detail(t.overlay);
         }

@@ -1,7 +1,19 @@
-//! The phone app: the race or the pool on the table through the AR backend, the race panels and
-//! the phone's bar over it, touch as the only input. Driven by [`PhoneEvent`]s and
-//! [`PhoneApp::frame`] (wall seconds since the last frame) from an adapter: the Android activity,
-//! the `regatta run --phone` window, or a `regatta phone-sim` script.
+//! The app, one for the desktop window and the phone (as wgpu's example framework has one
+//! type with init, resize, event and frame): platform events in ([`AppEvent`]), a frame out
+//! ([`App::frame`], wall seconds since the last frame). What both profiles do lives here once:
+//! the race clock and panels, the race overlays and click/tap-to-select (one threshold,
+//! [`TAP_MAX_PX`]), the orbit view and the camera that follows a boat, opening a race (a
+//! failure said in the Races panel, the race shown kept), the quality governor and its one tier
+//! path, the window's surface through suspend and resume.
+//!
+//! What differs is the profile ([`crate::setup::Profile`]):
+//! - the phone ([`App::phone`]): the race or the pool on the table through the AR backend, the
+//!   phone's bar and banner, touch as the only input, safe insets; driven by the Android
+//!   activity, the `regatta run --phone` window or a `regatta phone-sim` script.
+//! - the desktop ([`App::desktop`], `desktop.rs`): the orbit view over the sky or over a camera
+//!   feed's table (`FeedView`), the mouse (translated into one finger by the window), the wheel,
+//!   the timeline's keys, dropped race files, the performance panel; driven by the `regatta`
+//!   window.
 //!
 //! Lifecycle (wgpu issue 2302): the device is made on the first window; each new window gets a
 //! surface configured as the first one was ([`super::gfx::Window`]); a destroyed window's
@@ -9,7 +21,10 @@
 //! stops. A lost device is rebuilt on OpenGL ES on the next frame.
 
 mod clip_share;
+pub mod desktop;
+pub mod desktop_clip;
 mod draw;
+mod hud;
 mod input;
 mod races;
 mod shared;
@@ -31,6 +46,7 @@ use crate::pool_play::PoolPlay;
 use crate::world::RaceWorld;
 
 pub use clip_share::{ClipShare, PhoneClip, ShareState, hand_off};
+pub use desktop::{DesktopStart, Key};
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
 pub use races::{RACES_DIR_ENV, host_races_dir};
@@ -40,8 +56,8 @@ pub use tiers::PHONE_START_TIER;
 /// Frames between two reads of the display rotation (a quarter second at 60 fps).
 pub const ROTATION_POLL_FRAMES: u32 = 15;
 
-/// What happens to the phone app, in the platform's words translated.
-pub enum PhoneEvent {
+/// What happens to the app, in the platform's words translated.
+pub enum AppEvent {
     /// A native window exists (Android `InitWindow`, winit `resumed`); `surface` makes its wgpu
     /// surface, `None` for an offscreen window (headless sessions).
     WindowCreated {
@@ -66,12 +82,26 @@ pub enum PhoneEvent {
     ContentRect([i32; 4]),
     /// The hardware key that starts and stops a recording (volume up).
     RecordKey,
+    /// The panels' input the desktop's window system made (egui-winit: the pointer's hover,
+    /// the wheel over a panel, keys), for the next frame; the phone makes its own from touches.
+    PanelInput(egui::RawInput),
+    /// The mouse wheel at `px` (physical pixels), `steps` lines (up > 0): zooms the orbit view
+    /// where no panel is under it.
+    Wheel {
+        steps: f64,
+        px: [f32; 2],
+    },
+    /// A key pressed (the timeline's keys; Escape asks to quit).
+    Key(Key),
+    /// A file dropped on the window (a drop of several arrives as several events; they open
+    /// together as one race at the next frame).
+    FileDropped(PathBuf),
 }
 
-impl PhoneEvent {
+impl AppEvent {
     /// A touch of fingers 0, 1, … at `px` (physical pixels).
-    pub fn touch(action: crate::hud::touch::TouchAction, px: &[[f32; 2]]) -> PhoneEvent {
-        PhoneEvent::Touch(Touch {
+    pub fn touch(action: crate::hud::touch::TouchAction, px: &[[f32; 2]]) -> AppEvent {
+        AppEvent::Touch(Touch {
             action,
             fingers: px
                 .iter()
@@ -101,9 +131,11 @@ pub struct PhoneStatus {
     pub boats: usize,
 }
 
-/// The phone app's state.
-pub struct PhoneApp {
+/// The app's state.
+pub struct App {
     world: RaceWorld,
+    /// The desktop profile's parts (`desktop.rs`); `None` on the phone.
+    desktop: Option<desktop::Desktop>,
     /// The race panels (their clock owns race time) and the timeline's mark roundings.
     pub panels: RegattaUi,
     events: Vec<TimelineEvent>,
@@ -159,9 +191,9 @@ pub struct PhoneApp {
     pub clip_request: PhoneClip,
 }
 
-impl PhoneApp {
-    /// The embedded race and sea, with `backend` for AR.
-    pub fn new(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
+impl App {
+    /// The phone: `world` on the table through `backend`, the AR session.
+    pub fn phone(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
         let mut panels = RegattaUi::new(crate::hud::initial_clock(&world.race), Vec::new());
         panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
         // The phone's screen is small: the timeline and the bar; the leaderboard behind its
@@ -170,10 +202,11 @@ impl PhoneApp {
         panels.show_leaderboard = false;
         // The Scene panel's water: the table's real sea (type, depth, turbidity).
         crate::panels::set_water_ranges(&mut panels.settings, true);
-        PhoneApp {
+        App {
             events: ui::timeline_events(&world.race),
             panels,
             world,
+            desktop: None,
             pool_t: 0.0,
             now: 0.0,
             scene: SceneChoice::Race,
@@ -217,33 +250,36 @@ impl PhoneApp {
     }
 
     /// Every event of `events`, in order.
-    pub fn on_all(&mut self, events: impl IntoIterator<Item = PhoneEvent>) {
+    pub fn on_all(&mut self, events: impl IntoIterator<Item = AppEvent>) {
         for e in events {
             self.on(e);
         }
     }
 
-    pub fn on(&mut self, event: PhoneEvent) {
+    pub fn on(&mut self, event: AppEvent) {
         match event {
-            PhoneEvent::WindowCreated { surface, size } => {
+            AppEvent::WindowCreated { surface, size } => {
                 self.maker = surface;
                 self.attach_window(size);
             }
-            PhoneEvent::WindowDestroyed => {
+            AppEvent::WindowDestroyed => {
                 if let Some(g) = self.graphics.as_mut() {
                     g.window.detach();
                 }
                 self.maker = None;
             }
-            PhoneEvent::Resized(size) => {
+            AppEvent::Resized(size) => {
                 if let Some(g) = self.graphics.as_mut() {
                     g.window.resize(&g.gpu, size[0], size[1]);
                 }
             }
-            PhoneEvent::Resumed => {
+            AppEvent::Resumed => {
                 self.resumed = true;
                 // Time in the background does not count.
                 self.back_from_background = true;
+                if self.desktop.is_some() {
+                    return;
+                }
                 let loaded = self.backend.is_loaded();
                 // The tier drawn now decides the camera image of this resume (a running
                 // session keeps its camera config: ARCore changes it only while paused).
@@ -256,18 +292,25 @@ impl PhoneApp {
                 // Files may have been pushed while the app was away.
                 self.rescan_races();
             }
-            PhoneEvent::Paused => {
+            AppEvent::Paused => {
                 self.resumed = false;
+                if self.desktop.is_some() {
+                    return;
+                }
                 if self.ar.recorder.is_some() {
                     self.toggle_recording();
                 }
                 self.session_event(Event::AppPaused);
             }
-            PhoneEvent::Touch(t) => self.on_touch(&t),
-            PhoneEvent::Rotation(r) => self.rotation = r,
-            PhoneEvent::Density(ppp) => self.touch.pixels_per_point = ppp.max(0.5),
-            PhoneEvent::ContentRect(r) => self.touch.content_px = Some(r),
-            PhoneEvent::RecordKey => self.toggle_recording(),
+            AppEvent::Touch(t) => self.on_touch(&t),
+            AppEvent::Rotation(r) => self.rotation = r,
+            AppEvent::Density(ppp) => self.touch.pixels_per_point = ppp.max(0.5),
+            AppEvent::ContentRect(r) => self.touch.content_px = Some(r),
+            AppEvent::RecordKey => self.toggle_recording(),
+            AppEvent::PanelInput(raw) => self.panel_input(raw),
+            AppEvent::Wheel { steps, px } => self.wheel(steps, px),
+            AppEvent::Key(key) => self.key(key),
+            AppEvent::FileDropped(path) => self.file_dropped(path),
         }
     }
 
@@ -289,9 +332,13 @@ impl PhoneApp {
         self.now += dt;
         self.panels.clock.advance(dt);
         self.pool_t += dt;
-        self.poll_rotation();
-        let size = self.view_size();
-        self.ar.update(self.backend.as_mut(), self.rotation, size);
+        if self.desktop.is_some() {
+            self.desktop_frame_start(dt);
+        } else {
+            self.poll_rotation();
+            let size = self.view_size();
+            self.ar.update(self.backend.as_mut(), self.rotation, size);
+        }
         self.draw();
         self.govern();
     }
@@ -455,9 +502,9 @@ impl PhoneApp {
         self.toggle_recording();
     }
 
-    /// The "Share clip" button: the last [`PhoneApp::clip_request`] seconds of race time from where
+    /// The "Share clip" button: the last [`App::clip_request`] seconds of race time from where
     /// the phone looks now (the AR camera once the course is placed, else the fleet framed),
-    /// drawn into the app's files folder on a worker thread; [`PhoneApp::poll_share`] hands it
+    /// drawn into the app's files folder on a worker thread; [`App::poll_share`] hands it
     /// to Android when written.
     pub fn share_clip(&mut self) {
         let t = self.race_time();

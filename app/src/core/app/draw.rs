@@ -5,15 +5,16 @@
 
 use ar::arcore::CoursePlacement;
 use effects::passes::{ArConfig, EffectsHandle, add_effect_passes};
-use pool::{PoolFrame, PoolRenderer, PoolSettings, PoolView};
+use pool::{PoolRenderer, PoolSettings, PoolView};
 use render::{Camera, Gpu, Renderer};
 
-use super::PhoneApp;
+use super::App;
 use crate::core::camera_frame::{backdrop_with_image, display_of};
 use crate::core::gfx::{self, Acquired, LostFlag, Window};
 use crate::core::table;
 use crate::core::vulkan_marker::{FELL_BACK_NOTE, GOOD_FRAMES, VulkanMarker};
-use crate::hud::{EguiPainter, SceneChoice, phone_bar, race_panels};
+use crate::hud::{EguiPainter, SceneChoice};
+use crate::pool_play::PoolPlay;
 use crate::setup::{Profile, RaceSetup};
 
 /// The device, the window, and what draws into it.
@@ -76,7 +77,7 @@ impl Graphics {
     }
 }
 
-impl PhoneApp {
+impl App {
     /// A new window: the first makes the device (Vulkan, else OpenGL ES); later ones only a
     /// surface with the kept configuration.
     pub(super) fn attach_window(&mut self, size: [u32; 2]) {
@@ -160,7 +161,7 @@ impl PhoneApp {
             }
         };
         let format = window.format().unwrap_or(render::OFFSCREEN_FORMAT);
-        let setup = RaceSetup::new(Profile::Phone);
+        let setup = self.race_setup();
         let wake = setup.wake_or_none(&self.world.race);
         Ok(Graphics {
             scene: crate::panels::SceneApplier::new(wake.clone()),
@@ -280,6 +281,16 @@ impl PhoneApp {
         true
     }
 
+    /// How the race renderer is built for this profile (the desktop's with the command
+    /// line's water).
+    fn race_setup(&self) -> RaceSetup {
+        let mut setup = RaceSetup::new(self.profile());
+        if let Some(d) = &self.desktop {
+            setup.sea_water = d.sea_water;
+        }
+        setup
+    }
+
     fn draw_race(
         &mut self,
         g: &mut Graphics,
@@ -287,7 +298,23 @@ impl PhoneApp {
         size: [u32; 2],
         format: wgpu::TextureFormat,
     ) {
-        let mut scene = self.world.orbit_scene(self.race_time(), &mut self.orbit);
+        let t = self.race_time();
+        let mut scene = self.world.orbit_scene(t, &mut self.orbit);
+        // "Follow": the orbit turns about the first selected boat instead of the fleet.
+        if self.panels.follow
+            && let Some(target) =
+                crate::panels::follow_target(&self.world.race, self.overlays.selected(), t)
+        {
+            self.orbit.target = target;
+            scene.camera = self.orbit.camera();
+        }
+        if self.desktop.is_some() {
+            // The desktop: the orbit view, or the feed's camera and table.
+            if self.put_on_feed(g, &mut scene, size, format) {
+                self.render_race(g, target, size, &scene);
+            }
+            return;
+        }
         let Some(p) = self.course else {
             // Not placed: the camera image where AR runs (to see the table), else 3D.
             if !self.draw_backdrop(g, target, size, format) {
@@ -324,7 +351,35 @@ impl PhoneApp {
         self.render_race(g, target, size, &scene);
     }
 
-    /// The race with its overlays into `target`; the frame's GPU time kept for the governor.
+    /// With the desktop's feed, puts `scene` on its table (the feed's frame for the app's
+    /// seconds handed to the effects, the renderer built with the effect passes the first
+    /// time); false when the feed failed (the app cannot go on: `App::take_failure`).
+    fn put_on_feed(
+        &mut self,
+        g: &mut Graphics,
+        scene: &mut render::Scene,
+        size: [u32; 2],
+        format: wgpu::TextureFormat,
+    ) -> bool {
+        let Some(d) = self.desktop.as_mut() else {
+            return true;
+        };
+        let Some(feed) = d.feed.as_mut() else {
+            return true;
+        };
+        let wake = g.scene.current_wake();
+        let bounds = self.world.race_bounds;
+        if let Err(e) = feed.prepare(&g.gpu, &mut g.race, format, wake, bounds, size, self.now) {
+            d.failure = Some(e.to_string());
+            return false;
+        }
+        feed.apply(scene);
+        true
+    }
+
+    /// The race with its overlays into `target`, the Scene panel's switches and the tier
+    /// applied first (the same path on both profiles); the frame's GPU time kept for the
+    /// governor.
     fn render_race(
         &mut self,
         g: &mut Graphics,
@@ -332,12 +387,25 @@ impl PhoneApp {
         size: [u32; 2],
         scene: &render::Scene,
     ) {
+        let fx = self.effects_handle(g).cloned();
+        g.scene
+            .apply(&self.panels.settings, &mut g.race, fx.as_ref());
+        self.apply_tier_to(g);
         self.prepare_overlays(g, scene, size);
-        g.gpu_ms = g
-            .race
-            .render(&g.gpu, target, size, scene)
-            .ok()
-            .and_then(|r| r.gpu_ms);
+        let report = g.race.render(&g.gpu, target, size, scene).ok();
+        g.gpu_ms = report.as_ref().and_then(|r| r.gpu_ms);
+        if let Some(r) = &report {
+            self.record(r);
+        }
+    }
+
+    /// The effect passes' handle of the race renderer: the feed's on the desktop, the camera
+    /// image's on the phone.
+    pub(super) fn effects_handle<'a>(&'a self, g: &'a Graphics) -> Option<&'a EffectsHandle> {
+        match &self.desktop {
+            Some(d) => d.feed.as_ref().and_then(|f| f.effects_handle()),
+            None => g.race_effects.as_ref(),
+        }
     }
 
     /// The overlays over the race as the desktop draws them (labels at the phone's density):
@@ -359,10 +427,7 @@ impl PhoneApp {
         format: wgpu::TextureFormat,
     ) {
         let settings = PoolSettings::default();
-        let mut view = PoolView {
-            camera: self.pool_orbit.camera(),
-            ..PoolView::default_desktop(size)
-        };
+        let mut view = PoolPlay::orbit_view(&self.pool_orbit, size);
         let backdrop = self.draw_backdrop(g, target, size, format);
         if let (true, Some(place), Some((display, _))) =
             (backdrop, self.pool_placement, self.ar.view())
@@ -378,84 +443,7 @@ impl PhoneApp {
             self.pool.view = None;
             return;
         }
-        let frame = PoolFrame::new(&self.pool.scene, self.pool_t, &view, &settings);
-        g.pool
-            .get_or_insert_with(|| PoolRenderer::new(&g.gpu, format, settings))
-            .render(&g.gpu, target, &frame);
-        self.pool.view = Some(view);
-    }
-
-    /// The panels (race only), the phone's bar and the banner over the frame.
-    fn draw_hud(&mut self, g: &mut Graphics, texture: &wgpu::Texture, size: [u32; 2]) {
-        let message = self.banner();
-        let banner_button = crate::hud::banner::button(self.ar.session);
-        let raw = self.touch.take_raw_input(size, self.now);
-        let recording = self.ar.recorder.is_some();
-        // "Share clip" in the race scene; off while a clip is drawn.
-        let share = (self.scene == SceneChoice::Race).then(|| !self.clip_share.busy());
-        let mut share_pressed = false;
-        let mut choice = self.scene;
-        let mut record = false;
-        let mut free = self.ui_free;
-        let (panels, world, events) = (&mut self.panels, &self.world, &self.events);
-        let overlays = &mut self.overlays;
-        let races = self.races.panel(&world.race.name);
-        let mut open = None;
-        let mut clicked = None;
-        let mut scene_rect = None;
-        let mut bar = None;
-        // The phone has no cursor or clipboard to update: the platform output is not needed.
-        let _ = g
-            .egui
-            .paint(&g.gpu.device, &g.gpu.queue, texture, size, raw, |ui| {
-                if choice == SceneChoice::Race {
-                    overlays.paint(ui.ctx(), size);
-                    let r = race_panels(
-                        ui,
-                        panels,
-                        &world.race,
-                        events,
-                        None,
-                        &world.race.name,
-                        &overlays.settings.selected,
-                        races,
-                    );
-                    clicked = r.clicked_boat;
-                    open = r.open;
-                    scene_rect = r.scene_rect;
-                }
-                let laid = phone_bar(
-                    ui.ctx(),
-                    &mut choice,
-                    (recording, share),
-                    message.as_ref(),
-                    banner_button,
-                );
-                record |= laid.record_toggled;
-                share_pressed |= laid.share_pressed;
-                bar = Some(laid);
-                // The scene's part of the screen: what the panels left, else what the bar left.
-                free = scene_rect.unwrap_or_else(|| ui.available_rect_before_wrap());
-            });
-        self.ui_free = free;
-        self.bar = bar;
-        if bar.is_some_and(|b| b.banner_pressed) {
-            // After a refusal: ask for the camera again (Android shows its dialog, or answers
-            // at once when the user chose "don't ask again"; the banner then still points to
-            // Settings).
-            self.session_event(ar::arcore::Event::AskPermissionAgain);
-        }
-        if let Some(b) = clicked {
-            ui::toggle_selection(&mut self.overlays.settings.selected, b);
-        }
-        if record {
-            self.record_button();
-        }
-        if share_pressed {
-            self.share_clip();
-        }
-        self.races_panel_opened();
-        self.races_request(open);
-        self.choose_scene(choice);
+        self.pool
+            .render(&mut g.pool, &g.gpu, format, target, view, self.pool_t);
     }
 }

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use ar::arcore::ffi::{IntentJni, JavaObject};
 
-use super::PhoneApp;
+use super::App;
 use crate::hud::banner::Tone;
 
 /// The largest file read from a share, bytes: the whole file is held in memory on the phone
@@ -205,7 +205,7 @@ fn write_into(folder: &Path, file: &SharedFile) -> Result<(PathBuf, bool), Strin
     Ok((at, true))
 }
 
-impl PhoneApp {
+impl App {
     /// Reads the Activity's intent and opens its file, if it has one (the Android adapter, at
     /// start; `open FILE` in a phone-sim script).
     pub fn open_intent(&mut self, jni: &dyn IntentJni) -> Option<Result<Opened, String>> {

@@ -1,0 +1,332 @@
+//! The desktop profile of the [`App`]: what the `regatta` window shows and takes that the phone
+//! does not. The orbit view over the sky, or the race on a camera feed's table ([`FeedView`]:
+//! a replay folder or the synthetic table, played by the app's own seconds); the window's mouse,
+//! which the window hands in as one finger, so a click selects a boat within the one tap
+//! threshold ([`super::TAP_MAX_PX`], [`super::TAP_MAX_S`]) and a longer or farther press drags
+//! the orbit, as on the phone; the wheel (zoom); the timeline's keys; race files dropped on the
+//! window or chosen in the Races panel's dialog; the performance panel; the "Share clip" GIF
+//! (`desktop_clip.rs`). The governor starts at ultra (or the pinned `--tier`).
+//!
+//! It never knows the window system: the shell (`crate::desktop`) turns winit's events into
+//! [`AppEvent`](super::AppEvent)s and presents what [`App::frame`] drew.
+
+use std::path::PathBuf;
+
+use ui::{FpsMeter, PerfStats, RegattaUi};
+
+use super::App;
+use super::desktop_clip::{ClipRequest, ShareClip};
+use crate::core::feed::FeedView;
+use crate::hud::SceneChoice;
+use crate::pool_play::PoolPlay;
+use crate::setup::Profile;
+use crate::world::RaceWorld;
+
+/// A key the desktop app acts on (the window's keyboard, translated).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Key {
+    Space,
+    Left,
+    Right,
+    Home,
+    PageUp,
+    PageDown,
+    Escape,
+    /// A key that types a character (R, F, [ and ] are the timeline's).
+    Char(char),
+}
+
+/// How the desktop app starts (the command line's choices, validated by the shell's caller).
+pub struct DesktopStart {
+    /// The camera feed behind the race (`--replay`), its table's water already set.
+    pub feed: Option<FeedView>,
+    /// The water the command line chose: the Scene panel starts there, and its type colours
+    /// the open sea.
+    pub water: render::water_look::WaterLook,
+    /// The tier pinned by `--tier`; the governor chooses from ultra without it.
+    pub tier: Option<quality::Tier>,
+    /// The race or the pool (`--scene`).
+    pub scene: SceneChoice,
+    /// The sea the pool's waves take (`--sea` with `--scene pool`).
+    pub pool_sea: Option<ocean::WaveSet>,
+}
+
+/// The desktop profile's own state.
+pub(super) struct Desktop {
+    /// `Some` with `--replay`: the feed's camera and image replace the orbit and the sky.
+    pub(super) feed: Option<FeedView>,
+    /// The water the command line chose (the renderer is built with it).
+    pub(super) sea_water: render::water_look::WaterLook,
+    fps: FpsMeter,
+    /// The performance panel's numbers of the last frame.
+    pub(super) perf: PerfStats,
+    /// The "Share clip" button and its worker.
+    pub(super) clip: ShareClip,
+    /// Files dropped since the last frame.
+    dropped: Vec<PathBuf>,
+    /// The panels' input from the window system since the last frame.
+    panel_input: Option<egui::RawInput>,
+    /// What egui asked of the window system in the last frame (cursor, clipboard).
+    pub(super) platform_output: Option<egui::PlatformOutput>,
+    /// Escape was pressed.
+    quit: bool,
+    /// Why the app cannot go on (a feed frame that could not be read), for the shell to end
+    /// with.
+    pub(super) failure: Option<String>,
+}
+
+impl App {
+    /// The desktop: `world` under the orbit view or on `start.feed`'s table.
+    pub fn desktop(world: RaceWorld, start: DesktopStart) -> App {
+        let fx = start.feed.is_some();
+        let mut app = App::phone(world, Box::new(NoAr));
+        let mut panels = RegattaUi::new(
+            crate::hud::initial_clock(&app.world.race),
+            crate::panels::effect_toggles(fx),
+        );
+        panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
+        crate::panels::set_water_ranges(&mut panels.settings, fx);
+        // The sliders start at the water the command line chose.
+        panels.settings.water_type = start.water.water_type.name().to_string();
+        panels.settings.water_depth_m = start.water.depth_m;
+        panels.settings.turbidity = start.water.turbidity_ntu;
+        // Screenshots and the smoke test open panels and select boats from the environment.
+        let race = &app.world.race;
+        crate::panels::panels_from_env(&mut panels, &mut app.overlays.settings.selected, race);
+        app.panels = panels;
+        app.tiers = crate::tier_control::TierControl::new(
+            start.tier.unwrap_or(quality::Tier::Ultra),
+            start.tier.is_some(),
+        );
+        app.scene = start.scene;
+        app.pool = PoolPlay::new(start.pool_sea);
+        app.races.dialog = true;
+        app.desktop = Some(Desktop {
+            feed: start.feed,
+            sea_water: start.water,
+            fps: FpsMeter::new(30),
+            perf: PerfStats::default(),
+            clip: ShareClip::default(),
+            dropped: Vec::new(),
+            panel_input: None,
+            platform_output: None,
+            quit: false,
+            failure: None,
+        });
+        app
+    }
+
+    /// Which profile the app runs: `Profile::Desktop` or `Profile::Phone`.
+    pub fn profile(&self) -> Profile {
+        match self.desktop {
+            Some(_) => Profile::Desktop,
+            None => Profile::Phone,
+        }
+    }
+
+    /// Escape was pressed: the shell closes the window.
+    pub fn quit_requested(&self) -> bool {
+        self.desktop.as_ref().is_some_and(|d| d.quit)
+    }
+
+    /// Why the app cannot go on, once (the shell ends with it).
+    pub fn take_failure(&mut self) -> Option<String> {
+        self.desktop.as_mut().and_then(|d| d.failure.take())
+    }
+
+    /// What egui asked of the window system in the last frame (the shell carries it out).
+    pub fn take_platform_output(&mut self) -> Option<egui::PlatformOutput> {
+        self.desktop.as_mut().and_then(|d| d.platform_output.take())
+    }
+
+    /// The window's title: the race, its time, paused or not, the tier and who chose it; the
+    /// pool and its time.
+    pub fn title(&self) -> String {
+        match self.scene {
+            SceneChoice::Pool => format!("Regatta: the pool at t = {:.1} s", self.pool_t),
+            SceneChoice::Race => format!(
+                "Regatta: {} at t = {:.0} s{}, quality {} ({})",
+                self.world.race.name,
+                self.race_time(),
+                if self.panels.clock.is_playing() {
+                    ""
+                } else {
+                    " (paused)"
+                },
+                self.tiers.tier(),
+                if self.tiers.pinned().is_some() {
+                    "pinned"
+                } else {
+                    "auto"
+                }
+            ),
+        }
+    }
+
+    /// The desktop's "Share clip" worker (tests wait for it).
+    pub fn desktop_clip(&mut self) -> Option<&mut ShareClip> {
+        self.desktop.as_mut().map(|d| &mut d.clip)
+    }
+
+    /// The camera feed behind the race, on the desktop with `--replay`.
+    pub fn feed(&self) -> Option<&FeedView> {
+        self.desktop.as_ref().and_then(|d| d.feed.as_ref())
+    }
+
+    /// The orbit view's camera now (the follow camera's target included).
+    pub fn orbit(&self) -> &render::OrbitCamera {
+        &self.orbit
+    }
+
+    pub(super) fn panel_input(&mut self, raw: egui::RawInput) {
+        let Some(d) = self.desktop.as_mut() else {
+            return;
+        };
+        // Input arriving between two frames is one frame's.
+        match d.panel_input.as_mut() {
+            Some(kept) => {
+                kept.events.extend(raw.events);
+                kept.focused = raw.focused;
+            }
+            None => d.panel_input = Some(raw),
+        }
+    }
+
+    /// The panels' raw input for this frame: the phone's from its touches; the desktop's from
+    /// the window system, on the screen the touch input measures (size and density).
+    pub(super) fn take_panel_input(&mut self, size: [u32; 2]) -> egui::RawInput {
+        let mut raw = self.touch.take_raw_input(size, self.now);
+        if let Some(d) = self.desktop.as_mut() {
+            // The mouse reached egui from the window system: the finger's copy goes.
+            raw.events.clear();
+            if let Some(given) = d.panel_input.take() {
+                raw.events = given.events;
+                raw.focused = given.focused;
+            }
+        }
+        raw
+    }
+
+    /// The wheel at `px`: zooms the view shown, unless a panel is under it (the panel scrolls).
+    pub(super) fn wheel(&mut self, steps: f64, px: [f32; 2]) {
+        if self.over_panels(px) {
+            return;
+        }
+        self.end_gesture();
+        self.active_orbit().zoom(steps);
+    }
+
+    /// Whether a panel lies under `px` (physical pixels) in the last frame's layout.
+    pub(super) fn over_panels(&self, px: [f32; 2]) -> bool {
+        let Some(g) = self.graphics.as_ref() else {
+            return false;
+        };
+        let p = egui::pos2(px[0], px[1]) / self.touch.pixels_per_point;
+        crate::hud::touch::over_egui(&g.egui.ctx, self.ui_free, p)
+    }
+
+    /// The timeline's keys (docs/panels.md, "Shortcuts"), unless egui has the keyboard (a
+    /// text field): space plays and pauses, ←/→ step, Home jumps to the start, PgUp/PgDn
+    /// between events, R plays the other way, [ and ] halve and double the speed, F follows the
+    /// selected boat; Escape asks to quit.
+    pub(super) fn key(&mut self, key: Key) {
+        if key == Key::Escape {
+            if let Some(d) = self.desktop.as_mut() {
+                d.quit = true;
+            }
+            return;
+        }
+        if self
+            .egui_context()
+            .is_some_and(|c| c.egui_wants_keyboard_input())
+        {
+            return;
+        }
+        let times: Vec<f64> = self.events.iter().map(|e| e.t).collect();
+        let clock = &mut self.panels.clock;
+        match key {
+            Key::Space => clock.toggle(),
+            Key::Right => clock.step(1),
+            Key::Left => clock.step(-1),
+            Key::Home => clock.jump_to_start(),
+            Key::PageDown => {
+                clock.jump_to_next(&times);
+            }
+            Key::PageUp => {
+                clock.jump_to_previous(&times);
+            }
+            Key::Char('r' | 'R') => clock.reverse(),
+            Key::Char('[') => clock.slower(),
+            Key::Char(']') => clock.faster(),
+            Key::Char('f' | 'F') => {
+                self.panels.follow = !self.panels.follow && !self.overlays.selected().is_empty()
+            }
+            Key::Char(_) | Key::Escape => {}
+        }
+    }
+
+    pub(super) fn file_dropped(&mut self, path: PathBuf) {
+        if let Some(d) = self.desktop.as_mut() {
+            d.dropped.push(path);
+        }
+    }
+
+    /// The desktop's part of a frame before it is drawn: the frame meter, and the files
+    /// dropped since the last frame opened as one race (a failure said in the Races panel).
+    pub(super) fn desktop_frame_start(&mut self, dt: f64) {
+        let Some(d) = self.desktop.as_mut() else {
+            return;
+        };
+        d.fps.push(dt);
+        let files = std::mem::take(&mut d.dropped);
+        if !files.is_empty() {
+            // The error is in the panel; the race shown stays.
+            let _ = self.open_race(&files);
+        }
+    }
+
+    /// The frame's record onto the performance panel.
+    pub(super) fn record(&mut self, report: &render::FrameReport) {
+        if let Some(d) = self.desktop.as_mut() {
+            d.perf = crate::hud::perf_stats(report, &d.fps);
+        }
+    }
+
+    /// The "Share clip" button was pressed: the last [`ClipRequest::DESKTOP`] seconds before
+    /// the playhead as a GIF into `clips/` of the folder the app runs in.
+    pub(super) fn share_desktop_clip(&mut self) {
+        let Some(d) = self.desktop.as_mut() else {
+            return;
+        };
+        let folder = std::env::current_dir().unwrap_or_default();
+        let t = self.panels.clock.time();
+        let race = &self.world.race;
+        let debrief = self.overlays.debrief(&mut self.panels.debrief, race);
+        let world = (&self.world, debrief);
+        if let Err(e) = d.clip.start(world, t, &folder, ClipRequest::DESKTOP) {
+            d.clip.set_failed(e);
+        }
+    }
+}
+
+/// The desktop's AR backend: there is no AR session (the feed, where there is one, is played
+/// by the app itself); nothing loads and no frame comes.
+struct NoAr;
+
+impl crate::core::ar::ArBackend for NoAr {
+    fn is_loaded(&self) -> bool {
+        false
+    }
+    fn carry_out(&mut self, _: ar::arcore::Command) -> Option<ar::arcore::Event> {
+        None
+    }
+    fn set_display_geometry(&mut self, _: i32, _: u32, _: u32) {}
+    fn update(&mut self) -> Option<ar::arcore::Event> {
+        None
+    }
+    fn next_frame(
+        &mut self,
+    ) -> Result<Option<(ar::CameraFrame, crate::core::ar::DisplayCamera)>, ar::ArError> {
+        Ok(None)
+    }
+}
