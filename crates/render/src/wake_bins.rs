@@ -15,7 +15,7 @@
 use ocean::wake::{GpuWakeFrame, GpuWakeSource, foam_radius2, inner_radius2, source_peak_bound};
 use serde::Serialize;
 
-use crate::wake_spacing::SampleSpacing;
+use crate::wake_spacing::{MAX_LEVELS, SampleSpacing};
 
 /// Memory budget of one frame's wake buffers (sources, bins and indices together): 64 MiB,
 /// half of the common storage-binding limit (`downlevel_defaults`: 128 MiB), about 16 million
@@ -24,10 +24,23 @@ use crate::wake_spacing::SampleSpacing;
 /// (`Renderer::set_wake_buffer_budget`).
 pub const WAKE_BUFFER_BUDGET_BYTES: u64 = 64 << 20;
 
-/// Bins per side of the wake grid, and how far (m) around a bin its list reaches: the
-/// gradient is closed-form, so the margin only covers rounding of the bin lookup.
+/// Bins per side of the wake grid and their least side, m.
 pub(crate) const WAKE_BINS: u32 = 128;
-pub(crate) const WAKE_MARGIN_M: f32 = 0.5;
+pub(crate) const WAKE_MIN_CELL_M: f32 = 2.0;
+
+/// How far (m) around a bin its lists reach, at least: the gradient is closed-form (a vertex
+/// evaluates every term at the point it looks its bin up with), so the margin covers only the
+/// rounding of that look-up and of a term's r² against its radii (see [`lookup_margin`]).
+pub(crate) const WAKE_MARGIN_M: f32 = 0.01;
+
+/// The margin for a grid inside [−half, half]²: `wake_bin` finds bin ⌊(p − origin)·inv_cell⌋
+/// with two correctly rounded f32 operations on `inv_cell`, itself 1/cell rounded (WGSL's
+/// `-` and `*` are correctly rounded), so the point found in a bin lies within
+/// 3·2⁻²⁴ · |p − origin| ≤ 1.8·10⁻⁷ · 2·half of its square; r² = |p − pos|² in f32 errs by
+/// a few ulps, a relative 10⁻⁶ of the distance. 10⁻⁶ · half, and at least 1 cm, covers both.
+pub(crate) fn lookup_margin(half: f32) -> f32 {
+    WAKE_MARGIN_M.max(1e-6 * half)
+}
 
 /// Bytes of one source in the buffer, one bin entry and one index.
 const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
@@ -64,7 +77,9 @@ pub struct WakeGrid {
     pub margin: f32,
     pub nx: u32,
     pub nz: u32,
-    pub _pad: [u32; 2],
+    /// Height lists per bin: one per clip-map level (at least 1).
+    pub levels: u32,
+    pub _pad: u32,
     /// Vertex spacing of each clip-map level (16 at most), m: the wake's band limit there.
     pub level_spacing: [[f32; 4]; 4],
 }
@@ -87,8 +102,8 @@ pub struct WakeBins {
     pub indices: Vec<u32>,
 }
 
-/// The grid's geometry: corner, bin size and bins per side, and the finest spacing that
-/// samples each bin (none: no vertex lands there).
+/// The grid's geometry: corner, bin size and bins per side, the levels whose vertices can land
+/// in each bin (bit l: level l; 0: no vertex lands there) and each level's spacing.
 #[derive(Debug, Clone, PartialEq)]
 struct Layout {
     lo: [f32; 2],
@@ -96,13 +111,15 @@ struct Layout {
     nx: u32,
     nz: u32,
     margin: f32,
-    finest: Vec<Option<f32>>,
+    levels_in: Vec<u32>,
+    /// Each level's vertex spacing, m: one height list per level in each bin.
+    spacing: Vec<f32>,
     level_spacing: [[f32; 4]; 4],
 }
 
 impl Layout {
-    /// Bins of at least 2 m, at most `max_bins` per side, over [lo, hi], sampled as `spacing`
-    /// says.
+    /// Bins of at least [`WAKE_MIN_CELL_M`], at most `max_bins` per side, over [lo, hi],
+    /// sampled as `spacing` says.
     fn new(
         lo: [f32; 2],
         hi: [f32; 2],
@@ -111,25 +128,38 @@ impl Layout {
         spacing: &SampleSpacing,
     ) -> Layout {
         let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1.0);
-        let cell = (size / max_bins as f32).max(2.0);
+        let cell = (size / max_bins as f32).max(WAKE_MIN_CELL_M);
         let nx = (((hi[0] - lo[0]) / cell).ceil() as u32).clamp(1, max_bins);
         let nz = (((hi[1] - lo[1]) / cell).ceil() as u32).clamp(1, max_bins);
-        let finest = (0..nz)
-            .flat_map(|j| (0..nx).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                let a = [lo[0] + i as f32 * cell, lo[1] + j as f32 * cell];
-                spacing.finest_in(a, [a[0] + cell, a[1] + cell], margin)
-            })
-            .collect();
+        let levels_in = if spacing.vertices.is_empty() {
+            (0..nz)
+                .flat_map(|j| (0..nx).map(move |i| (i, j)))
+                .map(|(i, j)| {
+                    let a = [lo[0] + i as f32 * cell, lo[1] + j as f32 * cell];
+                    spacing.box_levels_in(a, [a[0] + cell, a[1] + cell], margin)
+                })
+                .collect()
+        } else {
+            vertex_levels(lo, cell, [nx, nz], margin, spacing)
+        };
+        let levels = spacing.levels.len().clamp(1, MAX_LEVELS);
         Layout {
             lo,
             cell,
             nx,
             nz,
             margin,
-            finest,
+            levels_in,
+            spacing: (0..levels)
+                .map(|l| spacing.levels.get(l).map_or(0.0, |b| b.spacing))
+                .collect(),
             level_spacing: spacing.per_level(),
         }
+    }
+
+    /// Height lists per bin: one per level.
+    fn slots(&self) -> u32 {
+        self.spacing.len() as u32
     }
 
     /// The bins [i0, i1] × [j0, j1] whose lists hold `s` (its cull circle grown by the
@@ -156,17 +186,22 @@ impl Layout {
         ])
     }
 
-    /// Which of bin (i, j)'s two lists hold `s`, whose cull circle and foam strip reach
-    /// `radii` (m, grown by the margin): the foam list when its foam strip reaches the bin's
-    /// square; the height list when its cull circle does with some point of the square outside
-    /// the source's inner radius for the bin's finest spacing. (A bin in a corner of the
-    /// circle's bounding square is out of reach of every point of the circle, and listing it
-    /// would only add loop turns to the bin's points.)
-    fn reaches(&self, s: &GpuWakeSource, radii: Radii, i: u32, j: u32) -> Listing {
+    /// Which of bin (i, j)'s lists hold `s`, whose cull circle and foam strip reach `radii`
+    /// (m, grown by the margin): the foam list when its foam strip reaches the bin's square;
+    /// level l's height list when level l's vertices can land in the bin and its cull circle
+    /// reaches the square with some point of the square outside the source's inner radius
+    /// for level l's spacing. (A bin in a corner of the circle's bounding square is out of
+    /// reach of every point of the circle, and listing it would only add loop turns to the
+    /// bin's points.)
+    fn reaches(&self, s: &GpuWakeSource, radii: &Radii, i: u32, j: u32) -> Listing {
         let none = Listing {
-            height: false,
+            heights: 0,
             foam: false,
         };
+        let levels_in = self.levels_in[(j * self.nx + i) as usize];
+        if levels_in == 0 {
+            return none;
+        }
         let cell = f64::from(self.cell);
         let gap = |v: f32, lo: f32, k: u32| {
             let a = f64::from(lo) + f64::from(k) * cell;
@@ -174,15 +209,12 @@ impl Layout {
         };
         let (dx, dz) = (gap(s.pos[0], self.lo[0], i), gap(s.pos[1], self.lo[1], j));
         let near2 = dx * dx + dz * dz;
-        let Some(spacing) = self.finest[(j * self.nx + i) as usize] else {
-            return none;
-        };
         let foam = near2 <= radii.foam * radii.foam;
         if near2 > radii.cull * radii.cull {
             return Listing { foam, ..none };
         }
         // The height term: the bin's farthest point from the source (grown by the margin)
-        // must lie outside the source's inner radius for the bin's finest spacing.
+        // must lie outside the source's inner radius for the level's spacing.
         let far = |v: f32, lo: f32, k: u32| {
             let a = f64::from(lo) + f64::from(k) * cell;
             (f64::from(v) - a)
@@ -191,8 +223,11 @@ impl Layout {
                 + f64::from(self.margin)
         };
         let (fx, fz) = (far(s.pos[0], self.lo[0], i), far(s.pos[1], self.lo[1], j));
-        let height = fx * fx + fz * fz >= f64::from(inner_radius2(s, spacing));
-        Listing { height, foam }
+        let far2 = fx * fx + fz * fz;
+        let heights = (0..self.slots())
+            .filter(|&l| levels_in & (1 << l) != 0 && far2 >= radii.inner2[l as usize])
+            .fold(0, |m, l| m | 1 << l);
+        Listing { heights, foam }
     }
 
     /// The bins that list `s` (row-major indices) and in which of their lists.
@@ -200,40 +235,79 @@ impl Layout {
         let [i0, i1, j0, j1] = self.span(s).unwrap_or([1, 0, 1, 0]);
         // Once per source, not per bin of its span.
         let margin = f64::from(self.margin);
+        let mut inner2 = [0.0; MAX_LEVELS];
+        for (r2, &spacing) in inner2.iter_mut().zip(&self.spacing) {
+            *r2 = f64::from(inner_radius2(s, spacing));
+        }
         let radii = Radii {
             cull: f64::from(s.cull_r2.max(0.0)).sqrt() + margin,
             foam: f64::from(foam_radius2(s)).sqrt() + margin,
+            inner2,
         };
         (j0..=j1).flat_map(move |j| {
             (i0..=i1)
-                .map(move |i| (j * self.nx + i, self.reaches(s, radii, i, j)))
-                .filter(|(_, l)| l.height || l.foam)
+                .map(move |i| (j * self.nx + i, self.reaches(s, &radii, i, j)))
+                .filter(|(_, l)| l.heights != 0 || l.foam)
         })
     }
 
-    /// How many list entries `s` takes (a bin that lists it for height and foam: two).
+    /// How many list entries `s` takes (one per list that holds it).
     fn listed(&self, s: &GpuWakeSource) -> u64 {
         self.bins_of(s)
-            .map(|(_, l)| u64::from(l.height) + u64::from(l.foam))
+            .map(|(_, l)| u64::from(l.heights.count_ones()) + u64::from(l.foam))
             .sum()
     }
+}
+
+/// Per bin of the grid with corner `lo`, side `cell` and `n` bins per side, the levels whose
+/// vertices can land in it: a vertex lands within `spacing.displacement` of its rest point,
+/// and its bin is looked up within `margin` of where it lands.
+fn vertex_levels(
+    lo: [f32; 2],
+    cell: f32,
+    n: [u32; 2],
+    margin: f32,
+    spacing: &SampleSpacing,
+) -> Vec<u32> {
+    let mut levels_in = vec![0u32; (n[0] * n[1]) as usize];
+    let reach = f64::from(spacing.displacement) + f64::from(margin);
+    let (cell, last) = (f64::from(cell), n.map(|n| f64::from(n) - 1.0));
+    for &(rest, level) in &spacing.vertices {
+        let bit = 1 << level.min(MAX_LEVELS as u32 - 1);
+        let range = |a: usize| {
+            let v = f64::from(rest[a]) - f64::from(lo[a]);
+            let (b0, b1) = (((v - reach) / cell).floor(), ((v + reach) / cell).floor());
+            (b1 >= 0.0 && b0 <= last[a]).then(|| (b0.max(0.0) as u32, b1.min(last[a]) as u32))
+        };
+        let (Some((i0, i1)), Some((j0, j1))) = (range(0), range(1)) else {
+            continue;
+        };
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                levels_in[(j * n[0] + i) as usize] |= bit;
+            }
+        }
+    }
+    levels_in
 }
 
 /// The lists of one bin that hold a source.
 #[derive(Debug, Clone, Copy)]
 struct Listing {
-    /// Its height term can be non-zero at a point of the bin sampled no finer than the bin's
-    /// finest spacing.
-    height: bool,
+    /// Bit l: its height term can be non-zero at a point of the bin sampled at level l's
+    /// spacing, and level l's vertices can land in the bin.
+    heights: u32,
     /// Its foam strip reaches the bin.
     foam: bool,
 }
 
-/// How far a source's cull circle and foam strip reach, grown by the grid's margin, m.
+/// How far a source's cull circle and foam strip reach, grown by the grid's margin, m, and
+/// its inner radius for each level's spacing, m².
 #[derive(Debug, Clone, Copy)]
 struct Radii {
     cull: f64,
     foam: f64,
+    inner2: [f64; MAX_LEVELS],
 }
 
 /// The squared radius within which a source adds height or foam, m².
@@ -306,13 +380,16 @@ impl WakeBins {
     }
 
     fn on(sources: &[GpuWakeSource], layout: Layout) -> WakeBins {
-        let (nx, nz) = (layout.nx, layout.nz);
-        let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
+        let (nx, nz, slots) = (layout.nx, layout.nz, layout.slots());
+        let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz * slots) as usize];
         let mut foams: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
         for (k, s) in sources.iter().enumerate() {
             for (b, l) in layout.bins_of(s) {
-                if l.height {
-                    heights[b as usize].push(k as u32);
+                let mut levels = l.heights;
+                while levels != 0 {
+                    let level = levels.trailing_zeros();
+                    heights[(b * slots + level) as usize].push(k as u32);
+                    levels &= levels - 1;
                 }
                 if l.foam {
                     foams[b as usize].push(k as u32);
@@ -321,12 +398,14 @@ impl WakeBins {
         }
         let mut bins = Vec::with_capacity(heights.len());
         let mut indices = Vec::new();
-        for (h, f) in heights.iter().zip(&foams) {
-            let first = indices.len() as u32;
-            indices.extend_from_slice(h);
+        for (f, levels) in foams.iter().zip(heights.chunks(slots as usize)) {
             let foam_first = indices.len() as u32;
             indices.extend_from_slice(f);
-            bins.push([first, h.len() as u32, foam_first, f.len() as u32]);
+            for h in levels {
+                let first = indices.len() as u32;
+                indices.extend_from_slice(h);
+                bins.push([first, h.len() as u32, foam_first, f.len() as u32]);
+            }
         }
         WakeBins {
             grid: WakeGrid {
@@ -335,7 +414,8 @@ impl WakeBins {
                 margin: layout.margin,
                 nx,
                 nz,
-                _pad: [0; 2],
+                levels: slots,
+                _pad: 0,
                 level_spacing: layout.level_spacing,
             },
             bins,
@@ -343,24 +423,25 @@ impl WakeBins {
         }
     }
 
-    /// The sources whose height local point `p` sums: its bin's height list, or none outside
-    /// the grid, exactly as `wake_bin` in `shaders/render/water_vertices.wgsl` looks it up
-    /// (f32).
-    pub fn listed_at(&self, p: [f32; 2]) -> &[u32] {
-        self.bin_at(p).map_or(&[], |[first, count, _, _]| {
+    /// The sources whose height local point `p` of clip-map level `level` sums: its bin's
+    /// height list for the level, or none outside the grid, exactly as `wake_bin` in
+    /// `shaders/render/water_vertices.wgsl` looks it up (f32).
+    pub fn listed_at(&self, p: [f32; 2], level: u32) -> &[u32] {
+        self.bin_at(p, level).map_or(&[], |[first, count, _, _]| {
             &self.indices[first as usize..(first + count) as usize]
         })
     }
 
-    /// The sources whose foam local point `p` sums: its bin's foam list.
+    /// The sources whose foam local point `p` sums: its bin's foam list (one for every level).
     pub fn foam_listed_at(&self, p: [f32; 2]) -> &[u32] {
-        self.bin_at(p).map_or(&[], |[_, _, first, count]| {
+        self.bin_at(p, 0).map_or(&[], |[_, _, first, count]| {
             &self.indices[first as usize..(first + count) as usize]
         })
     }
 
-    /// The bin of local point `p` as the shader finds it, or none outside the grid.
-    pub fn bin_at(&self, p: [f32; 2]) -> Option<[u32; 4]> {
+    /// The lists of local point `p` of clip-map level `level` as the shader finds them
+    /// (height first and count, foam first and count), or none outside the grid.
+    pub fn bin_at(&self, p: [f32; 2], level: u32) -> Option<[u32; 4]> {
         let g = self.grid;
         let (x, z) = (
             (p[0] - g.origin[0]) * g.inv_cell,
@@ -369,7 +450,8 @@ impl WakeBins {
         if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
             return None;
         }
-        Some(self.bins[(z as u32 * g.nx + x as u32) as usize])
+        let slot = level.min(g.levels - 1);
+        Some(self.bins[((z as u32 * g.nx + x as u32) * g.levels + slot) as usize])
     }
 
     /// Bytes of the three buffers with `sources` sources (each at least one entry: the
@@ -397,12 +479,13 @@ pub fn fit(
         cap_bytes: cap,
         ..Default::default()
     };
-    let Some((lo, hi)) = reach(&wakes.sources, half, WAKE_MARGIN_M) else {
-        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, WAKE_MARGIN_M, spacing);
+    let margin = lookup_margin(half);
+    let Some((lo, hi)) = reach(&wakes.sources, half, margin) else {
+        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, margin, spacing);
         return (bins, drop);
     };
     // The grid stays the one of all sources in reach, so every count below is exact.
-    let layout = Layout::new(lo, hi, WAKE_BINS, WAKE_MARGIN_M, spacing);
+    let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
     let listed: Vec<u64> = wakes.sources.iter().map(|s| layout.listed(s)).collect();
     let mut bytes = SOURCE_BYTES * wakes.sources.len().max(1) as u64
         + BIN_BYTES * u64::from(layout.nx * layout.nz)
@@ -538,7 +621,7 @@ mod tests {
     }
 
     fn listed_at(bins: &WakeBins, p: [f32; 2]) -> &[u32] {
-        bins.listed_at(p)
+        bins.listed_at(p, 0)
     }
 
     #[test]

@@ -73,7 +73,7 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
             .displace([f64::from(v.rest[0]) + o.x, f64::from(v.rest[1]) + o.y], t);
         let p = [(d[0] - o.x) as f32, (d[2] - o.y) as f32];
         let spacing = frame.clipmap.cell(v.level) as f32;
-        let listed = bins.listed_at(p);
+        let listed = bins.listed_at(p, v.level);
         let mut binned = [0.0f32; 3];
         for &k in listed {
             let g = source_height_grad_sampled_f32(&sources[k as usize], p, spacing);

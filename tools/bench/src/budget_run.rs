@@ -88,7 +88,9 @@ fn wake_sources_per_vertex(frame: &render::frame::FrameContext) -> [f64; 2] {
     let mut listed = [0.0; 2];
     for v in vertices {
         let d = surface([f64::from(v.rest[0]), f64::from(v.rest[1])]);
-        if let Some([_, height, _, foam]) = frame.wake_bins.bin_at([d[0] as f32, d[2] as f32]) {
+        if let Some([_, height, _, foam]) =
+            frame.wake_bins.bin_at([d[0] as f32, d[2] as f32], v.level)
+        {
             listed[0] += f64::from(height);
             listed[1] += f64::from(foam);
         }
