@@ -85,19 +85,20 @@ pub struct WakeGrid {
 }
 
 /// The wake sources binned on a grid: a point looks up its bin and sums only the sources
-/// listed there. Every source whose cull circle, grown by `margin`, touches a bin is listed
-/// in it, unless the whole bin (grown by `margin`) lies inside the source's inner radius for
-/// the finest spacing that samples the bin (`ocean::wake::inner_radius2`: its Gaussian
-/// cut-off or the band limit, where the term is zero), or no vertex can land in the bin. So a
-/// point within `margin` of a bin's points, sampled no finer than the bin's finest spacing,
-/// misses no source that adds to it.
+/// listed there for its clip-map level. Every source whose cull circle, grown by `margin`,
+/// touches a bin is listed in the bin's list for level l, unless the whole bin (grown by
+/// `margin`) lies inside the source's inner radius for level l's spacing
+/// (`ocean::wake::inner_radius2`: its Gaussian cut-off or the band limit, where the term is
+/// zero), or no vertex of level l can land in the bin. So a point within `margin` of a bin's
+/// points, of a level whose vertices can land there, misses no source that adds to it.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct WakeBins {
     pub grid: WakeGrid,
-    /// Per bin, row-major (x fastest): the first index into `indices` and the count of its
-    /// height list (the sources whose height term can be non-zero there), then of its foam
-    /// list (the sources whose foam strip reaches it): few sources' foam reaches a point, so
-    /// a point pays a foam exponential only for those.
+    /// Per bin, row-major (x fastest), and per level within a bin (`grid.levels` entries):
+    /// the first index into `indices` and the count of the level's height list (the sources
+    /// whose height term can be non-zero there at the level's spacing), then of the bin's foam
+    /// list (the sources whose foam strip reaches it; the same in each of the bin's entries):
+    /// few sources' foam reaches a point, so a point pays a foam exponential only for those.
     pub bins: Vec<[u32; 4]>,
     pub indices: Vec<u32>,
 }
