@@ -251,13 +251,6 @@ impl Layout {
                 .filter(|(_, l)| l.heights != 0 || l.foam)
         })
     }
-
-    /// How many list entries `s` takes (one per list that holds it).
-    fn listed(&self, s: &GpuWakeSource) -> u64 {
-        self.bins_of(s)
-            .map(|(_, l)| u64::from(l.heights.count_ones()) + u64::from(l.foam))
-            .sum()
-    }
 }
 
 /// Per bin of the grid with corner `lo`, side `cell` and `n` bins per side, the levels whose
@@ -377,10 +370,10 @@ impl WakeBins {
         margin: f32,
         spacing: &SampleSpacing,
     ) -> WakeBins {
-        WakeBins::on(sources, Layout::new(lo, hi, max_bins, margin, spacing))
+        WakeBins::on(sources, &Layout::new(lo, hi, max_bins, margin, spacing))
     }
 
-    fn on(sources: &[GpuWakeSource], layout: Layout) -> WakeBins {
+    fn on(sources: &[GpuWakeSource], layout: &Layout) -> WakeBins {
         let (nx, nz, slots) = (layout.nx, layout.nz, layout.slots());
         let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz * slots) as usize];
         let mut foams: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
@@ -487,31 +480,35 @@ pub fn fit(
     };
     // The grid stays the one of all sources in reach, so every count below is exact.
     let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
-    let listed: Vec<u64> = wakes.sources.iter().map(|s| layout.listed(s)).collect();
-    let mut bytes = SOURCE_BYTES * wakes.sources.len().max(1) as u64
-        + BIN_BYTES * u64::from(layout.nx * layout.nz)
-        + INDEX_BYTES * listed.iter().sum::<u64>().max(1);
+    let all = WakeBins::on(&wakes.sources, &layout);
+    let mut bytes = all.bytes(wakes.sources.len());
     let mut kept = wakes.sources.len();
-    if bytes > cap || kept > max_sources {
-        let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
-        let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
-        order.sort_by(|&a, &b| peak[a].total_cmp(&peak[b]).then(a.cmp(&b)));
-        let mut keep = vec![true; wakes.sources.len()];
-        for k in order {
-            if bytes <= cap && kept <= max_sources {
-                break;
-            }
-            keep[k] = false;
-            kept -= 1;
-            bytes -= SOURCE_BYTES + INDEX_BYTES * listed[k];
-            drop.dropped += 1;
-            drop.height_bound_m += peak[k];
-            drop.foam_bound += f64::from(wakes.sources[k].foam);
-        }
-        let mut kept = keep.into_iter();
-        wakes.sources.retain(|_| kept.next().unwrap_or(true));
+    if bytes <= cap && kept <= max_sources {
+        return (all, drop);
     }
-    (WakeBins::on(&wakes.sources, layout), drop)
+    // Each source's list entries, as listed.
+    let mut listed = vec![0u64; wakes.sources.len()];
+    for &k in &all.indices {
+        listed[k as usize] += 1;
+    }
+    let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
+    let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
+    order.sort_by(|&a, &b| peak[a].total_cmp(&peak[b]).then(a.cmp(&b)));
+    let mut keep = vec![true; wakes.sources.len()];
+    for k in order {
+        if bytes <= cap && kept <= max_sources {
+            break;
+        }
+        keep[k] = false;
+        kept -= 1;
+        bytes -= SOURCE_BYTES + INDEX_BYTES * listed[k];
+        drop.dropped += 1;
+        drop.height_bound_m += peak[k];
+        drop.foam_bound += f64::from(wakes.sources[k].foam);
+    }
+    let mut kept = keep.into_iter();
+    wakes.sources.retain(|_| kept.next().unwrap_or(true));
+    (WakeBins::on(&wakes.sources, &layout), drop)
 }
 
 #[cfg(test)]
@@ -782,5 +779,109 @@ mod tests {
         assert!((drop.height_bound_m - bound).abs() <= 1e-12 * bound);
         assert!((drop.foam_bound - 0.01 * drop.dropped as f64).abs() < 1e-6);
         assert_eq!(drop.cap_bytes, cap);
+    }
+
+    /// Three levels (0.5, 1 and 2 m) of vertices on the west half of [−60, 60]², finest in
+    /// the middle: the sampling of a frame's mesh.
+    fn three_levels() -> SampleSpacing {
+        use crate::wake_spacing::LevelBox;
+        let levels = [0.5f32, 1.0, 2.0]
+            .iter()
+            .enumerate()
+            .map(|(l, &spacing)| LevelBox {
+                centre: [0.0; 2],
+                half: 20.0 * (l + 1) as f32,
+                spacing,
+            })
+            .collect();
+        let mut vertices = Vec::new();
+        for a in 0..120 {
+            for b in 0..240 {
+                let p = [-60.0 + a as f32 * 0.5, -60.0 + b as f32 * 0.5];
+                let r = p[0].abs().max(p[1].abs());
+                let level = if r < 20.0 {
+                    0
+                } else if r < 40.0 {
+                    1
+                } else {
+                    2
+                };
+                vertices.push((p, level));
+            }
+        }
+        SampleSpacing {
+            levels,
+            vertices,
+            displacement: 1.0,
+        }
+    }
+
+    /// With a list per level, the cap still holds: `fit` counts every level's entries and
+    /// every bin's entry per level (a count of one entry per bin let a tight cap be
+    /// overrun).
+    #[test]
+    fn a_fleet_over_the_cap_fits_with_a_list_per_level() {
+        let spacing = three_levels();
+        let mut all = GpuWakeFrame {
+            sources: bunched_fleet(),
+            ..Default::default()
+        };
+        let (bins, drop) = fit(&mut all, 2000.0, u64::MAX, usize::MAX, &spacing);
+        assert_eq!((drop.dropped, bins.grid.levels), (0, 3));
+        let need = bins.bytes(600);
+        for cap in [need / 2, need / 4, need * 9 / 10] {
+            let mut frame = GpuWakeFrame {
+                sources: bunched_fleet(),
+                ..Default::default()
+            };
+            let (bins, drop) = fit(&mut frame, 2000.0, cap, usize::MAX, &spacing);
+            let bytes = bins.bytes(frame.sources.len());
+            assert!(bytes <= cap, "{bytes} > {cap}");
+            assert!(drop.dropped > 0 && drop.dropped + frame.sources.len() == 600);
+        }
+    }
+
+    /// A bin lists a source for a level only where that level's vertices can land: east of
+    /// x = 1 m (the west half's vertices, displaced by up to 1 m) and a bin nothing is listed;
+    /// at each vertex moved by up to 1 m, its level's list holds every source whose term at
+    /// the level's spacing is not zero (the f32 kernel over every source).
+    #[test]
+    fn a_bin_lists_a_source_for_the_levels_that_land_there() {
+        let spacing = three_levels();
+        let mut frame = GpuWakeFrame {
+            sources: bunched_fleet(),
+            ..Default::default()
+        };
+        let (bins, _) = fit(&mut frame, 2000.0, u64::MAX, usize::MAX, &spacing);
+        let sources = &frame.sources;
+        let cell = 1.0 / bins.grid.inv_cell;
+        let mut east = 0usize;
+        for a in 0..100 {
+            for b in 0..241 {
+                let p = [
+                    1.0 + cell + 0.01 + a as f32 * 0.59,
+                    -60.0 + b as f32 * 0.4993,
+                ];
+                east += (0..3).map(|l| bins.listed_at(p, l).len()).sum::<usize>();
+            }
+        }
+        assert_eq!(east, 0);
+        let (mut listed, mut terms) = (0usize, 0usize);
+        for &(rest, level) in spacing.vertices.iter().step_by(7) {
+            let s_l = spacing.levels[level as usize].spacing;
+            for (dx, dz) in [(0.0, 0.0), (0.7, -0.7), (-0.99, 0.0), (0.0, 0.99)] {
+                let p = [rest[0] + dx, rest[1] + dz];
+                let list = bins.listed_at(p, level);
+                for (k, s) in sources.iter().enumerate() {
+                    let g = ocean::wake::source_height_grad_sampled_f32(s, p, s_l);
+                    if g != [0.0; 3] {
+                        assert!(list.contains(&(k as u32)), "{k} at {p:?} level {level}");
+                        terms += 1;
+                    }
+                }
+                listed += list.len();
+            }
+        }
+        assert!(terms > 1000 && listed >= terms, "{terms} {listed}");
     }
 }
