@@ -19,16 +19,16 @@ struct WakeGrid {
     margin: f32,
     nx: u32,
     nz: u32,
-    // Height lists per bin: one per clip-map level.
-    levels: u32,
     _pad0: u32,
+    _pad1: u32,
     // Vertex spacing of clip-map level l at [l / 4][l % 4], m.
     level_spacing: array<vec4<f32>, 4>,
 }
 
 @group(1) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
-// Per bin and level (bin-major): the level's height list's first index into wake_index and
-// count, then the bin's foam list's.
+// Per bin: where its height lists' (first, count) pairs start in wake_index, its lowest level
+// l0 | the number of levels from there with a list << 16, then its foam list's first index
+// and count. Level l0 + k's height list: first and count at wake_index[head + 2k], [+ 1].
 @group(1) @binding(1) var<storage, read> wake_bins: array<vec4<u32>>;
 @group(1) @binding(2) var<storage, read> wake_index: array<u32>;
 @group(1) @binding(3) var<uniform> wake_grid: WakeGrid;
@@ -40,8 +40,13 @@ fn wake_bin(p: vec2<f32>, level: u32) -> vec4<u32> {
     if frame.counts.z == 0u || g.x < 0.0 || g.y < 0.0 || g.x >= f32(wake_grid.nx) || g.y >= f32(wake_grid.nz) {
         return vec4<u32>(0u);
     }
-    let slot = min(level, wake_grid.levels - 1u);
-    return wake_bins[(u32(g.y) * wake_grid.nx + u32(g.x)) * wake_grid.levels + slot];
+    let bin = wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
+    // None below the bin's lowest level or past its highest (no such vertex lands there).
+    let k = level - (bin.y & 0xffffu);
+    if k >= (bin.y >> 16u) {
+        return vec4<u32>(0u, 0u, bin.zw);
+    }
+    return vec4<u32>(wake_index[bin.x + 2u * k], wake_index[bin.x + 2u * k + 1u], bin.zw);
 }
 
 // The wake at local point p of clip-map level `level`, sampled every `spacing` metres (the

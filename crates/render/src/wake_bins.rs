@@ -77,9 +77,7 @@ pub struct WakeGrid {
     pub margin: f32,
     pub nx: u32,
     pub nz: u32,
-    /// Height lists per bin: one per clip-map level (at least 1).
-    pub levels: u32,
-    pub _pad: u32,
+    pub _pad: [u32; 2],
     /// Vertex spacing of each clip-map level (16 at most), m: the wake's band limit there.
     pub level_spacing: [[f32; 4]; 4],
 }
@@ -94,11 +92,13 @@ pub struct WakeGrid {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct WakeBins {
     pub grid: WakeGrid,
-    /// Per bin, row-major (x fastest), and per level within a bin (`grid.levels` entries):
-    /// the first index into `indices` and the count of the level's height list (the sources
-    /// whose height term can be non-zero there at the level's spacing), then of the bin's foam
-    /// list (the sources whose foam strip reaches it; the same in each of the bin's entries):
-    /// few sources' foam reaches a point, so a point pays a foam exponential only for those.
+    /// Per bin, row-major (x fastest): where its height lists' heads start in `indices`, its
+    /// lowest level l₀ and how many levels from there have a list (l₀ | n << 16: the levels
+    /// whose vertices can land in the bin, l₀ to its highest; n = 0 where none does), then the
+    /// first index and count of its foam list (the sources whose foam strip reaches it: few
+    /// do, so a point pays a foam exponential only for those). Level l₀ + k's height list
+    /// (the sources whose height term can be non-zero in the bin at the level's spacing) has
+    /// its first index and count at `indices[head + 2k]` and `indices[head + 2k + 1]`.
     pub bins: Vec<[u32; 4]>,
     pub indices: Vec<u32>,
 }
@@ -144,6 +144,9 @@ impl Layout {
             vertex_levels(lo, cell, [nx, nz], margin, spacing)
         };
         let levels = spacing.levels.len().clamp(1, MAX_LEVELS);
+        // A level the spacing does not know has no list (a vertex never carries one).
+        let known = u32::MAX >> (32 - levels);
+        let levels_in = levels_in.into_iter().map(|m| m & known).collect();
         Layout {
             lo,
             cell,
@@ -374,6 +377,12 @@ impl WakeBins {
     }
 
     fn on(sources: &[GpuWakeSource], layout: &Layout) -> WakeBins {
+        WakeBins::counted(sources, layout).0
+    }
+
+    /// [`WakeBins::on`], and how many list entries each source takes.
+    fn counted(sources: &[GpuWakeSource], layout: &Layout) -> (WakeBins, Vec<u64>) {
+        let mut entries = vec![0u64; sources.len()];
         let (nx, nz, slots) = (layout.nx, layout.nz, layout.slots());
         let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz * slots) as usize];
         let mut foams: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
@@ -388,33 +397,56 @@ impl WakeBins {
                 if l.foam {
                     foams[b as usize].push(k as u32);
                 }
+                entries[k] += u64::from(l.heights.count_ones()) + u64::from(l.foam);
             }
         }
-        let mut bins = Vec::with_capacity(heights.len());
+        let mut bins = Vec::with_capacity(foams.len());
         let mut indices = Vec::new();
-        for (f, levels) in foams.iter().zip(heights.chunks(slots as usize)) {
+        for ((f, levels), &mask) in foams
+            .iter()
+            .zip(heights.chunks(slots as usize))
+            .zip(&layout.levels_in)
+        {
             let foam_first = indices.len() as u32;
             indices.extend_from_slice(f);
-            for h in levels {
-                let first = indices.len() as u32;
+            let head = indices.len() as u32;
+            // The levels from the lowest to the highest with a list that is not empty (each
+            // level that lands here; an empty list and none read alike): their (first, count)
+            // pairs, then their lists.
+            let mut listed =
+                (0..slots).filter(|&l| mask & 1 << l != 0 && !levels[l as usize].is_empty());
+            let Some(lowest) = listed.clone().next() else {
+                bins.push([head, 0, foam_first, f.len() as u32]);
+                continue;
+            };
+            let highest = listed.next_back().unwrap_or(lowest);
+            let span = highest - lowest + 1;
+            indices.resize(indices.len() + 2 * span as usize, 0);
+            for (k, h) in levels[lowest as usize..=highest as usize]
+                .iter()
+                .enumerate()
+            {
+                let at = head as usize + 2 * k;
+                indices[at] = indices.len() as u32;
+                indices[at + 1] = h.len() as u32;
                 indices.extend_from_slice(h);
-                bins.push([first, h.len() as u32, foam_first, f.len() as u32]);
             }
+            bins.push([head, lowest | span << 16, foam_first, f.len() as u32]);
         }
-        WakeBins {
+        let bins = WakeBins {
             grid: WakeGrid {
                 origin: layout.lo,
                 inv_cell: 1.0 / layout.cell,
                 margin: layout.margin,
                 nx,
                 nz,
-                levels: slots,
-                _pad: 0,
+                _pad: [0; 2],
                 level_spacing: layout.level_spacing,
             },
             bins,
             indices,
-        }
+        };
+        (bins, entries)
     }
 
     /// The sources whose height local point `p` of clip-map level `level` sums: its bin's
@@ -444,8 +476,20 @@ impl WakeBins {
         if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
             return None;
         }
-        let slot = level.min(g.levels - 1);
-        Some(self.bins[((z as u32 * g.nx + x as u32) * g.levels + slot) as usize])
+        let [head, levels, foam_first, foam_count] =
+            self.bins[(z as u32 * g.nx + x as u32) as usize];
+        // The bin's pair for `level` (none below its lowest level or past its highest).
+        let k = level.wrapping_sub(levels & 0xffff);
+        if k >= levels >> 16 {
+            return Some([0, 0, foam_first, foam_count]);
+        }
+        let at = (head + 2 * k) as usize;
+        Some([
+            self.indices[at],
+            self.indices[at + 1],
+            foam_first,
+            foam_count,
+        ])
     }
 
     /// Bytes of the three buffers with `sources` sources (each at least one entry: the
@@ -480,16 +524,11 @@ pub fn fit(
     };
     // The grid stays the one of all sources in reach, so every count below is exact.
     let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
-    let all = WakeBins::on(&wakes.sources, &layout);
+    let (all, listed) = WakeBins::counted(&wakes.sources, &layout);
     let mut bytes = all.bytes(wakes.sources.len());
     let mut kept = wakes.sources.len();
     if bytes <= cap && kept <= max_sources {
         return (all, drop);
-    }
-    // Each source's list entries, as listed.
-    let mut listed = vec![0u64; wakes.sources.len()];
-    for &k in &all.indices {
-        listed[k as usize] += 1;
     }
     let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
     let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
@@ -529,15 +568,11 @@ mod tests {
             })
             .collect();
         let bins = WakeBins::new(&sources, [-250.0, -250.0], [250.0, 250.0], 32, 2.0);
-        let g = bins.grid;
         let mut listed = 0usize;
         for a in 0..97 {
             for b in 0..89 {
                 let p = [-249.0 + a as f32 * 5.13, -249.0 + b as f32 * 5.59];
-                let i = ((p[0] - g.origin[0]) * g.inv_cell) as u32;
-                let j = ((p[1] - g.origin[1]) * g.inv_cell) as u32;
-                let [first, count, _, _] = bins.bins[(j * g.nx + i) as usize];
-                let list = &bins.indices[first as usize..(first + count) as usize];
+                let list = bins.listed_at(p, 0);
                 listed += list.len();
                 // Any stencil point within the margin: every source whose cull circle holds
                 // it is listed.
@@ -584,12 +619,12 @@ mod tests {
         let mut big_bins = 0usize;
         for j in 0..g.nz {
             for i in 0..g.nx {
-                let [first, count, _, _] = bins.bins[(j * g.nx + i) as usize];
-                let list = &bins.indices[first as usize..(first + count) as usize];
                 let (x0, z0) = (
                     f64::from(g.origin[0]) + f64::from(i) * cell,
                     f64::from(g.origin[1]) + f64::from(j) * cell,
                 );
+                let middle = [(x0 + 0.5 * cell) as f32, (z0 + 0.5 * cell) as f32];
+                let list = bins.listed_at(middle, 0);
                 for (k, s) in sources.iter().enumerate() {
                     let (px, pz) = (f64::from(s.pos[0]), f64::from(s.pos[1]));
                     let near = [px.clamp(x0, x0 + cell), pz.clamp(z0, z0 + cell)];
@@ -827,7 +862,9 @@ mod tests {
             ..Default::default()
         };
         let (bins, drop) = fit(&mut all, 2000.0, u64::MAX, usize::MAX, &spacing);
-        assert_eq!((drop.dropped, bins.grid.levels), (0, 3));
+        assert_eq!(drop.dropped, 0);
+        // Bins on a ring's edge hold two levels' lists.
+        assert!(bins.bins.iter().any(|b| b[1] >> 16 == 2));
         let need = bins.bytes(600);
         for cap in [need / 2, need / 4, need * 9 / 10] {
             let mut frame = GpuWakeFrame {
