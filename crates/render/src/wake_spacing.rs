@@ -1,8 +1,8 @@
 //! How finely the water's compute stage samples the wake where: the clip-map's levels as
 //! squares around the eye, each with its vertex spacing. The wake at a vertex is band limited
 //! for its level's spacing (`shaders/ocean/wake.wgsl`, `wake_band_fade`), so a bin of the wake
-//! grid needs only the sources whose band-limited term can be non-zero at the finest spacing
-//! of any vertex that can land in it (`wake_bins`).
+//! grid needs, for each level whose vertices can land in it, only the sources whose term band
+//! limited for that level's spacing can be non-zero there (`wake_bins`).
 //!
 //! Conservative by construction: a level's square is taken as the axis-aligned box around the
 //! lattice's (possibly rotated) square, grown by the sea's largest horizontal displacement
