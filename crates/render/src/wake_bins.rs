@@ -19,8 +19,10 @@ use crate::wake_spacing::{MAX_LEVELS, SampleSpacing};
 
 /// Memory budget of one frame's wake buffers (sources, bins and indices together): 64 MiB,
 /// half of the common storage-binding limit (`downlevel_defaults`: 128 MiB), about 16 million
-/// (bin, source) pairs. The sample race needs about 20 MiB at its busiest (16 MiB dropped 254
-/// of its 2,033 sources at t = 600 s); phones get less through the quality tiers
+/// (bin, source) pairs. The sample race's busiest frame (t = 600 s, 2,033 sources, the budget
+/// model's view) needs 3.4 MB at the OPPO A54's screen and 4.5 MB at the Pixel 2 XL's
+/// (`regatta bench --only budget-model`, memory column); phones get less through the quality
+/// tiers' source budgets (`Renderer::set_wake_source_budget`), and a byte budget can be set
 /// (`Renderer::set_wake_buffer_budget`).
 pub const WAKE_BUFFER_BUDGET_BYTES: u64 = 64 << 20;
 
