@@ -1,6 +1,7 @@
-//! The wake bins of the sample race's busiest frame (t = 600 s, as `regatta bench --only
-//! budget-model` builds it: `world::scene_at`, `renderer::bin_wakes` with each tier's source
-//! budget) leave out no term the GPU would add: at every clip-map vertex, and at points a few
+//! The wake bins of the sample race's busiest frame (t = 600 s, built as `regatta bench --only
+//! budget-model` builds it: `world::scene_at`, `renderer::bin_wakes` with the tier's source
+//! budget and mesh error, here at the OPPO A54's full screen) leave out no term the GPU would
+//! add: at every clip-map vertex, and at points a few
 //! millimetres around it (the GPU's f32 sea moves a vertex by less than that from the f64
 //! sea's position used here), every source whose f32 term (`source_height_grad_sampled_f32`,
 //! the exact mirror of the WGSL kernel) is not zero at the vertex's level spacing is in the
