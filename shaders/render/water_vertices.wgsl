@@ -4,9 +4,10 @@
 // level's vertex spacing, as the sea's waves are per level: a level cannot carry a wave
 // shorter than π cells (render::clipmap::plan). The CPU bins the wake sources on a grid over
 // where they reach (render::wake_bins): a point sums only the sources listed for its bin, in
-// two lists: for the height, every source whose cull circle, grown by the grid's margin,
-// reaches the bin and whose band-limited term is not zero over the whole bin at the finest
-// spacing sampling it; for the foam, every source whose foam strip reaches the bin.
+// two lists: for the height, one list per clip-map level, every source whose cull circle,
+// grown by the grid's margin, reaches the bin and whose term band limited for the level's
+// spacing is not zero over the whole bin (empty where no vertex of the level can land); for
+// the foam, every source whose foam strip reaches the bin.
 // Appended to common.wgsl, optics.wgsl and wake.wgsl.
 
 struct WakeGrid {
@@ -25,25 +26,34 @@ struct WakeGrid {
 }
 
 @group(1) @binding(0) var<storage, read> wake_sources: array<WakeSource>;
-// Per bin: (first index into wake_index, count).
-// Per bin: the height list's first index and count, then the foam list's.
+// Per bin: where its height lists' (first, count) pairs start in wake_index, its lowest level
+// l0 | the number of levels from there with a list << 16, then its foam list's first index
+// and count. Level l0 + k's height list: first and count at wake_index[head + 2k], [+ 1].
 @group(1) @binding(1) var<storage, read> wake_bins: array<vec4<u32>>;
 @group(1) @binding(2) var<storage, read> wake_index: array<u32>;
 @group(1) @binding(3) var<uniform> wake_grid: WakeGrid;
 
-// The (first, count) of the sources that can reach local point p.
-fn wake_bin(p: vec2<f32>) -> vec4<u32> {
+// The lists of the sources that can reach local point p of clip-map level `level`: the
+// level's height list (first, count), then the foam list (first, count).
+fn wake_bin(p: vec2<f32>, level: u32) -> vec4<u32> {
     let g = (p - wake_grid.origin) * wake_grid.inv_cell;
     if frame.counts.z == 0u || g.x < 0.0 || g.y < 0.0 || g.x >= f32(wake_grid.nx) || g.y >= f32(wake_grid.nz) {
         return vec4<u32>(0u);
     }
-    return wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
+    let bin = wake_bins[u32(g.y) * wake_grid.nx + u32(g.x)];
+    // None below the bin's lowest level or past its highest (no such vertex lands there).
+    let k = level - (bin.y & 0xffffu);
+    if k >= (bin.y >> 16u) {
+        return vec4<u32>(0u, 0u, bin.zw);
+    }
+    return vec4<u32>(wake_index[bin.x + 2u * k], wake_index[bin.x + 2u * k + 1u], bin.zw);
 }
 
-// The wake at local point p sampled every `spacing` metres: (height m, ∂w/∂x, ∂w/∂z, foam in
-// [0, 1]), one pass over p's bin with each source's closed-form gradient, band limited.
-fn wake_at(p: vec2<f32>, spacing: f32) -> vec4<f32> {
-    let bin = wake_bin(p);
+// The wake at local point p of clip-map level `level`, sampled every `spacing` metres (the
+// level's spacing): (height m, ∂w/∂x, ∂w/∂z, foam in [0, 1]), one pass over p's list for
+// the level with each source's closed-form gradient, band limited.
+fn wake_at(p: vec2<f32>, level: u32, spacing: f32) -> vec4<f32> {
+    let bin = wake_bin(p, level);
     var grad = vec3<f32>(0.0);
     for (var i = 0u; i < bin.y; i = i + 1u) {
         let s = wake_sources[wake_index[bin.x + i]];
@@ -89,7 +99,7 @@ fn cs_displace(@builtin(global_invocation_id) id: vec3<u32>) {
     // The wake is a height at a world point: where this vertex has gone.
     var wake = vec3<f32>(0.0);
     if frame.counts.z > 0u {
-        let w = wake_at(pos.xz, wake_grid.level_spacing[v.level / 4u][v.level % 4u]);
+        let w = wake_at(pos.xz, v.level, wake_grid.level_spacing[v.level / 4u][v.level % 4u]);
         pos.y += w.x;
         wake = w.yzw;
     }

@@ -181,6 +181,21 @@ pub fn run_kernel_with<In: bytemuck::Pod>(
     output_item_bytes: usize,
     groups: &[&[wgpu::BindGroupEntry]],
 ) -> Result<Vec<u8>, GpuError> {
+    run_kernel_in(gpu, label, source, input, output_item_bytes, &[], groups)
+}
+
+/// [`run_kernel_with`] for a function that also reads group 0's own bindings (the frame's
+/// uniform at binding 0, as the shared files declare it): `frame_entries` go into group 0
+/// beside the input and output.
+pub fn run_kernel_in<In: bytemuck::Pod>(
+    gpu: &Gpu,
+    label: &str,
+    source: &str,
+    input: &[In],
+    output_item_bytes: usize,
+    frame_entries: &[wgpu::BindGroupEntry],
+    groups: &[&[wgpu::BindGroupEntry]],
+) -> Result<Vec<u8>, GpuError> {
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
@@ -205,7 +220,7 @@ pub fn run_kernel_with<In: bytemuck::Pod>(
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let io = [
+    let mut io = vec![
         wgpu::BindGroupEntry {
             binding: 10,
             resource: input_buffer.as_entire_binding(),
@@ -215,6 +230,7 @@ pub fn run_kernel_with<In: bytemuck::Pod>(
             resource: output.as_entire_binding(),
         },
     ];
+    io.extend(frame_entries.iter().cloned());
     let bound: Vec<wgpu::BindGroup> = std::iter::once(&io[..])
         .chain(groups.iter().copied())
         .enumerate()

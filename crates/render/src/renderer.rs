@@ -601,12 +601,8 @@ pub fn bin_wakes(wake: &ocean::wake::Wake, cap: u64, max_sources: usize, frame: 
         WAKE_EPSILON_M,
     );
     let displacement: f64 = scene.sea.waves.iter().map(|w| w.amplitude()).sum();
-    let spacing = crate::wake_spacing::SampleSpacing::of_clipmap(
-        &frame.clipmap,
-        eye,
-        frame.origin,
-        displacement,
-    );
+    let spacing =
+        crate::wake_spacing::SampleSpacing::of_mesh(&frame.clipmap, &frame.mesh, eye, displacement);
     let half = reach as f32 * 2.0;
     (frame.wake_bins, frame.wake_drop) =
         crate::wake_bins::fit(&mut frame.wakes, half, cap, max_sources, &spacing);

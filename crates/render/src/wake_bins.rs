@@ -15,19 +15,34 @@
 use ocean::wake::{GpuWakeFrame, GpuWakeSource, foam_radius2, inner_radius2, source_peak_bound};
 use serde::Serialize;
 
-use crate::wake_spacing::SampleSpacing;
+use crate::wake_spacing::{MAX_LEVELS, SampleSpacing};
 
 /// Memory budget of one frame's wake buffers (sources, bins and indices together): 64 MiB,
 /// half of the common storage-binding limit (`downlevel_defaults`: 128 MiB), about 16 million
-/// (bin, source) pairs. The sample race needs about 20 MiB at its busiest (16 MiB dropped 254
-/// of its 2,033 sources at t = 600 s); phones get less through the quality tiers
+/// (bin, source) pairs. The sample race's busiest frame (t = 600 s, 2,033 sources, the budget
+/// model's view) needs 3.4 MB at the OPPO A54's screen and 4.5 MB at the Pixel 2 XL's
+/// (`regatta bench --only budget-model`, memory column); phones get less through the quality
+/// tiers' source budgets (`Renderer::set_wake_source_budget`), and a byte budget can be set
 /// (`Renderer::set_wake_buffer_budget`).
 pub const WAKE_BUFFER_BUDGET_BYTES: u64 = 64 << 20;
 
-/// Bins per side of the wake grid, and how far (m) around a bin its list reaches: the
-/// gradient is closed-form, so the margin only covers rounding of the bin lookup.
+/// Bins per side of the wake grid and their least side, m.
 pub(crate) const WAKE_BINS: u32 = 128;
-pub(crate) const WAKE_MARGIN_M: f32 = 0.5;
+pub(crate) const WAKE_MIN_CELL_M: f32 = 2.0;
+
+/// How far (m) around a bin its lists reach, at least: the gradient is closed-form (a vertex
+/// evaluates every term at the point it looks its bin up with), so the margin covers only the
+/// rounding of that look-up and of a term's r² against its radii (see [`lookup_margin`]).
+pub(crate) const WAKE_MARGIN_M: f32 = 0.01;
+
+/// The margin for a grid inside [−half, half]²: `wake_bin` finds bin ⌊(p − origin)·inv_cell⌋
+/// with two correctly rounded f32 operations on `inv_cell`, itself 1/cell rounded (WGSL's
+/// `-` and `*` are correctly rounded), so the point found in a bin lies within
+/// 3·2⁻²⁴ · |p − origin| ≤ 1.8·10⁻⁷ · 2·half of its square; r² = |p − pos|² in f32 errs by
+/// a few ulps, a relative 10⁻⁶ of the distance. 10⁻⁶ · half, and at least 1 cm, covers both.
+pub(crate) fn lookup_margin(half: f32) -> f32 {
+    WAKE_MARGIN_M.max(1e-6 * half)
+}
 
 /// Bytes of one source in the buffer, one bin entry and one index.
 const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
@@ -70,25 +85,28 @@ pub struct WakeGrid {
 }
 
 /// The wake sources binned on a grid: a point looks up its bin and sums only the sources
-/// listed there. Every source whose cull circle, grown by `margin`, touches a bin is listed
-/// in it, unless the whole bin (grown by `margin`) lies inside the source's inner radius for
-/// the finest spacing that samples the bin (`ocean::wake::inner_radius2`: its Gaussian
-/// cut-off or the band limit, where the term is zero), or no vertex can land in the bin. So a
-/// point within `margin` of a bin's points, sampled no finer than the bin's finest spacing,
-/// misses no source that adds to it.
+/// listed there for its clip-map level. Every source whose cull circle, grown by `margin`,
+/// touches a bin is listed in the bin's list for level l, unless the whole bin (grown by
+/// `margin`) lies inside the source's inner radius for level l's spacing
+/// (`ocean::wake::inner_radius2`: its Gaussian cut-off or the band limit, where the term is
+/// zero), or no vertex of level l can land in the bin. So a point within `margin` of a bin's
+/// points, of a level whose vertices can land there, misses no source that adds to it.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct WakeBins {
     pub grid: WakeGrid,
-    /// Per bin, row-major (x fastest): the first index into `indices` and the count of its
-    /// height list (the sources whose height term can be non-zero there), then of its foam
-    /// list (the sources whose foam strip reaches it): few sources' foam reaches a point, so
-    /// a point pays a foam exponential only for those.
+    /// Per bin, row-major (x fastest): where its height lists' heads start in `indices`, its
+    /// lowest level l₀ and how many levels from there have a list (l₀ | n << 16: the levels
+    /// whose vertices can land in the bin, l₀ to its highest; n = 0 where none does), then the
+    /// first index and count of its foam list (the sources whose foam strip reaches it: few
+    /// do, so a point pays a foam exponential only for those). Level l₀ + k's height list
+    /// (the sources whose height term can be non-zero in the bin at the level's spacing) has
+    /// its first index and count at `indices[head + 2k]` and `indices[head + 2k + 1]`.
     pub bins: Vec<[u32; 4]>,
     pub indices: Vec<u32>,
 }
 
-/// The grid's geometry: corner, bin size and bins per side, and the finest spacing that
-/// samples each bin (none: no vertex lands there).
+/// The grid's geometry: corner, bin size and bins per side, the levels whose vertices can land
+/// in each bin (bit l: level l; 0: no vertex lands there) and each level's spacing.
 #[derive(Debug, Clone, PartialEq)]
 struct Layout {
     lo: [f32; 2],
@@ -96,13 +114,15 @@ struct Layout {
     nx: u32,
     nz: u32,
     margin: f32,
-    finest: Vec<Option<f32>>,
+    levels_in: Vec<u32>,
+    /// Each level's vertex spacing, m: one height list per level in each bin.
+    spacing: Vec<f32>,
     level_spacing: [[f32; 4]; 4],
 }
 
 impl Layout {
-    /// Bins of at least 2 m, at most `max_bins` per side, over [lo, hi], sampled as `spacing`
-    /// says.
+    /// Bins of at least [`WAKE_MIN_CELL_M`], at most `max_bins` per side, over [lo, hi],
+    /// sampled as `spacing` says.
     fn new(
         lo: [f32; 2],
         hi: [f32; 2],
@@ -111,25 +131,41 @@ impl Layout {
         spacing: &SampleSpacing,
     ) -> Layout {
         let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1.0);
-        let cell = (size / max_bins as f32).max(2.0);
+        let cell = (size / max_bins as f32).max(WAKE_MIN_CELL_M);
         let nx = (((hi[0] - lo[0]) / cell).ceil() as u32).clamp(1, max_bins);
         let nz = (((hi[1] - lo[1]) / cell).ceil() as u32).clamp(1, max_bins);
-        let finest = (0..nz)
-            .flat_map(|j| (0..nx).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                let a = [lo[0] + i as f32 * cell, lo[1] + j as f32 * cell];
-                spacing.finest_in(a, [a[0] + cell, a[1] + cell], margin)
-            })
-            .collect();
+        let levels_in = if spacing.vertices.is_empty() {
+            (0..nz)
+                .flat_map(|j| (0..nx).map(move |i| (i, j)))
+                .map(|(i, j)| {
+                    let a = [lo[0] + i as f32 * cell, lo[1] + j as f32 * cell];
+                    spacing.box_levels_in(a, [a[0] + cell, a[1] + cell], margin)
+                })
+                .collect()
+        } else {
+            vertex_levels(lo, cell, [nx, nz], margin, spacing)
+        };
+        let levels = spacing.levels.len().clamp(1, MAX_LEVELS);
+        // A level the spacing does not know has no list (a vertex never carries one).
+        let known = u32::MAX >> (32 - levels);
+        let levels_in = levels_in.into_iter().map(|m| m & known).collect();
         Layout {
             lo,
             cell,
             nx,
             nz,
             margin,
-            finest,
+            levels_in,
+            spacing: (0..levels)
+                .map(|l| spacing.levels.get(l).map_or(0.0, |b| b.spacing))
+                .collect(),
             level_spacing: spacing.per_level(),
         }
+    }
+
+    /// Height lists per bin: one per level.
+    fn slots(&self) -> u32 {
+        self.spacing.len() as u32
     }
 
     /// The bins [i0, i1] × [j0, j1] whose lists hold `s` (its cull circle grown by the
@@ -156,17 +192,22 @@ impl Layout {
         ])
     }
 
-    /// Which of bin (i, j)'s two lists hold `s`, whose cull circle and foam strip reach
-    /// `radii` (m, grown by the margin): the foam list when its foam strip reaches the bin's
-    /// square; the height list when its cull circle does with some point of the square outside
-    /// the source's inner radius for the bin's finest spacing. (A bin in a corner of the
-    /// circle's bounding square is out of reach of every point of the circle, and listing it
-    /// would only add loop turns to the bin's points.)
-    fn reaches(&self, s: &GpuWakeSource, radii: Radii, i: u32, j: u32) -> Listing {
+    /// Which of bin (i, j)'s lists hold `s`, whose cull circle and foam strip reach `radii`
+    /// (m, grown by the margin): the foam list when its foam strip reaches the bin's square;
+    /// level l's height list when level l's vertices can land in the bin and its cull circle
+    /// reaches the square with some point of the square outside the source's inner radius
+    /// for level l's spacing. (A bin in a corner of the circle's bounding square is out of
+    /// reach of every point of the circle, and listing it would only add loop turns to the
+    /// bin's points.)
+    fn reaches(&self, s: &GpuWakeSource, radii: &Radii, i: u32, j: u32) -> Listing {
         let none = Listing {
-            height: false,
+            heights: 0,
             foam: false,
         };
+        let levels_in = self.levels_in[(j * self.nx + i) as usize];
+        if levels_in == 0 {
+            return none;
+        }
         let cell = f64::from(self.cell);
         let gap = |v: f32, lo: f32, k: u32| {
             let a = f64::from(lo) + f64::from(k) * cell;
@@ -174,15 +215,12 @@ impl Layout {
         };
         let (dx, dz) = (gap(s.pos[0], self.lo[0], i), gap(s.pos[1], self.lo[1], j));
         let near2 = dx * dx + dz * dz;
-        let Some(spacing) = self.finest[(j * self.nx + i) as usize] else {
-            return none;
-        };
         let foam = near2 <= radii.foam * radii.foam;
         if near2 > radii.cull * radii.cull {
             return Listing { foam, ..none };
         }
         // The height term: the bin's farthest point from the source (grown by the margin)
-        // must lie outside the source's inner radius for the bin's finest spacing.
+        // must lie outside the source's inner radius for the level's spacing.
         let far = |v: f32, lo: f32, k: u32| {
             let a = f64::from(lo) + f64::from(k) * cell;
             (f64::from(v) - a)
@@ -191,8 +229,11 @@ impl Layout {
                 + f64::from(self.margin)
         };
         let (fx, fz) = (far(s.pos[0], self.lo[0], i), far(s.pos[1], self.lo[1], j));
-        let height = fx * fx + fz * fz >= f64::from(inner_radius2(s, spacing));
-        Listing { height, foam }
+        let far2 = fx * fx + fz * fz;
+        let heights = (0..self.slots())
+            .filter(|&l| levels_in & (1 << l) != 0 && far2 >= radii.inner2[l as usize])
+            .fold(0, |m, l| m | 1 << l);
+        Listing { heights, foam }
     }
 
     /// The bins that list `s` (row-major indices) and in which of their lists.
@@ -200,40 +241,72 @@ impl Layout {
         let [i0, i1, j0, j1] = self.span(s).unwrap_or([1, 0, 1, 0]);
         // Once per source, not per bin of its span.
         let margin = f64::from(self.margin);
+        let mut inner2 = [0.0; MAX_LEVELS];
+        for (r2, &spacing) in inner2.iter_mut().zip(&self.spacing) {
+            *r2 = f64::from(inner_radius2(s, spacing));
+        }
         let radii = Radii {
             cull: f64::from(s.cull_r2.max(0.0)).sqrt() + margin,
             foam: f64::from(foam_radius2(s)).sqrt() + margin,
+            inner2,
         };
         (j0..=j1).flat_map(move |j| {
             (i0..=i1)
-                .map(move |i| (j * self.nx + i, self.reaches(s, radii, i, j)))
-                .filter(|(_, l)| l.height || l.foam)
+                .map(move |i| (j * self.nx + i, self.reaches(s, &radii, i, j)))
+                .filter(|(_, l)| l.heights != 0 || l.foam)
         })
     }
+}
 
-    /// How many list entries `s` takes (a bin that lists it for height and foam: two).
-    fn listed(&self, s: &GpuWakeSource) -> u64 {
-        self.bins_of(s)
-            .map(|(_, l)| u64::from(l.height) + u64::from(l.foam))
-            .sum()
+/// Per bin of the grid with corner `lo`, side `cell` and `n` bins per side, the levels whose
+/// vertices can land in it: a vertex lands within `spacing.displacement` of its rest point,
+/// and its bin is looked up within `margin` of where it lands.
+fn vertex_levels(
+    lo: [f32; 2],
+    cell: f32,
+    n: [u32; 2],
+    margin: f32,
+    spacing: &SampleSpacing,
+) -> Vec<u32> {
+    let mut levels_in = vec![0u32; (n[0] * n[1]) as usize];
+    let reach = f64::from(spacing.displacement) + f64::from(margin);
+    let (cell, last) = (f64::from(cell), n.map(|n| f64::from(n) - 1.0));
+    for &(rest, level) in &spacing.vertices {
+        let bit = 1 << level.min(MAX_LEVELS as u32 - 1);
+        let range = |a: usize| {
+            let v = f64::from(rest[a]) - f64::from(lo[a]);
+            let (b0, b1) = (((v - reach) / cell).floor(), ((v + reach) / cell).floor());
+            (b1 >= 0.0 && b0 <= last[a]).then(|| (b0.max(0.0) as u32, b1.min(last[a]) as u32))
+        };
+        let (Some((i0, i1)), Some((j0, j1))) = (range(0), range(1)) else {
+            continue;
+        };
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                levels_in[(j * n[0] + i) as usize] |= bit;
+            }
+        }
     }
+    levels_in
 }
 
 /// The lists of one bin that hold a source.
 #[derive(Debug, Clone, Copy)]
 struct Listing {
-    /// Its height term can be non-zero at a point of the bin sampled no finer than the bin's
-    /// finest spacing.
-    height: bool,
+    /// Bit l: its height term can be non-zero at a point of the bin sampled at level l's
+    /// spacing, and level l's vertices can land in the bin.
+    heights: u32,
     /// Its foam strip reaches the bin.
     foam: bool,
 }
 
-/// How far a source's cull circle and foam strip reach, grown by the grid's margin, m.
+/// How far a source's cull circle and foam strip reach, grown by the grid's margin, m, and
+/// its inner radius for each level's spacing, m².
 #[derive(Debug, Clone, Copy)]
 struct Radii {
     cull: f64,
     foam: f64,
+    inner2: [f64; MAX_LEVELS],
 }
 
 /// The squared radius within which a source adds height or foam, m².
@@ -302,33 +375,67 @@ impl WakeBins {
         margin: f32,
         spacing: &SampleSpacing,
     ) -> WakeBins {
-        WakeBins::on(sources, Layout::new(lo, hi, max_bins, margin, spacing))
+        WakeBins::on(sources, &Layout::new(lo, hi, max_bins, margin, spacing))
     }
 
-    fn on(sources: &[GpuWakeSource], layout: Layout) -> WakeBins {
-        let (nx, nz) = (layout.nx, layout.nz);
-        let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
+    fn on(sources: &[GpuWakeSource], layout: &Layout) -> WakeBins {
+        WakeBins::counted(sources, layout).0
+    }
+
+    /// [`WakeBins::on`], and how many list entries each source takes.
+    fn counted(sources: &[GpuWakeSource], layout: &Layout) -> (WakeBins, Vec<u64>) {
+        let mut entries = vec![0u64; sources.len()];
+        let (nx, nz, slots) = (layout.nx, layout.nz, layout.slots());
+        let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz * slots) as usize];
         let mut foams: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
         for (k, s) in sources.iter().enumerate() {
             for (b, l) in layout.bins_of(s) {
-                if l.height {
-                    heights[b as usize].push(k as u32);
+                let mut levels = l.heights;
+                while levels != 0 {
+                    let level = levels.trailing_zeros();
+                    heights[(b * slots + level) as usize].push(k as u32);
+                    levels &= levels - 1;
                 }
                 if l.foam {
                     foams[b as usize].push(k as u32);
                 }
+                entries[k] += u64::from(l.heights.count_ones()) + u64::from(l.foam);
             }
         }
-        let mut bins = Vec::with_capacity(heights.len());
+        let mut bins = Vec::with_capacity(foams.len());
         let mut indices = Vec::new();
-        for (h, f) in heights.iter().zip(&foams) {
-            let first = indices.len() as u32;
-            indices.extend_from_slice(h);
+        for ((f, levels), &mask) in foams
+            .iter()
+            .zip(heights.chunks(slots as usize))
+            .zip(&layout.levels_in)
+        {
             let foam_first = indices.len() as u32;
             indices.extend_from_slice(f);
-            bins.push([first, h.len() as u32, foam_first, f.len() as u32]);
+            let head = indices.len() as u32;
+            // The levels from the lowest to the highest with a list that is not empty (each
+            // level that lands here; an empty list and none read alike): their (first, count)
+            // pairs, then their lists.
+            let mut listed =
+                (0..slots).filter(|&l| mask & 1 << l != 0 && !levels[l as usize].is_empty());
+            let Some(lowest) = listed.clone().next() else {
+                bins.push([head, 0, foam_first, f.len() as u32]);
+                continue;
+            };
+            let highest = listed.next_back().unwrap_or(lowest);
+            let span = highest - lowest + 1;
+            indices.resize(indices.len() + 2 * span as usize, 0);
+            for (k, h) in levels[lowest as usize..=highest as usize]
+                .iter()
+                .enumerate()
+            {
+                let at = head as usize + 2 * k;
+                indices[at] = indices.len() as u32;
+                indices[at + 1] = h.len() as u32;
+                indices.extend_from_slice(h);
+            }
+            bins.push([head, lowest | span << 16, foam_first, f.len() as u32]);
         }
-        WakeBins {
+        let bins = WakeBins {
             grid: WakeGrid {
                 origin: layout.lo,
                 inv_cell: 1.0 / layout.cell,
@@ -340,27 +447,29 @@ impl WakeBins {
             },
             bins,
             indices,
-        }
+        };
+        (bins, entries)
     }
 
-    /// The sources whose height local point `p` sums: its bin's height list, or none outside
-    /// the grid, exactly as `wake_bin` in `shaders/render/water_vertices.wgsl` looks it up
-    /// (f32).
-    pub fn listed_at(&self, p: [f32; 2]) -> &[u32] {
-        self.bin_at(p).map_or(&[], |[first, count, _, _]| {
+    /// The sources whose height local point `p` of clip-map level `level` sums: its bin's
+    /// height list for the level, or none outside the grid, exactly as `wake_bin` in
+    /// `shaders/render/water_vertices.wgsl` looks it up (f32).
+    pub fn listed_at(&self, p: [f32; 2], level: u32) -> &[u32] {
+        self.bin_at(p, level).map_or(&[], |[first, count, _, _]| {
             &self.indices[first as usize..(first + count) as usize]
         })
     }
 
-    /// The sources whose foam local point `p` sums: its bin's foam list.
+    /// The sources whose foam local point `p` sums: its bin's foam list (one for every level).
     pub fn foam_listed_at(&self, p: [f32; 2]) -> &[u32] {
-        self.bin_at(p).map_or(&[], |[_, _, first, count]| {
+        self.bin_at(p, 0).map_or(&[], |[_, _, first, count]| {
             &self.indices[first as usize..(first + count) as usize]
         })
     }
 
-    /// The bin of local point `p` as the shader finds it, or none outside the grid.
-    pub fn bin_at(&self, p: [f32; 2]) -> Option<[u32; 4]> {
+    /// The lists of local point `p` of clip-map level `level` as the shader finds them
+    /// (height first and count, foam first and count), or none outside the grid.
+    pub fn bin_at(&self, p: [f32; 2], level: u32) -> Option<[u32; 4]> {
         let g = self.grid;
         let (x, z) = (
             (p[0] - g.origin[0]) * g.inv_cell,
@@ -369,7 +478,20 @@ impl WakeBins {
         if x < 0.0 || z < 0.0 || x >= g.nx as f32 || z >= g.nz as f32 {
             return None;
         }
-        Some(self.bins[(z as u32 * g.nx + x as u32) as usize])
+        let [head, levels, foam_first, foam_count] =
+            self.bins[(z as u32 * g.nx + x as u32) as usize];
+        // The bin's pair for `level` (none below its lowest level or past its highest).
+        let k = level.wrapping_sub(levels & 0xffff);
+        if k >= levels >> 16 {
+            return Some([0, 0, foam_first, foam_count]);
+        }
+        let at = (head + 2 * k) as usize;
+        Some([
+            self.indices[at],
+            self.indices[at + 1],
+            foam_first,
+            foam_count,
+        ])
     }
 
     /// Bytes of the three buffers with `sources` sources (each at least one entry: the
@@ -397,37 +519,37 @@ pub fn fit(
         cap_bytes: cap,
         ..Default::default()
     };
-    let Some((lo, hi)) = reach(&wakes.sources, half, WAKE_MARGIN_M) else {
-        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, WAKE_MARGIN_M, spacing);
+    let margin = lookup_margin(half);
+    let Some((lo, hi)) = reach(&wakes.sources, half, margin) else {
+        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, margin, spacing);
         return (bins, drop);
     };
     // The grid stays the one of all sources in reach, so every count below is exact.
-    let layout = Layout::new(lo, hi, WAKE_BINS, WAKE_MARGIN_M, spacing);
-    let listed: Vec<u64> = wakes.sources.iter().map(|s| layout.listed(s)).collect();
-    let mut bytes = SOURCE_BYTES * wakes.sources.len().max(1) as u64
-        + BIN_BYTES * u64::from(layout.nx * layout.nz)
-        + INDEX_BYTES * listed.iter().sum::<u64>().max(1);
+    let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
+    let (all, listed) = WakeBins::counted(&wakes.sources, &layout);
+    let mut bytes = all.bytes(wakes.sources.len());
     let mut kept = wakes.sources.len();
-    if bytes > cap || kept > max_sources {
-        let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
-        let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
-        order.sort_by(|&a, &b| peak[a].total_cmp(&peak[b]).then(a.cmp(&b)));
-        let mut keep = vec![true; wakes.sources.len()];
-        for k in order {
-            if bytes <= cap && kept <= max_sources {
-                break;
-            }
-            keep[k] = false;
-            kept -= 1;
-            bytes -= SOURCE_BYTES + INDEX_BYTES * listed[k];
-            drop.dropped += 1;
-            drop.height_bound_m += peak[k];
-            drop.foam_bound += f64::from(wakes.sources[k].foam);
-        }
-        let mut kept = keep.into_iter();
-        wakes.sources.retain(|_| kept.next().unwrap_or(true));
+    if bytes <= cap && kept <= max_sources {
+        return (all, drop);
     }
-    (WakeBins::on(&wakes.sources, layout), drop)
+    let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
+    let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
+    order.sort_by(|&a, &b| peak[a].total_cmp(&peak[b]).then(a.cmp(&b)));
+    let mut keep = vec![true; wakes.sources.len()];
+    for k in order {
+        if bytes <= cap && kept <= max_sources {
+            break;
+        }
+        keep[k] = false;
+        kept -= 1;
+        bytes -= SOURCE_BYTES + INDEX_BYTES * listed[k];
+        drop.dropped += 1;
+        drop.height_bound_m += peak[k];
+        drop.foam_bound += f64::from(wakes.sources[k].foam);
+    }
+    let mut kept = keep.into_iter();
+    wakes.sources.retain(|_| kept.next().unwrap_or(true));
+    (WakeBins::on(&wakes.sources, &layout), drop)
 }
 
 #[cfg(test)]
@@ -448,15 +570,11 @@ mod tests {
             })
             .collect();
         let bins = WakeBins::new(&sources, [-250.0, -250.0], [250.0, 250.0], 32, 2.0);
-        let g = bins.grid;
         let mut listed = 0usize;
         for a in 0..97 {
             for b in 0..89 {
                 let p = [-249.0 + a as f32 * 5.13, -249.0 + b as f32 * 5.59];
-                let i = ((p[0] - g.origin[0]) * g.inv_cell) as u32;
-                let j = ((p[1] - g.origin[1]) * g.inv_cell) as u32;
-                let [first, count, _, _] = bins.bins[(j * g.nx + i) as usize];
-                let list = &bins.indices[first as usize..(first + count) as usize];
+                let list = bins.listed_at(p, 0);
                 listed += list.len();
                 // Any stencil point within the margin: every source whose cull circle holds
                 // it is listed.
@@ -503,12 +621,12 @@ mod tests {
         let mut big_bins = 0usize;
         for j in 0..g.nz {
             for i in 0..g.nx {
-                let [first, count, _, _] = bins.bins[(j * g.nx + i) as usize];
-                let list = &bins.indices[first as usize..(first + count) as usize];
                 let (x0, z0) = (
                     f64::from(g.origin[0]) + f64::from(i) * cell,
                     f64::from(g.origin[1]) + f64::from(j) * cell,
                 );
+                let middle = [(x0 + 0.5 * cell) as f32, (z0 + 0.5 * cell) as f32];
+                let list = bins.listed_at(middle, 0);
                 for (k, s) in sources.iter().enumerate() {
                     let (px, pz) = (f64::from(s.pos[0]), f64::from(s.pos[1]));
                     let near = [px.clamp(x0, x0 + cell), pz.clamp(z0, z0 + cell)];
@@ -538,7 +656,7 @@ mod tests {
     }
 
     fn listed_at(bins: &WakeBins, p: [f32; 2]) -> &[u32] {
-        bins.listed_at(p)
+        bins.listed_at(p, 0)
     }
 
     #[test]
@@ -698,5 +816,111 @@ mod tests {
         assert!((drop.height_bound_m - bound).abs() <= 1e-12 * bound);
         assert!((drop.foam_bound - 0.01 * drop.dropped as f64).abs() < 1e-6);
         assert_eq!(drop.cap_bytes, cap);
+    }
+
+    /// Three levels (0.5, 1 and 2 m) of vertices on the west half of [−60, 60]², finest in
+    /// the middle: the sampling of a frame's mesh.
+    fn three_levels() -> SampleSpacing {
+        use crate::wake_spacing::LevelBox;
+        let levels = [0.5f32, 1.0, 2.0]
+            .iter()
+            .enumerate()
+            .map(|(l, &spacing)| LevelBox {
+                centre: [0.0; 2],
+                half: 20.0 * (l + 1) as f32,
+                spacing,
+            })
+            .collect();
+        let mut vertices = Vec::new();
+        for a in 0..120 {
+            for b in 0..240 {
+                let p = [-60.0 + a as f32 * 0.5, -60.0 + b as f32 * 0.5];
+                let r = p[0].abs().max(p[1].abs());
+                let level = if r < 20.0 {
+                    0
+                } else if r < 40.0 {
+                    1
+                } else {
+                    2
+                };
+                vertices.push((p, level));
+            }
+        }
+        SampleSpacing {
+            levels,
+            vertices,
+            displacement: 1.0,
+        }
+    }
+
+    /// With a list per level, the cap still holds: `fit` counts every level's entries and
+    /// every bin's entry per level (a count of one entry per bin let a tight cap be
+    /// overrun).
+    #[test]
+    fn a_fleet_over_the_cap_fits_with_a_list_per_level() {
+        let spacing = three_levels();
+        let mut all = GpuWakeFrame {
+            sources: bunched_fleet(),
+            ..Default::default()
+        };
+        let (bins, drop) = fit(&mut all, 2000.0, u64::MAX, usize::MAX, &spacing);
+        assert_eq!(drop.dropped, 0);
+        // Bins on a ring's edge hold two levels' lists.
+        assert!(bins.bins.iter().any(|b| b[1] >> 16 == 2));
+        let need = bins.bytes(600);
+        for cap in [need / 2, need / 4, need * 9 / 10] {
+            let mut frame = GpuWakeFrame {
+                sources: bunched_fleet(),
+                ..Default::default()
+            };
+            let (bins, drop) = fit(&mut frame, 2000.0, cap, usize::MAX, &spacing);
+            let bytes = bins.bytes(frame.sources.len());
+            assert!(bytes <= cap, "{bytes} > {cap}");
+            assert!(drop.dropped > 0 && drop.dropped + frame.sources.len() == 600);
+        }
+    }
+
+    /// A bin lists a source for a level only where that level's vertices can land: east of
+    /// x = 1 m (the west half's vertices, displaced by up to 1 m) and a bin nothing is listed;
+    /// at each vertex moved by up to 1 m, its level's list holds every source whose term at
+    /// the level's spacing is not zero (the f32 kernel over every source).
+    #[test]
+    fn a_bin_lists_a_source_for_the_levels_that_land_there() {
+        let spacing = three_levels();
+        let mut frame = GpuWakeFrame {
+            sources: bunched_fleet(),
+            ..Default::default()
+        };
+        let (bins, _) = fit(&mut frame, 2000.0, u64::MAX, usize::MAX, &spacing);
+        let sources = &frame.sources;
+        let cell = 1.0 / bins.grid.inv_cell;
+        let mut east = 0usize;
+        for a in 0..100 {
+            for b in 0..241 {
+                let p = [
+                    1.0 + cell + 0.01 + a as f32 * 0.59,
+                    -60.0 + b as f32 * 0.4993,
+                ];
+                east += (0..3).map(|l| bins.listed_at(p, l).len()).sum::<usize>();
+            }
+        }
+        assert_eq!(east, 0);
+        let (mut listed, mut terms) = (0usize, 0usize);
+        for &(rest, level) in spacing.vertices.iter().step_by(7) {
+            let s_l = spacing.levels[level as usize].spacing;
+            for (dx, dz) in [(0.0, 0.0), (0.7, -0.7), (-0.99, 0.0), (0.0, 0.99)] {
+                let p = [rest[0] + dx, rest[1] + dz];
+                let list = bins.listed_at(p, level);
+                for (k, s) in sources.iter().enumerate() {
+                    let g = ocean::wake::source_height_grad_sampled_f32(s, p, s_l);
+                    if g != [0.0; 3] {
+                        assert!(list.contains(&(k as u32)), "{k} at {p:?} level {level}");
+                        terms += 1;
+                    }
+                }
+                listed += list.len();
+            }
+        }
+        assert!(terms > 1000 && listed >= terms, "{terms} {listed}");
     }
 }

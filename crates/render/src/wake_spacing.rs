@@ -1,17 +1,23 @@
 //! How finely the water's compute stage samples the wake where: the clip-map's levels as
 //! squares around the eye, each with its vertex spacing. The wake at a vertex is band limited
 //! for its level's spacing (`shaders/ocean/wake.wgsl`, `wake_band_fade`), so a bin of the wake
-//! grid needs only the sources whose band-limited term can be non-zero at the finest spacing
-//! of any vertex that can land in it (`wake_bins`).
+//! grid needs, for each level whose vertices can land in it, only the sources whose term band
+//! limited for that level's spacing can be non-zero there (`wake_bins`).
 //!
 //! Conservative by construction: a level's square is taken as the axis-aligned box around the
 //! lattice's (possibly rotated) square, grown by the sea's largest horizontal displacement
 //! (a vertex is looked up where the waves have moved it) and the bins' margin. A point outside
-//! every grown box is reached by no vertex.
+//! every grown box is reached by no vertex. With the frame's mesh ([`SampleSpacing::of_mesh`])
+//! it is tighter: each vertex reaches only the square of its rest point grown by the
+//! displacement, so a bin knows which levels' vertices can land in it, and none where the
+//! mesh draws no water.
 
 use glam::DVec2;
 
-use crate::clipmap::ClipMapConfig;
+use crate::clipmap::{ClipMapConfig, ClipMesh};
+
+/// The most clip-map levels the shader's `level_spacing` holds.
+pub const MAX_LEVELS: usize = 16;
 
 /// One level as the wake sees it: the local box its vertices can reach and their spacing.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,11 +30,23 @@ pub struct LevelBox {
     pub spacing: f32,
 }
 
-/// The clip-map's levels, finest first.
+/// The clip-map's levels, finest first, and where its vertices can land when the mesh is
+/// known.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SampleSpacing {
     pub levels: Vec<LevelBox>,
+    /// Each vertex's local rest point and level, or empty: then the level boxes say where
+    /// each level can land.
+    pub vertices: Vec<([f32; 2], u32)>,
+    /// How far (m) a vertex can land from its rest point: the sea's largest horizontal
+    /// displacement, grown for the GPU's f32 cosines (`DISPLACEMENT_SLACK`).
+    pub displacement: f32,
 }
+
+/// The relative slack on the sea's horizontal displacement for the GPU's evaluation: WGSL's
+/// `cos` errs by at most 2⁻¹¹ absolute on [−π, π], so a wave's f32 horizontal term a·cos θ
+/// stays within a·(1 + 2⁻¹¹) plus rounding; 10⁻³ covers both.
+const DISPLACEMENT_SLACK: f64 = 1e-3;
 
 impl SampleSpacing {
     /// One spacing everywhere (0: no band limit; for tests and views without a clip-map).
@@ -39,6 +57,8 @@ impl SampleSpacing {
                 half: f32::MAX,
                 spacing,
             }],
+            vertices: Vec::new(),
+            displacement: 0.0,
         }
     }
 
@@ -53,39 +73,66 @@ impl SampleSpacing {
         let (s, c) = clipmap.angle.sin_cos();
         // The rotated square's axis-aligned box: half side × (|cos| + |sin|).
         let turn = c.abs() + s.abs();
+        let grown = displacement * (1.0 + DISPLACEMENT_SLACK);
         let levels = (0..clipmap.levels())
             .map(|l| {
                 let centre = clipmap.centre(l, eye) - origin;
                 LevelBox {
                     centre: [centre.x as f32, centre.y as f32],
-                    half: (clipmap.half_extent(l) * turn + displacement) as f32,
+                    half: (clipmap.half_extent(l) * turn + grown) as f32,
                     spacing: clipmap.cell(l) as f32,
                 }
             })
             .collect();
-        SampleSpacing { levels }
+        SampleSpacing {
+            levels,
+            vertices: Vec::new(),
+            displacement: grown as f32,
+        }
+    }
+
+    /// [`SampleSpacing::of_clipmap`] with the frame's mesh: a bin is sampled only by the
+    /// levels whose vertices, displaced by up to `displacement`, can land in it.
+    pub fn of_mesh(
+        clipmap: &ClipMapConfig,
+        mesh: &ClipMesh,
+        eye: DVec2,
+        displacement: f64,
+    ) -> SampleSpacing {
+        SampleSpacing {
+            vertices: mesh.vertices.iter().map(|v| (v.rest, v.level)).collect(),
+            ..SampleSpacing::of_clipmap(clipmap, eye, mesh.origin, displacement)
+        }
     }
 
     /// The finest spacing of any vertex that can land in the local box [lo, hi] (grown by
-    /// `margin`), or none when no level reaches it.
+    /// `margin`), or none when no level reaches it (by the level boxes).
     pub fn finest_in(&self, lo: [f32; 2], hi: [f32; 2], margin: f32) -> Option<f32> {
+        let mask = self.box_levels_in(lo, hi, margin);
+        (mask != 0).then(|| self.levels[mask.trailing_zeros() as usize].spacing)
+    }
+
+    /// The levels (bit l: level l) whose boxes reach the local box [lo, hi] grown by
+    /// `margin`.
+    pub fn box_levels_in(&self, lo: [f32; 2], hi: [f32; 2], margin: f32) -> u32 {
         self.levels
             .iter()
-            .filter(|b| {
+            .take(MAX_LEVELS)
+            .enumerate()
+            .filter(|(_, b)| {
                 (0..2).all(|a| {
                     let reach = b.half.max(0.0) + margin;
                     lo[a] <= b.centre[a] + reach && hi[a] >= b.centre[a] - reach
                 })
             })
-            .map(|b| b.spacing)
-            .reduce(f32::min)
+            .fold(0, |m, (l, _)| m | 1 << l)
     }
 
     /// Each level's spacing in the order of the shader's `level_spacing` (16 levels, the
     /// clip-map's most; unused entries 0).
     pub fn per_level(&self) -> [[f32; 4]; 4] {
         let mut out = [[0.0; 4]; 4];
-        for (l, b) in self.levels.iter().take(16).enumerate() {
+        for (l, b) in self.levels.iter().take(MAX_LEVELS).enumerate() {
             out[l / 4][l % 4] = b.spacing;
         }
         out

@@ -2,7 +2,9 @@
 //! frame, the sum over the vertex's bin equals, bit for bit, the sum over every source the
 //! frame sent (each term band limited for the vertex's level spacing), so a bin leaves out only
 //! sources whose term is exactly zero there; and the band limit lists fewer (bin, source)
-//! pairs than binning without it. CPU only: the f32 mirror of shaders/ocean/wake.wgsl.
+//! pairs than binning without it. On the CPU: the f32 mirror of shaders/ocean/wake.wgsl; and on
+//! the GPU (lavapipe in CI), `wake_bin` of shaders/render/water_vertices.wgsl finds, for each
+//! vertex and its level, exactly the lists the CPU's `WakeBins::bin_at` finds.
 
 use glam::{DVec2, DVec3};
 use ocean::wake::{
@@ -12,6 +14,7 @@ use ocean::wake::{
 use render::Camera;
 use render::frame::FrameContext;
 use render::wake_bins::{WAKE_BUFFER_BUDGET_BYTES, WakeBins};
+use wgpu::util::DeviceExt;
 
 /// Three boats sailing curved courses for 70 s at 4–7 m/s around the origin.
 fn fleet_wake() -> (Wake, f64) {
@@ -73,7 +76,7 @@ fn a_vertex_sums_over_its_bin_exactly_what_it_sums_over_every_source() {
             .displace([f64::from(v.rest[0]) + o.x, f64::from(v.rest[1]) + o.y], t);
         let p = [(d[0] - o.x) as f32, (d[2] - o.y) as f32];
         let spacing = frame.clipmap.cell(v.level) as f32;
-        let listed = bins.listed_at(p);
+        let listed = bins.listed_at(p, v.level);
         let mut binned = [0.0f32; 3];
         for &k in listed {
             let g = source_height_grad_sampled_f32(&sources[k as usize], p, spacing);
@@ -204,4 +207,115 @@ fn culling_errs_by_less_than_the_screen_shows() {
     assert!(peak > 0.01, "the frame shows a wake: {peak}");
     assert!(worst_px < 0.25, "{worst_px} px");
     assert!(worst_slope < 5e-3, "{worst_slope} of {steepest}");
+}
+
+/// `wake_bin(p, level)` on the GPU, one vec4<u32> per input (x, z, level, unused).
+const WAKE_BIN_KERNEL: &str = r#"
+@group(0) @binding(10) var<storage, read> input: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read_write> output: array<vec4<u32>>;
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&input) {
+        return;
+    }
+    let i = input[id.x];
+    output[id.x] = wake_bin(i.xy, u32(i.z));
+}
+"#;
+
+/// The shader looks a vertex's lists up where the CPU's mirror does: for every third vertex of
+/// the frame (displaced by the sea), points around it and outside the grid, each at its level
+/// or another level, `wake_bin` returns the same (first, count) of the level's height
+/// list and of the foam list as `WakeBins::bin_at` (zeros outside the grid), u32 for u32. The
+/// CPU tests above prove those lists lossless, so this carries it to what the GPU sums.
+#[test]
+fn the_gpu_finds_the_lists_the_cpu_finds() {
+    let Some(gpu) = render::gpu::test_gpu() else {
+        return;
+    };
+    let (wake, t) = fleet_wake();
+    let scene = fleet_scene(t);
+    let frame = fleet_frame(&scene, &wake);
+    let bins = &frame.wake_bins;
+    // Some bins hold more than one level's list.
+    assert!(bins.bins.iter().any(|b| b[1] >> 16 > 1));
+    let o = frame.origin;
+    let levels = frame.clipmap.levels();
+    let mut inputs: Vec<[f32; 4]> = Vec::new();
+    for (n, v) in frame.mesh.vertices.iter().enumerate().step_by(3) {
+        let d = scene
+            .sea
+            .displace([f64::from(v.rest[0]) + o.x, f64::from(v.rest[1]) + o.y], t);
+        let p = [(d[0] - o.x) as f32, (d[2] - o.y) as f32];
+        inputs.push([p[0], p[1], v.level as f32, 0.0]);
+        // Another level's list at the same point (the slot arithmetic), and a point nudged.
+        let other = (v.level + 1 + n as u32) % levels;
+        inputs.push([p[0] + 0.37, p[1] - 0.21, other as f32, 0.0]);
+    }
+    let g = bins.grid;
+    let side = 1.0 / g.inv_cell;
+    let far = [g.origin[0] + g.nx as f32 * side + 1.0, g.origin[1] - 1.0];
+    inputs.push([far[0], far[1], 0.0, 0.0]);
+    let device = &gpu.device;
+    let buffer = |label, usage, contents: &[u8]| {
+        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    };
+    let uniform = wgpu::BufferUsages::UNIFORM;
+    let frame_buffer = buffer("frame", uniform, bytemuck::bytes_of(&frame.uniform));
+    let bins_buffer = buffer(
+        "wake bins",
+        wgpu::BufferUsages::STORAGE,
+        bytemuck::cast_slice(&bins.bins),
+    );
+    let index_buffer = buffer(
+        "wake index",
+        wgpu::BufferUsages::STORAGE,
+        bytemuck::cast_slice(&bins.indices),
+    );
+    let grid_buffer = buffer("wake grid", uniform, bytemuck::bytes_of(&bins.grid));
+    let source = render::shader::source(&[&render::shader::wake(), render::shader::WATER_VERTICES])
+        + WAKE_BIN_KERNEL;
+    let out = render::compute::run_kernel_in(
+        &gpu,
+        "wake_bin",
+        &source,
+        &inputs,
+        16,
+        &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: frame_buffer.as_entire_binding(),
+        }],
+        &[&[
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: bins_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: index_buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: grid_buffer.as_entire_binding(),
+            },
+        ]],
+    )
+    .expect("the kernel runs");
+    let found: &[[u32; 4]] = bytemuck::cast_slice(&out);
+    let mut listed = 0usize;
+    for (i, gpu_lists) in inputs.iter().zip(found) {
+        let cpu = bins.bin_at([i[0], i[1]], i[2] as u32).unwrap_or([0; 4]);
+        assert_eq!(*gpu_lists, cpu, "at {:?} level {}", [i[0], i[1]], i[2]);
+        listed += cpu[1] as usize;
+    }
+    assert_eq!(found.last(), Some(&[0; 4]), "outside the grid");
+    assert!(
+        listed > inputs.len(),
+        "the frame's vertices list sources: {listed}"
+    );
 }

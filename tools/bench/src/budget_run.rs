@@ -32,7 +32,13 @@ pub(crate) struct Row {
     pub(crate) report: render::FrameReport,
     /// The loops' trip counts the model used for this frame.
     pub(crate) trips: Trips,
+    /// This CPU's time to cull and bin the frame's wake sources (`bin_wakes`), ms: median
+    /// and relative interquartile range of [`BINNING_REPS`] runs.
+    pub(crate) binning_ms: (f64, f64),
 }
+
+/// Runs of `bin_wakes` timed per row.
+const BINNING_REPS: usize = 7;
 
 /// Median and relative interquartile range of `v`.
 fn median_iqr(v: &[f64]) -> (f64, f64) {
@@ -88,7 +94,9 @@ fn wake_sources_per_vertex(frame: &render::frame::FrameContext) -> [f64; 2] {
     let mut listed = [0.0; 2];
     for v in vertices {
         let d = surface([f64::from(v.rest[0]), f64::from(v.rest[1])]);
-        if let Some([_, height, _, foam]) = frame.wake_bins.bin_at([d[0] as f32, d[2] as f32]) {
+        if let Some([_, height, _, foam]) =
+            frame.wake_bins.bin_at([d[0] as f32, d[2] as f32], v.level)
+        {
             listed[0] += f64::from(height);
             listed[1] += f64::from(foam);
         }
@@ -220,6 +228,7 @@ pub(crate) fn measure(
     }
     let wake = t.race_wake(&race)?;
     let (trips, wake_buffer_bytes, clipmap_vertices) = trips(&scene, &t, &wake, report.size);
+    let binning_ms = binning_ms(&scene, &t, &wake, report.size);
     let shaded = as_phone_shades(&report, &scene, &t);
     let inputs = FrameInputs {
         report: &shaded,
@@ -262,7 +271,33 @@ pub(crate) fn measure(
         work,
         report,
         trips,
+        binning_ms,
     })
+}
+
+/// This CPU's time to cull and bin the frame's wake sources as the renderer does every frame
+/// (`bin_wakes`, the tier's source budget), ms: median and relative interquartile range of
+/// [`BINNING_REPS`] runs.
+fn binning_ms(
+    scene: &render::Scene,
+    tier: &TierRender,
+    wake: &ocean::wake::Wake,
+    drawn: [u32; 2],
+) -> (f64, f64) {
+    let mut frame = render::frame::FrameContext::new(scene, drawn, tier.options.error_px);
+    let runs: Vec<f64> = (0..BINNING_REPS)
+        .map(|_| {
+            let t0 = std::time::Instant::now();
+            render::renderer::bin_wakes(
+                wake,
+                render::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
+                tier.wake_source_budget,
+                &mut frame,
+            );
+            t0.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    median_iqr(&runs)
 }
 
 /// The goal a tier is held to on a phone, if any: (fps, what the goal asks).
