@@ -25,10 +25,8 @@ use crate::core::app::{App, AppEvent, DesktopStart, Key};
 use crate::error::{AppError, AppResult};
 use crate::hud::SceneChoice;
 use crate::hud::touch::TouchAction;
-use crate::setup::SceneKind;
-use crate::setup::inputs::{load_race, load_sea};
+use crate::setup::{RaceSetup, SceneKind};
 use crate::wall_clock::Ticker;
-use crate::world::RaceWorld;
 
 pub mod phone;
 pub mod smoke;
@@ -88,8 +86,7 @@ pub fn run(a: RunArgs) -> AppResult {
     if a.phone {
         return phone::run(a);
     }
-    let sea = crate::setup::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
-    let race = load_race(&a.race)?;
+    let world = RaceSetup::load_world(&a.race, a.sea.as_ref())?;
     // A bad feed is refused before a window opens (file and line named).
     let mut feed = a
         .replay
@@ -124,10 +121,10 @@ pub fn run(a: RunArgs) -> AppResult {
         } else {
             SceneChoice::Race
         },
-        pool_sea: (pool && a.sea.is_some()).then(|| sea.clone()),
+        pool_sea: (pool && a.sea.is_some()).then(|| (*world.given_sea).clone()),
     };
     let mut shell = Shell {
-        app: App::desktop(RaceWorld::new(race, sea), start),
+        app: App::desktop(world, start),
         window: None,
         egui: None,
         size: [1, 1],

@@ -18,10 +18,10 @@ use super::RunArgs;
 use crate::core::app::{App, AppEvent};
 use crate::error::{AppError, AppResult};
 use crate::hud::touch::TouchAction;
+use crate::setup::RaceSetup;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::SimArCore;
 use crate::wall_clock::Ticker;
-use crate::world::RaceWorld;
 
 /// The tallest window the host gives the phone, pixels (an 800-pixel-high screen keeps its
 /// title bar).
@@ -44,9 +44,7 @@ pub fn run(a: RunArgs) -> AppResult {
             (backend, Cues::Scripted(control))
         }
     };
-    let race = crate::setup::inputs::load_race(&[])?;
-    let sea = crate::setup::inputs::load_sea(None)?;
-    let mut app = App::phone(RaceWorld::new(race, sea), backend);
+    let mut app = App::phone(RaceSetup::load_world(&[], None)?, backend);
     app.data_dir = std::env::current_dir().ok();
     // The Races panel lists $REGATTA_RACES_DIR, else ./races.
     app.set_races_dir(crate::core::app::host_races_dir(app.data_dir.as_deref()));
