@@ -191,9 +191,30 @@ pub struct App {
     pub clip_request: PhoneClip,
 }
 
-impl App {
-    /// The phone: `world` on the table through `backend`, the AR session.
-    pub fn phone(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
+/// How the app starts: what differs by profile, given once (the rest starts the same).
+pub enum Start {
+    /// The phone: the AR session's backend (ARCore, or the simulated ARCore on the host).
+    Phone(Box<dyn ArBackend>),
+    /// The desktop: the command line's choices.
+    Desktop(DesktopStart),
+}
+
+/// The fields a profile starts with its own values; [`App::new`] builds each of them once,
+/// from its profile only.
+struct ProfileStart {
+    backend: Box<dyn ArBackend>,
+    desktop: Option<desktop::Desktop>,
+    panels: RegattaUi,
+    tiers: crate::tier_control::TierControl,
+    scene: SceneChoice,
+    pool: PoolPlay,
+    races: races::RaceList,
+}
+
+impl ProfileStart {
+    /// The phone's start: the race scene on the table, the governor from
+    /// [`PHONE_START_TIER`], the small screen's panels, the Races panel's folder (no dialog).
+    fn phone(world: &RaceWorld, backend: Box<dyn ArBackend>) -> ProfileStart {
         let mut panels = RegattaUi::new(crate::hud::initial_clock(&world.race), Vec::new());
         panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
         // The phone's screen is small: the timeline and the bar; the leaderboard behind its
@@ -202,23 +223,45 @@ impl App {
         panels.show_leaderboard = false;
         // The Scene panel's water: the table's real sea (type, depth, turbidity).
         crate::panels::set_water_ranges(&mut panels.settings, true);
+        ProfileStart {
+            backend,
+            desktop: None,
+            panels,
+            tiers: tiers::phone_tiers(),
+            scene: SceneChoice::Race,
+            pool: PoolPlay::new(None),
+            races: Default::default(),
+        }
+    }
+}
+
+impl App {
+    /// The app of `start`'s profile showing `world`.
+    pub fn new(world: RaceWorld, start: Start) -> Self {
+        let mut overlays = crate::scene_overlay::live::LiveOverlays::default();
+        let profile = match start {
+            Start::Phone(backend) => ProfileStart::phone(&world, backend),
+            Start::Desktop(start) => {
+                ProfileStart::desktop(&world, start, &mut overlays.settings.selected)
+            }
+        };
         App {
             events: ui::timeline_events(&world.race),
-            panels,
+            panels: profile.panels,
             world,
-            desktop: None,
+            desktop: profile.desktop,
             pool_t: 0.0,
             now: 0.0,
-            scene: SceneChoice::Race,
+            scene: profile.scene,
             orbit: crate::world::race_orbit(),
             pool_orbit: PoolPlay::orbit(),
-            pool: PoolPlay::new(None),
+            pool: profile.pool,
             course: None,
             pool_placement: None,
             resumed: false,
             back_from_background: false,
             ar: ArState::default(),
-            backend,
+            backend: profile.backend,
             touch: TouchInput::new(1.0),
             gesture: input::Gesture::default(),
             ui_free: egui::Rect::EVERYTHING,
@@ -229,15 +272,20 @@ impl App {
             maker: None,
             graphics: None,
             last_recording: None,
-            overlays: Default::default(),
+            overlays,
             table_room: table::TableRoom::FIRST,
-            races: Default::default(),
-            tiers: tiers::phone_tiers(),
+            races: profile.races,
+            tiers: profile.tiers,
             notice: None,
             clip_share: ClipShare::default(),
             android_sdk: None,
             clip_request: PhoneClip::BUTTON,
         }
+    }
+
+    /// The phone: `world` on the table through `backend`, the AR session.
+    pub fn phone(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
+        App::new(world, Start::Phone(backend))
     }
 
     /// Whether frames are drawn: in the foreground with a window.
