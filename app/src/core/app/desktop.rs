@@ -5,7 +5,7 @@
 //! threshold ([`super::TAP_MAX_PX`], [`super::TAP_MAX_S`]) and a longer or farther press drags
 //! the orbit, as on the phone; the wheel (zoom); the timeline's keys; race files dropped on the
 //! window or chosen in the Races panel's dialog; the performance panel; the "Share clip" GIF
-//! (`desktop_clip.rs`). The governor starts at ultra (or the pinned `--tier`).
+//! into `clips/` (`clip.rs`, [`super::HandOff::File`]). The governor starts at ultra (or the pinned `--tier`).
 //!
 //! It never knows the window system: the shell (`crate::desktop`) turns winit's events into
 //! [`AppEvent`](super::AppEvent)s and presents what [`App::frame`] drew.
@@ -15,7 +15,6 @@ use std::path::PathBuf;
 use ui::{FpsMeter, PerfStats, RegattaUi};
 
 use super::App;
-use super::desktop_clip::{ClipRequest, ShareClip};
 use crate::core::feed::FeedView;
 use crate::hud::SceneChoice;
 use crate::pool_play::PoolPlay;
@@ -60,8 +59,6 @@ pub(super) struct Desktop {
     fps: FpsMeter,
     /// The performance panel's numbers of the last frame.
     pub(super) perf: PerfStats,
-    /// The "Share clip" button and its worker.
-    pub(super) clip: ShareClip,
     /// Files dropped since the last frame.
     dropped: Vec<PathBuf>,
     /// The panels' input from the window system since the last frame.
@@ -107,12 +104,12 @@ impl super::ProfileStart {
             scene: start.scene,
             pool: PoolPlay::new(start.pool_sea),
             races: super::races::RaceList::with_dialog(),
+            clip_request: super::ClipRequest::DESKTOP,
             desktop: Some(Desktop {
                 feed: start.feed,
                 sea_water: start.water,
                 fps: FpsMeter::new(30),
                 perf: PerfStats::default(),
-                clip: ShareClip::default(),
                 dropped: Vec::new(),
                 panel_input: None,
                 platform_output: None,
@@ -174,11 +171,6 @@ impl App {
                 }
             ),
         }
-    }
-
-    /// The desktop's "Share clip" worker (tests wait for it).
-    pub fn desktop_clip(&mut self) -> Option<&mut ShareClip> {
-        self.desktop.as_mut().map(|d| &mut d.clip)
     }
 
     /// The camera feed behind the race, on the desktop with `--replay`.
@@ -304,22 +296,6 @@ impl App {
             d.perf = crate::hud::perf_stats(report, &d.fps);
         }
     }
-
-    /// The "Share clip" button was pressed: the last [`ClipRequest::DESKTOP`] seconds before
-    /// the playhead as a GIF into `clips/` of the folder the app runs in.
-    pub(super) fn share_desktop_clip(&mut self) {
-        let Some(d) = self.desktop.as_mut() else {
-            return;
-        };
-        let folder = std::env::current_dir().unwrap_or_default();
-        let t = self.panels.clock.time();
-        let race = &self.world.race;
-        let debrief = self.overlays.debrief(&mut self.panels.debrief, race);
-        let world = (&self.world, debrief);
-        if let Err(e) = d.clip.start(world, t, &folder, ClipRequest::DESKTOP) {
-            d.clip.set_failed(e);
-        }
-    }
 }
 
 /// The desktop's AR backend: there is no AR session (the feed, where there is one, is played
@@ -367,6 +343,7 @@ mod tests {
         assert_eq!(phone.scene, SceneChoice::Race);
         assert!(!phone.panels.show_perf && !phone.panels.show_leaderboard);
         assert!(phone.races.panel("sample").is_none());
+        assert_eq!(phone.clip_request, super::super::ClipRequest::PHONE);
 
         let start = DesktopStart {
             feed: None,
@@ -382,6 +359,7 @@ mod tests {
         assert_eq!(desktop.scene, SceneChoice::Pool);
         assert!(desktop.panels.show_perf && desktop.panels.show_leaderboard);
         assert!(desktop.races.panel("sample").is_some_and(|p| p.dialog));
+        assert_eq!(desktop.clip_request, super::super::ClipRequest::DESKTOP);
 
         // Without `--tier` the desktop's governor is free from ultra.
         let free = App::desktop(

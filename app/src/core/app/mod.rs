@@ -20,9 +20,8 @@
 //! surface is dropped before the event returns. In the background nothing is drawn and time
 //! stops. A lost device is rebuilt on OpenGL ES on the next frame.
 
-mod clip_share;
+mod clip;
 pub mod desktop;
-pub mod desktop_clip;
 mod draw;
 mod hud;
 mod input;
@@ -45,7 +44,10 @@ use crate::hud::touch::{Touch, TouchInput};
 use crate::pool_play::PoolPlay;
 use crate::world::RaceWorld;
 
-pub use clip_share::{ClipShare, PhoneClip, ShareState, hand_off};
+pub use clip::{
+    CHOOSER_TITLE, CLIP_FOLDER, ClipRequest, ClipState, ClipWorker, GIF_MIME, HandOff, NO_SPAN,
+    media_store_hand_off,
+};
 pub use desktop::{DesktopStart, Key};
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
@@ -183,12 +185,13 @@ pub struct App {
     /// What the last shared file did (opened, boats added, or why not), shown on the banner
     /// until the app time given (`shared.rs`).
     notice: Option<(String, Tone, f64)>,
-    /// "Share clip": the clip's worker and what it says (`clip_share.rs`).
-    pub clip_share: ClipShare,
+    /// "Share clip": the clip's worker and what it says (`clip.rs`).
+    pub clip: ClipWorker,
     /// `Build.VERSION.SDK_INT` on Android (the adapter sets it); `None` on the host.
     pub android_sdk: Option<u32>,
-    /// What the button's clip covers ([`PhoneClip::BUTTON`]; tests draw smaller ones).
-    pub clip_request: PhoneClip,
+    /// What the button's clip covers ([`ClipRequest::PHONE`], [`ClipRequest::DESKTOP`]; tests
+    /// draw smaller ones).
+    pub clip_request: ClipRequest,
 }
 
 /// How the app starts: what differs by profile, given once (the rest starts the same).
@@ -209,6 +212,7 @@ struct ProfileStart {
     scene: SceneChoice,
     pool: PoolPlay,
     races: races::RaceList,
+    clip_request: ClipRequest,
 }
 
 impl ProfileStart {
@@ -231,6 +235,7 @@ impl ProfileStart {
             scene: SceneChoice::Race,
             pool: PoolPlay::new(None),
             races: Default::default(),
+            clip_request: ClipRequest::PHONE,
         }
     }
 }
@@ -277,9 +282,9 @@ impl App {
             races: profile.races,
             tiers: profile.tiers,
             notice: None,
-            clip_share: ClipShare::default(),
+            clip: ClipWorker::default(),
             android_sdk: None,
-            clip_request: PhoneClip::BUTTON,
+            clip_request: profile.clip_request,
         }
     }
 
@@ -446,8 +451,8 @@ impl App {
     /// The banner's text and tone now.
     pub fn banner(&self) -> Option<(String, Tone)> {
         // A clip being drawn says how far it is.
-        if self.clip_share.busy()
-            && let Some(line) = self.clip_share.line()
+        if self.clip.busy()
+            && let Some(line) = self.clip.line()
         {
             return Some((line, Tone::Hint));
         }
@@ -548,45 +553,5 @@ impl App {
     /// Starts or stops recording (the bar's button).
     pub fn record_button(&mut self) {
         self.toggle_recording();
-    }
-
-    /// The "Share clip" button: the last [`App::clip_request`] seconds of race time from where
-    /// the phone looks now (the AR camera once the course is placed, else the fleet framed),
-    /// drawn into the app's files folder on a worker thread; [`App::poll_share`] hands it
-    /// to Android when written.
-    pub fn share_clip(&mut self) {
-        let t = self.race_time();
-        let camera = self
-            .course
-            .zip(self.ar.view())
-            .map(|(p, (view, _))| table::display_camera(&p, view));
-        let folder = self.data_dir.clone().unwrap_or_else(std::env::temp_dir);
-        let sdk = self.android_sdk.unwrap_or(u32::MAX);
-        let debrief = self
-            .overlays
-            .debrief(&mut self.panels.debrief, &self.world.race);
-        let clip = self.clip_request;
-        self.clip_share
-            .start((&self.world, debrief), camera, t, &folder, clip, sdk);
-        self.notice_share();
-    }
-
-    /// Each frame, from the adapter that holds the Java calls: a written clip goes into the
-    /// media store and to the share sheet; its outcome shows on the banner for a while.
-    pub fn poll_share(&mut self, jni: &dyn ar::arcore::ffi::ShareJni) {
-        self.clip_share.poll(jni);
-        self.notice_share();
-    }
-
-    /// A finished share's line onto the banner (a few seconds), and the share back to idle.
-    fn notice_share(&mut self) {
-        let tone = match self.clip_share.state() {
-            ShareState::Shared(_) => Tone::Hint,
-            ShareState::Failed(_) => Tone::Warning,
-            _ => return,
-        };
-        if let Some(line) = self.clip_share.line() {
-            self.notice = Some((line, tone, self.now + shared::NOTICE_S));
-        }
     }
 }
