@@ -154,6 +154,13 @@ pub fn window_size() -> winit::dpi::Size {
     }
 }
 
+/// Whether egui input translated on `held` (the window's egui-winit state's context) would
+/// miss the app's `current` context (`App::egui_context`): one is a different context (egui
+/// compares contexts by identity), or only one exists.
+pub fn egui_input_stale(held: Option<&egui::Context>, current: Option<&egui::Context>) -> bool {
+    held != current
+}
+
 /// Translates winit's events into the app's.
 struct Shell {
     app: App,
@@ -218,6 +225,27 @@ impl Shell {
         smoke::write_screenshot(img, format, &path)
     }
 
+    /// The panels' input translator (egui-winit) on the app's egui context now: the app makes
+    /// a new context with each device (a lost GPU rebuilt on OpenGL ES), and a translator kept
+    /// on the old one would read and write a context nothing draws with.
+    fn follow_egui_context(&mut self, window: &Window) {
+        let current = self.app.egui_context();
+        let held = self.egui.as_ref().map(egui_winit::State::egui_ctx);
+        if !egui_input_stale(held, current.as_ref()) {
+            return;
+        }
+        self.egui = current.map(|ctx| {
+            egui_winit::State::new(
+                ctx,
+                egui::ViewportId::ROOT,
+                window,
+                Some(window.scale_factor() as f32),
+                None,
+                None,
+            )
+        });
+    }
+
     fn redraw(&mut self, el: &ActiveEventLoop) {
         let Some(window) = self.window.clone() else {
             return;
@@ -227,6 +255,8 @@ impl Shell {
                 .on(AppEvent::PanelInput(e.take_egui_input(&window)));
         }
         self.app.frame(self.ticker.tick());
+        // A lost device was rebuilt in that frame with a new egui context.
+        self.follow_egui_context(&window);
         if let Some(e) = self.app.take_failure() {
             return self.fail(el, e);
         }
@@ -274,20 +304,13 @@ impl ApplicationHandler for Shell {
             })),
             size: self.size,
         });
-        let Some(ctx) = self.app.egui_context() else {
+        if self.app.egui_context().is_none() {
             return self.fail(el, "cannot draw into the window: no GPU device".into());
-        };
+        }
         if let Some(gpu) = self.app.describe_gpu() {
             log::info!("window on {gpu}");
         }
-        self.egui = Some(egui_winit::State::new(
-            ctx,
-            egui::ViewportId::ROOT,
-            &window,
-            Some(window.scale_factor() as f32),
-            None,
-            None,
-        ));
+        self.follow_egui_context(&window);
         self.ticker.stop();
     }
 

@@ -525,9 +525,23 @@ impl App {
             .and_then(|g| g.window.config().cloned())
     }
 
-    /// The egui context of the panels (tests find widgets in its last pass).
+    /// The egui context of the panels (tests find widgets in its last pass). A new one comes
+    /// with each device (after a lost device, on OpenGL ES): what translates the platform's
+    /// input for egui (the desktop shell's egui-winit state) follows this one.
     pub fn egui_context(&self) -> Option<egui::Context> {
         self.graphics.as_ref().map(|g| g.egui.ctx.clone())
+    }
+
+    /// Loses the device as a driver reset or a hung GPU does: `wgpu::Device::destroy` fires
+    /// the device's lost callback, and the next frame rebuilds on OpenGL ES (tests of that
+    /// path; the app never calls it).
+    #[doc(hidden)]
+    pub fn lose_device(&self) {
+        if let Some(g) = self.graphics.as_ref() {
+            g.gpu.device.destroy();
+            // The lost callback runs once the queue is empty, at the next maintenance.
+            let _ = g.gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        }
     }
 
     /// The backend, for adapters that script it (the simulated ARCore).
