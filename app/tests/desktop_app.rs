@@ -15,6 +15,8 @@
 //! - A lost device is rebuilt on OpenGL ES with a new egui context, which the window's shell
 //!   follows (its egui-winit state made anew), and the panels take input on it.
 
+mod common;
+
 use regatta::core::app::{App, AppEvent, DesktopStart, Key, TAP_MAX_PX, TAP_MAX_S};
 use regatta::hud::SceneChoice;
 use regatta::hud::touch::TouchAction;
@@ -225,17 +227,7 @@ fn after_a_lost_device_the_panels_run_on_the_new_egui_context() {
     app.panels.clock.pause();
     // The scrub track as egui laid it out on the new context: the widest drag-sensing widget
     // of the track's height (points; the window's density is 1).
-    let track = after
-        .viewport(|v| {
-            v.prev_pass
-                .widgets
-                .layers()
-                .flat_map(|(_, w)| w.iter())
-                .filter(|w| w.sense == egui::Sense::click_and_drag())
-                .filter(|w| (w.rect.height() - 26.0).abs() < 0.5)
-                .map(|w| w.rect)
-                .max_by(|a, b| a.width().total_cmp(&b.width()))
-        })
+    let track = common::scrub_track(&after)
         .expect("the timeline's scrub track is laid out on the new context");
     let at = egui::pos2(track.left() + 0.63 * track.width(), track.center().y);
     let button = |pressed| egui::Event::PointerButton {

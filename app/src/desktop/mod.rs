@@ -105,12 +105,7 @@ pub fn run(a: RunArgs) -> AppResult {
         .as_deref()
         .map(crate::tier_render::parse_tier)
         .transpose()?;
-    let event_loop = EventLoop::new().map_err(|e| {
-        AppError::new(format!(
-            "cannot open a window (no display?): {}",
-            smoke::window_error(&e)
-        ))
-    })?;
+    let event_loop = event_loop()?;
     let pool = a.scene == SceneKind::Pool;
     let start = DesktopStart {
         feed,
@@ -152,6 +147,24 @@ pub fn window_size() -> winit::dpi::Size {
         }
         None => winit::dpi::LogicalSize::new(1280.0, 720.0).into(),
     }
+}
+
+/// The wheel's turn in lines (up > 0); a touchpad's pixels count 40 to a line.
+fn wheel_steps(delta: MouseScrollDelta) -> f64 {
+    match delta {
+        MouseScrollDelta::LineDelta(_, y) => f64::from(y),
+        MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
+    }
+}
+
+/// winit's event loop, or the sentence saying why there is no window.
+fn event_loop() -> AppResult<EventLoop<()>> {
+    EventLoop::new().map_err(|e| {
+        AppError::new(format!(
+            "cannot open a window (no display?): {}",
+            smoke::window_error(&e)
+        ))
+    })
 }
 
 /// Whether egui input translated on `held` (the window's egui-winit state's context) would
@@ -204,27 +217,6 @@ impl Shell {
         self.app.on(AppEvent::touch(action, &[c]));
     }
 
-    /// With `REGATTA_SCREENSHOT`: surface textures cannot be read back, so the app draws the
-    /// same frame (no time passes) once more into an offscreen window of the same
-    /// configuration, and that is written.
-    fn screenshot(&mut self) -> Result<(), String> {
-        let Some(path) = smoke::screenshot_path() else {
-            return Ok(());
-        };
-        self.app.on(AppEvent::WindowDestroyed);
-        self.app.on(AppEvent::WindowCreated {
-            surface: None,
-            size: self.size,
-        });
-        self.app.frame(0.0);
-        let format = self
-            .app
-            .window_config()
-            .map_or(render::OFFSCREEN_FORMAT, |c| c.format);
-        let img = self.app.screenshot().ok_or("no frame to save")??;
-        smoke::write_screenshot(img, format, &path)
-    }
-
     /// The panels' input translator (egui-winit) on the app's egui context now: the app makes
     /// a new context with each device (a lost GPU rebuilt on OpenGL ES), and a translator kept
     /// on the old one would read and write a context nothing draws with.
@@ -266,7 +258,7 @@ impl Shell {
         window.set_title(&self.app.title());
         if self.exit_after.frame_done() {
             // The smoke test's exit: save what the window showed, if asked.
-            if let Err(e) = self.screenshot() {
+            if let Err(e) = smoke::save_screenshot(&mut self.app, self.size) {
                 return self.fail(el, e);
             }
             el.exit();
@@ -356,10 +348,7 @@ impl ApplicationHandler for Shell {
                 }
             }
             WindowEvent::MouseWheel { delta, .. } => {
-                let steps = match delta {
-                    MouseScrollDelta::LineDelta(_, y) => f64::from(y),
-                    MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
-                };
+                let steps = wheel_steps(delta);
                 let px = self.cursor.as_vec2().to_array();
                 self.app.on(AppEvent::Wheel { steps, px });
             }

@@ -123,7 +123,7 @@ impl super::ProfileStart {
 impl App {
     /// The desktop: `world` under the orbit view or on `start.feed`'s table.
     pub fn desktop(world: RaceWorld, start: DesktopStart) -> App {
-        App::new(world, super::Start::Desktop(start))
+        App::new(world, super::Start::Desktop(Box::new(start)))
     }
 
     /// Which profile the app runs: `Profile::Desktop` or `Profile::Phone`.

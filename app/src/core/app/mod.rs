@@ -198,8 +198,8 @@ pub struct App {
 pub enum Start {
     /// The phone: the AR session's backend (ARCore, or the simulated ARCore on the host).
     Phone(Box<dyn ArBackend>),
-    /// The desktop: the command line's choices.
-    Desktop(DesktopStart),
+    /// The desktop: the command line's choices (boxed: a feed is large beside a backend).
+    Desktop(Box<DesktopStart>),
 }
 
 /// The fields a profile starts with its own values; [`App::new`] builds each of them once,
@@ -247,7 +247,7 @@ impl App {
         let profile = match start {
             Start::Phone(backend) => ProfileStart::phone(&world, backend),
             Start::Desktop(start) => {
-                ProfileStart::desktop(&world, start, &mut overlays.settings.selected)
+                ProfileStart::desktop(&world, *start, &mut overlays.settings.selected)
             }
         };
         App {
