@@ -12,6 +12,10 @@
 //!   (the file named); a good one replaces the race.
 //! - Space pauses and plays; ←/→ step one second of race at 1× (docs/panels.md, "Shortcuts"),
 //!   [ halves the speed, Home goes to the start signal; Escape asks the shell to quit.
+//! - A lost device is rebuilt on OpenGL ES with a new egui context, which the window's shell
+//!   follows (its egui-winit state made anew), and the panels take input on it.
+
+mod common;
 
 use regatta::core::app::{App, AppEvent, DesktopStart, Key, TAP_MAX_PX, TAP_MAX_S};
 use regatta::hud::SceneChoice;
@@ -186,4 +190,72 @@ fn space_pauses_and_the_arrows_step_race_time() {
     assert!(!app.quit_requested());
     app.on(AppEvent::Key(Key::Escape));
     assert!(app.quit_requested());
+}
+
+/// A lost device (destroyed here, which fires wgpu's lost callback as a driver reset does) is
+/// rebuilt on OpenGL ES at the next frame, with a new egui context: `App::egui_context` names
+/// the new one (the window's shell makes its egui-winit state anew when
+/// `desktop::egui_input_stale` says so), the banner's note says
+/// so, and the panels' input reaches the panels on the new context: a click on the timeline's
+/// pause button pauses race time.
+#[test]
+fn after_a_lost_device_the_panels_run_on_the_new_egui_context() {
+    let Some(mut app) = desktop() else {
+        return;
+    };
+    let before = app.egui_context().unwrap();
+    // The window's shell keeps its egui-winit state while the app's context is the same.
+    let stale = regatta::desktop::egui_input_stale;
+    assert!(!stale(Some(&before), app.egui_context().as_ref()));
+    app.lose_device();
+    app.frame(1.0 / 30.0);
+    let Some(after) = app.egui_context() else {
+        panic!("no device after the loss: {:?}", app.graphics_note());
+    };
+    assert!(
+        after != before,
+        "the rebuilt device's egui context is a new one"
+    );
+    // ... and the shell makes a new state on it after this frame.
+    assert!(stale(Some(&before), Some(&after)));
+    assert!(!stale(Some(&after), app.egui_context().as_ref()));
+    assert_eq!(
+        app.graphics_note(),
+        Some("The GPU was lost; drawing with OpenGL ES.")
+    );
+    app.frame(1.0 / 30.0);
+    app.panels.clock.pause();
+    // The scrub track as egui laid it out on the new context: the widest drag-sensing widget
+    // of the track's height (points; the window's density is 1).
+    let track = common::scrub_track(&after)
+        .expect("the timeline's scrub track is laid out on the new context");
+    let at = egui::pos2(track.left() + 0.63 * track.width(), track.center().y);
+    let button = |pressed| egui::Event::PointerButton {
+        pos: at,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: Default::default(),
+    };
+    let input = |events| egui::RawInput {
+        events,
+        ..Default::default()
+    };
+    app.on(AppEvent::PanelInput(input(vec![
+        egui::Event::PointerMoved(at),
+    ])));
+    app.frame(0.0);
+    app.on(AppEvent::PanelInput(input(vec![
+        button(true),
+        button(false),
+    ])));
+    app.frame(0.0);
+    // The time under the pointer: its place along the track.
+    let s = f64::from((at.x - track.left()) / track.width());
+    let (a, b) = app.panels.clock.span();
+    let want = a + s * (b - a);
+    let got = app.race_time();
+    assert!(
+        (got - want).abs() < 0.05,
+        "race time {got}, pointer at {want}"
+    );
 }

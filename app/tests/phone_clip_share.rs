@@ -9,7 +9,7 @@
 
 use ar::arcore::ffi::share::NO_SPACE;
 use ar::arcore::ffi::{JavaScript, ScriptedJni};
-use regatta::core::app::{PhoneClip, ShareState};
+use regatta::core::app::{ClipRequest, ClipState};
 use regatta::core::feed::CameraFeed;
 use regatta::phone_sim::PhoneSim;
 use regatta::sim_phone::device::Device;
@@ -18,7 +18,7 @@ use regatta::sim_phone::device::Device;
 const SIZE: [u32; 2] = [180, 400];
 
 /// 1 s at 2 fps, 32 × 24: three frames, a few seconds on lavapipe.
-const SMALL: PhoneClip = PhoneClip {
+const SMALL: ClipRequest = ClipRequest {
     seconds: 1.0,
     fps: 2.0,
     size: [32, 24],
@@ -59,7 +59,7 @@ fn share(sim: &mut PhoneSim, jni: &ScriptedJni) {
         "{}",
         banner(sim)
     );
-    sim.app.clip_share.wait();
+    sim.app.clip.wait();
     sim.app.poll_share(jni);
 }
 
@@ -91,8 +91,8 @@ fn the_clip_goes_into_the_media_store_and_to_the_share_sheet() {
     );
     let jni = ScriptedJni::new(JavaScript::default());
     share(&mut sim, &jni);
-    let ShareState::Shared(uri) = sim.app.clip_share.state() else {
-        panic!("{:?}", sim.app.clip_share.state());
+    let ClipState::Shared(uri) = sim.app.clip.state() else {
+        panic!("{:?}", sim.app.clip.state());
     };
     assert_eq!(banner(&sim), "Clip saved in Pictures/Regatta: pick an app");
     let stored = jni.script_media(|m| m.stored.clone());
@@ -174,9 +174,9 @@ fn each_failure_is_one_line_on_the_banner() {
         assert_eq!(banner(&sim), said);
         assert!(!banner(&sim).contains('\n'));
         assert!(
-            matches!(sim.app.clip_share.state(), ShareState::Failed(_)),
+            matches!(sim.app.clip.state(), ClipState::Failed(_)),
             "{:?}",
-            sim.app.clip_share.state()
+            sim.app.clip.state()
         );
         // A failed write leaves nothing half-written in the media store.
         assert!(jni.script_media(|m| m.stored.iter().all(|s| !s.pending)));

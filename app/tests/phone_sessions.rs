@@ -5,6 +5,8 @@
 //! the synthetic camera's pose and intrinsics by hand, the gesture's finger geometry, the
 //! timeline track's rectangle as egui laid it out, the replay reader.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -247,16 +249,7 @@ fn one_finger_on_the_timeline_scrubs_to_the_time_under_it() {
     let ctx = sim.app.egui_context().unwrap();
     // The scrub track as egui laid it out in the last frame: the widest drag-sensing widget of
     // the track's height.
-    let track = ctx.viewport(|v| {
-        v.prev_pass
-            .widgets
-            .layers()
-            .flat_map(|(_, w)| w.iter())
-            .filter(|w| w.sense == egui::Sense::click_and_drag())
-            .filter(|w| (w.rect.height() - 26.0).abs() < 0.5)
-            .map(|w| w.rect)
-            .max_by(|a, b| a.width().total_cmp(&b.width()))
-    });
+    let track = common::scrub_track(&ctx);
     let track = track.expect("the timeline's scrub track is on screen");
     let ppp = f64::from(Device::A54.pixels_per_point(SIZE));
     let to_screen = |x: f32, y: f32| {

@@ -10,6 +10,8 @@
 //! `medium` (`crates/quality/src/governor.rs`: down over 1.05 × 33.3 ms, to the richest tier
 //! predicted under 0.85 × 33.3 ms from the priors high 0.60, medium 0.30).
 
+mod common;
+
 use quality::{Target, Tier};
 use regatta::core::app::{AppEvent, PHONE_START_TIER};
 use regatta::core::feed::CameraFeed;
@@ -88,18 +90,7 @@ fn a_slow_phone_steps_down_but_never_while_the_timeline_is_scrubbed() {
     run(&mut sim, &mut t, 0.05);
     // The scrub track as egui laid it out: the widest drag-sensing widget of its height.
     let ctx = sim.app.egui_context().unwrap();
-    let track = ctx
-        .viewport(|v| {
-            v.prev_pass
-                .widgets
-                .layers()
-                .flat_map(|(_, w)| w.iter())
-                .filter(|w| w.sense == egui::Sense::click_and_drag())
-                .filter(|w| (w.rect.height() - 26.0).abs() < 0.5)
-                .map(|w| w.rect)
-                .max_by(|a, b| a.width().total_cmp(&b.width()))
-        })
-        .expect("the timeline's scrub track is on screen");
+    let track = common::scrub_track(&ctx).expect("the timeline's scrub track is on screen");
     let ppp = Device::A54.pixels_per_point(SIZE);
     let at = |s: f32| {
         [

@@ -17,7 +17,6 @@ use crate::core::app::{App, AppEvent};
 use crate::core::gfx::SurfaceMaker;
 use crate::hud::touch::{Finger, Touch, TouchAction};
 use crate::wall_clock::Ticker;
-use crate::world::RaceWorld;
 
 mod intents;
 mod jni_calls;
@@ -30,8 +29,7 @@ use unwinding as _;
 fn android_main(app: AndroidApp) {
     android_logger::init_once(crate::android_log::config());
     log::info!("regatta: android_main started");
-    let world = crate::setup::inputs::load_race(&[])
-        .and_then(|race| Ok(RaceWorld::new(race, crate::setup::inputs::load_sea(None)?)));
+    let world = crate::setup::RaceSetup::load_world(&[], None);
     // Two handles on the same Activity: ARCore's glue owns one, the rotation reads use the other.
     let jni = jni_calls::AndroidJni::new(&app);
     let ar_jni = Box::new(jni_calls::AndroidJni::new(&app));

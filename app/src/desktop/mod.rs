@@ -25,10 +25,8 @@ use crate::core::app::{App, AppEvent, DesktopStart, Key};
 use crate::error::{AppError, AppResult};
 use crate::hud::SceneChoice;
 use crate::hud::touch::TouchAction;
-use crate::setup::SceneKind;
-use crate::setup::inputs::{load_race, load_sea};
+use crate::setup::{RaceSetup, SceneKind};
 use crate::wall_clock::Ticker;
-use crate::world::RaceWorld;
 
 pub mod phone;
 pub mod smoke;
@@ -88,8 +86,7 @@ pub fn run(a: RunArgs) -> AppResult {
     if a.phone {
         return phone::run(a);
     }
-    let sea = crate::setup::inputs::drawable_sea(load_sea(a.sea.as_ref())?);
-    let race = load_race(&a.race)?;
+    let world = RaceSetup::load_world(&a.race, a.sea.as_ref())?;
     // A bad feed is refused before a window opens (file and line named).
     let mut feed = a
         .replay
@@ -108,12 +105,7 @@ pub fn run(a: RunArgs) -> AppResult {
         .as_deref()
         .map(crate::tier_render::parse_tier)
         .transpose()?;
-    let event_loop = EventLoop::new().map_err(|e| {
-        AppError::new(format!(
-            "cannot open a window (no display?): {}",
-            smoke::window_error(&e)
-        ))
-    })?;
+    let event_loop = event_loop()?;
     let pool = a.scene == SceneKind::Pool;
     let start = DesktopStart {
         feed,
@@ -124,10 +116,10 @@ pub fn run(a: RunArgs) -> AppResult {
         } else {
             SceneChoice::Race
         },
-        pool_sea: (pool && a.sea.is_some()).then(|| sea.clone()),
+        pool_sea: (pool && a.sea.is_some()).then(|| (*world.given_sea).clone()),
     };
     let mut shell = Shell {
-        app: App::desktop(RaceWorld::new(race, sea), start),
+        app: App::desktop(world, start),
         window: None,
         egui: None,
         size: [1, 1],
@@ -155,6 +147,31 @@ pub fn window_size() -> winit::dpi::Size {
         }
         None => winit::dpi::LogicalSize::new(1280.0, 720.0).into(),
     }
+}
+
+/// The wheel's turn in lines (up > 0); a touchpad's pixels count 40 to a line.
+fn wheel_steps(delta: MouseScrollDelta) -> f64 {
+    match delta {
+        MouseScrollDelta::LineDelta(_, y) => f64::from(y),
+        MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
+    }
+}
+
+/// winit's event loop, or the sentence saying why there is no window.
+fn event_loop() -> AppResult<EventLoop<()>> {
+    EventLoop::new().map_err(|e| {
+        AppError::new(format!(
+            "cannot open a window (no display?): {}",
+            smoke::window_error(&e)
+        ))
+    })
+}
+
+/// Whether egui input translated on `held` (the window's egui-winit state's context) would
+/// miss the app's `current` context (`App::egui_context`): one is a different context (egui
+/// compares contexts by identity), or only one exists.
+pub fn egui_input_stale(held: Option<&egui::Context>, current: Option<&egui::Context>) -> bool {
+    held != current
 }
 
 /// Translates winit's events into the app's.
@@ -200,25 +217,25 @@ impl Shell {
         self.app.on(AppEvent::touch(action, &[c]));
     }
 
-    /// With `REGATTA_SCREENSHOT`: surface textures cannot be read back, so the app draws the
-    /// same frame (no time passes) once more into an offscreen window of the same
-    /// configuration, and that is written.
-    fn screenshot(&mut self) -> Result<(), String> {
-        let Some(path) = smoke::screenshot_path() else {
-            return Ok(());
-        };
-        self.app.on(AppEvent::WindowDestroyed);
-        self.app.on(AppEvent::WindowCreated {
-            surface: None,
-            size: self.size,
+    /// The panels' input translator (egui-winit) on the app's egui context now: the app makes
+    /// a new context with each device (a lost GPU rebuilt on OpenGL ES), and a translator kept
+    /// on the old one would read and write a context nothing draws with.
+    fn follow_egui_context(&mut self, window: &Window) {
+        let current = self.app.egui_context();
+        let held = self.egui.as_ref().map(egui_winit::State::egui_ctx);
+        if !egui_input_stale(held, current.as_ref()) {
+            return;
+        }
+        self.egui = current.map(|ctx| {
+            egui_winit::State::new(
+                ctx,
+                egui::ViewportId::ROOT,
+                window,
+                Some(window.scale_factor() as f32),
+                None,
+                None,
+            )
         });
-        self.app.frame(0.0);
-        let format = self
-            .app
-            .window_config()
-            .map_or(render::OFFSCREEN_FORMAT, |c| c.format);
-        let img = self.app.screenshot().ok_or("no frame to save")??;
-        smoke::write_screenshot(img, format, &path)
     }
 
     fn redraw(&mut self, el: &ActiveEventLoop) {
@@ -230,6 +247,8 @@ impl Shell {
                 .on(AppEvent::PanelInput(e.take_egui_input(&window)));
         }
         self.app.frame(self.ticker.tick());
+        // A lost device was rebuilt in that frame with a new egui context.
+        self.follow_egui_context(&window);
         if let Some(e) = self.app.take_failure() {
             return self.fail(el, e);
         }
@@ -239,7 +258,7 @@ impl Shell {
         window.set_title(&self.app.title());
         if self.exit_after.frame_done() {
             // The smoke test's exit: save what the window showed, if asked.
-            if let Err(e) = self.screenshot() {
+            if let Err(e) = smoke::save_screenshot(&mut self.app, self.size) {
                 return self.fail(el, e);
             }
             el.exit();
@@ -277,20 +296,13 @@ impl ApplicationHandler for Shell {
             })),
             size: self.size,
         });
-        let Some(ctx) = self.app.egui_context() else {
+        if self.app.egui_context().is_none() {
             return self.fail(el, "cannot draw into the window: no GPU device".into());
-        };
+        }
         if let Some(gpu) = self.app.describe_gpu() {
             log::info!("window on {gpu}");
         }
-        self.egui = Some(egui_winit::State::new(
-            ctx,
-            egui::ViewportId::ROOT,
-            &window,
-            Some(window.scale_factor() as f32),
-            None,
-            None,
-        ));
+        self.follow_egui_context(&window);
         self.ticker.stop();
     }
 
@@ -336,10 +348,7 @@ impl ApplicationHandler for Shell {
                 }
             }
             WindowEvent::MouseWheel { delta, .. } => {
-                let steps = match delta {
-                    MouseScrollDelta::LineDelta(_, y) => f64::from(y),
-                    MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
-                };
+                let steps = wheel_steps(delta);
                 let px = self.cursor.as_vec2().to_array();
                 self.app.on(AppEvent::Wheel { steps, px });
             }

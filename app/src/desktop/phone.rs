@@ -9,8 +9,8 @@ use std::sync::Arc;
 
 use glam::DVec2;
 use winit::application::ApplicationHandler;
-use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::event::{ElementState, MouseButton, WindowEvent};
+use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::ModifiersState;
 use winit::window::{Window, WindowId};
 
@@ -18,10 +18,10 @@ use super::RunArgs;
 use crate::core::app::{App, AppEvent};
 use crate::error::{AppError, AppResult};
 use crate::hud::touch::TouchAction;
+use crate::setup::RaceSetup;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::SimArCore;
 use crate::wall_clock::Ticker;
-use crate::world::RaceWorld;
 
 /// The tallest window the host gives the phone, pixels (an 800-pixel-high screen keeps its
 /// title bar).
@@ -44,9 +44,7 @@ pub fn run(a: RunArgs) -> AppResult {
             (backend, Cues::Scripted(control))
         }
     };
-    let race = crate::setup::inputs::load_race(&[])?;
-    let sea = crate::setup::inputs::load_sea(None)?;
-    let mut app = App::phone(RaceWorld::new(race, sea), backend);
+    let mut app = App::phone(RaceSetup::load_world(&[], None)?, backend);
     app.data_dir = std::env::current_dir().ok();
     // The Races panel lists $REGATTA_RACES_DIR, else ./races.
     app.set_races_dir(crate::core::app::host_races_dir(app.data_dir.as_deref()));
@@ -57,12 +55,7 @@ pub fn run(a: RunArgs) -> AppResult {
         [w, h]
     };
     app.on(AppEvent::Density(a.device.pixels_per_point(size)));
-    let event_loop = EventLoop::new().map_err(|e| {
-        AppError::new(format!(
-            "cannot open a window (no display?): {}",
-            super::smoke::window_error(&e)
-        ))
-    })?;
+    let event_loop = super::event_loop()?;
     let mut shell = Shell {
         app,
         cues,
@@ -125,28 +118,6 @@ impl Shell {
         self.touch(TouchAction::Move, &end);
         self.touch(TouchAction::PointerUp(1), &end);
         self.touch(TouchAction::Up(0), &end[..1]);
-    }
-
-    fn screenshot(&mut self) -> Result<(), String> {
-        let Some(path) = super::smoke::screenshot_path() else {
-            return Ok(());
-        };
-        // Surface textures cannot be read back: the same app draws once into an offscreen
-        // window of the same configuration.
-        self.app.on(AppEvent::WindowDestroyed);
-        let size = self.app.view_size();
-        self.app.on(AppEvent::WindowCreated {
-            surface: None,
-            size: self.size,
-        });
-        self.app.frame(0.0);
-        let format = self
-            .app
-            .window_config()
-            .map_or(render::OFFSCREEN_FORMAT, |c| c.format);
-        let img = self.app.screenshot().ok_or("no frame to save")??;
-        log::debug!("screenshot of a {size:?} window");
-        super::smoke::write_screenshot(img, format, &path)
     }
 }
 
@@ -233,18 +204,14 @@ impl ApplicationHandler for Shell {
                 }
             }
             WindowEvent::MouseWheel { delta, .. } if self.modifiers.control_key() => {
-                let steps = match delta {
-                    MouseScrollDelta::LineDelta(_, y) => f64::from(y),
-                    MouseScrollDelta::PixelDelta(p) => p.y / 40.0,
-                };
-                self.wheel_pinch(steps);
+                self.wheel_pinch(super::wheel_steps(delta));
             }
             WindowEvent::RedrawRequested => {
                 let dt = self.ticker.tick();
                 self.cues.before_frame(&mut self.app, dt, true);
                 self.app.frame(dt);
                 if self.exit_after.frame_done() {
-                    if let Err(e) = self.screenshot() {
+                    if let Err(e) = super::smoke::save_screenshot(&mut self.app, self.size) {
                         self.error = Some(AppError::new(e));
                     }
                     el.exit();

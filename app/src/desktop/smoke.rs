@@ -73,13 +73,35 @@ impl ExitAfter {
 }
 
 /// `REGATTA_SCREENSHOT`, when set.
-pub fn screenshot_path() -> Option<PathBuf> {
+fn screenshot_path() -> Option<PathBuf> {
     std::env::var_os("REGATTA_SCREENSHOT").map(PathBuf::from)
+}
+
+/// With `REGATTA_SCREENSHOT`: surface textures cannot be read back, so `app` draws the same
+/// frame (no time passes) once more into an offscreen window of `size` and the current
+/// window's configuration, and that is written. Both windows (`regatta`, `run --phone`) save
+/// theirs here.
+pub fn save_screenshot(app: &mut crate::core::app::App, size: [u32; 2]) -> Result<(), String> {
+    use crate::core::app::AppEvent;
+    let Some(path) = screenshot_path() else {
+        return Ok(());
+    };
+    app.on(AppEvent::WindowDestroyed);
+    app.on(AppEvent::WindowCreated {
+        surface: None,
+        size,
+    });
+    app.frame(0.0);
+    let format = app
+        .window_config()
+        .map_or(render::OFFSCREEN_FORMAT, |c| c.format);
+    let img = app.screenshot().ok_or("no frame to save")??;
+    write_screenshot(img, format, &path)
 }
 
 /// Writes `img`, read back from a texture of the surface's `format` (BGRA swapped to RGBA), as
 /// the PNG `path`, whole or not at all. Errors are one sentence naming the file.
-pub fn write_screenshot(
+fn write_screenshot(
     mut img: image::RgbaImage,
     format: wgpu::TextureFormat,
     path: &std::path::Path,

@@ -18,9 +18,9 @@ use glam::DVec2;
 use crate::core::app::{App, AppEvent, PhoneStatus};
 use crate::core::feed::CameraFeed;
 use crate::hud::touch::TouchAction;
+use crate::setup::RaceSetup;
 use crate::sim_phone::Cues;
 use crate::sim_phone::backend::{Availability, SimArCore, SimControl};
-use crate::world::RaceWorld;
 use script::{Line, Step};
 
 /// Display frames per simulated second. Low, so lavapipe runs a minute of session in seconds;
@@ -81,9 +81,8 @@ impl PhoneSim {
         ppp: f32,
         data_dir: Option<PathBuf>,
     ) -> Self {
-        let race = crate::setup::inputs::load_race(&[]).expect("the embedded race loads");
-        let sea = crate::setup::inputs::load_sea(None).expect("the embedded sea loads");
-        let mut app = App::phone(RaceWorld::new(race, sea), backend);
+        let world = RaceSetup::load_world(&[], None).expect("the embedded race and sea load");
+        let mut app = App::phone(world, backend);
         app.data_dir = data_dir;
         app.on(AppEvent::Density(ppp));
         let intents = match &cues {

@@ -6,6 +6,7 @@
 //! (a tier's renderer set no water look, the clip's and the window's options were written
 //! out again).
 
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use effects::EffectSet;
@@ -96,6 +97,16 @@ impl RaceSetup {
     /// The race world of `race` on `sea` (cut to the waves the renderer draws).
     pub fn world(race: race::Race, sea: ocean::WaveSet) -> RaceWorld {
         RaceWorld::new(race, super::inputs::drawable_sea(sea))
+    }
+
+    /// The race world of the race files `race` (the embedded sample race without any) on the
+    /// sea file `sea` (the embedded default sea without it): [`RaceSetup::world`] of what
+    /// [`load_race`](super::inputs::load_race) and [`load_sea`](super::inputs::load_sea)
+    /// read. The desktop window, the phone's shells and `regatta render`'s clip start here.
+    pub fn load_world(race: &[PathBuf], sea: Option<&PathBuf>) -> AppResult<RaceWorld> {
+        let race = super::inputs::load_race(race)?;
+        let sea = super::inputs::load_sea(sea)?;
+        Ok(RaceSetup::world(race, sea))
     }
 
     /// The renderer's options: the tier's, else [`RaceSetup::options`].
@@ -234,5 +245,26 @@ impl RaceSetup {
         let drawn = (&world.race, debrief.as_ref());
         crate::scene_overlay::render_headless(gpu, renderer, drawn, scene, size, &self.overlays)
             .map_err(|e| AppError::new(format!("cannot render: {e}")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shells' one world: the embedded race and the embedded sea as `assets/` hold them
+    /// (the default sea's waves, counted in its own JSON, all under the drawn cap, so none cut),
+    /// and a race file that is not there refused with its name, not a panic.
+    #[test]
+    fn load_world_reads_the_embedded_inputs_or_names_the_missing_file() {
+        let world = RaceSetup::load_world(&[], None).unwrap();
+        let json: serde_json::Value = serde_json::from_str(ocean::DEFAULT_SEA_JSON).unwrap();
+        let waves = json["waves"].as_array().unwrap().len();
+        assert!(waves <= super::super::inputs::MAX_DRAWN_WAVES);
+        assert_eq!(world.given_sea.waves.len(), waves);
+        assert_eq!(world.race.boats.len(), race::Race::sample().boats.len());
+        let missing = PathBuf::from("no-such-race.gpx");
+        let e = RaceSetup::load_world(std::slice::from_ref(&missing), None).unwrap_err();
+        assert!(e.to_string().contains("no-such-race.gpx"), "{e}");
     }
 }

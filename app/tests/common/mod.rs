@@ -167,3 +167,18 @@ pub fn differing_pixels(a: &image::RgbImage, b: &image::RgbImage, levels: f64) -
         })
         .collect()
 }
+
+/// The timeline's scrub track as egui laid it out in `ctx`'s last pass (points): the widest
+/// drag-sensing widget of the track's height, 26 points.
+pub fn scrub_track(ctx: &egui::Context) -> Option<egui::Rect> {
+    ctx.viewport(|v| {
+        v.prev_pass
+            .widgets
+            .layers()
+            .flat_map(|(_, w)| w.iter())
+            .filter(|w| w.sense == egui::Sense::click_and_drag())
+            .filter(|w| (w.rect.height() - 26.0).abs() < 0.5)
+            .map(|w| w.rect)
+            .max_by(|a, b| a.width().total_cmp(&b.width()))
+    })
+}

@@ -12,9 +12,9 @@ use std::path::Path;
 
 use super::RenderArgs;
 use crate::error::{AppError, AppResult};
+use crate::setup::RaceSetup;
 use crate::setup::clip::{ClipLook, ClipTimes, DEFAULT_FPS, write_gif};
-use crate::setup::inputs::{drawable_sea, load_race, load_sea};
-use crate::world::{FAR_M, RaceWorld};
+use crate::world::FAR_M;
 
 /// The file kind a clip's `--out` names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,7 +67,7 @@ pub fn run(a: &RenderArgs, format: ClipFormat) -> AppResult {
         .as_deref()
         .map(|c| super::parse_camera(c, FAR_M))
         .transpose()?;
-    let world = RaceWorld::new(load_race(&a.race)?, drawable_sea(load_sea(a.sea.as_ref())?));
+    let world = RaceSetup::load_world(&a.race, a.sea.as_ref())?;
     let times = ClipTimes::new(
         from,
         to,

@@ -8,7 +8,7 @@ use clap::Args;
 use glam::{DVec2, DVec3};
 use render::Camera;
 
-use crate::setup::inputs::{drawable_sea, load_race, load_sea, parse_size_in};
+use crate::setup::inputs::{drawable_sea, load_sea, parse_size_in};
 use crate::setup::output::{ImageOut, write_text};
 use crate::setup::{Profile, RaceSetup};
 
@@ -257,7 +257,7 @@ pub fn run(a: RenderArgs) -> AppResult {
         .map(|c| parse_camera(c, FAR_M))
         .transpose()?;
     let setup = race_setup(&a, tier, effects, overlays)?;
-    let world = RaceSetup::world(load_race(&a.race)?, load_sea(a.sea.as_ref())?);
+    let world = RaceSetup::load_world(&a.race, a.sea.as_ref())?;
     let t = a.t.unwrap_or_else(|| world.middle_time());
     let scene = world.scene_at(t, camera);
     let gpu = render::Gpu::headless(wgpu::Backends::all())

@@ -11,7 +11,6 @@ use crate::cli::render::{RenderArgs, note_unmet_error, print_report};
 use crate::core::feed::{FeedView, TableFrame};
 use crate::error::{AppError, AppResult};
 use crate::setup::RaceSetup;
-use crate::setup::inputs::{load_race, load_sea};
 use crate::setup::output::ImageOut;
 
 pub fn run(
@@ -38,7 +37,7 @@ pub fn run(
             feed.len() - 1
         )));
     }
-    let world = RaceSetup::world(load_race(&a.race)?, load_sea(a.sea.as_ref())?);
+    let world = RaceSetup::load_world(&a.race, a.sea.as_ref())?;
     let t = a.t.unwrap_or_else(|| world.middle_time());
     let gpu = render::Gpu::headless(wgpu::Backends::all())
         .map_err(|e| AppError::new(format!("cannot render: {e}")))?;

@@ -5,7 +5,7 @@
 //! threshold ([`super::TAP_MAX_PX`], [`super::TAP_MAX_S`]) and a longer or farther press drags
 //! the orbit, as on the phone; the wheel (zoom); the timeline's keys; race files dropped on the
 //! window or chosen in the Races panel's dialog; the performance panel; the "Share clip" GIF
-//! (`desktop_clip.rs`). The governor starts at ultra (or the pinned `--tier`).
+//! into `clips/` (`clip.rs`, [`super::HandOff::File`]). The governor starts at ultra (or the pinned `--tier`).
 //!
 //! It never knows the window system: the shell (`crate::desktop`) turns winit's events into
 //! [`AppEvent`](super::AppEvent)s and presents what [`App::frame`] drew.
@@ -15,7 +15,6 @@ use std::path::PathBuf;
 use ui::{FpsMeter, PerfStats, RegattaUi};
 
 use super::App;
-use super::desktop_clip::{ClipRequest, ShareClip};
 use crate::core::feed::FeedView;
 use crate::hud::SceneChoice;
 use crate::pool_play::PoolPlay;
@@ -60,8 +59,6 @@ pub(super) struct Desktop {
     fps: FpsMeter,
     /// The performance panel's numbers of the last frame.
     pub(super) perf: PerfStats,
-    /// The "Share clip" button and its worker.
-    pub(super) clip: ShareClip,
     /// Files dropped since the last frame.
     dropped: Vec<PathBuf>,
     /// The panels' input from the window system since the last frame.
@@ -75,13 +72,19 @@ pub(super) struct Desktop {
     pub(super) failure: Option<String>,
 }
 
-impl App {
-    /// The desktop: `world` under the orbit view or on `start.feed`'s table.
-    pub fn desktop(world: RaceWorld, start: DesktopStart) -> App {
+impl super::ProfileStart {
+    /// The desktop's start: `start`'s scene, feed, water and tier (the governor from ultra
+    /// without one), the window's panels with the performance panel, the Races panel's file
+    /// dialog; panels opened and boats selected (`selected`) from the environment for
+    /// screenshots and the smoke test.
+    pub(super) fn desktop(
+        world: &RaceWorld,
+        start: DesktopStart,
+        selected: &mut Vec<usize>,
+    ) -> super::ProfileStart {
         let fx = start.feed.is_some();
-        let mut app = App::phone(world, Box::new(NoAr));
         let mut panels = RegattaUi::new(
-            crate::hud::initial_clock(&app.world.race),
+            crate::hud::initial_clock(&world.race),
             crate::panels::effect_toggles(fx),
         );
         panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
@@ -90,30 +93,37 @@ impl App {
         panels.settings.water_type = start.water.water_type.name().to_string();
         panels.settings.water_depth_m = start.water.depth_m;
         panels.settings.turbidity = start.water.turbidity_ntu;
-        // Screenshots and the smoke test open panels and select boats from the environment.
-        let race = &app.world.race;
-        crate::panels::panels_from_env(&mut panels, &mut app.overlays.settings.selected, race);
-        app.panels = panels;
-        app.tiers = crate::tier_control::TierControl::new(
-            start.tier.unwrap_or(quality::Tier::Ultra),
-            start.tier.is_some(),
-        );
-        app.scene = start.scene;
-        app.pool = PoolPlay::new(start.pool_sea);
-        app.races.dialog = true;
-        app.desktop = Some(Desktop {
-            feed: start.feed,
-            sea_water: start.water,
-            fps: FpsMeter::new(30),
-            perf: PerfStats::default(),
-            clip: ShareClip::default(),
-            dropped: Vec::new(),
-            panel_input: None,
-            platform_output: None,
-            quit: false,
-            failure: None,
-        });
-        app
+        crate::panels::panels_from_env(&mut panels, selected, &world.race);
+        super::ProfileStart {
+            backend: Box::new(NoAr),
+            panels,
+            tiers: crate::tier_control::TierControl::new(
+                start.tier.unwrap_or(quality::Tier::Ultra),
+                start.tier.is_some(),
+            ),
+            scene: start.scene,
+            pool: PoolPlay::new(start.pool_sea),
+            races: super::races::RaceList::with_dialog(),
+            clip_request: super::ClipRequest::DESKTOP,
+            desktop: Some(Desktop {
+                feed: start.feed,
+                sea_water: start.water,
+                fps: FpsMeter::new(30),
+                perf: PerfStats::default(),
+                dropped: Vec::new(),
+                panel_input: None,
+                platform_output: None,
+                quit: false,
+                failure: None,
+            }),
+        }
+    }
+}
+
+impl App {
+    /// The desktop: `world` under the orbit view or on `start.feed`'s table.
+    pub fn desktop(world: RaceWorld, start: DesktopStart) -> App {
+        App::new(world, super::Start::Desktop(Box::new(start)))
     }
 
     /// Which profile the app runs: `Profile::Desktop` or `Profile::Phone`.
@@ -161,11 +171,6 @@ impl App {
                 }
             ),
         }
-    }
-
-    /// The desktop's "Share clip" worker (tests wait for it).
-    pub fn desktop_clip(&mut self) -> Option<&mut ShareClip> {
-        self.desktop.as_mut().map(|d| &mut d.clip)
     }
 
     /// The camera feed behind the race, on the desktop with `--replay`.
@@ -291,22 +296,6 @@ impl App {
             d.perf = crate::hud::perf_stats(report, &d.fps);
         }
     }
-
-    /// The "Share clip" button was pressed: the last [`ClipRequest::DESKTOP`] seconds before
-    /// the playhead as a GIF into `clips/` of the folder the app runs in.
-    pub(super) fn share_desktop_clip(&mut self) {
-        let Some(d) = self.desktop.as_mut() else {
-            return;
-        };
-        let folder = std::env::current_dir().unwrap_or_default();
-        let t = self.panels.clock.time();
-        let race = &self.world.race;
-        let debrief = self.overlays.debrief(&mut self.panels.debrief, race);
-        let world = (&self.world, debrief);
-        if let Err(e) = d.clip.start(world, t, &folder, ClipRequest::DESKTOP) {
-            d.clip.set_failed(e);
-        }
-    }
 }
 
 /// The desktop's AR backend: there is no AR session (the feed, where there is one, is played
@@ -328,5 +317,62 @@ impl crate::core::ar::ArBackend for NoAr {
         &mut self,
     ) -> Result<Option<(ar::CameraFrame, crate::core::ar::DisplayCamera)>, ar::ArError> {
         Ok(None)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::setup::RaceSetup;
+
+    fn world() -> RaceWorld {
+        RaceSetup::load_world(&[], None).unwrap()
+    }
+
+    /// One constructor, two starts: each profile starts as docs/quality.md and docs/panels.md
+    /// say, with nothing of the other's (the desktop's start once took the phone's and wrote
+    /// over it). The phone: the governor free from high, the race scene, no perf panel or
+    /// leaderboard, no Races panel until a folder is set. The desktop: the
+    /// `--tier` pinned, its `--scene`, the perf panel and leaderboard, the file dialog.
+    #[test]
+    fn each_profile_starts_with_its_own_parts_only() {
+        let phone = App::phone(world(), Box::new(NoAr));
+        assert_eq!(phone.profile(), Profile::Phone);
+        assert_eq!(phone.tiers.tier(), quality::Tier::High);
+        assert_eq!(phone.tiers.pinned(), None);
+        assert_eq!(phone.scene, SceneChoice::Race);
+        assert!(!phone.panels.show_perf && !phone.panels.show_leaderboard);
+        assert!(phone.races.panel("sample").is_none());
+        assert_eq!(phone.clip_request, super::super::ClipRequest::PHONE);
+
+        let start = DesktopStart {
+            feed: None,
+            water: render::water_look::WaterLook::default(),
+            tier: Some(quality::Tier::Low),
+            scene: SceneChoice::Pool,
+            pool_sea: None,
+        };
+        let desktop = App::desktop(world(), start);
+        assert_eq!(desktop.profile(), Profile::Desktop);
+        assert_eq!(desktop.tiers.tier(), quality::Tier::Low);
+        assert_eq!(desktop.tiers.pinned(), Some(quality::Tier::Low));
+        assert_eq!(desktop.scene, SceneChoice::Pool);
+        assert!(desktop.panels.show_perf && desktop.panels.show_leaderboard);
+        assert!(desktop.races.panel("sample").is_some_and(|p| p.dialog));
+        assert_eq!(desktop.clip_request, super::super::ClipRequest::DESKTOP);
+
+        // Without `--tier` the desktop's governor is free from ultra.
+        let free = App::desktop(
+            world(),
+            DesktopStart {
+                feed: None,
+                water: render::water_look::WaterLook::default(),
+                tier: None,
+                scene: SceneChoice::Race,
+                pool_sea: None,
+            },
+        );
+        assert_eq!(free.tiers.tier(), quality::Tier::Ultra);
+        assert_eq!(free.tiers.pinned(), None);
     }
 }

@@ -20,7 +20,7 @@ impl App {
         let raw = self.take_panel_input(size);
         let recording = self.ar.recorder.is_some();
         // "Share clip" in the race scene; off while a clip is drawn.
-        let share = (self.scene == SceneChoice::Race).then(|| !self.clip_share.busy());
+        let share = (self.scene == SceneChoice::Race).then(|| !self.clip.busy());
         let mut share_pressed = false;
         let mut choice = self.scene;
         let mut record = false;
@@ -29,7 +29,7 @@ impl App {
         let overlays = &mut self.overlays;
         let races = self.races.panel(&world.race.name);
         let perf = self.desktop.as_ref().map(|d| &d.perf);
-        let desktop_clip = self.desktop.as_ref().map(|d| &d.clip);
+        let desktop_clip = self.desktop.as_ref().map(|_| &self.clip);
         let mut response = None;
         let mut scene_rect = None;
         let mut bar = None;
@@ -102,10 +102,7 @@ impl App {
             self.record_button();
         }
         if share_pressed {
-            match desktop {
-                true => self.share_desktop_clip(),
-                false => self.share_clip(),
-            }
+            self.share_clip();
         }
         self.races_panel_opened();
         self.races_request(open);

@@ -20,9 +20,8 @@
 //! surface is dropped before the event returns. In the background nothing is drawn and time
 //! stops. A lost device is rebuilt on OpenGL ES on the next frame.
 
-mod clip_share;
+mod clip;
 pub mod desktop;
-pub mod desktop_clip;
 mod draw;
 mod hud;
 mod input;
@@ -45,7 +44,10 @@ use crate::hud::touch::{Touch, TouchInput};
 use crate::pool_play::PoolPlay;
 use crate::world::RaceWorld;
 
-pub use clip_share::{ClipShare, PhoneClip, ShareState, hand_off};
+pub use clip::{
+    CHOOSER_TITLE, CLIP_FOLDER, ClipRequest, ClipState, ClipWorker, GIF_MIME, HandOff, NO_SPAN,
+    media_store_hand_off,
+};
 pub use desktop::{DesktopStart, Key};
 pub use draw::Graphics;
 pub use input::{TAP_MAX_PX, TAP_MAX_S};
@@ -183,17 +185,40 @@ pub struct App {
     /// What the last shared file did (opened, boats added, or why not), shown on the banner
     /// until the app time given (`shared.rs`).
     notice: Option<(String, Tone, f64)>,
-    /// "Share clip": the clip's worker and what it says (`clip_share.rs`).
-    pub clip_share: ClipShare,
+    /// "Share clip": the clip's worker and what it says (`clip.rs`).
+    pub clip: ClipWorker,
     /// `Build.VERSION.SDK_INT` on Android (the adapter sets it); `None` on the host.
     pub android_sdk: Option<u32>,
-    /// What the button's clip covers ([`PhoneClip::BUTTON`]; tests draw smaller ones).
-    pub clip_request: PhoneClip,
+    /// What the button's clip covers ([`ClipRequest::PHONE`], [`ClipRequest::DESKTOP`]; tests
+    /// draw smaller ones).
+    pub clip_request: ClipRequest,
 }
 
-impl App {
-    /// The phone: `world` on the table through `backend`, the AR session.
-    pub fn phone(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
+/// How the app starts: what differs by profile, given once (the rest starts the same).
+pub enum Start {
+    /// The phone: the AR session's backend (ARCore, or the simulated ARCore on the host).
+    Phone(Box<dyn ArBackend>),
+    /// The desktop: the command line's choices (boxed: a feed is large beside a backend).
+    Desktop(Box<DesktopStart>),
+}
+
+/// The fields a profile starts with its own values; [`App::new`] builds each of them once,
+/// from its profile only.
+struct ProfileStart {
+    backend: Box<dyn ArBackend>,
+    desktop: Option<desktop::Desktop>,
+    panels: RegattaUi,
+    tiers: crate::tier_control::TierControl,
+    scene: SceneChoice,
+    pool: PoolPlay,
+    races: races::RaceList,
+    clip_request: ClipRequest,
+}
+
+impl ProfileStart {
+    /// The phone's start: the race scene on the table, the governor from
+    /// [`PHONE_START_TIER`], the small screen's panels, the Races panel's folder (no dialog).
+    fn phone(world: &RaceWorld, backend: Box<dyn ArBackend>) -> ProfileStart {
         let mut panels = RegattaUi::new(crate::hud::initial_clock(&world.race), Vec::new());
         panels.settings.overlays = crate::scene_overlay::panel_toggles(Default::default());
         // The phone's screen is small: the timeline and the bar; the leaderboard behind its
@@ -202,23 +227,46 @@ impl App {
         panels.show_leaderboard = false;
         // The Scene panel's water: the table's real sea (type, depth, turbidity).
         crate::panels::set_water_ranges(&mut panels.settings, true);
+        ProfileStart {
+            backend,
+            desktop: None,
+            panels,
+            tiers: tiers::phone_tiers(),
+            scene: SceneChoice::Race,
+            pool: PoolPlay::new(None),
+            races: Default::default(),
+            clip_request: ClipRequest::PHONE,
+        }
+    }
+}
+
+impl App {
+    /// The app of `start`'s profile showing `world`.
+    pub fn new(world: RaceWorld, start: Start) -> Self {
+        let mut overlays = crate::scene_overlay::live::LiveOverlays::default();
+        let profile = match start {
+            Start::Phone(backend) => ProfileStart::phone(&world, backend),
+            Start::Desktop(start) => {
+                ProfileStart::desktop(&world, *start, &mut overlays.settings.selected)
+            }
+        };
         App {
             events: ui::timeline_events(&world.race),
-            panels,
+            panels: profile.panels,
             world,
-            desktop: None,
+            desktop: profile.desktop,
             pool_t: 0.0,
             now: 0.0,
-            scene: SceneChoice::Race,
+            scene: profile.scene,
             orbit: crate::world::race_orbit(),
             pool_orbit: PoolPlay::orbit(),
-            pool: PoolPlay::new(None),
+            pool: profile.pool,
             course: None,
             pool_placement: None,
             resumed: false,
             back_from_background: false,
             ar: ArState::default(),
-            backend,
+            backend: profile.backend,
             touch: TouchInput::new(1.0),
             gesture: input::Gesture::default(),
             ui_free: egui::Rect::EVERYTHING,
@@ -229,15 +277,20 @@ impl App {
             maker: None,
             graphics: None,
             last_recording: None,
-            overlays: Default::default(),
+            overlays,
             table_room: table::TableRoom::FIRST,
-            races: Default::default(),
-            tiers: tiers::phone_tiers(),
+            races: profile.races,
+            tiers: profile.tiers,
             notice: None,
-            clip_share: ClipShare::default(),
+            clip: ClipWorker::default(),
             android_sdk: None,
-            clip_request: PhoneClip::BUTTON,
+            clip_request: profile.clip_request,
         }
+    }
+
+    /// The phone: `world` on the table through `backend`, the AR session.
+    pub fn phone(world: RaceWorld, backend: Box<dyn ArBackend>) -> Self {
+        App::new(world, Start::Phone(backend))
     }
 
     /// Whether frames are drawn: in the foreground with a window.
@@ -398,8 +451,8 @@ impl App {
     /// The banner's text and tone now.
     pub fn banner(&self) -> Option<(String, Tone)> {
         // A clip being drawn says how far it is.
-        if self.clip_share.busy()
-            && let Some(line) = self.clip_share.line()
+        if self.clip.busy()
+            && let Some(line) = self.clip.line()
         {
             return Some((line, Tone::Hint));
         }
@@ -472,9 +525,23 @@ impl App {
             .and_then(|g| g.window.config().cloned())
     }
 
-    /// The egui context of the panels (tests find widgets in its last pass).
+    /// The egui context of the panels (tests find widgets in its last pass). A new one comes
+    /// with each device (after a lost device, on OpenGL ES): what translates the platform's
+    /// input for egui (the desktop shell's egui-winit state) follows this one.
     pub fn egui_context(&self) -> Option<egui::Context> {
         self.graphics.as_ref().map(|g| g.egui.ctx.clone())
+    }
+
+    /// Loses the device as a driver reset or a hung GPU does: `wgpu::Device::destroy` fires
+    /// the device's lost callback, and the next frame rebuilds on OpenGL ES (tests of that
+    /// path; the app never calls it).
+    #[doc(hidden)]
+    pub fn lose_device(&self) {
+        if let Some(g) = self.graphics.as_ref() {
+            g.gpu.device.destroy();
+            // The lost callback runs once the queue is empty, at the next maintenance.
+            let _ = g.gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        }
     }
 
     /// The backend, for adapters that script it (the simulated ARCore).
@@ -500,45 +567,5 @@ impl App {
     /// Starts or stops recording (the bar's button).
     pub fn record_button(&mut self) {
         self.toggle_recording();
-    }
-
-    /// The "Share clip" button: the last [`App::clip_request`] seconds of race time from where
-    /// the phone looks now (the AR camera once the course is placed, else the fleet framed),
-    /// drawn into the app's files folder on a worker thread; [`App::poll_share`] hands it
-    /// to Android when written.
-    pub fn share_clip(&mut self) {
-        let t = self.race_time();
-        let camera = self
-            .course
-            .zip(self.ar.view())
-            .map(|(p, (view, _))| table::display_camera(&p, view));
-        let folder = self.data_dir.clone().unwrap_or_else(std::env::temp_dir);
-        let sdk = self.android_sdk.unwrap_or(u32::MAX);
-        let debrief = self
-            .overlays
-            .debrief(&mut self.panels.debrief, &self.world.race);
-        let clip = self.clip_request;
-        self.clip_share
-            .start((&self.world, debrief), camera, t, &folder, clip, sdk);
-        self.notice_share();
-    }
-
-    /// Each frame, from the adapter that holds the Java calls: a written clip goes into the
-    /// media store and to the share sheet; its outcome shows on the banner for a while.
-    pub fn poll_share(&mut self, jni: &dyn ar::arcore::ffi::ShareJni) {
-        self.clip_share.poll(jni);
-        self.notice_share();
-    }
-
-    /// A finished share's line onto the banner (a few seconds), and the share back to idle.
-    fn notice_share(&mut self) {
-        let tone = match self.clip_share.state() {
-            ShareState::Shared(_) => Tone::Hint,
-            ShareState::Failed(_) => Tone::Warning,
-            _ => return,
-        };
-        if let Some(line) = self.clip_share.line() {
-            self.notice = Some((line, tone, self.now + shared::NOTICE_S));
-        }
     }
 }

@@ -44,6 +44,14 @@ pub(super) struct RaceList {
 }
 
 impl RaceList {
+    /// The desktop's list: no folder until one is set, the platform's file dialog offered.
+    pub(super) fn with_dialog() -> RaceList {
+        RaceList {
+            dialog: true,
+            ..Default::default()
+        }
+    }
+
     /// The panel's contents, showing `current`; `None` without a folder or a dialog.
     pub(super) fn panel<'a>(&'a self, current: &'a str) -> Option<ui::RacesPanel<'a>> {
         if self.dir.is_none() && !self.dialog {
