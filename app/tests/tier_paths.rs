@@ -58,28 +58,6 @@ fn close(a: Settings, b: Settings) -> bool {
 /// The tiers changed to, in order: down from the phone's start, across, and up.
 const CHANGES: [Tier; 3] = [Tier::Low, Tier::Ultra, Tier::Medium];
 
-/// The phone's AR backend where there is no ARCore: the session never runs, so the phone
-/// draws the race in 3D under its orbit view, as the desktop does without a feed.
-struct NoArCore;
-
-impl regatta::core::ar::ArBackend for NoArCore {
-    fn is_loaded(&self) -> bool {
-        false
-    }
-    fn carry_out(&mut self, _: ar::arcore::Command) -> Option<ar::arcore::Event> {
-        None
-    }
-    fn set_display_geometry(&mut self, _: i32, _: u32, _: u32) {}
-    fn update(&mut self) -> Option<ar::arcore::Event> {
-        None
-    }
-    fn next_frame(
-        &mut self,
-    ) -> Result<Option<(ar::CameraFrame, regatta::core::ar::DisplayCamera)>, ar::ArError> {
-        Ok(None)
-    }
-}
-
 /// The sample race on the default sea, as both shells load it.
 fn world() -> regatta::world::RaceWorld {
     RaceSetup::world(race::Race::sample(), ocean::WaveSet::default_sea())
@@ -112,7 +90,7 @@ fn desktop(size: [u32; 2], tier: Tier) -> App {
 
 /// The phone profile without ARCore, `tier` pinned.
 fn phone(size: [u32; 2], tier: Tier) -> App {
-    let mut app = App::phone(world(), Box::new(NoArCore));
+    let mut app = App::phone(world(), Box::new(regatta::core::ar::NoAr));
     app.tiers = regatta::tier_control::TierControl::new(tier, true);
     shown(app, size)
 }

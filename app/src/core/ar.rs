@@ -67,6 +67,27 @@ pub trait ArBackend {
     }
 }
 
+/// No AR session: nothing loads and no frame comes. The desktop's backend (the feed, where
+/// there is one, is played by the app itself), and a phone without ARCore, which draws the
+/// race in 3D under its orbit view.
+pub struct NoAr;
+
+impl ArBackend for NoAr {
+    fn is_loaded(&self) -> bool {
+        false
+    }
+    fn carry_out(&mut self, _: ar::arcore::Command) -> Option<ar::arcore::Event> {
+        None
+    }
+    fn set_display_geometry(&mut self, _: i32, _: u32, _: u32) {}
+    fn update(&mut self) -> Option<ar::arcore::Event> {
+        None
+    }
+    fn next_frame(&mut self) -> Result<Option<(ar::CameraFrame, DisplayCamera)>, ar::ArError> {
+        Ok(None)
+    }
+}
+
 /// The hit test of `ar::arcore::hit`: the screen point through the display transform to an
 /// image pixel, its ray against the frame's upward planes.
 pub fn screen_hit(frame: &CameraFrame, screen: DVec2) -> Option<DVec3> {

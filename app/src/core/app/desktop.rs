@@ -95,7 +95,7 @@ impl super::ProfileStart {
         panels.settings.turbidity = start.water.turbidity_ntu;
         crate::panels::panels_from_env(&mut panels, selected, &world.race);
         super::ProfileStart {
-            backend: Box::new(NoAr),
+            backend: Box::new(crate::core::ar::NoAr),
             panels,
             tiers: crate::tier_control::TierControl::new(
                 start.tier.unwrap_or(quality::Tier::Ultra),
@@ -298,28 +298,6 @@ impl App {
     }
 }
 
-/// The desktop's AR backend: there is no AR session (the feed, where there is one, is played
-/// by the app itself); nothing loads and no frame comes.
-struct NoAr;
-
-impl crate::core::ar::ArBackend for NoAr {
-    fn is_loaded(&self) -> bool {
-        false
-    }
-    fn carry_out(&mut self, _: ar::arcore::Command) -> Option<ar::arcore::Event> {
-        None
-    }
-    fn set_display_geometry(&mut self, _: i32, _: u32, _: u32) {}
-    fn update(&mut self) -> Option<ar::arcore::Event> {
-        None
-    }
-    fn next_frame(
-        &mut self,
-    ) -> Result<Option<(ar::CameraFrame, crate::core::ar::DisplayCamera)>, ar::ArError> {
-        Ok(None)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -336,7 +314,7 @@ mod tests {
     /// `--tier` pinned, its `--scene`, the perf panel and leaderboard, the file dialog.
     #[test]
     fn each_profile_starts_with_its_own_parts_only() {
-        let phone = App::phone(world(), Box::new(NoAr));
+        let phone = App::phone(world(), Box::new(crate::core::ar::NoAr));
         assert_eq!(phone.profile(), Profile::Phone);
         assert_eq!(phone.tiers.tier(), quality::Tier::High);
         assert_eq!(phone.tiers.pinned(), None);
