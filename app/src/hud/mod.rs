@@ -8,6 +8,8 @@ pub mod banner;
 pub mod touch;
 
 use render::FrameReport;
+
+use crate::core::gfx::WriteProbe;
 use ui::{FpsMeter, PassStat, PerfStats, RaceClock, RegattaUi, TimelineEvent, UiFrame, UiResponse};
 
 /// The race clock the app starts with: paused at the start signal would show an empty sea, so
@@ -97,6 +99,15 @@ pub struct EguiPainter {
     renderer: egui_wgpu::Renderer,
     /// The format egui's views of the surface texture have.
     view_format: wgpu::TextureFormat,
+    /// Asks the device before egui's upload (egui-wgpu panics on a lost device's refusal).
+    probe: WriteProbe,
+}
+
+/// One egui pass: what egui asks of the platform, and whether it was painted (not on a
+/// lost device: the widgets ran, the picture was left as it was).
+pub struct EguiPass {
+    pub platform: egui::PlatformOutput,
+    pub painted: bool,
 }
 
 impl EguiPainter {
@@ -129,6 +140,7 @@ impl EguiPainter {
                 egui_wgpu::RendererOptions::default(),
             ),
             view_format,
+            probe: WriteProbe::new(device),
         }
     }
 
@@ -139,7 +151,10 @@ impl EguiPainter {
 
     /// Runs one egui pass over `raw` with `build` laying out the widgets, and paints the
     /// result over `texture` (`size` pixels; its format or [`Self::view_format`] among its view
-    /// formats). Returns what egui asks of the platform (cursor, clipboard, …).
+    /// formats). Returns what egui asks of the platform (cursor, clipboard, …), and whether it
+    /// painted: not on a lost device, where egui-wgpu 0.37's `Renderer::update_buffers` panics
+    /// ("Failed to create staging buffer", its `Queue::write_buffer_with` refused); the
+    /// widgets still ran (a click in this frame counts).
     pub fn paint(
         &mut self,
         device: &wgpu::Device,
@@ -148,7 +163,7 @@ impl EguiPainter {
         size: [u32; 2],
         raw: egui::RawInput,
         build: impl FnMut(&mut egui::Ui),
-    ) -> egui::PlatformOutput {
+    ) -> EguiPass {
         let view = &texture.create_view(&wgpu::TextureViewDescriptor {
             format: Some(self.view_format),
             ..Default::default()
@@ -166,6 +181,16 @@ impl EguiPainter {
             for d in image_delta {
                 self.renderer.update_texture(device, queue, *id, d);
             }
+        }
+        // Asked after the texture uploads (a lost device takes them as no-ops), right before
+        // the buffers': nothing between can find a loss (buffer creation reports only
+        // running out of memory).
+        if !self.probe.device_takes_writes(queue) {
+            delta.clear();
+            return EguiPass {
+                platform: out.platform_output,
+                painted: false,
+            };
         }
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("egui"),
@@ -195,7 +220,10 @@ impl EguiPainter {
             self.renderer.free_texture(id);
         }
         delta.clear();
-        out.platform_output
+        EguiPass {
+            platform: out.platform_output,
+            painted: true,
+        }
     }
 }
 
