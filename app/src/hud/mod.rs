@@ -471,4 +471,46 @@ mod tests {
         let d = (0..3).map(|c| fills[0][c].abs_diff(fills[1][c])).max();
         assert!(d <= Some(2), "{fills:?}");
     }
+
+    /// A device lost before its lost callback ran (destroyed here, not polled: wgpu runs the
+    /// callback only from a poll) refuses every write, and egui-wgpu 0.37's buffer upload
+    /// panicked on the refusal. The painter runs the widgets (a tap in that frame counts)
+    /// and paints nothing.
+    #[test]
+    fn on_a_device_lost_before_its_callback_the_widgets_run_and_nothing_is_painted() {
+        let Some(gpu) = render::gpu::test_gpu() else {
+            return;
+        };
+        let size = [64u32, 48];
+        let format = wgpu::TextureFormat::Rgba8UnormSrgb;
+        let texture = render::gpu::texture_2d_with_views(
+            &gpu.device,
+            "scene",
+            size,
+            format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            &[],
+        );
+        let mut painter = EguiPainter::for_format(&gpu.device, format);
+        let raw = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(64.0, 48.0),
+            )),
+            ..Default::default()
+        };
+        let mut ran = 0;
+        let pass = painter.paint(&gpu.device, &gpu.queue, &texture, size, raw.clone(), |ui| {
+            ran += 1;
+            ui.label("Boreas");
+        });
+        assert!(pass.painted, "not painted on a working device");
+        gpu.device.destroy();
+        let pass = painter.paint(&gpu.device, &gpu.queue, &texture, size, raw, |ui| {
+            ran += 1;
+            ui.label("Boreas");
+        });
+        assert!(!pass.painted, "painted on a lost device");
+        assert_eq!(ran, 2, "the widgets did not run on the lost device");
+    }
 }
