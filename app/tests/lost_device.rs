@@ -13,9 +13,11 @@
 //! Each test draws the race paused with a boat selected, loses the device without a poll,
 //! and draws on: no frame panics, the device is rebuilt on OpenGL ES (the banner's note says
 //! the GPU was lost), the race time and the selection are kept, and the rebuilt frame shows
-//! the same race: the labels are placed where they were (the same boats at the same time
-//! under the same camera), each with its team's colour bar in the picture, and the picture is
-//! the one before the loss, far closer to it than the race 30 s later is.
+//! the same race: the labels and hulls are placed where they were (the same boats at the
+//! same time under the same camera), as many labels show their team's colour bar (the race
+//! file's colour) as before the loss, and where the boats are the picture is the one before
+//! the loss (lavapipe's Vulkan then, llvmpipe's OpenGL ES now: a mean difference of 0.00 of
+//! 255 measured), within a quarter of what the race 30 s later differs by (61 of 255).
 
 use regatta::core::app::{App, AppEvent, DesktopStart};
 use regatta::hud::SceneChoice;
@@ -157,10 +159,8 @@ fn a_device_lost_before_its_callback_draws_on_and_comes_back(mut app: App) {
     let labels = label_rects(&app);
     let hulls = app.overlays.hulls().to_vec();
     assert!(!labels.is_empty(), "no label placed before the loss");
-    assert!(
-        team_bars_seen(&app, &before) > 0,
-        "no team bar before the loss"
-    );
+    let bars_before = team_bars_seen(&app, &before);
+    assert!(bars_before > 0, "no team bar before the loss");
     assert_eq!(app.graphics_note(), None, "{:?}", app.describe_gpu());
 
     app.lose_device_unpolled();
@@ -198,9 +198,11 @@ fn a_device_lost_before_its_callback_draws_on_and_comes_back(mut app: App) {
         "the hulls moved"
     );
     let bars = team_bars_seen(&app, &after);
-    assert!(
-        bars > 0,
-        "none of the {} labels' team bars is in the rebuilt frame",
+    assert_eq!(
+        bars,
+        bars_before,
+        "of the {} labels' team bars, {bars_before} were in the frame before the loss, \
+         {bars} in the rebuilt one",
         labels.len()
     );
     // The panels are laid out anew on the new egui context (their heights may differ by a
