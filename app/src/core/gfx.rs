@@ -39,24 +39,75 @@ pub fn open_with_fallback<T, E: std::fmt::Display>(
     }
 }
 
-/// Set by the device's lost callback; the app core rebuilds its graphics on OpenGL ES.
-#[derive(Clone, Default)]
-pub struct LostFlag(Arc<AtomicBool>);
+/// A 4-byte buffer written to ask whether a device still takes work.
+///
+/// wgpu marks a lost device invalid at once (`Device::destroy`, or a driver's loss found by a
+/// submit or a fence query) but runs its lost callback only from a poll that finds the queue
+/// empty. In between, every write is refused: `Queue::write_buffer_with` returns `None`
+/// (wgpu-core's `validate_write_buffer` checks the device first, and an error of the device-lost
+/// type goes to no error handler: wgpu says it is "surfaced via callback"). egui-wgpu 0.37's
+/// `Renderer::update_buffers` panics on that `None`, so the app asks first.
+pub struct WriteProbe(wgpu::Buffer);
+
+impl WriteProbe {
+    const SIZE: wgpu::BufferSize = wgpu::BufferSize::new(wgpu::COPY_BUFFER_ALIGNMENT).unwrap();
+
+    pub fn new(device: &wgpu::Device) -> WriteProbe {
+        WriteProbe(device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("device write probe"),
+            size: Self::SIZE.get(),
+            usage: wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        }))
+    }
+
+    /// Whether `queue`'s device takes a write (false: it is lost). Costs a 4-byte staging
+    /// write, carried out with the next submission.
+    pub fn device_takes_writes(&self, queue: &wgpu::Queue) -> bool {
+        queue.write_buffer_with(&self.0, 0, Self::SIZE).is_some()
+    }
+}
+
+/// Whether the device is lost, its lost callback run or not: the app core rebuilds its
+/// graphics on OpenGL ES.
+#[derive(Clone)]
+pub struct LostFlag {
+    raised: Arc<AtomicBool>,
+    probe: Arc<WriteProbe>,
+}
 
 impl LostFlag {
     /// A flag raised when `gpu`'s device is lost.
     pub fn watch(gpu: &Gpu) -> LostFlag {
-        let flag = LostFlag::default();
-        let raised = flag.0.clone();
+        let raised = Arc::new(AtomicBool::new(false));
+        let by_callback = raised.clone();
         gpu.device.set_device_lost_callback(move |reason, msg| {
             log::error!("regatta: the GPU device was lost ({reason:?}): {msg}");
-            raised.store(true, Ordering::SeqCst);
+            by_callback.store(true, Ordering::SeqCst);
         });
-        flag
+        LostFlag {
+            raised,
+            probe: Arc::new(WriteProbe::new(&gpu.device)),
+        }
     }
 
-    pub fn is_lost(&self) -> bool {
-        self.0.load(Ordering::SeqCst)
+    /// Raised, or the device refuses a write (lost before its callback ran; raised then).
+    pub fn is_lost(&self, queue: &wgpu::Queue) -> bool {
+        if !self.is_raised() && !self.probe.device_takes_writes(queue) {
+            log::error!("regatta: the GPU device was lost (its lost callback has not run yet)");
+            self.raise();
+        }
+        self.is_raised()
+    }
+
+    /// Raised by the lost callback or by [`LostFlag::raise`] (no probe).
+    pub fn is_raised(&self) -> bool {
+        self.raised.load(Ordering::SeqCst)
+    }
+
+    /// The device was found lost elsewhere (egui's painter refused to paint on it).
+    pub fn raise(&self) {
+        self.raised.store(true, Ordering::SeqCst);
     }
 }
 
@@ -155,9 +206,16 @@ impl Window {
     }
 
     /// An offscreen texture as the window (format [`render::OFFSCREEN_FORMAT`] and its non-sRGB
-    /// view for egui, as a surface that allows view formats would be).
+    /// view for egui, as a surface that allows view formats would be; without view formats
+    /// (OpenGL ES: a texture asking for them is invalid, and every frame drawn into it fails)
+    /// egui paints into the sRGB format itself).
     pub fn attach_offscreen(&mut self, gpu: &Gpu, width: u32, height: u32) {
         let format = render::OFFSCREEN_FORMAT;
+        let view_formats = gpu
+            .adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::VIEW_FORMATS);
         let config = self
             .kept
             .for_new_window(width, height, || {
@@ -169,7 +227,11 @@ impl Window {
                     present_mode: wgpu::PresentMode::AutoVsync,
                     desired_maximum_frame_latency: 2,
                     alpha_mode: wgpu::CompositeAlphaMode::Opaque,
-                    view_formats: vec![format.remove_srgb_suffix()],
+                    view_formats: if view_formats {
+                        vec![format.remove_srgb_suffix()]
+                    } else {
+                        Vec::new()
+                    },
                     color_space: wgpu::SurfaceColorSpace::Auto,
                 })
             })
@@ -218,6 +280,13 @@ impl Window {
     /// The window's size in pixels (1 × 1 without one).
     pub fn size(&self) -> [u32; 2] {
         self.config().map_or([1, 1], |c| [c.width, c.height])
+    }
+
+    /// The format egui paints through: the window's non-sRGB view where it has one, else its
+    /// own format.
+    pub fn egui_view_format(&self) -> Option<wgpu::TextureFormat> {
+        let c = self.config().or(self.kept.get())?;
+        Some(c.view_formats.first().copied().unwrap_or(c.format))
     }
 
     /// The format of the window's textures (the kept one without a window).

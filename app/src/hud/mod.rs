@@ -8,6 +8,8 @@ pub mod banner;
 pub mod touch;
 
 use render::FrameReport;
+
+use crate::core::gfx::WriteProbe;
 use ui::{FpsMeter, PassStat, PerfStats, RaceClock, RegattaUi, TimelineEvent, UiFrame, UiResponse};
 
 /// The race clock the app starts with: paused at the start signal would show an empty sea, so
@@ -97,6 +99,15 @@ pub struct EguiPainter {
     renderer: egui_wgpu::Renderer,
     /// The format egui's views of the surface texture have.
     view_format: wgpu::TextureFormat,
+    /// Asks the device before egui's upload (egui-wgpu panics on a lost device's refusal).
+    probe: WriteProbe,
+}
+
+/// One egui pass: what egui asks of the platform, and whether it was painted (not on a
+/// lost device: the widgets ran, the picture was left as it was).
+pub struct EguiPass {
+    pub platform: egui::PlatformOutput,
+    pub painted: bool,
 }
 
 impl EguiPainter {
@@ -129,6 +140,7 @@ impl EguiPainter {
                 egui_wgpu::RendererOptions::default(),
             ),
             view_format,
+            probe: WriteProbe::new(device),
         }
     }
 
@@ -139,7 +151,10 @@ impl EguiPainter {
 
     /// Runs one egui pass over `raw` with `build` laying out the widgets, and paints the
     /// result over `texture` (`size` pixels; its format or [`Self::view_format`] among its view
-    /// formats). Returns what egui asks of the platform (cursor, clipboard, …).
+    /// formats). Returns what egui asks of the platform (cursor, clipboard, …), and whether it
+    /// painted: not on a lost device, where egui-wgpu 0.37's `Renderer::update_buffers` panics
+    /// ("Failed to create staging buffer", its `Queue::write_buffer_with` refused); the
+    /// widgets still ran (a click in this frame counts).
     pub fn paint(
         &mut self,
         device: &wgpu::Device,
@@ -148,7 +163,7 @@ impl EguiPainter {
         size: [u32; 2],
         raw: egui::RawInput,
         build: impl FnMut(&mut egui::Ui),
-    ) -> egui::PlatformOutput {
+    ) -> EguiPass {
         let view = &texture.create_view(&wgpu::TextureViewDescriptor {
             format: Some(self.view_format),
             ..Default::default()
@@ -166,6 +181,16 @@ impl EguiPainter {
             for d in image_delta {
                 self.renderer.update_texture(device, queue, *id, d);
             }
+        }
+        // Asked after the texture uploads (a lost device takes them as no-ops), right before
+        // the buffers': nothing between can find a loss (buffer creation reports only
+        // running out of memory).
+        if !self.probe.device_takes_writes(queue) {
+            delta.clear();
+            return EguiPass {
+                platform: out.platform_output,
+                painted: false,
+            };
         }
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("egui"),
@@ -195,7 +220,10 @@ impl EguiPainter {
             self.renderer.free_texture(id);
         }
         delta.clear();
-        out.platform_output
+        EguiPass {
+            platform: out.platform_output,
+            painted: true,
+        }
     }
 }
 
@@ -442,5 +470,47 @@ mod tests {
         }
         let d = (0..3).map(|c| fills[0][c].abs_diff(fills[1][c])).max();
         assert!(d <= Some(2), "{fills:?}");
+    }
+
+    /// A device lost before its lost callback ran (destroyed here, not polled: wgpu runs the
+    /// callback only from a poll) refuses every write, and egui-wgpu 0.37's buffer upload
+    /// panicked on the refusal. The painter runs the widgets (a tap in that frame counts)
+    /// and paints nothing.
+    #[test]
+    fn on_a_device_lost_before_its_callback_the_widgets_run_and_nothing_is_painted() {
+        let Some(gpu) = render::gpu::test_gpu() else {
+            return;
+        };
+        let size = [64u32, 48];
+        let format = wgpu::TextureFormat::Rgba8UnormSrgb;
+        let texture = render::gpu::texture_2d_with_views(
+            &gpu.device,
+            "scene",
+            size,
+            format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            &[],
+        );
+        let mut painter = EguiPainter::for_format(&gpu.device, format);
+        let raw = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(64.0, 48.0),
+            )),
+            ..Default::default()
+        };
+        let mut ran = 0;
+        let pass = painter.paint(&gpu.device, &gpu.queue, &texture, size, raw.clone(), |ui| {
+            ran += 1;
+            ui.label("Boreas");
+        });
+        assert!(pass.painted, "not painted on a working device");
+        gpu.device.destroy();
+        let pass = painter.paint(&gpu.device, &gpu.queue, &texture, size, raw, |ui| {
+            ran += 1;
+            ui.label("Boreas");
+        });
+        assert!(!pass.painted, "painted on a lost device");
+        assert_eq!(ran, 2, "the widgets did not run on the lost device");
     }
 }

@@ -33,7 +33,7 @@ pub struct Graphics {
     race_upload: Option<(u64, CoursePlacement)>,
     backdrop_upload: Option<u64>,
     pub egui: EguiPainter,
-    lost: LostFlag,
+    pub(super) lost: LostFlag,
     /// Said on the banner: the device came from OpenGL ES because Vulkan could not be had.
     pub note: Option<String>,
     pub frames_drawn: u64,
@@ -157,7 +157,10 @@ impl App {
             }
             None => {
                 window.attach_offscreen(&gpu, w, h);
-                EguiPainter::for_format(&gpu.device, render::OFFSCREEN_FORMAT.remove_srgb_suffix())
+                let view = window
+                    .egui_view_format()
+                    .unwrap_or(render::OFFSCREEN_FORMAT);
+                EguiPainter::for_format(&gpu.device, view)
             }
         };
         let format = window.format().unwrap_or(render::OFFSCREEN_FORMAT);
@@ -201,7 +204,13 @@ impl App {
     }
 
     pub(super) fn draw(&mut self) {
-        if self.graphics.as_ref().is_some_and(|g| g.lost.is_lost()) {
+        // Lost, its callback run or not (wgpu runs it only from a poll; drawing on a device
+        // lost before it panicked in egui-wgpu): rebuilt before anything is drawn.
+        if self
+            .graphics
+            .as_ref()
+            .is_some_and(|g| g.lost.is_lost(&g.gpu.queue))
+        {
             self.rebuild_after_loss();
         }
         if let Some(mut g) = self.graphics.take() {
@@ -230,6 +239,12 @@ impl App {
             SceneChoice::Pool => self.draw_pool(g, &target, size, format),
         }
         self.draw_hud(g, frame.texture(), size);
+        if g.lost.is_raised() {
+            // Lost within this frame (found by a submit or by egui's painter): nothing is
+            // shown (polling a lost device, as an offscreen window's present does, can panic
+            // in wgpu); the next frame rebuilds.
+            return;
+        }
         g.window.present(&g.gpu, frame);
         g.frames_drawn += 1;
         if g.frames_drawn >= GOOD_FRAMES

@@ -33,7 +33,7 @@ impl App {
         let mut response = None;
         let mut scene_rect = None;
         let mut bar = None;
-        let platform = g
+        let pass = g
             .egui
             .paint(&g.gpu.device, &g.gpu.queue, texture, size, raw, |ui| {
                 if choice == SceneChoice::Race {
@@ -76,11 +76,15 @@ impl App {
                 // The scene's part of the screen: what the panels left, else what the bar left.
                 free = scene_rect.unwrap_or_else(|| ui.available_rect_before_wrap());
             });
+        if !pass.painted {
+            // A lost device whose callback has not run: the next frame rebuilds.
+            g.lost.raise();
+        }
         self.ui_free = free;
         self.bar = bar;
         // The phone has no cursor or clipboard to update.
         if let Some(d) = self.desktop.as_mut() {
-            d.platform_output = Some(platform);
+            d.platform_output = Some(pass.platform);
         }
         if bar.is_some_and(|b| b.banner_pressed) {
             // After a refusal: ask for the camera again (Android shows its dialog, or answers

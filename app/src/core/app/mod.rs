@@ -544,6 +544,17 @@ impl App {
         }
     }
 
+    /// Loses the device without polling it: wgpu runs the lost callback only from a poll (a
+    /// driver's loss found by a submit runs it there, in the middle of a frame), so the app
+    /// meets a lost device whose callback has not run (tests of that path; the app never
+    /// calls it).
+    #[doc(hidden)]
+    pub fn lose_device_unpolled(&self) {
+        if let Some(g) = self.graphics.as_ref() {
+            g.gpu.device.destroy();
+        }
+    }
+
     /// The backend, for adapters that script it (the simulated ARCore).
     pub fn backend_mut(&mut self) -> &mut dyn ArBackend {
         self.backend.as_mut()
