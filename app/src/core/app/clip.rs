@@ -112,16 +112,29 @@ impl Default for ClipWorker {
 }
 
 impl ClipWorker {
+    /// The state now. A worker that has ended while the state still says `Rendering` stopped
+    /// part-way (it panicked: its last act on every other path is to set `Written` or
+    /// `Failed`), so that reads as failed and the button is free again, not drawing for good.
     pub fn state(&self) -> ClipState {
-        self.state
-            .lock()
-            .map(|s| s.clone())
-            .unwrap_or(ClipState::Idle)
+        // Asked before the state is read: a worker that ended after setting its outcome is
+        // never taken for one that stopped part-way.
+        let ended = self.worker.as_ref().is_some_and(|w| w.is_finished());
+        let state = match self.state.lock() {
+            Ok(s) => s.clone(),
+            Err(poisoned) => poisoned.into_inner().clone(),
+        };
+        match state {
+            ClipState::Rendering { done, total } if ended => ClipState::Failed(format!(
+                "Could not write the clip: drawing stopped at frame {done} of {total}."
+            )),
+            s => s,
+        }
     }
 
     fn set(&self, s: ClipState) {
-        if let Ok(mut g) = self.state.lock() {
-            *g = s;
+        match self.state.lock() {
+            Ok(mut g) => *g = s,
+            Err(poisoned) => *poisoned.into_inner() = s,
         }
     }
 
@@ -336,6 +349,33 @@ impl App {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A worker that stops part-way (a panic while drawing) leaves the state at `Rendering`:
+    /// read, that is a failure naming the frame it stopped at, and the button is free again.
+    #[test]
+    fn a_worker_that_stops_part_way_frees_the_button() {
+        let mut clip = ClipWorker::default();
+        clip.set(ClipState::Rendering { done: 3, total: 41 });
+        let state = clip.state.clone();
+        clip.worker = Some(std::thread::spawn(move || {
+            *state.lock().unwrap() = ClipState::Rendering { done: 4, total: 41 };
+            panic!("a frame could not be drawn");
+        }));
+        while !clip.worker.as_ref().unwrap().is_finished() {
+            std::thread::yield_now();
+        }
+        assert_eq!(
+            clip.state(),
+            ClipState::Failed("Could not write the clip: drawing stopped at frame 4 of 41.".into())
+        );
+        assert!(!clip.busy());
+        // A worker that ends after setting its outcome reads as that outcome.
+        clip.set(ClipState::Written(PathBuf::from("clips/a.gif")));
+        assert_eq!(
+            clip.state(),
+            ClipState::Written(PathBuf::from("clips/a.gif"))
+        );
+    }
 
     /// The desktop's hand-off: the worker writes the GIF the request asks for, and the file is
     /// the result (the button is free again, nothing polls it away). Read back with `gif`'s
