@@ -115,6 +115,9 @@ struct Layout {
     nz: u32,
     margin: f32,
     levels_in: Vec<u32>,
+    /// Per row of bins, the columns [first, end) outside which no level lands (`levels_in`
+    /// is 0): the binning skips them whole.
+    rows: Vec<[u32; 2]>,
     /// Each level's vertex spacing, m: one height list per level in each bin.
     spacing: Vec<f32>,
     level_spacing: [[f32; 4]; 4],
@@ -148,7 +151,15 @@ impl Layout {
         let levels = spacing.levels.len().clamp(1, MAX_LEVELS);
         // A level the spacing does not know has no list (a vertex never carries one).
         let known = u32::MAX >> (32 - levels);
-        let levels_in = levels_in.into_iter().map(|m| m & known).collect();
+        let levels_in: Vec<u32> = levels_in.into_iter().map(|m| m & known).collect();
+        let rows = levels_in
+            .chunks(nx as usize)
+            .map(|row| {
+                let first = row.iter().position(|&m| m != 0).unwrap_or(0);
+                let end = row.iter().rposition(|&m| m != 0).map_or(first, |i| i + 1);
+                [first as u32, end as u32]
+            })
+            .collect();
         Layout {
             lo,
             cell,
@@ -156,6 +167,7 @@ impl Layout {
             nz,
             margin,
             levels_in,
+            rows,
             spacing: (0..levels)
                 .map(|l| spacing.levels.get(l).map_or(0.0, |b| b.spacing))
                 .collect(),
@@ -226,7 +238,6 @@ impl Layout {
         out.per_source.clear();
         out.per_source.resize(sources.len(), 0);
         let margin = f64::from(self.margin);
-        let slots = self.slots() as usize;
         let per_bin = self.lists_per_bin();
         // (column, nearest², farthest²) of the columns in reach of a source.
         let mut columns: Vec<(u32, f64, f64)> = Vec::new();
@@ -237,7 +248,8 @@ impl Layout {
             let cull = f64::from(s.cull_r2.max(0.0)).sqrt() + margin;
             let foam = f64::from(foam_radius2(s)).sqrt() + margin;
             let (cull2, foam2) = (cull * cull, foam * foam);
-            // Beyond both radii a bin lists nothing (a NaN radius reaches nothing).
+            // Beyond both radii a bin lists nothing. Neither this nor a nearest distance is
+            // NaN (`f64::max` drops a NaN operand, and `cull2` is of a NaN-free radius).
             let either2 = cull2.max(foam2);
             let mut inner2 = [0.0; MAX_LEVELS];
             for (r2, &spacing) in inner2.iter_mut().zip(&self.spacing) {
@@ -248,7 +260,7 @@ impl Layout {
             for i in i0..=i1 {
                 let [near, far] = self.distances(x, self.lo[0], i);
                 let near2 = near * near;
-                if !(near2 > either2) {
+                if near2 <= either2 {
                     columns.push((i, near2, far * far));
                 }
             }
@@ -259,7 +271,10 @@ impl Layout {
                 if dz2 > either2 {
                     continue;
                 }
-                for &(i, dx2, fx2) in &columns {
+                let [first, end] = self.rows[j as usize];
+                let from = columns.partition_point(|c| c.0 < first);
+                let to = columns.partition_point(|c| c.0 < end);
+                for &(i, dx2, fx2) in &columns[from..to.max(from)] {
                     let b = j * self.nx + i;
                     let levels_in = self.levels_in[b as usize];
                     if levels_in == 0 {
@@ -274,12 +289,16 @@ impl Layout {
                     if near2 > cull2 {
                         continue;
                     }
+                    // Only the levels that land here (a bin has one or two of them).
                     let far2 = fx2 + fz2;
-                    for (l, &r2) in inner2[..slots].iter().enumerate() {
-                        if levels_in & 1 << l != 0 && far2 >= r2 {
-                            out.pairs.push([head + 1 + l as u32, k as u32]);
+                    let mut levels = levels_in;
+                    while levels != 0 {
+                        let l = levels.trailing_zeros();
+                        if far2 >= inner2[l as usize] {
+                            out.pairs.push([head + 1 + l, k as u32]);
                             listed += 1;
                         }
+                        levels &= levels - 1;
                     }
                 }
             }

@@ -459,7 +459,12 @@ fn fit_equals_the_reference_binning() {
         let (all, _) = reference::fit(&mut frame.clone(), *half, u64::MAX, usize::MAX, spacing);
         let need = all.bytes(sources.len());
         assert!(!all.indices.is_empty(), "case {n}: nothing listed");
-        eprintln!("case {n}: {} sources, {} indices, {} bins", sources.len(), all.indices.len(), all.bins.len());
+        eprintln!(
+            "case {n}: {} sources, {} indices, {} bins",
+            sources.len(),
+            all.indices.len(),
+            all.bins.len()
+        );
         let limits = [
             (u64::MAX, usize::MAX),
             (need / 3, usize::MAX),
