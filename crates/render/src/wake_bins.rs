@@ -612,7 +612,8 @@ pub fn fit(
     (layout.bins(&entries.pairs, &mut sorted), drop)
 }
 
-#[cfg(test)]
-mod reference;
+#[cfg(any(test, feature = "binning-reference"))]
+#[doc(hidden)]
+pub mod reference;
 #[cfg(test)]
 mod tests;

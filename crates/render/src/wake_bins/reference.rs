@@ -1,6 +1,7 @@
 //! The binning as it was first written (a `Vec` per list, every (bin, source) pair of a
 //! source's bounding square tested in f64 on its own): the reference the faster binning in
-//! the parent module must equal, bin for bin and index for index (`tests.rs`).
+//! the parent module must equal, bin for bin and index for index (`tests.rs`, and the sample
+//! race's frame in `app/tests/wake_bins_race.rs` through the `binning-reference` feature).
 
 use super::*;
 
@@ -164,7 +165,7 @@ pub(super) fn counted(sources: &[GpuWakeSource], layout: &Layout) -> (WakeBins, 
 /// they would need more, the sources with the smallest peak height are removed from
 /// `wakes.sources` until the rest fit (module docs), and the record says how many and the
 /// error bound.
-pub(super) fn fit(
+pub fn fit(
     wakes: &mut GpuWakeFrame,
     half: f32,
     cap: u64,
