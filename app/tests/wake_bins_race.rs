@@ -7,7 +7,8 @@
 //! the exact mirror of the WGSL kernel) is not zero at the vertex's level spacing is in the
 //! height list the shader reads there (`WakeBins::listed_at`: the point's bin, the vertex's
 //! level), and the sum over that list equals the sum over every source bit for bit. The truth
-//! is the kernel itself over all of the frame's sources, not the bins' own geometry.
+//! is the kernel itself over all of the frame's sources, not the bins' own geometry. And the
+//! frame's bins equal the straightforward binning's (`wake_bins::reference`) bit for bit.
 
 use ocean::wake::source_height_grad_sampled_f32;
 use quality::Tier;
@@ -31,6 +32,7 @@ fn check_tier(tier: Tier) {
         render.wake_source_budget,
         &mut frame,
     );
+    equals_the_reference_binning(tier, &scene, &wake, render.wake_source_budget, &frame);
     let (sources, bins, o) = (&frame.wakes.sources, &frame.wake_bins, frame.origin);
     assert!(sources.len() >= 500, "{tier}: {} sources", sources.len());
     let (mut points, mut nonzero, mut listed, mut terms) = (0usize, 0usize, 0usize, 0usize);
@@ -74,6 +76,49 @@ fn check_tier(tier: Tier) {
     );
     // The frame is the busy one: a good share of its water sees wakes.
     assert!(nonzero > points / 10, "{tier}: {nonzero} of {points}");
+}
+
+/// The frame's bins (`bin_wakes`, the fast binning) equal the straightforward binning's
+/// (`wake_bins::reference::fit`: a list per bin and level, every pair of a source's bounding
+/// square tested on its own) of the same sources and mesh, bin for bin and index for index,
+/// with the same sources kept; and at a cap of a third of the bytes they need, where both
+/// drop sources.
+fn equals_the_reference_binning(
+    tier: Tier,
+    scene: &render::Scene,
+    wake: &ocean::wake::Wake,
+    max_sources: usize,
+    frame: &FrameContext,
+) {
+    use render::wake_spacing::SampleSpacing;
+    let eye = glam::DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
+    let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
+    let view = ocean::wake::WakeView::around([eye.x, eye.y], reach);
+    let origin = [frame.origin.x, frame.origin.y];
+    let sources = wake.gpu_sources(T, origin, &view, render::renderer::WAKE_EPSILON_M);
+    let displacement: f64 = scene.sea.waves.iter().map(|w| w.amplitude()).sum();
+    let spacing = SampleSpacing::of_mesh(&frame.clipmap, &frame.mesh, eye, displacement);
+    let half = reach as f32 * 2.0;
+    let mut slow = sources.clone();
+    let want = render::wake_bins::reference::fit(
+        &mut slow,
+        half,
+        WAKE_BUFFER_BUDGET_BYTES,
+        max_sources,
+        &spacing,
+    );
+    assert_eq!(
+        (&frame.wake_bins, frame.wake_drop),
+        (&want.0, want.1),
+        "{tier}"
+    );
+    assert_eq!(frame.wakes.sources, slow.sources, "{tier}");
+    let cap = want.0.bytes(slow.sources.len()) / 3;
+    let (mut fast, mut slow) = (sources.clone(), sources);
+    let got = render::wake_bins::fit(&mut fast, half, cap, max_sources, &spacing);
+    let want = render::wake_bins::reference::fit(&mut slow, half, cap, max_sources, &spacing);
+    assert!(want.1.dropped > 0, "{tier}: the cap drops sources");
+    assert_eq!((got, fast), (want, slow), "{tier}: cap {cap}");
 }
 
 #[test]

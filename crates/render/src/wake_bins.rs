@@ -115,6 +115,9 @@ struct Layout {
     nz: u32,
     margin: f32,
     levels_in: Vec<u32>,
+    /// Per row of bins, the columns [first, end) outside which no level lands (`levels_in`
+    /// is 0): the binning skips them whole.
+    rows: Vec<[u32; 2]>,
     /// Each level's vertex spacing, m: one height list per level in each bin.
     spacing: Vec<f32>,
     level_spacing: [[f32; 4]; 4],
@@ -148,7 +151,15 @@ impl Layout {
         let levels = spacing.levels.len().clamp(1, MAX_LEVELS);
         // A level the spacing does not know has no list (a vertex never carries one).
         let known = u32::MAX >> (32 - levels);
-        let levels_in = levels_in.into_iter().map(|m| m & known).collect();
+        let levels_in: Vec<u32> = levels_in.into_iter().map(|m| m & known).collect();
+        let rows = levels_in
+            .chunks(nx as usize)
+            .map(|row| {
+                let first = row.iter().position(|&m| m != 0).unwrap_or(0);
+                let end = row.iter().rposition(|&m| m != 0).map_or(first, |i| i + 1);
+                [first as u32, end as u32]
+            })
+            .collect();
         Layout {
             lo,
             cell,
@@ -156,6 +167,7 @@ impl Layout {
             nz,
             margin,
             levels_in,
+            rows,
             spacing: (0..levels)
                 .map(|l| spacing.levels.get(l).map_or(0.0, |b| b.spacing))
                 .collect(),
@@ -192,70 +204,185 @@ impl Layout {
         ])
     }
 
-    /// Which of bin (i, j)'s lists hold `s`, whose cull circle and foam strip reach `radii`
-    /// (m, grown by the margin): the foam list when its foam strip reaches the bin's square;
-    /// level l's height list when level l's vertices can land in the bin and its cull circle
-    /// reaches the square with some point of the square outside the source's inner radius
-    /// for level l's spacing. (A bin in a corner of the circle's bounding square is out of
-    /// reach of every point of the circle, and listing it would only add loop turns to the
-    /// bin's points.)
-    fn reaches(&self, s: &GpuWakeSource, radii: &Radii, i: u32, j: u32) -> Listing {
-        let none = Listing {
-            heights: 0,
-            foam: false,
-        };
-        let levels_in = self.levels_in[(j * self.nx + i) as usize];
-        if levels_in == 0 {
-            return none;
-        }
-        let cell = f64::from(self.cell);
-        let gap = |v: f32, lo: f32, k: u32| {
-            let a = f64::from(lo) + f64::from(k) * cell;
-            (a - f64::from(v)).max(f64::from(v) - (a + cell)).max(0.0)
-        };
-        let (dx, dz) = (gap(s.pos[0], self.lo[0], i), gap(s.pos[1], self.lo[1], j));
-        let near2 = dx * dx + dz * dz;
-        let foam = near2 <= radii.foam * radii.foam;
-        if near2 > radii.cull * radii.cull {
-            return Listing { foam, ..none };
-        }
-        // The height term: the bin's farthest point from the source (grown by the margin)
-        // must lie outside the source's inner radius for the level's spacing.
-        let far = |v: f32, lo: f32, k: u32| {
-            let a = f64::from(lo) + f64::from(k) * cell;
-            (f64::from(v) - a)
-                .abs()
-                .max((a + cell - f64::from(v)).abs())
-                + f64::from(self.margin)
-        };
-        let (fx, fz) = (far(s.pos[0], self.lo[0], i), far(s.pos[1], self.lo[1], j));
-        let far2 = fx * fx + fz * fz;
-        let heights = (0..self.slots())
-            .filter(|&l| levels_in & (1 << l) != 0 && far2 >= radii.inner2[l as usize])
-            .fold(0, |m, l| m | 1 << l);
-        Listing { heights, foam }
+    /// Lists per bin: its foam list, then one height list per level.
+    fn lists_per_bin(&self) -> u32 {
+        self.slots() + 1
     }
 
-    /// The bins that list `s` (row-major indices) and in which of their lists.
-    fn bins_of<'a>(&'a self, s: &'a GpuWakeSource) -> impl Iterator<Item = (u32, Listing)> + 'a {
-        let [i0, i1, j0, j1] = self.span(s).unwrap_or([1, 0, 1, 0]);
-        // Once per source, not per bin of its span.
-        let margin = f64::from(self.margin);
-        let mut inner2 = [0.0; MAX_LEVELS];
-        for (r2, &spacing) in inner2.iter_mut().zip(&self.spacing) {
-            *r2 = f64::from(inner_radius2(s, spacing));
-        }
-        let radii = Radii {
-            cull: f64::from(s.cull_r2.max(0.0)).sqrt() + margin,
-            foam: f64::from(foam_radius2(s)).sqrt() + margin,
-            inner2,
-        };
-        (j0..=j1).flat_map(move |j| {
-            (i0..=i1)
-                .map(move |i| (j * self.nx + i, self.reaches(s, &radii, i, j)))
-                .filter(|(_, l)| l.heights != 0 || l.foam)
-        })
+    /// The distances (m) from coordinate `v` to bin `k`'s interval along the axis whose grid
+    /// starts at `lo`: the nearest (0 inside) and the farthest grown by the margin.
+    fn distances(&self, v: f64, lo: f32, k: u32) -> [f64; 2] {
+        let cell = f64::from(self.cell);
+        let a = f64::from(lo) + f64::from(k) * cell;
+        let near = (a - v).max(v - (a + cell)).max(0.0);
+        let far = (v - a).abs().max((a + cell - v).abs()) + f64::from(self.margin);
+        [near, far]
     }
+
+    /// Every list entry of `sources`, in the sources' order: which bins list each source and
+    /// in which of their lists. Bin (i, j) lists source `s` in its foam list when its foam
+    /// strip (grown by the margin) reaches the bin's square, and in level l's height list
+    /// when level l's vertices can land in the bin and its cull circle (grown by the margin)
+    /// reaches the square with some point of the square outside the source's inner radius
+    /// for level l's spacing (a bin in a corner of the circle's bounding square is out of
+    /// reach of every point of the circle, and listing it would only add loop turns to the
+    /// bin's points).
+    ///
+    /// The squared distances are separable: a bin's nearest (and farthest) squared distance
+    /// is its column's plus its row's, so each column's and row's are worked out once per
+    /// source, and columns and rows out of reach of both radii are skipped whole (adding a
+    /// row's square to a column's never makes it smaller). Every comparison is the one of a
+    /// test per bin, on the same f64 values.
+    fn entries(&self, sources: &[GpuWakeSource], out: &mut Entries) {
+        out.pairs.clear();
+        out.per_source.clear();
+        out.per_source.resize(sources.len(), 0);
+        let margin = f64::from(self.margin);
+        let per_bin = self.lists_per_bin();
+        // (column, nearest², farthest²) of the columns in reach of a source.
+        let mut columns: Vec<(u32, f64, f64)> = Vec::new();
+        for (k, s) in sources.iter().enumerate() {
+            let Some([i0, i1, j0, j1]) = self.span(s) else {
+                continue;
+            };
+            let cull = f64::from(s.cull_r2.max(0.0)).sqrt() + margin;
+            let foam = f64::from(foam_radius2(s)).sqrt() + margin;
+            let (cull2, foam2) = (cull * cull, foam * foam);
+            // Beyond both radii a bin lists nothing. Neither this nor a nearest distance is
+            // NaN (`f64::max` drops a NaN operand, and `cull2` is of a NaN-free radius).
+            let either2 = cull2.max(foam2);
+            let mut inner2 = [0.0; MAX_LEVELS];
+            for (r2, &spacing) in inner2.iter_mut().zip(&self.spacing) {
+                *r2 = f64::from(inner_radius2(s, spacing));
+            }
+            let (x, z) = (f64::from(s.pos[0]), f64::from(s.pos[1]));
+            columns.clear();
+            for i in i0..=i1 {
+                let [near, far] = self.distances(x, self.lo[0], i);
+                let near2 = near * near;
+                if near2 <= either2 {
+                    columns.push((i, near2, far * far));
+                }
+            }
+            let mut listed = 0u64;
+            for j in j0..=j1 {
+                let [near, far] = self.distances(z, self.lo[1], j);
+                let (dz2, fz2) = (near * near, far * far);
+                if dz2 > either2 {
+                    continue;
+                }
+                let [first, end] = self.rows[j as usize];
+                let from = columns.partition_point(|c| c.0 < first);
+                let to = columns.partition_point(|c| c.0 < end);
+                for &(i, dx2, fx2) in &columns[from..to.max(from)] {
+                    let b = j * self.nx + i;
+                    let levels_in = self.levels_in[b as usize];
+                    if levels_in == 0 {
+                        continue;
+                    }
+                    let near2 = dx2 + dz2;
+                    let head = b * per_bin;
+                    if near2 <= foam2 {
+                        out.pairs.push([head, k as u32]);
+                        listed += 1;
+                    }
+                    if near2 > cull2 {
+                        continue;
+                    }
+                    // Only the levels that land here (a bin has one or two of them).
+                    let far2 = fx2 + fz2;
+                    let mut levels = levels_in;
+                    while levels != 0 {
+                        let l = levels.trailing_zeros();
+                        if far2 >= inner2[l as usize] {
+                            out.pairs.push([head + 1 + l, k as u32]);
+                            listed += 1;
+                        }
+                        levels &= levels - 1;
+                    }
+                }
+            }
+            out.per_source[k] = listed;
+        }
+    }
+
+    /// The bins of `sources`' entries (`entries` of the sources kept, renumbered, in order):
+    /// the entries sorted into their lists by a counting sort, which keeps each list in the
+    /// sources' order, then laid out per bin (`WakeBins::bins`).
+    fn bins(&self, pairs: &[[u32; 2]], scratch: &mut Vec<u32>) -> WakeBins {
+        let per_bin = self.lists_per_bin() as usize;
+        let lists = self.levels_in.len() * per_bin;
+        // first[n]..first[n + 1]: list n's sources in `sorted`.
+        let mut first = vec![0u32; lists + 1];
+        for &[list, _] in pairs {
+            first[list as usize + 1] += 1;
+        }
+        for n in 0..lists {
+            first[n + 1] += first[n];
+        }
+        let sorted = scratch;
+        sorted.clear();
+        sorted.resize(pairs.len(), 0);
+        let mut next = first.clone();
+        for &[list, k] in pairs {
+            let at = &mut next[list as usize];
+            sorted[*at as usize] = k;
+            *at += 1;
+        }
+        let list = |n: usize| &sorted[first[n] as usize..first[n + 1] as usize];
+        let slots = self.slots();
+        let mut bins = Vec::with_capacity(self.levels_in.len());
+        let mut indices = Vec::with_capacity(sorted.len() + 2 * lists);
+        for (b, &mask) in self.levels_in.iter().enumerate() {
+            let foam = list(b * per_bin);
+            let height = |l: u32| list(b * per_bin + 1 + l as usize);
+            let foam_first = indices.len() as u32;
+            indices.extend_from_slice(foam);
+            let head = indices.len() as u32;
+            // The levels from the lowest to the highest with a list that is not empty (each
+            // level that lands here; an empty list and none read alike): their (first, count)
+            // pairs, then their lists.
+            let mut listed = (0..slots).filter(|&l| mask & 1 << l != 0 && !height(l).is_empty());
+            let Some(lowest) = listed.next() else {
+                bins.push([head, 0, foam_first, foam.len() as u32]);
+                continue;
+            };
+            let highest = listed.next_back().unwrap_or(lowest);
+            let span = highest - lowest + 1;
+            indices.resize(indices.len() + 2 * span as usize, 0);
+            for (k, l) in (lowest..=highest).enumerate() {
+                let h = height(l);
+                let at = head as usize + 2 * k;
+                indices[at] = indices.len() as u32;
+                indices[at + 1] = h.len() as u32;
+                indices.extend_from_slice(h);
+            }
+            bins.push([head, lowest | span << 16, foam_first, foam.len() as u32]);
+        }
+        WakeBins {
+            grid: WakeGrid {
+                origin: self.lo,
+                inv_cell: 1.0 / self.cell,
+                margin: self.margin,
+                nx: self.nx,
+                nz: self.nz,
+                _pad: [0; 2],
+                level_spacing: self.level_spacing,
+            },
+            bins,
+            indices,
+        }
+    }
+}
+
+/// The list entries of a frame's sources before they are sorted into lists.
+#[derive(Debug, Default)]
+struct Entries {
+    /// (list, source) in the sources' order; list b·(levels + 1) is bin b's foam list and
+    /// b·(levels + 1) + 1 + l its level-l height list.
+    pairs: Vec<[u32; 2]>,
+    /// List entries per source.
+    per_source: Vec<u64>,
 }
 
 /// Per bin of the grid with corner `lo`, side `cell` and `n` bins per side, the levels whose
@@ -288,25 +415,6 @@ fn vertex_levels(
         }
     }
     levels_in
-}
-
-/// The lists of one bin that hold a source.
-#[derive(Debug, Clone, Copy)]
-struct Listing {
-    /// Bit l: its height term can be non-zero at a point of the bin sampled at level l's
-    /// spacing, and level l's vertices can land in the bin.
-    heights: u32,
-    /// Its foam strip reaches the bin.
-    foam: bool,
-}
-
-/// How far a source's cull circle and foam strip reach, grown by the grid's margin, m, and
-/// its inner radius for each level's spacing, m².
-#[derive(Debug, Clone, Copy)]
-struct Radii {
-    cull: f64,
-    foam: f64,
-    inner2: [f64; MAX_LEVELS],
 }
 
 /// The squared radius within which a source adds height or foam, m².
@@ -379,76 +487,9 @@ impl WakeBins {
     }
 
     fn on(sources: &[GpuWakeSource], layout: &Layout) -> WakeBins {
-        WakeBins::counted(sources, layout).0
-    }
-
-    /// [`WakeBins::on`], and how many list entries each source takes.
-    fn counted(sources: &[GpuWakeSource], layout: &Layout) -> (WakeBins, Vec<u64>) {
-        let mut entries = vec![0u64; sources.len()];
-        let (nx, nz, slots) = (layout.nx, layout.nz, layout.slots());
-        let mut heights: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz * slots) as usize];
-        let mut foams: Vec<Vec<u32>> = vec![Vec::new(); (nx * nz) as usize];
-        for (k, s) in sources.iter().enumerate() {
-            for (b, l) in layout.bins_of(s) {
-                let mut levels = l.heights;
-                while levels != 0 {
-                    let level = levels.trailing_zeros();
-                    heights[(b * slots + level) as usize].push(k as u32);
-                    levels &= levels - 1;
-                }
-                if l.foam {
-                    foams[b as usize].push(k as u32);
-                }
-                entries[k] += u64::from(l.heights.count_ones()) + u64::from(l.foam);
-            }
-        }
-        let mut bins = Vec::with_capacity(foams.len());
-        let mut indices = Vec::new();
-        for ((f, levels), &mask) in foams
-            .iter()
-            .zip(heights.chunks(slots as usize))
-            .zip(&layout.levels_in)
-        {
-            let foam_first = indices.len() as u32;
-            indices.extend_from_slice(f);
-            let head = indices.len() as u32;
-            // The levels from the lowest to the highest with a list that is not empty (each
-            // level that lands here; an empty list and none read alike): their (first, count)
-            // pairs, then their lists.
-            let mut listed =
-                (0..slots).filter(|&l| mask & 1 << l != 0 && !levels[l as usize].is_empty());
-            let Some(lowest) = listed.clone().next() else {
-                bins.push([head, 0, foam_first, f.len() as u32]);
-                continue;
-            };
-            let highest = listed.next_back().unwrap_or(lowest);
-            let span = highest - lowest + 1;
-            indices.resize(indices.len() + 2 * span as usize, 0);
-            for (k, h) in levels[lowest as usize..=highest as usize]
-                .iter()
-                .enumerate()
-            {
-                let at = head as usize + 2 * k;
-                indices[at] = indices.len() as u32;
-                indices[at + 1] = h.len() as u32;
-                indices.extend_from_slice(h);
-            }
-            bins.push([head, lowest | span << 16, foam_first, f.len() as u32]);
-        }
-        let bins = WakeBins {
-            grid: WakeGrid {
-                origin: layout.lo,
-                inv_cell: 1.0 / layout.cell,
-                margin: layout.margin,
-                nx,
-                nz,
-                _pad: [0; 2],
-                level_spacing: layout.level_spacing,
-            },
-            bins,
-            indices,
-        };
-        (bins, entries)
+        let mut entries = Entries::default();
+        layout.entries(sources, &mut entries);
+        layout.bins(&entries.pairs, &mut Vec::new())
     }
 
     /// The sources whose height local point `p` of clip-map level `level` sums: its bin's
@@ -526,7 +567,11 @@ pub fn fit(
     };
     // The grid stays the one of all sources in reach, so every count below is exact.
     let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
-    let (all, listed) = WakeBins::counted(&wakes.sources, &layout);
+    let mut entries = Entries::default();
+    layout.entries(&wakes.sources, &mut entries);
+    let mut sorted = Vec::new();
+    let all = layout.bins(&entries.pairs, &mut sorted);
+    let listed = &entries.per_source;
     let mut bytes = all.bytes(wakes.sources.len());
     let mut kept = wakes.sources.len();
     if bytes <= cap && kept <= max_sources {
@@ -547,380 +592,28 @@ pub fn fit(
         drop.height_bound_m += peak[k];
         drop.foam_bound += f64::from(wakes.sources[k].foam);
     }
+    // The kept sources' lists are the lists of all less the dropped ones (a source's
+    // entries depend only on it and the grid): renumber the kept entries rather than bin
+    // the kept sources again.
+    let mut rank = vec![u32::MAX; keep.len()];
+    let mut next = 0;
+    for (r, &k) in rank.iter_mut().zip(&keep) {
+        if k {
+            *r = next;
+            next += 1;
+        }
+    }
+    entries.pairs.retain_mut(|[_, k]| {
+        *k = rank[*k as usize];
+        *k != u32::MAX
+    });
     let mut kept = keep.into_iter();
     wakes.sources.retain(|_| kept.next().unwrap_or(true));
-    (WakeBins::on(&wakes.sources, &layout), drop)
+    (layout.bins(&entries.pairs, &mut sorted), drop)
 }
 
+#[cfg(any(test, feature = "binning-reference"))]
+#[doc(hidden)]
+pub mod reference;
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_source_reaching_a_point_is_in_its_bin() {
-        // Sources scattered over a square, each reaching a different radius.
-        let sources: Vec<GpuWakeSource> = (0..300)
-            .map(|k| {
-                let f = k as f32;
-                GpuWakeSource {
-                    pos: [(f * 37.3) % 400.0 - 200.0, (f * 91.7) % 400.0 - 200.0],
-                    cull_r2: (1.0 + (f * 13.1) % 30.0).powi(2),
-                    ..Default::default()
-                }
-            })
-            .collect();
-        let bins = WakeBins::new(&sources, [-250.0, -250.0], [250.0, 250.0], 32, 2.0);
-        let mut listed = 0usize;
-        for a in 0..97 {
-            for b in 0..89 {
-                let p = [-249.0 + a as f32 * 5.13, -249.0 + b as f32 * 5.59];
-                let list = bins.listed_at(p, 0);
-                listed += list.len();
-                // Any stencil point within the margin: every source whose cull circle holds
-                // it is listed.
-                for q in [p, [p[0] + 1.9, p[1]], [p[0], p[1] - 1.9]] {
-                    for (k, s) in sources.iter().enumerate() {
-                        let d2 = (q[0] - s.pos[0]).powi(2) + (q[1] - s.pos[1]).powi(2);
-                        if d2 <= s.cull_r2 {
-                            assert!(list.contains(&(k as u32)), "source {k} missing at {q:?}");
-                        }
-                    }
-                }
-            }
-        }
-        // And binning saves work: far fewer than all sources per point on average.
-        assert!(listed < 97 * 89 * sources.len() / 5, "{listed}");
-    }
-
-    /// A bin lists a source exactly when the source's cull circle grown by the margin
-    /// reaches some point of the bin's square (the square's nearest point to the source, by
-    /// clamping, within the grown radius), so a large circle is listed in about its Minkowski
-    /// sum with a bin over a bin's area, (πr² + 4rc + c²)/c², not its bounding square's
-    /// (2r/c + 1)² bins: π/4 of them and less.
-    #[test]
-    fn a_bin_lists_the_sources_whose_circle_reaches_it_and_no_other() {
-        // 2 m bins over [−100, 100]²; a source at the origin reaching 39.5 m (+ 0.5 margin).
-        let big = GpuWakeSource {
-            pos: [0.0, 0.0],
-            cull_r2: 39.5 * 39.5,
-            ..Default::default()
-        };
-        let mut sources = vec![big];
-        sources.extend((0..60).map(|k| {
-            let f = k as f32;
-            GpuWakeSource {
-                pos: [(f * 37.3) % 180.0 - 90.0, (f * 91.7) % 180.0 - 90.0],
-                cull_r2: (0.3 + (f * 13.1) % 25.0).powi(2),
-                ..Default::default()
-            }
-        }));
-        let bins = WakeBins::new(&sources, [-100.0; 2], [100.0; 2], 100, 0.5);
-        let g = bins.grid;
-        let cell = 1.0 / f64::from(g.inv_cell);
-        assert!((cell - 2.0).abs() < 1e-6, "{g:?}");
-        let mut big_bins = 0usize;
-        for j in 0..g.nz {
-            for i in 0..g.nx {
-                let (x0, z0) = (
-                    f64::from(g.origin[0]) + f64::from(i) * cell,
-                    f64::from(g.origin[1]) + f64::from(j) * cell,
-                );
-                let middle = [(x0 + 0.5 * cell) as f32, (z0 + 0.5 * cell) as f32];
-                let list = bins.listed_at(middle, 0);
-                for (k, s) in sources.iter().enumerate() {
-                    let (px, pz) = (f64::from(s.pos[0]), f64::from(s.pos[1]));
-                    let near = [px.clamp(x0, x0 + cell), pz.clamp(z0, z0 + cell)];
-                    let d = (near[0] - px).hypot(near[1] - pz);
-                    let r = f64::from(s.cull_r2).sqrt() + 0.5;
-                    let listed = list.contains(&(k as u32));
-                    if d <= r - 1e-4 {
-                        assert!(listed, "source {k} reaches bin ({i}, {j}) at {d} m < {r}");
-                    }
-                    if d > r + 1e-4 {
-                        assert!(!listed, "source {k} listed in bin ({i}, {j}) {d} m away");
-                    }
-                    if k == 0 && listed {
-                        big_bins += 1;
-                    }
-                }
-            }
-        }
-        let (r, c) = (40.0, 2.0);
-        let minkowski = (std::f64::consts::PI * r * r + 4.0 * r * c + c * c) / (c * c);
-        assert!(
-            (big_bins as f64 - minkowski).abs() < 0.03 * minkowski,
-            "{big_bins} bins against {minkowski:.0}"
-        );
-        let square = (2.0 * r / c + 1.0).powi(2);
-        assert!((big_bins as f64) < 0.82 * square, "{big_bins} of {square}");
-    }
-
-    fn listed_at(bins: &WakeBins, p: [f32; 2]) -> &[u32] {
-        bins.listed_at(p, 0)
-    }
-
-    #[test]
-    fn bins_cover_only_where_the_sources_reach() {
-        // A fleet's wake 120 m across, 900 m from the origin of a 4 km clip-map.
-        let sources: Vec<GpuWakeSource> = (0..200)
-            .map(|k| {
-                let f = k as f32;
-                GpuWakeSource {
-                    pos: [900.0 + (f * 37.3) % 120.0, -300.0 + (f * 91.7) % 80.0],
-                    cull_r2: (2.0 + (f * 13.1) % 20.0).powi(2),
-                    ..Default::default()
-                }
-            })
-            .collect();
-        let bins = WakeBins::over_reach(&sources, 2000.0, 128, 0.5, &SampleSpacing::uniform(0.0));
-        let whole = WakeBins::new(&sources, [-2000.0; 2], [2000.0; 2], 128, 0.5);
-        // The grid spans the reach (≤ 164 m) in the smallest bins (2 m), not the whole
-        // square's 31 m bins.
-        let g = bins.grid;
-        let cell = 1.0 / g.inv_cell;
-        assert!(cell <= 2.0 + 1e-3, "{g:?}");
-        assert!(
-            g.nx as f32 * cell <= 166.0 && g.nz as f32 * cell <= 166.0,
-            "{g:?}"
-        );
-        let (mut fine, mut coarse) = (0usize, 0usize);
-        for a in 0..200 {
-            for b in 0..150 {
-                let p = [860.0 + a as f32 * 1.01, -340.0 + b as f32 * 1.07];
-                let list = listed_at(&bins, p);
-                for (k, s) in sources.iter().enumerate() {
-                    let d2 = (p[0] - s.pos[0]).powi(2) + (p[1] - s.pos[1]).powi(2);
-                    if d2 <= s.cull_r2 {
-                        assert!(list.contains(&(k as u32)), "source {k} missing at {p:?}");
-                    }
-                }
-                fine += list.len();
-                coarse += listed_at(&whole, p).len();
-            }
-        }
-        // Far fewer sources to loop over per point than with bins over the whole square.
-        assert!(fine * 3 < coarse, "{fine} vs {coarse}");
-        assert!(listed_at(&bins, [0.0, 0.0]).is_empty());
-        // No source in reach: an empty grid.
-        let none = WakeBins::over_reach(&sources, 100.0, 128, 0.5, &SampleSpacing::uniform(0.0));
-        assert!(none.indices.is_empty() && listed_at(&none, [0.0, 0.0]).is_empty());
-    }
-
-    /// 600 sources bunched in 100 m, of growing strength (source k: 1e-3 × (k + 1)).
-    fn bunched_fleet() -> Vec<GpuWakeSource> {
-        (0..600)
-            .map(|k| {
-                let f = k as f32;
-                GpuWakeSource {
-                    pos: [(f * 37.3) % 100.0 - 50.0, (f * 91.7) % 100.0 - 50.0],
-                    dx: [1.0, 0.0],
-                    q: 50.0,
-                    strength: 1e-3 * (1.0 + f),
-                    gauss: 0.25,
-                    cull_r2: 30.0 * 30.0,
-                    foam: 0.01,
-                    foam_w2: 1.0,
-                    _pad: [0.0; 2],
-                }
-            })
-            .collect()
-    }
-
-    #[test]
-    fn a_source_budget_keeps_exactly_that_many_of_the_most_visible() {
-        // A quality tier's wake source budget: 150 of 600 kept, well within the byte cap.
-        let mut frame = GpuWakeFrame {
-            sources: bunched_fleet(),
-            ..Default::default()
-        };
-        let (_, drop) = fit(
-            &mut frame,
-            2000.0,
-            u64::MAX,
-            150,
-            &SampleSpacing::uniform(0.0),
-        );
-        assert_eq!((frame.sources.len(), drop.dropped), (150, 450));
-        // The weakest 450 went: the kept ones are sources 450..600.
-        let weakest_kept = frame
-            .sources
-            .iter()
-            .map(|s| s.strength)
-            .fold(f32::MAX, f32::min);
-        assert_eq!(weakest_kept, 1e-3 * 451.0);
-        assert!(drop.height_bound_m > 0.0);
-        // A budget above the count drops nothing.
-        let mut all = GpuWakeFrame {
-            sources: bunched_fleet(),
-            ..Default::default()
-        };
-        assert_eq!(
-            fit(
-                &mut all,
-                2000.0,
-                u64::MAX,
-                600,
-                &SampleSpacing::uniform(0.0)
-            )
-            .1
-            .dropped,
-            0
-        );
-    }
-
-    #[test]
-    fn a_fleet_over_the_cap_drops_its_least_visible_sources_and_states_the_bound() {
-        // The bunched fleet: far more (bin, source) pairs than a 256 KiB cap holds.
-        let sources = bunched_fleet();
-        let mut all = GpuWakeFrame {
-            sources: sources.clone(),
-            ..Default::default()
-        };
-        let (bins, drop) = fit(
-            &mut all,
-            2000.0,
-            u64::MAX,
-            usize::MAX,
-            &SampleSpacing::uniform(0.0),
-        );
-        assert_eq!((drop.dropped, all.sources.len()), (0, 600));
-        let need = bins.bytes(600);
-        let cap = 256 << 10;
-        assert!(need > 4 * cap, "{need}");
-        let mut frame = GpuWakeFrame {
-            sources,
-            ..Default::default()
-        };
-        let (bins, drop) = fit(
-            &mut frame,
-            2000.0,
-            cap,
-            usize::MAX,
-            &SampleSpacing::uniform(0.0),
-        );
-        // Fits, and drops no more than it must (one more source would not fit).
-        assert!(bins.bytes(frame.sources.len()) <= cap);
-        assert!(drop.dropped > 0 && drop.dropped + frame.sources.len() == 600);
-        // The dropped ones are the weakest: every kept source is at least as strong.
-        let weakest_kept = frame
-            .sources
-            .iter()
-            .map(|s| s.strength)
-            .fold(f32::MAX, f32::min);
-        assert_eq!(weakest_kept, 1e-3 * (1.0 + drop.dropped as f32));
-        // The bound is the sum of the dropped sources' peak bounds and foam densities.
-        let bound: f64 = all.sources[..drop.dropped]
-            .iter()
-            .map(source_peak_bound)
-            .sum();
-        assert!((drop.height_bound_m - bound).abs() <= 1e-12 * bound);
-        assert!((drop.foam_bound - 0.01 * drop.dropped as f64).abs() < 1e-6);
-        assert_eq!(drop.cap_bytes, cap);
-    }
-
-    /// Three levels (0.5, 1 and 2 m) of vertices on the west half of [−60, 60]², finest in
-    /// the middle: the sampling of a frame's mesh.
-    fn three_levels() -> SampleSpacing {
-        use crate::wake_spacing::LevelBox;
-        let levels = [0.5f32, 1.0, 2.0]
-            .iter()
-            .enumerate()
-            .map(|(l, &spacing)| LevelBox {
-                centre: [0.0; 2],
-                half: 20.0 * (l + 1) as f32,
-                spacing,
-            })
-            .collect();
-        let mut vertices = Vec::new();
-        for a in 0..120 {
-            for b in 0..240 {
-                let p = [-60.0 + a as f32 * 0.5, -60.0 + b as f32 * 0.5];
-                let r = p[0].abs().max(p[1].abs());
-                let level = if r < 20.0 {
-                    0
-                } else if r < 40.0 {
-                    1
-                } else {
-                    2
-                };
-                vertices.push((p, level));
-            }
-        }
-        SampleSpacing {
-            levels,
-            vertices,
-            displacement: 1.0,
-        }
-    }
-
-    /// With a list per level, the cap still holds: `fit` counts every level's entries and
-    /// every bin's entry per level (a count of one entry per bin let a tight cap be
-    /// overrun).
-    #[test]
-    fn a_fleet_over_the_cap_fits_with_a_list_per_level() {
-        let spacing = three_levels();
-        let mut all = GpuWakeFrame {
-            sources: bunched_fleet(),
-            ..Default::default()
-        };
-        let (bins, drop) = fit(&mut all, 2000.0, u64::MAX, usize::MAX, &spacing);
-        assert_eq!(drop.dropped, 0);
-        // Bins on a ring's edge hold two levels' lists.
-        assert!(bins.bins.iter().any(|b| b[1] >> 16 == 2));
-        let need = bins.bytes(600);
-        for cap in [need / 2, need / 4, need * 9 / 10] {
-            let mut frame = GpuWakeFrame {
-                sources: bunched_fleet(),
-                ..Default::default()
-            };
-            let (bins, drop) = fit(&mut frame, 2000.0, cap, usize::MAX, &spacing);
-            let bytes = bins.bytes(frame.sources.len());
-            assert!(bytes <= cap, "{bytes} > {cap}");
-            assert!(drop.dropped > 0 && drop.dropped + frame.sources.len() == 600);
-        }
-    }
-
-    /// A bin lists a source for a level only where that level's vertices can land: east of
-    /// x = 1 m (the west half's vertices, displaced by up to 1 m) and a bin nothing is listed;
-    /// at each vertex moved by up to 1 m, its level's list holds every source whose term at
-    /// the level's spacing is not zero (the f32 kernel over every source).
-    #[test]
-    fn a_bin_lists_a_source_for_the_levels_that_land_there() {
-        let spacing = three_levels();
-        let mut frame = GpuWakeFrame {
-            sources: bunched_fleet(),
-            ..Default::default()
-        };
-        let (bins, _) = fit(&mut frame, 2000.0, u64::MAX, usize::MAX, &spacing);
-        let sources = &frame.sources;
-        let cell = 1.0 / bins.grid.inv_cell;
-        let mut east = 0usize;
-        for a in 0..100 {
-            for b in 0..241 {
-                let p = [
-                    1.0 + cell + 0.01 + a as f32 * 0.59,
-                    -60.0 + b as f32 * 0.4993,
-                ];
-                east += (0..3).map(|l| bins.listed_at(p, l).len()).sum::<usize>();
-            }
-        }
-        assert_eq!(east, 0);
-        let (mut listed, mut terms) = (0usize, 0usize);
-        for &(rest, level) in spacing.vertices.iter().step_by(7) {
-            let s_l = spacing.levels[level as usize].spacing;
-            for (dx, dz) in [(0.0, 0.0), (0.7, -0.7), (-0.99, 0.0), (0.0, 0.99)] {
-                let p = [rest[0] + dx, rest[1] + dz];
-                let list = bins.listed_at(p, level);
-                for (k, s) in sources.iter().enumerate() {
-                    let g = ocean::wake::source_height_grad_sampled_f32(s, p, s_l);
-                    if g != [0.0; 3] {
-                        assert!(list.contains(&(k as u32)), "{k} at {p:?} level {level}");
-                        terms += 1;
-                    }
-                }
-                listed += list.len();
-            }
-        }
-        assert!(terms > 1000 && listed >= terms, "{terms} {listed}");
-    }
-}
+mod tests;
