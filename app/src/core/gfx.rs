@@ -39,41 +39,14 @@ pub fn open_with_fallback<T, E: std::fmt::Display>(
     }
 }
 
-/// A 4-byte buffer written to ask whether a device still takes work.
-///
-/// wgpu marks a lost device invalid at once (`Device::destroy`, or a driver's loss found by a
-/// submit or a fence query) but runs its lost callback only from a poll that finds the queue
-/// empty. In between, every write is refused: `Queue::write_buffer_with` returns `None`
-/// (wgpu-core's `validate_write_buffer` checks the device first, and an error of the device-lost
-/// type goes to no error handler: wgpu says it is "surfaced via callback"). egui-wgpu 0.37's
-/// `Renderer::update_buffers` panics on that `None`, so the app asks first.
-pub struct WriteProbe(wgpu::Buffer);
-
-impl WriteProbe {
-    const SIZE: wgpu::BufferSize = wgpu::BufferSize::new(wgpu::COPY_BUFFER_ALIGNMENT).unwrap();
-
-    pub fn new(device: &wgpu::Device) -> WriteProbe {
-        WriteProbe(device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("device write probe"),
-            size: Self::SIZE.get(),
-            usage: wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        }))
-    }
-
-    /// Whether `queue`'s device takes a write (false: it is lost). Costs a 4-byte staging
-    /// write, carried out with the next submission.
-    pub fn device_takes_writes(&self, queue: &wgpu::Queue) -> bool {
-        queue.write_buffer_with(&self.0, 0, Self::SIZE).is_some()
-    }
-}
-
+// The device's lost state before its callback: `render::gpu::WriteProbe`. egui-wgpu 0.37's
+// `Renderer::update_buffers` panics on a refused staging write, so the app asks first.
 /// Whether the device is lost, its lost callback run or not: the app core rebuilds its
 /// graphics on OpenGL ES.
 #[derive(Clone)]
 pub struct LostFlag {
     raised: Arc<AtomicBool>,
-    probe: Arc<WriteProbe>,
+    probe: Arc<render::gpu::WriteProbe>,
 }
 
 impl LostFlag {
@@ -87,7 +60,7 @@ impl LostFlag {
         });
         LostFlag {
             raised,
-            probe: Arc::new(WriteProbe::new(&gpu.device)),
+            probe: Arc::new(render::gpu::WriteProbe::new(&gpu.device)),
         }
     }
 

@@ -9,7 +9,7 @@ pub mod touch;
 
 use render::FrameReport;
 
-use crate::core::gfx::WriteProbe;
+use render::gpu::WriteProbe;
 use ui::{FpsMeter, PassStat, PerfStats, RaceClock, RegattaUi, TimelineEvent, UiFrame, UiResponse};
 
 /// The race clock the app starts with: paused at the start signal would show an empty sea, so

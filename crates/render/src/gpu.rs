@@ -523,6 +523,35 @@ impl DepthBuffer {
     }
 }
 
+/// A 4-byte buffer written to ask whether a device still takes work.
+///
+/// wgpu marks a lost device invalid at once (`Device::destroy`, or a driver's loss found by a
+/// submit or a fence query) but runs its lost callback only from a poll that finds the queue
+/// empty. In between, every write is refused: `Queue::write_buffer_with` returns `None`
+/// (wgpu-core's `validate_write_buffer` checks the device first, and an error of the device-lost
+/// type goes to no error handler: wgpu says it is "surfaced via callback"). A caller that
+/// writes through `write_buffer_with` and cannot take a `None` asks first.
+pub struct WriteProbe(wgpu::Buffer);
+
+impl WriteProbe {
+    const SIZE: wgpu::BufferSize = wgpu::BufferSize::new(wgpu::COPY_BUFFER_ALIGNMENT).unwrap();
+
+    pub fn new(device: &wgpu::Device) -> WriteProbe {
+        WriteProbe(device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("device write probe"),
+            size: Self::SIZE.get(),
+            usage: wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        }))
+    }
+
+    /// Whether `queue`'s device takes a write (false: it is lost). Costs a 4-byte staging
+    /// write, carried out with the next submission.
+    pub fn device_takes_writes(&self, queue: &wgpu::Queue) -> bool {
+        queue.write_buffer_with(&self.0, 0, Self::SIZE).is_some()
+    }
+}
+
 /// True when the environment demands a GPU (`REGATTA_REQUIRE_GPU=true`, as CI sets it).
 pub fn gpu_required() -> bool {
     std::env::var("REGATTA_REQUIRE_GPU").is_ok_and(|v| v == "true" || v == "1")
