@@ -49,6 +49,11 @@ const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
 const BIN_BYTES: u64 = 16;
 const INDEX_BYTES: u64 = 4;
 
+/// Most threads that list a frame's entries, and the fewest sources worth a thread of their
+/// own (a thread costs tens of microseconds; a source's entries about ten).
+const ENTRY_THREADS: usize = 4;
+const MIN_SOURCES_A_THREAD: usize = 256;
+
 /// The cap on one frame's wake buffers, bytes: `budget` within the device's limits for one
 /// storage binding and one buffer.
 pub(crate) fn wake_buffer_cap(limits: &wgpu::Limits, budget: u64) -> u64 {
@@ -237,11 +242,57 @@ impl Layout {
         out.pairs.clear();
         out.per_source.clear();
         out.per_source.resize(sources.len(), 0);
+        // A source's entries depend only on it and the grid: chunks of sources on threads of
+        // their own (a phone has 8 cores), their entries joined in the chunks' order, are the
+        // entries of one pass over all of them, in the same order.
+        let threads = std::thread::available_parallelism()
+            .map_or(1, |n| n.get())
+            .min(ENTRY_THREADS)
+            .min(sources.len().div_ceil(MIN_SOURCES_A_THREAD))
+            .max(1);
+        if threads == 1 {
+            return self.entries_from(sources, 0, &mut out.pairs, &mut out.per_source);
+        }
+        let chunk = sources.len().div_ceil(threads);
+        let parts: Vec<Vec<[u32; 2]>> = std::thread::scope(|scope| {
+            let workers: Vec<_> = sources
+                .chunks(chunk)
+                .zip(out.per_source.chunks_mut(chunk))
+                .enumerate()
+                .map(|(c, (part, listed))| {
+                    scope.spawn(move || {
+                        let mut pairs = Vec::new();
+                        self.entries_from(part, c * chunk, &mut pairs, listed);
+                        pairs
+                    })
+                })
+                .collect();
+            workers
+                .into_iter()
+                .map(|w| w.join().expect("a binning thread panicked"))
+                .collect()
+        });
+        out.pairs.reserve(parts.iter().map(Vec::len).sum());
+        for part in parts {
+            out.pairs.extend_from_slice(&part);
+        }
+    }
+
+    /// [`Layout::entries`] of `sources`, the first of which is source `first`: its pairs
+    /// appended to `pairs`, each source's count in `listed` (one slot a source).
+    fn entries_from(
+        &self,
+        sources: &[GpuWakeSource],
+        first: usize,
+        pairs: &mut Vec<[u32; 2]>,
+        listed_per_source: &mut [u64],
+    ) {
         let margin = f64::from(self.margin);
         let per_bin = self.lists_per_bin();
         // (column, nearest², farthest²) of the columns in reach of a source.
         let mut columns: Vec<(u32, f64, f64)> = Vec::new();
-        for (k, s) in sources.iter().enumerate() {
+        for (n, s) in sources.iter().enumerate() {
+            let k = first + n;
             let Some([i0, i1, j0, j1]) = self.span(s) else {
                 continue;
             };
@@ -283,7 +334,7 @@ impl Layout {
                     let near2 = dx2 + dz2;
                     let head = b * per_bin;
                     if near2 <= foam2 {
-                        out.pairs.push([head, k as u32]);
+                        pairs.push([head, k as u32]);
                         listed += 1;
                     }
                     if near2 > cull2 {
@@ -295,14 +346,14 @@ impl Layout {
                     while levels != 0 {
                         let l = levels.trailing_zeros();
                         if far2 >= inner2[l as usize] {
-                            out.pairs.push([head + 1 + l, k as u32]);
+                            pairs.push([head + 1 + l, k as u32]);
                             listed += 1;
                         }
                         levels &= levels - 1;
                     }
                 }
             }
-            out.per_source[k] = listed;
+            listed_per_source[n] = listed;
         }
     }
 
