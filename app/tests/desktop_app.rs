@@ -39,14 +39,7 @@ fn desktop() -> Option<App> {
     // The side panels off: the scene's middle is free for clicks.
     app.panels.show_leaderboard = false;
     app.panels.show_perf = false;
-    app.on_all([
-        AppEvent::Density(1.0),
-        AppEvent::Resumed,
-        AppEvent::WindowCreated {
-            surface: None,
-            size: SIZE,
-        },
-    ]);
+    let mut app = common::shown(app, SIZE);
     app.frame(1.0 / 30.0);
     Some(app)
 }

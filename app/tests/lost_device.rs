@@ -19,35 +19,15 @@
 //! the loss (lavapipe's Vulkan then, llvmpipe's OpenGL ES now: a mean difference of 0.00 of
 //! 255 measured), within a quarter of what the race 30 s later differs by (61 of 255).
 
-use regatta::core::app::{App, AppEvent, DesktopStart};
+mod common;
+
+use regatta::core::app::{App, DesktopStart};
 use regatta::hud::SceneChoice;
 use regatta::scene_overlay::labels::{BAR_PT, Hull};
 use regatta::scene_overlay::paint::colour32;
 use regatta::setup::RaceSetup;
 
 const SIZE: [u32; 2] = [360, 480];
-
-/// The phone's AR backend where there is no ARCore: the session never runs, so the phone
-/// draws the race in 3D under its orbit view.
-struct NoArCore;
-
-impl regatta::core::ar::ArBackend for NoArCore {
-    fn is_loaded(&self) -> bool {
-        false
-    }
-    fn carry_out(&mut self, _: ar::arcore::Command) -> Option<ar::arcore::Event> {
-        None
-    }
-    fn set_display_geometry(&mut self, _: i32, _: u32, _: u32) {}
-    fn update(&mut self) -> Option<ar::arcore::Event> {
-        None
-    }
-    fn next_frame(
-        &mut self,
-    ) -> Result<Option<(ar::CameraFrame, regatta::core::ar::DisplayCamera)>, ar::ArError> {
-        Ok(None)
-    }
-}
 
 fn world() -> regatta::world::RaceWorld {
     RaceSetup::world(race::Race::sample(), ocean::WaveSet::default_sea())
@@ -58,15 +38,7 @@ fn world() -> regatta::world::RaceWorld {
 fn shown(mut app: App) -> App {
     app.panels.show_leaderboard = false;
     app.panels.show_perf = false;
-    app.on_all([
-        AppEvent::Density(1.0),
-        AppEvent::Resumed,
-        AppEvent::WindowCreated {
-            surface: None,
-            size: SIZE,
-        },
-    ]);
-    app
+    common::shown(app, SIZE)
 }
 
 fn desktop() -> App {
@@ -83,7 +55,7 @@ fn desktop() -> App {
 }
 
 fn phone() -> App {
-    let mut app = App::phone(world(), Box::new(NoArCore));
+    let mut app = App::phone(world(), Box::new(regatta::core::ar::NoAr));
     app.tiers = regatta::tier_control::TierControl::new(quality::Tier::Low, true);
     shown(app)
 }

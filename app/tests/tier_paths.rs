@@ -14,9 +14,11 @@
 //!   water, byte for byte: one code path draws both (the profiles' renderers differ only in
 //!   what does not change pixels: GPU timestamps, re-presenting a still frame).
 
+mod common;
+
 use ocean::wake::WakeParams;
 use quality::Tier;
-use regatta::core::app::{App, AppEvent, DesktopStart};
+use regatta::core::app::{App, DesktopStart};
 use regatta::core::feed::CameraFeed;
 use regatta::hud::SceneChoice;
 use regatta::phone_sim::PhoneSim;
@@ -63,19 +65,6 @@ fn world() -> regatta::world::RaceWorld {
     RaceSetup::world(race::Race::sample(), ocean::WaveSet::default_sea())
 }
 
-/// The app in an offscreen window of `size` pixels at one pixel per point, in the foreground.
-fn shown(mut app: App, size: [u32; 2]) -> App {
-    app.on_all([
-        AppEvent::Density(1.0),
-        AppEvent::Resumed,
-        AppEvent::WindowCreated {
-            surface: None,
-            size,
-        },
-    ]);
-    app
-}
-
 /// The desktop profile without a feed (the orbit view over the sky), `tier` pinned.
 fn desktop(size: [u32; 2], tier: Tier) -> App {
     let start = DesktopStart {
@@ -85,14 +74,14 @@ fn desktop(size: [u32; 2], tier: Tier) -> App {
         scene: SceneChoice::Race,
         pool_sea: None,
     };
-    shown(App::desktop(world(), start), size)
+    common::shown(App::desktop(world(), start), size)
 }
 
 /// The phone profile without ARCore, `tier` pinned.
 fn phone(size: [u32; 2], tier: Tier) -> App {
     let mut app = App::phone(world(), Box::new(regatta::core::ar::NoAr));
     app.tiers = regatta::tier_control::TierControl::new(tier, true);
-    shown(app, size)
+    common::shown(app, size)
 }
 
 /// Pins `tier` in the app's Scene panel, as a click there does.

@@ -182,3 +182,17 @@ pub fn scrub_track(ctx: &egui::Context) -> Option<egui::Rect> {
             .max_by(|a, b| a.width().total_cmp(&b.width()))
     })
 }
+
+/// `app` in an offscreen window of `size` pixels at one pixel per point, in the foreground.
+pub fn shown(mut app: regatta::core::app::App, size: [u32; 2]) -> regatta::core::app::App {
+    use regatta::core::app::AppEvent;
+    app.on_all([
+        AppEvent::Density(1.0),
+        AppEvent::Resumed,
+        AppEvent::WindowCreated {
+            surface: None,
+            size,
+        },
+    ]);
+    app
+}
