@@ -39,10 +39,10 @@ pub fn open_with_fallback<T, E: std::fmt::Display>(
     }
 }
 
-// The device's lost state before its callback: `render::gpu::WriteProbe`. egui-wgpu 0.37's
-// `Renderer::update_buffers` panics on a refused staging write, so the app asks first.
 /// Whether the device is lost, its lost callback run or not: the app core rebuilds its
-/// graphics on OpenGL ES.
+/// graphics on OpenGL ES. Before the callback, a refused write says so
+/// (`render::gpu::WriteProbe`): egui-wgpu 0.37's `Renderer::update_buffers` panics on a
+/// refused staging write, so the app asks first.
 #[derive(Clone)]
 pub struct LostFlag {
     raised: Arc<AtomicBool>,

@@ -49,9 +49,10 @@ const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
 const BIN_BYTES: u64 = 16;
 const INDEX_BYTES: u64 = 4;
 
-/// Most threads that list a frame's entries, and the fewest sources worth a thread of their
-/// own (a thread costs tens of microseconds; a source's entries about ten).
+/// Most threads that list a frame's entries.
 const ENTRY_THREADS: usize = 4;
+/// The fewest sources worth a thread of their own (a thread costs tens of microseconds; a
+/// source's entries about ten).
 const MIN_SOURCES_A_THREAD: usize = 256;
 
 /// The cap on one frame's wake buffers, bytes: `budget` within the device's limits for one
