@@ -79,19 +79,18 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     }
 
     // The table under the water (q), straight through or refracted, and its colour and
-    // path length in the water (table.w).
-    // (One refraction and one straight table point per pixel: each is a Snell or ray-plane
-    // solve, a tenth of the pixel's work.)
+    // path length in the water (table.w). (One refraction per pixel, a tenth of its work; the
+    // straight-through point from the screen uv by a map formed on the CPU.)
     var q: vec3<f32>;
     var table: vec4<f32>;
     if fx_on(FX_REFRACTION) {
         let t = refract_dir(view, n, N_AIR, N_WATER);
-        table = refracted_table_along(p, view, t);
+        table = refracted_table_along(p, view, screen_uv, t);
         q = p + t.xyz * table.w;
     } else {
-        let straight = table_point_straight(p, view);
-        q = straight.xyz;
-        table = vec4<f32>(sample_camera(camera_uv(q).xy), straight.w);
+        let straight = straight_through(p, view, screen_uv);
+        q = p + view * straight.z;
+        table = vec4<f32>(sample_camera(straight.xy), straight.z);
     }
     var light = 1.0;
     if fx_on(FX_CAUSTICS) {

@@ -15,6 +15,11 @@ struct Effects {
     // The same projection's constant column for points on the table (y = −table depth):
     // camera_projection[1]·y + camera_projection[3], formed in f64 on the CPU (xyz; w unused).
     table_image: vec4<f32>,
+    // Screen uv (s, t) -> the camera-image point of the table straight behind it, as columns of
+    // a 3×3 map: (s, t, 1) -> (u w, v w, w), the eye's ray met with the table plane and
+    // projected, composed in f64 on the CPU (effects::passes::straight_image); all zero when
+    // the eye is not above the table.
+    straight_image: array<vec4<f32>, 3>,
     // The display's UV transform: screen uv -> camera-image uv, rows of a 2x3 affine map.
     display_u: vec4<f32>,
     display_v: vec4<f32>,

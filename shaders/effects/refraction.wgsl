@@ -17,20 +17,30 @@ fn table_hit(p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(p.xz + s * d.xz, s);
 }
 
-// The table point straight through the water from p along the unit view ray, and the path to
-// it in the water (w): where the ray meets no table ahead, p itself and 0.
-fn table_point_straight(p: vec3<f32>, view: vec3<f32>) -> vec4<f32> {
-    let hit = table_hit(p, view);
-    return select(vec4<f32>(p, 0.0), vec4<f32>(hit.x, -fx.table.x, hit.y, hit.z), hit.z > 0.0);
+// The table straight through the water at this pixel, as if there were no refraction: xy,
+// the camera-image uv of the table point on the eye's ray through screen uv `screen`, by the
+// map fx.straight_image formed on the CPU (three columns and a division where a ray-plane
+// solve and camera_uv took 46 operations); the image's centre where that point is behind the
+// camera, where no table is ahead (the map is zero) or where the view does not run down (as
+// table_hit finds no plane for |d.y| < 1e-12). z, the path from p along the unit view ray
+// down to the table (0 where the table is not ahead of p: a trough below it).
+fn straight_through(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>) -> vec3<f32> {
+    let h = fx.straight_image[0].xyz * screen.x + fx.straight_image[1].xyz * screen.y
+        + fx.straight_image[2].xyz;
+    let down = view.y <= -1e-12;
+    let uv = select(vec2<f32>(0.5), h.xy / h.z, down && h.z > 0.0);
+    // Where the view does not run down the division's value is never used.
+    let s = -(p.y + fx.table.x) / view.y;
+    return vec3<f32>(uv, select(0.0, max(s, 0.0), down));
 }
 
-fn refracted_table(p: vec3<f32>, view: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
-    return refracted_table_along(p, view, refract_dir(view, n, N_AIR, N_WATER));
+fn refracted_table(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>, n: vec3<f32>) -> vec4<f32> {
+    return refracted_table_along(p, view, screen, refract_dir(view, n, N_AIR, N_WATER));
 }
 
 // refracted_table with the refracted ray t = refract_dir(view, n, N_AIR, N_WATER) given: the
 // AR water needs t again for the table point the caustics light, and refracts once.
-fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
+fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>, t: vec4<f32>) -> vec4<f32> {
     let hit = table_hit(p, t.xyz);
     // Without a table along the refracted ray (or behind the camera): w = 0, the unrefracted
     // sample and the ray's path along the view direction (ar_water puts q there). No early
@@ -41,18 +51,16 @@ fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, t: vec4<f32>) -> vec4<f3
     let refracted = clamp(uv.xy, vec2<f32>(0.0), vec2<f32>(1.0));
     // At w = 1 (w is 0 where no table is found) the sample is the refracted point and the
     // path the refracted ray's, as mix(straight, refracted, 1) and the select below give:
-    // the straight table point and its projection (table_point_straight and a camera_uv, 46
-    // ALU operations) only where the refracted point is in the fade band, outside it or
-    // missing, under 1 % of the water's pixels in the demo view. (The budget model counts a
-    // branch's costlier side, so it does not see this; a GPU skips the block for each SIMD
-    // group that has w = 1 throughout.)
+    // the straight-through point (straight_through) only where the refracted point is in the
+    // fade band, outside it or missing, under 1 % of the water's pixels in the demo view. (The
+    // budget model counts a branch's costlier side; a GPU skips the block for each SIMD group
+    // that has w = 1 throughout.)
     var at = refracted;
     var path = hit.z;
     if w < 1.0 {
-        let straight_point = table_point_straight(p, view);
-        let straight = camera_uv(straight_point.xyz).xy;
-        at = select(straight, mix(straight, refracted, w), w > 0.0);
-        path = select(straight_point.w, hit.z, found);
+        let straight = straight_through(p, view, screen);
+        at = select(straight.xy, mix(straight.xy, refracted, w), w > 0.0);
+        path = select(straight.z, hit.z, found);
     }
     return vec4<f32>(sample_camera(at), path);
 }

@@ -63,12 +63,16 @@ pub fn refract_to_table(
     camera: &PinholeCamera,
 ) -> TableSample {
     let view = (surface - eye).normalize();
-    // Straight through the water; if even that misses the table, the water pixel itself.
-    let straight_hit = table.intersect_ray(surface, view);
-    let straight = straight_hit
-        .and_then(|(_, p)| camera.project_uv(p))
-        .or_else(|| camera.project_uv(surface));
+    // Straight through the water: the table point behind the pixel, where the eye's ray
+    // through it runs down to the table (seen by the camera); else the image's centre. Where
+    // the render camera is the physical one (the phone) this is the water pixel itself.
+    let straight = (view.y <= -1e-12)
+        .then(|| table.intersect_ray(eye, view))
+        .flatten()
+        .and_then(|(_, p)| camera.project_uv(p));
     let straight_uv = clamp_uv(straight.unwrap_or(DVec2::splat(0.5)));
+    // The path along the view from the surface down to the table (none: a trough below it).
+    let straight_hit = table.intersect_ray(surface, view);
     let refracted =
         refract(view, normal, N_AIR, N_WATER).and_then(|t| table.intersect_ray(surface, t));
     let table_point = refracted.map(|(_, p)| p);

@@ -262,10 +262,23 @@ fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
 /// The `Effects` uniform with `camera` and `table` (depth, ring radius, ring centre x, z) as
 /// the passes fill them (local origin 0); the rest zero.
 fn effects_uniform(camera: &PinholeCamera, table: [f64; 4]) -> EffectsUniform {
+    effects_uniform_seen_by(camera, camera, table)
+}
+
+/// [`effects_uniform`] for a render camera `render` (the screen's) that is not the physical
+/// `camera` (the straight-through map between them).
+fn effects_uniform_seen_by(
+    camera: &PinholeCamera,
+    render: &PinholeCamera,
+    table: [f64; 4],
+) -> EffectsUniform {
     let mut fx: EffectsUniform = bytemuck::Zeroable::zeroed();
     let image = camera.image_projection(camera.pose.inverse());
     fx.camera_projection = image.as_mat4().to_cols_array_2d();
     fx.table_image = effects::passes::table_image(image, table[0]);
+    let screen = render.image_projection(render.pose.inverse());
+    fx.straight_image =
+        effects::passes::straight_columns(effects::passes::straight_image(screen, image, table[0]));
     fx.table = table.map(|v| v as f32);
     fx
 }
@@ -508,9 +521,15 @@ fn uv_image(gpu: &Gpu) -> wgpu::Texture {
 /// its pixels see.
 struct WaterView {
     camera: PinholeCamera,
+    /// The camera the screen is drawn with: at the physical camera's pose but with other
+    /// intrinsics (a cropped, zoomed display), so the straight-through map is not the identity.
+    render: PinholeCamera,
     depth: f64,
-    /// Surface point, unit view direction, unit normal (f32, as the GPU gets them).
+    /// Surface point (w: the screen's u), unit view direction (w: the screen's v), unit normal
+    /// (f32, as the GPU gets them).
     cases: Vec<[[f32; 4]; 3]>,
+    /// Each case's screen uv in f64 (the render camera's projection of the surface point).
+    screens: Vec<DVec2>,
 }
 
 /// Rays through a 33 × 25 grid of pixels (the image's edges included) to a wavy surface
@@ -519,7 +538,15 @@ struct WaterView {
 /// the table.
 fn water_view(eye: DVec3, target: DVec3, depth: f64) -> WaterView {
     let camera = camera(eye, target);
+    let render = PinholeCamera {
+        fx: 430.0,
+        fy: 450.0,
+        cx: 300.0,
+        cy: 255.0,
+        ..camera
+    };
     let mut cases = Vec::new();
+    let mut screens = Vec::new();
     for k in 0..33 * 25 {
         let (i, j) = (f64::from(k % 33), f64::from(k / 33));
         let ray = camera.pixel_ray(DVec2::new(i * 20.0, j * 20.0));
@@ -533,12 +560,22 @@ fn water_view(eye: DVec3, target: DVec3, depth: f64) -> WaterView {
             n = (-DVec3::new(ray.x, 0.0, ray.z).normalize() - 0.75 * DVec3::Y).normalize();
         }
         let view = (p - eye).normalize();
-        cases.push([v4(p), v4(view), v4(n)]);
+        // The screen uv of the surface point as the GPU gets it (its f32), which the
+        // reference's straight-through ray passes.
+        let screen = render
+            .project_uv(dvec(v4(p)))
+            .expect("the render camera sees the water");
+        let [mut p4, mut view4] = [v4(p), v4(view)];
+        (p4[3], view4[3]) = (screen.x as f32, screen.y as f32);
+        cases.push([p4, view4, v4(n)]);
+        screens.push(screen);
     }
     WaterView {
         camera,
+        render,
         depth,
         cases,
+        screens,
     }
 }
 
@@ -598,7 +635,7 @@ fn wgsl_refracted_table(
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x < arrayLength(&input) {
         let c = input[id.x];
-        output[id.x] = refracted_table(c[0].xyz, c[1].xyz, c[2].xyz);
+        output[id.x] = refracted_table(c[0].xyz, c[1].xyz, vec2<f32>(c[0].w, c[1].w), c[2].xyz);
     }
 }
 "#;
@@ -607,7 +644,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         Sampling::Spy => effects_common_with_spy(),
     };
     let src = effects::wgsl::source(&[&common, effects::passes::REFRACTION, kernel]);
-    let uniform = uniform_buffer(gpu, &effects_uniform(&view.camera, [depth, 0.0, 0.0, 0.0]));
+    let uniform = uniform_buffer(
+        gpu,
+        &effects_uniform_seen_by(&view.camera, &view.render, [depth, 0.0, 0.0, 0.0]),
+    );
     let image = uv_image(gpu).create_view(&Default::default());
     let sampler = gpu.device.create_sampler(&wgpu::SamplerDescriptor {
         mag_filter: wgpu::FilterMode::Linear,
@@ -671,7 +711,7 @@ struct TableErrors {
 fn compare_refracted_table(got: &[[f32; 4]], view: &WaterView, sampling: Sampling) -> TableErrors {
     let eye = view.camera.position();
     let table = Plane::horizontal(-view.depth);
-    let camera = bounds::CameraBound::new(&view.camera);
+    let camera = bounds::CameraBound::seen_by(&view.camera, &view.render);
     let mut e = TableErrors {
         uv: 0.0,
         uv_bound: 0.0,
@@ -681,7 +721,7 @@ fn compare_refracted_table(got: &[[f32; 4]], view: &WaterView, sampling: Samplin
         undecided: 0,
         counts: [0; 4],
     };
-    for (g, [p4, v4, n4]) in got.iter().zip(&view.cases) {
+    for ((g, [p4, v4, n4]), screen) in got.iter().zip(&view.cases).zip(&view.screens) {
         let (p, n) = (dvec(*p4), dvec(*n4));
         let s = refract_to_table(eye, p, n, &table, &view.camera);
         let kind = match s.weight {
@@ -693,7 +733,7 @@ fn compare_refracted_table(got: &[[f32; 4]], view: &WaterView, sampling: Samplin
         e.counts[kind] += 1;
         let view_ref = (p - eye).normalize();
         let bounds::Bounded::Decided(b) =
-            bounds::refracted_table(&camera, view.depth, *p4, *v4, view_ref, *n4)
+            bounds::refracted_table(&camera, view.depth, *p4, *v4, view_ref, *screen, *n4)
         else {
             e.undecided += 1;
             continue;

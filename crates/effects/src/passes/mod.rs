@@ -23,6 +23,7 @@ mod config;
 mod pipelines;
 mod scissor;
 mod shared;
+mod table_image;
 mod water;
 
 use std::cell::RefCell;
@@ -41,7 +42,10 @@ pub use pipelines::{AR_WATER, AR_WATER_PARTS, CAUSTICS, FLOWMAP, REFLECTION, REF
 use shared::Shared;
 pub use shared::{
     EFFECTS_COMMON, EffectsUniform, FLOW_DETAIL_FORMAT, caustic_region, effect_frame,
-    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler, table_column, table_image,
+    flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler,
+};
+pub use table_image::{
+    screen_projection, straight_columns, straight_image, table_column, table_image,
 };
 pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};
 

@@ -2,9 +2,10 @@
 //! `Rc<RefCell>` held by both passes and the handle), the planner's view of a frame and the
 //! caustic map's region.
 
-use glam::{DMat4, DVec2, DVec3, DVec4};
+use glam::{DVec2, DVec3};
 
 use super::config::ArConfig;
+use super::table_image::{screen_projection, straight_columns, straight_image, table_image};
 use crate::backdrop::{Backdrop, CameraImage};
 use crate::camera_upload::{CameraTextures, YuvConversion};
 use crate::caustic_map::CAUSTIC_MAP_FORMAT;
@@ -28,6 +29,8 @@ pub struct EffectsUniform {
     pub camera_projection: [[f32; 4]; 4],
     /// [`table_image`]: the projection's constant column for table points.
     pub table_image: [f32; 4],
+    /// [`straight_columns`]: screen uv → the camera-image point of the table behind it.
+    pub straight_image: [[f32; 4]; 3],
     pub display_u: [f32; 4],
     pub display_v: [f32; 4],
     pub table: [f32; 4],
@@ -39,20 +42,6 @@ pub struct EffectsUniform {
     pub marks: [[f32; 4]; 8],
     /// `WaterLook::gpu_optics`: the sea's water over the table (`WaterOptics`).
     pub water: [[f32; 4]; 5],
-}
-
-/// The constant column of `image_projection` (`PinholeCamera::image_projection`, local points
-/// → (u w, v w, w)) for points on the table plane y = −`depth`: column 1 · (−depth) + column 3,
-/// in f64, so that the shader's `table_uv` projects a table point (x, z) with two columns and
-/// this one (xyz; w is 0).
-pub fn table_column(image_projection: DMat4, depth: f64) -> DVec4 {
-    image_projection.y_axis * -depth + image_projection.w_axis
-}
-
-/// [`table_column`] as the effects' uniform holds it.
-pub fn table_image(image_projection: DMat4, depth: f64) -> [f32; 4] {
-    let c = table_column(image_projection, depth);
-    [c.x as f32, c.y as f32, c.z as f32, 0.0]
 }
 
 /// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
@@ -399,6 +388,11 @@ impl Shared {
         EffectsUniform {
             camera_projection: projection,
             table_image: table_image(image, self.cfg.table_depth),
+            straight_image: straight_columns(straight_image(
+                screen_projection(frame.view_proj),
+                image,
+                self.cfg.table_depth,
+            )),
             display_u: [f(d[0][0]), f(d[0][1]), f(d[0][2]), 0.0],
             display_v: [f(d[1][0]), f(d[1][1]), f(d[1][2]), 0.0],
             table: [f(self.cfg.table_depth), f(ring), f(centre.x), f(centre.y)],

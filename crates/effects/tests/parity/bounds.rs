@@ -30,15 +30,37 @@ pub struct CameraBound {
     projection: [[Inexact; 4]; 4],
     /// The same projection in f64, for `table_image`'s column.
     exact: glam::DMat4,
+    /// The render camera's projection to the screen's uv, f64 (`straight_image`'s screen).
+    screen: glam::DMat4,
 }
 
 impl CameraBound {
-    pub fn new(camera: &PinholeCamera) -> Self {
+    /// The physical `camera`, the screen drawn by the pinhole camera `render`.
+    pub fn seen_by(camera: &PinholeCamera, render: &PinholeCamera) -> Self {
         let exact = camera.image_projection(camera.pose.inverse());
         Self {
             projection: exact.to_cols_array_2d().map(|col| col.map(input)),
             exact,
+            screen: render.image_projection(render.pose.inverse()),
         }
+    }
+
+    /// `straight_through`'s uv (`refraction.wgsl`) for a table `depth` deep at screen uv `screen`:
+    /// the map formed in f64 on the CPU (`effects::passes::straight_image`) reaches the GPU
+    /// as its f32 (all zero without one: w = 0, the image's centre).
+    fn straight_uv(&self, screen: [Inexact; 2], depth: f64) -> Bounded<Option<[Inexact; 2]>> {
+        let Some(m) = effects::passes::straight_image(self.screen, self.exact, depth) else {
+            return Bounded::Decided(None);
+        };
+        let cols = [m.x_axis, m.y_axis, m.z_axis].map(|c| [c.x, c.y, c.z].map(input));
+        let row = |i: usize| {
+            render::wgsl_accuracy::sum(&[
+                cols[0][i] * screen[0],
+                cols[1][i] * screen[1],
+                cols[2][i],
+            ])
+        };
+        in_front([row(0), row(1), row(2)])
     }
 
     /// `table_uv` of `effects_common.wgsl` for a table `depth` deep: the uv of the table
@@ -57,24 +79,10 @@ impl CameraBound {
         };
         in_front([row(0), row(1), row(2)])
     }
-
-    /// `camera_uv` of `effects_common.wgsl`: the uv of `p`, or `None` behind the camera.
-    fn uv(&self, p: [Inexact; 3]) -> Bounded<Option<[Inexact; 2]>> {
-        let row = |i: usize| {
-            let terms = [
-                self.projection[0][i] * p[0],
-                self.projection[1][i] * p[1],
-                self.projection[2][i] * p[2],
-                self.projection[3][i],
-            ];
-            render::wgsl_accuracy::sum(&terms)
-        };
-        in_front([row(0), row(1), row(2)])
-    }
 }
 
 /// (u w, v w, w) → the uv, or `None` behind the camera (w ≤ 0): the division and the select
-/// that `camera_uv` and `table_uv` end with.
+/// that `table_uv` and `straight_through` end with.
 fn in_front(h: [Inexact; 3]) -> Bounded<Option<[Inexact; 2]>> {
     match h[2].above(0.0) {
         None => Bounded::Undecided,
@@ -126,16 +134,22 @@ pub struct TableBound {
     pub path: Inexact,
 }
 
-/// `refracted_table(p, view, n)` of `refraction.wgsl` over a table `depth` deep, seen by
-/// `camera`; `view_ref` is the reference's view direction (the GPU gets its f32 `view`).
+/// `refracted_table(p, view, screen, n)` of `refraction.wgsl` over a table `depth` deep, seen
+/// by `camera`; `view_ref` is the reference's view direction (the GPU gets its f32 `view`),
+/// `screen_ref` the pixel's screen uv (the GPU gets its f32, in p.w and view.w).
 pub fn refracted_table(
     camera: &CameraBound,
     depth: f64,
     p: [f32; 4],
     view: [f32; 4],
     view_ref: DVec3,
+    screen_ref: glam::DVec2,
     n: [f32; 4],
 ) -> Bounded<TableBound> {
+    let screen = [
+        Inexact::input(screen_ref.x, p[3]),
+        Inexact::input(screen_ref.y, view[3]),
+    ];
     let p = vec3(p);
     let view = [
         Inexact::input(view_ref.x, view[0]),
@@ -144,20 +158,20 @@ pub fn refracted_table(
     ];
     let n = vec3(n);
     let depth = input(depth);
-    let Bounded::Decided((straight_hit, straight_s)) = ray_table(p, view, depth) else {
-        return Bounded::Undecided;
-    };
-    // `table_point_straight`: the hit on the plane (its y the plane's own, −depth), and the
-    // path to it along the unit view ray, s; else p and 0.
-    let (straight_point, straight_path) = match straight_s.above(0.0) {
-        None => return Bounded::Undecided,
-        Some(true) => ([straight_hit[0], -depth, straight_hit[2]], straight_s),
-        Some(false) => (p, Inexact::exact(0.0)),
-    };
     let centre = [Inexact::exact(0.5); 2];
-    let straight = match camera.uv(straight_point) {
-        Bounded::Undecided => return Bounded::Undecided,
-        Bounded::Decided(uv) => uv.unwrap_or(centre),
+    // `straight_through`: the straight uv where the view runs down (y ≤ −1e-12), the path
+    // from p along the view down to the table, max(s, 0); else the centre and 0.
+    let (straight, straight_path) = match view[1].above(-1e-12) {
+        None => return Bounded::Undecided,
+        Some(true) => (centre, Inexact::exact(0.0)),
+        Some(false) => {
+            let uv = match camera.straight_uv(screen, depth.value) {
+                Bounded::Undecided => return Bounded::Undecided,
+                Bounded::Decided(uv) => uv.unwrap_or(centre),
+            };
+            let s = -(p[1] + depth) / view[1];
+            (uv, s.max(Inexact::exact(0.0)))
+        }
     };
     let Bounded::Decided(t) = refract(view, n) else {
         return Bounded::Undecided;
