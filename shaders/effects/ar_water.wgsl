@@ -67,8 +67,9 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     if fx_on(FX_FLOWMAP) {
         n = flow_normal(p.xz, in.rest_current.zw, n);
     }
-    let cos_i = max(dot(n, -view), 0.0);
-    let r = fresnel_reflectance(cos_i, N_AIR, N_WATER);
+    // The view entering the water: the refracted ray (xyz) and the Fresnel reflectance (w).
+    let entry = water_entry(view, n);
+    let r = entry.w;
 
     // What the water mirrors: the reflection texture (room, sky, boats), else the sky.
     var reflected: vec3<f32>;
@@ -84,9 +85,8 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     var q: vec3<f32>;
     var table: vec4<f32>;
     if fx_on(FX_REFRACTION) {
-        let t = refract_dir(view, n, N_AIR, N_WATER);
-        table = refracted_table_along(p, view, screen_uv, t);
-        q = p + t.xyz * table.w;
+        table = refracted_table_along(p, view, screen_uv, vec4<f32>(entry.xyz, 1.0));
+        q = p + entry.xyz * table.w;
     } else {
         let straight = straight_through(p, view, screen_uv);
         q = p + view * straight.z;

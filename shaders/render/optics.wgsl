@@ -61,6 +61,30 @@ fn refract_dir(d: vec3<f32>, n_in: vec3<f32>, n1: f32, n2: f32) -> vec4<f32> {
     return vec4<f32>(eta * d + ((eta * cos_i - sqrt(k)) * side) * n_in, 1.0);
 }
 
+// The unit view ray d entering the water through the unit normal n (air to water): the
+// refracted direction (xyz: refract_dir's) and the Fresnel reflectance (w:
+// fresnel_reflectance's at the cosine max(−d·n, 0)), from one dot product and one square
+// root, since refract_dir's k = 1 − η²(1 − cos²) is fresnel_reflectance's cos_t² (from air
+// there is no total internal reflection: k ≥ 1 − η² > 0). A normal turned away from the eye
+// (d·n ≥ 0) reflects everything (R = 1, what a cosine of 0 gives) and refracts about the
+// turned normal, as the two functions do. The cosine is clamped to 1 as fresnel_reflectance
+// clamps it, which moves the refraction only where d·n rounds past ±1.
+fn water_entry(d: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    let facing = dot(d, n);
+    let side = select(1.0, -1.0, facing > 0.0);
+    let cos_i = min(-(side * facing), 1.0);
+    let eta = N_AIR / N_WATER;
+    let cos_t = sqrt(1.0 - eta * eta * (1.0 - cos_i * cos_i));
+    let t = eta * d + ((eta * cos_i - cos_t) * side) * n;
+    let i1 = N_AIR * cos_i;
+    let i2 = N_WATER * cos_i;
+    let t1 = N_AIR * cos_t;
+    let t2 = N_WATER * cos_t;
+    let rs = (i1 - t2) / (i1 + t2);
+    let rp = (t1 - i2) / (t1 + i2);
+    return vec4<f32>(t, select(0.5 * (rs * rs + rp * rp), 1.0, facing >= 0.0));
+}
+
 // Where the ray o + s d (s ≥ 0) meets the plane dot(p.xyz, x) + p.w = 0: vec4(point, s), or
 // s < 0 when it misses (parallel or pointing away).
 fn ray_plane(o: vec3<f32>, d: vec3<f32>, p: vec4<f32>) -> vec4<f32> {

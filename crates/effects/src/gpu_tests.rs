@@ -320,6 +320,87 @@ fn wgsl_optics_match_the_f64_reference() {
 }
 
 #[test]
+fn the_water_entry_is_the_refraction_and_the_fresnel_reflectance() {
+    // `water_entry` (the AR water's one dot product and square root for both) against the f64
+    // references and against `refract_dir` and `fresnel_reflectance` as the AR water called
+    // them before, on views from overhead to grazing through normals tilted every way, some
+    // turned away from the eye (a wave's back face): R = 1 there and the ray refracts about
+    // the turned normal.
+    let Some(gpu) = test_gpu() else { return };
+    let mut cases: Vec<[[f32; 4]; 2]> = Vec::new();
+    let mut refs = Vec::new();
+    for k in 0..400 {
+        let k = f64::from(k);
+        let (pitch, yaw) = (
+            0.02 + 1.5 * (k * 0.618).fract(),
+            6.283 * (k * 0.754).fract(),
+        );
+        let d = DVec3::new(
+            pitch.sin() * yaw.cos(),
+            -pitch.cos(),
+            pitch.sin() * yaw.sin(),
+        );
+        let (tilt, az) = (1.4 * (k * 0.377).fract(), 6.283 * (k * 0.291).fract());
+        let n = DVec3::new(tilt.sin() * az.cos(), tilt.cos(), tilt.sin() * az.sin());
+        let f32s = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+        cases.push([f32s(d), f32s(n)]);
+        // The reference at the f32 inputs the GPU gets.
+        let (d, n) = (dvec3(f32s(d)), dvec3(f32s(n)));
+        let t = refract(d, n, N_AIR, N_WATER).expect("air to water");
+        refs.push((
+            t,
+            fresnel((-d.dot(n)).max(0.0), N_AIR, N_WATER).r,
+            d.dot(n) > 0.0,
+        ));
+    }
+    let src = format!(
+        "{}{}\n{}",
+        render::shader::prelude(),
+        render::shader::OPTICS,
+        r#"
+@group(0) @binding(10) var<storage, read> input: array<array<vec4<f32>, 2>>;
+@group(0) @binding(11) var<storage, read_write> output: array<array<vec4<f32>, 2>>;
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&input) {
+        let d = input[id.x][0].xyz;
+        let n = input[id.x][1].xyz;
+        let t = refract_dir(d, n, N_AIR, N_WATER);
+        let r = fresnel_reflectance(max(dot(n, -d), 0.0), N_AIR, N_WATER);
+        output[id.x] = array<vec4<f32>, 2>(water_entry(d, n), vec4<f32>(t.xyz, r));
+    }
+}
+"#
+    );
+    let bytes = render::compute::run_kernel(&gpu, "water entry", &src, &cases, 32)
+        .expect("the kernel runs");
+    let got: &[[[f32; 4]; 2]] = bytemuck::cast_slice(&bytes);
+    let (mut worst_ref, mut worst_old, mut back) = (0.0f64, 0.0f64, 0);
+    for (g, (t, r, away)) in got.iter().zip(&refs) {
+        let [entry, old] = g.map(|v| v.map(f64::from));
+        let want = [t.x, t.y, t.z, *r];
+        for i in 0..4 {
+            worst_ref = worst_ref.max((entry[i] - want[i]).abs());
+            worst_old = worst_old.max((entry[i] - old[i]).abs());
+        }
+        if *away {
+            back += 1;
+            assert_eq!(entry[3], 1.0, "a face turned away reflects everything");
+        }
+    }
+    eprintln!("water_entry: worst against f64 {worst_ref:e}, against the two calls {worst_old:e}");
+    // f32 with a few roundings, as wgsl_optics_match_the_f64_reference allows; the two calls
+    // compute the same expressions (only the cosine's clamp at 1 differs).
+    assert!(worst_ref < 2e-5, "{worst_ref:e}");
+    assert!(worst_old < 1e-6, "{worst_old:e}");
+    assert!(back > 20, "{back} faces turned away");
+}
+
+fn dvec3(v: [f32; 4]) -> DVec3 {
+    DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))
+}
+
+#[test]
 fn wakes_shape_the_effect_shaded_water_near_the_boat() {
     use ocean::wake::{TrackSample, Wake, WakeParams};
     let Some(gpu) = test_gpu() else { return };
