@@ -333,14 +333,17 @@ fn the_water_entry_is_the_refraction_and_the_fresnel_reflectance() {
         let k = f64::from(k);
         let (pitch, yaw) = (
             0.02 + 1.5 * (k * 0.618).fract(),
-            6.283 * (k * 0.754).fract(),
+            std::f64::consts::TAU * (k * 0.754).fract(),
         );
         let d = DVec3::new(
             pitch.sin() * yaw.cos(),
             -pitch.cos(),
             pitch.sin() * yaw.sin(),
         );
-        let (tilt, az) = (1.4 * (k * 0.377).fract(), 6.283 * (k * 0.291).fract());
+        let (tilt, az) = (
+            1.4 * (k * 0.377).fract(),
+            std::f64::consts::TAU * (k * 0.291).fract(),
+        );
         let n = DVec3::new(tilt.sin() * az.cos(), tilt.cos(), tilt.sin() * az.sin());
         let f32s = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
         cases.push([f32s(d), f32s(n)]);
