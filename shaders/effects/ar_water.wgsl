@@ -100,7 +100,8 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     // sea's depth and the column's own backscattered light. The room's radiance is the
     // camera's white (the assumption that makes the table's colour its albedo).
     let transmitted = water_transmitted(table.rgb * light, vec3<f32>(1.0), table.w * fx.water.down_scale.w, fx.water);
-    var colour = r * reflected + (1.0 - r) * transmitted;
+    // R·reflected + (1 − R)·transmitted as one mix.
+    var colour = mix(transmitted, reflected, r);
     // Foam of breaking crests (Jacobian) and of the boats' wakes, as the water pass draws it.
     let sun_in = max(dot(n, frame.sun.xyz), 0.0);
     let foam = foam_coverage(foam_from_jacobian(sf.jacobian), in.wake.z);

@@ -24,7 +24,8 @@ struct WaterOptics {
 fn water_transmitted(table: vec3<f32>, room: vec3<f32>, path_m: f32, w: WaterOptics) -> vec3<f32> {
     let t = w.down_scale.xyz * exp(w.neg_attenuation.xyz * path_m);
     let rho = clamp(table, vec3<f32>(0.0), vec3<f32>(1.0));
-    let seen = table * t + room * w.deep.xyz * (vec3<f32>(1.0) - t);
+    // table·t + room·R∞·(1 − t) as one mix (WGSL defines mix by that expression).
+    let seen = mix(room * w.deep.xyz, table, t);
     return seen / (w.denominator.xyz - w.albedo_weight.xyz * rho);
 }
 
