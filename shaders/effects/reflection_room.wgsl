@@ -20,6 +20,23 @@
 // flickering between them as the camera moves.
 const TEXEL_ROUGHNESS: f32 = 2e-4;
 
+// sky_colour_rough's lobes at that constant variance, evaluated when the shader is compiled
+// (const-expressions), so a texel pays the three powers only: sky_colour_texel(dir) is
+// sky_colour_rough(dir, TEXEL_ROUGHNESS) to rounding, 27 operations fewer a texel.
+const TEXEL_V2: f32 = 2.0 * TEXEL_ROUGHNESS;
+const TEXEL_N64: f32 = 64.0 / (1.0 + 64.0 * TEXEL_V2);
+const TEXEL_N8: f32 = 8.0 / (1.0 + 8.0 * TEXEL_V2);
+const TEXEL_N_DISC: f32 = 1.0 / (3e-4 + TEXEL_V2);
+const TEXEL_W64: f32 = 0.6 * (TEXEL_N64 + 1.0) / 65.0;
+const TEXEL_W8: f32 = 0.15 * (TEXEL_N8 + 1.0) / 9.0;
+const TEXEL_W_DISC: f32 = 30.0 * 3e-4 * (TEXEL_N_DISC + 1.0);
+
+fn sky_colour_texel(dir: vec3<f32>) -> vec3<f32> {
+    let s = max(dot(dir, frame.sun.xyz), 0.0);
+    let sun = pow(s, TEXEL_N64) * TEXEL_W64 + pow(s, TEXEL_N8) * TEXEL_W8 + pow(s, TEXEL_N_DISC) * TEXEL_W_DISC;
+    return sky_gradient(dir) + SUN_COLOUR * sun * frame.sun.w;
+}
+
 // The ray of each texel as a varying: with far = inv_view_proj·(ndc, ½, 1) the texel's ray
 // is (far.xyz/far.w − eye), whose direction is that of (far.xyz − eye·far.w)·far.w, and both
 // far.xyz − eye·far.w and far.w are affine in ndc: interpolated across the full-screen
@@ -49,5 +66,5 @@ fn fs_main(in: RoomOut) -> @location(0) vec4<f32> {
     let ring = ring_hit(eye + r * s, r);
     let uv = camera_uv(ring.xyz);
     let w = select(0.0, edge_weight(uv.xy) * uv.z, ring.w > 0.0);
-    return vec4<f32>(mix(sky_colour_rough(r, TEXEL_ROUGHNESS), sample_camera(uv.xy), w), 1.0);
+    return vec4<f32>(mix(sky_colour_texel(r), sample_camera(uv.xy), w), 1.0);
 }

@@ -194,14 +194,6 @@ fn sky_colour(dir: vec3<f32>) -> vec3<f32> {
 // Phong, power n → n / (1 + n·2σ²) (a reflected ray turns twice the normal's angle), with
 // their energy kept by the (n' + 1)/(n + 1) normalisation; the disc spreads into a glint.
 fn sky_colour_rough(dir: vec3<f32>, variance: f32) -> vec3<f32> {
-    let up = clamp(dir.y, -1.0, 1.0);
-    let zenith = vec3<f32>(0.10, 0.28, 0.62);
-    let horizon = vec3<f32>(0.62, 0.74, 0.86);
-    var c = mix(horizon, zenith, pow(max(up, 0.0), 0.45));
-    // Below the horizon (beyond the play area, or in reflections of steep facets): distant
-    // sea under haze, darkening towards the nadir.
-    let below = mix(horizon * 0.85, vec3<f32>(0.05, 0.2, 0.27), clamp(-up * 3.0, 0.0, 1.0));
-    c = select(c, below, up < 0.0);
     let s = max(dot(dir, frame.sun.xyz), 0.0);
     let v2 = 2.0 * variance;
     let n64 = 64.0 / (1.0 + 64.0 * v2);
@@ -210,7 +202,23 @@ fn sky_colour_rough(dir: vec3<f32>, variance: f32) -> vec3<f32> {
     // The disc (solid angle ≈ 2π·3e-4 sr at the smoothstep's edge) spreads over the lobe.
     let n_disc = 1.0 / (3e-4 + v2);
     let disc = select(smoothstep(0.9995, 0.9998, s) * 30.0, pow(s, n_disc) * 30.0 * 3e-4 * (n_disc + 1.0), variance > 1e-6);
-    return c + vec3<f32>(1.0, 0.92, 0.78) * (glow + disc) * frame.sun.w;
+    return sky_gradient(dir) + SUN_COLOUR * (glow + disc) * frame.sun.w;
+}
+
+// The sun's colour (linear) in sky_colour_rough's glow and disc.
+const SUN_COLOUR: vec3<f32> = vec3<f32>(1.0, 0.92, 0.78);
+
+// The sky without the sun along unit direction dir: horizon haze to zenith blue above the
+// horizon, distant sea under haze below it.
+fn sky_gradient(dir: vec3<f32>) -> vec3<f32> {
+    let up = clamp(dir.y, -1.0, 1.0);
+    let zenith = vec3<f32>(0.10, 0.28, 0.62);
+    let horizon = vec3<f32>(0.62, 0.74, 0.86);
+    let above = mix(horizon, zenith, pow(max(up, 0.0), 0.45));
+    // Below the horizon (beyond the play area, or in reflections of steep facets): distant
+    // sea under haze, darkening towards the nadir.
+    let below = mix(horizon * 0.85, vec3<f32>(0.05, 0.2, 0.27), clamp(-up * 3.0, 0.0, 1.0));
+    return select(above, below, up < 0.0);
 }
 
 // NDC corner i (0, 1, 2) of a triangle that covers the screen: (-1,-1), (3,-1), (-1,3).

@@ -399,6 +399,87 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     assert!(back > 20, "{back} faces turned away");
 }
 
+#[test]
+fn the_room_texels_sky_is_the_rough_sky_at_the_texel_roughness() {
+    // `sky_colour_texel` (its lobes' powers and weights folded when the shader is compiled)
+    // against `sky_colour_rough(dir, TEXEL_ROUGHNESS)`, on directions over the whole sphere
+    // and close around the sun (its disc and glow), the sun 35° up.
+    let Some(gpu) = test_gpu() else { return };
+    let sun = DVec3::new(0.3, 0.574, -0.76).normalize();
+    let mut dirs: Vec<[f32; 4]> = Vec::new();
+    for k in 0..2000 {
+        let k = f64::from(k);
+        let (y, az) = (
+            2.0 * (k * 0.618).fract() - 1.0,
+            std::f64::consts::TAU * (k * 0.754).fract(),
+        );
+        let r = (1.0 - y * y).sqrt();
+        let mut d = DVec3::new(r * az.cos(), y, r * az.sin());
+        if k < 600.0 {
+            // Within about 3° of the sun.
+            d = (sun + 0.05 * (d - sun.dot(d) * sun)).normalize();
+        }
+        dirs.push([d.x as f32, d.y as f32, d.z as f32, 0.0]);
+    }
+    let kernel = r#"
+@group(0) @binding(10) var<storage, read> input: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read_write> output: array<array<vec4<f32>, 2>>;
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&input) {
+        let d = input[id.x].xyz;
+        output[id.x] = array<vec4<f32>, 2>(vec4<f32>(sky_colour_texel(d), 0.0),
+            vec4<f32>(sky_colour_rough(d, TEXEL_ROUGHNESS), 0.0));
+    }
+}
+"#;
+    let src = crate::wgsl::source(&[
+        super::passes::EFFECTS_COMMON,
+        super::passes::REFLECTION,
+        super::passes::REFLECTION_ROOM,
+        kernel,
+    ]);
+    let mut frame: render::frame::FrameUniform = bytemuck::Zeroable::zeroed();
+    frame.sun = [sun.x as f32, sun.y as f32, sun.z as f32, 1.0];
+    let frame_buffer = gpu
+        .device
+        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("frame"),
+            contents: bytemuck::bytes_of(&frame),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+    let bytes = render::compute::run_kernel_in(
+        &gpu,
+        "room sky",
+        &src,
+        &dirs,
+        32,
+        &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: frame_buffer.as_entire_binding(),
+        }],
+        &[],
+    )
+    .expect("the kernel runs");
+    let got: &[[[f32; 4]; 2]] = bytemuck::cast_slice(&bytes);
+    let (mut worst, mut brightest) = (0.0f32, 0.0f32);
+    for [texel, rough] in got {
+        for i in 0..3 {
+            // Relative to the value: the disc reaches ~30 (the sun), the sky ~1.
+            worst = worst.max((texel[i] - rough[i]).abs() / rough[i].abs().max(1.0));
+            brightest = brightest.max(rough[i]);
+        }
+    }
+    eprintln!("room sky: worst relative difference {worst:e}, brightest {brightest}");
+    // A few f32 roundings of the folded constants and of pow (exp2 · log2): WGSL's pow is
+    // good to 3 ULP of exp2(y log2 x); well under a thousandth.
+    assert!(worst < 1e-4, "{worst:e}");
+    assert!(
+        brightest > 10.0,
+        "the directions reach the sun's disc: {brightest}"
+    );
+}
+
 fn dvec3(v: [f32; 4]) -> DVec3 {
     DVec3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2]))
 }
