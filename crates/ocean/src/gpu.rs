@@ -223,4 +223,93 @@ mod tests {
         assert!(((d[1] as f64) - r[1]).abs() <= bound);
         assert!(((d[2] as f64) - (r[2] - x0[1])).abs() <= bound);
     }
+
+    /// `surface_frame`'s sums with no band limit (footprint 0, every wave whole), in f32 as
+    /// `resolved_waves` does them: the unnormalised upward normal and the Jacobian.
+    fn surface_frame_f32(waves: &[GpuWave], p: [f32; 2]) -> ([f32; 3], f32) {
+        let (mut xx, mut xz, mut zz, mut yx, mut yz) = (1.0f32, 0.0f32, 1.0f32, 0.0f32, 0.0f32);
+        for w in waves {
+            let theta = (w.wavevector[0] * p[0] + w.wavevector[1] * p[1]) + w.phase0;
+            let (sn, cs) = theta.sin_cos();
+            xx -= w.slope_xx * sn;
+            xz -= w.slope_xz * sn;
+            zz -= w.slope_zz * sn;
+            yx += w.slope_x * cs;
+            yz += w.slope_z * cs;
+        }
+        let jacobian = xx * zz - xz * xz;
+        ([yz * xz - zz * yx, jacobian, xz * yx - yz * xx], jacobian)
+    }
+
+    /// The k A·direction products `gpu_waves` forms on the CPU are the surface's: the f32
+    /// sums of them give the f64 surface's unit normal and Jacobian (`WaveSet::surface`, its
+    /// own analytic derivatives) within their rounding, and a product in the wrong slot
+    /// misses by far more.
+    #[test]
+    fn the_carried_slope_products_give_the_f64_surface() {
+        let s = WaveSet::default_sea();
+        let (t, o) = (9.5e6, [-8000.0, 7000.0]);
+        let g = s.gpu_waves(t, o);
+        let steepness = s.total_steepness();
+        assert!(steepness < 1.0);
+        // Each of the five sums is f32_error_bound's derivation with A → k A (the product
+        // rounded once, sin/cos, the product with it, the sum), and the start value 1 of the
+        // diagonal sums rounded in each of the n additions.
+        let radius = 130.0;
+        let slopes: Vec<GpuWave> = g
+            .iter()
+            .map(|w| GpuWave {
+                amplitude: w.k * w.amplitude,
+                ..*w
+            })
+            .collect();
+        let n = g.len() as f64;
+        let delta = f32_error_bound(&slopes, radius) + 2.0 * n * F32_UNIT_ROUNDOFF;
+        // A component a·b − c·d of the normal or the Jacobian: each factor ≤ 1 + Σ kA off by
+        // δ, and three roundings of products of at most (1 + Σ kA)².
+        let big = 1.0 + steepness;
+        let component = 4.0 * big * delta + 3.0 * F32_UNIT_ROUNDOFF * big * big;
+        // The unit normal of up + e against up's: at most 2 |e| / |up|, |up| ≥ J ≥ 1 − Σ kA.
+        let normal_bound = 2.0 * 3f64.sqrt() * component / (1.0 - steepness);
+        // Loose (the phase's 8 k |p| of f32_error_bound, the 1 / (1 − Σ kA)), yet under a
+        // tenth of a degree: not a free pass.
+        assert!(normal_bound < 2e-3, "{normal_bound}");
+        let misses = |waves: &[GpuWave]| {
+            let (mut normal_miss, mut jacobian_miss) = (0.0f64, 0.0f64);
+            for p in [
+                [37.5f32, -120.25],
+                [0.0, 0.0],
+                [-64.0, 3.5],
+                [90.0, 90.0],
+                [-20.5, 77.0],
+            ] {
+                let (up, jacobian) = surface_frame_f32(waves, p);
+                let length = up.iter().map(|c| f64::from(*c).powi(2)).sum::<f64>().sqrt();
+                let want = s.surface([o[0] + f64::from(p[0]), o[1] + f64::from(p[1])], t);
+                for (got, exact) in up.iter().zip(want.normal) {
+                    normal_miss = normal_miss.max((f64::from(*got) / length - exact).abs());
+                }
+                jacobian_miss = jacobian_miss.max((f64::from(jacobian) - want.jacobian).abs());
+            }
+            (normal_miss, jacobian_miss)
+        };
+        let (normal_miss, jacobian_miss) = misses(&g);
+        assert!(
+            normal_miss <= normal_bound,
+            "{normal_miss} > {normal_bound}"
+        );
+        assert!(jacobian_miss <= component, "{jacobian_miss} > {component}");
+        // D_x D_z where D_z² belongs, and k A D_z where k A D_x belongs.
+        let swapped: Vec<GpuWave> = g
+            .iter()
+            .map(|w| GpuWave {
+                slope_zz: w.slope_xz,
+                slope_x: w.slope_z,
+                ..*w
+            })
+            .collect();
+        let (normal_miss, jacobian_miss) = misses(&swapped);
+        assert!(normal_miss > 100.0 * normal_bound, "{normal_miss}");
+        assert!(jacobian_miss > 100.0 * component, "{jacobian_miss}");
+    }
 }
