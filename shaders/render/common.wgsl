@@ -157,7 +157,8 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
 // of 0, no band limit, is taken as 1e-30 m: a cut-off no wave reaches, as k·0 < π/4). Where
 // the rounding of the two tests differs (k·footprint within a few ULP of π/4), the fade of
 // the wave is exactly 1 (smoothstep's t is below 1e-6 there, its 3t² rounds away against 1),
-// so fading_waves adds sin θ·1 and a variance of 0: the sums are the same either way.
+// so fading_waves adds sin θ·1 and a variance of 0: the sums are the same either way
+// (render/tests/wave_filter.rs checks the rounding).
 fn resolved_waves(p: vec2<f32>, n: u32, footprint: f32) -> WaveSums {
     let k_fading = 0.25 * PI / max(footprint, 1e-30);
     var s = WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u);
@@ -194,7 +195,7 @@ fn fading_waves(p: vec2<f32>, n: u32, footprint: f32, start: WaveSums) -> WaveSu
 }
 
 // `s` with wave `w`'s slope terms added for sin θ and cos θ (each times the pixel filter's
-// fade, if any): its k A·direction products come formed from the CPU.
+// fade, if any), with its k A·direction products as the CPU formed them.
 fn with_wave(sums: WaveSums, w: Wave, sn: f32, cs: f32) -> WaveSums {
     var s = sums;
     s.dxdx -= w.slope_xx * sn;
