@@ -7,22 +7,31 @@
 
 const PI: f32 = 3.14159265358979;
 
-// One Gerstner wave (ocean::GpuWave, 32 bytes).
+// One Gerstner wave (ocean::GpuWave, 64 bytes: the uniform array's stride). Every product of
+// the wave's constants is formed in f64 on the CPU and rounded once, so no shader forms it per
+// pixel or per vertex.
 struct Wave {
-    direction: vec2<f32>,
-    k: f32,
-    amplitude: f32,
+    // k D (x, z), rad/m: θ = dot(wavevector, p) + phase0.
+    wavevector: vec2<f32>,
     phase0: f32,
-    // k·a, and (k·a)²/2 (a cos wave's mean square slope), formed on the CPU.
-    slope: f32,
+    // k, rad/m (compared with the pixel filter's cut-off wavenumbers).
+    k: f32,
+    // A D (x, z) and A, metres: the displacement's amplitudes.
+    amplitude_direction: vec2<f32>,
+    amplitude: f32,
+    // (k·A)²/2, a cos wave's mean square slope.
     half_slope2: f32,
     // Σ half_slope2 of this wave and every later one (ocean::GpuWave::tail_half_slope2).
     tail_half_slope2: f32,
-    // D_x², D_x D_z, D_z² (formed on the CPU).
-    direction_xx: f32,
-    direction_xz: f32,
-    direction_zz: f32,
-    _pad: f32,
+    // k A D_x², k A D_x D_z, k A D_z² (the horizontal map's Jacobian terms, × −sin θ) and
+    // k A D_x, k A D_z (the height's gradient, × cos θ).
+    slope_xx: f32,
+    slope_xz: f32,
+    slope_zz: f32,
+    slope_x: f32,
+    slope_z: f32,
+    _pad0: f32,
+    _pad1: f32,
 }
 
 // Per-frame values (render::frame::FrameUniform).
@@ -54,28 +63,32 @@ struct Frame {
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> waves: array<Wave, MAX_WAVES>;
 
-// True when clip-map level `level` evaluates wave `i`.
-fn wave_in_level(i: u32, level: u32) -> bool {
+// The waves clip-map level `level` evaluates: bit i of the 64-bit mask (lo, hi) for wave i
+// (none past the frame's levels).
+fn level_mask(level: u32) -> vec2<u32> {
     if level >= frame.counts.y {
-        return false;
+        return vec2<u32>(0u);
     }
     let m = frame.level_masks[level / 2u];
-    let lo = select(m.x, m.z, (level % 2u) == 1u);
-    let hi = select(m.y, m.w, (level % 2u) == 1u);
-    let word = select(hi, lo, i < 32u);
+    return select(m.xy, m.zw, (level % 2u) == 1u);
+}
+
+// True when wave `i`'s bit is set in the 64-bit mask (lo, hi).
+fn wave_in_mask(i: u32, mask: vec2<u32>) -> bool {
+    let word = select(mask.y, mask.x, i < 32u);
     return ((word >> (i % 32u)) & 1u) == 1u;
 }
 
-// θ of one wave at local rest point p.
+// θ of one wave at local rest point p: k D·p + θ0, with k D formed on the CPU.
 fn wave_phase(w: Wave, p: vec2<f32>) -> f32 {
-    return w.k * dot(w.direction, p) + w.phase0;
+    return dot(w.wavevector, p) + w.phase0;
 }
 
 // Displacement (dx, y, dz) of one wave at local rest point p (Gerstner, as eqs. 1-2 of the Sailing+ wave-model thesis: docs/sources.md).
 fn gerstner(w: Wave, p: vec2<f32>) -> vec3<f32> {
     let theta = wave_phase(w, p);
     let c = cos(theta);
-    return vec3<f32>(w.direction.x * w.amplitude * c, w.amplitude * sin(theta), w.direction.y * w.amplitude * c);
+    return vec3<f32>(w.amplitude_direction.x * c, w.amplitude * sin(theta), w.amplitude_direction.y * c);
 }
 
 // The surface's analytic derivatives at a rest point, summed over waves 0..n, each wave
@@ -126,25 +139,37 @@ struct WaveSums {
 // rounding of the variance's tail.
 fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
     let sums = fading_waves(p, n, footprint, resolved_waves(p, n, footprint));
-    let tx = vec3<f32>(sums.dxdx, sums.dydx, sums.dxdz);
-    let tz = vec3<f32>(sums.dxdz, sums.dydz, sums.dzdz);
     var out: SurfaceFrame;
-    out.up = cross(tz, tx);
     out.jacobian = sums.dxdx * sums.dzdz - sums.dxdz * sums.dxdz;
+    // cross(tz, tx) of the tangents tx = (dxdx, dydx, dxdz), tz = (dxdz, dydz, dzdz), written
+    // out: its y is the Jacobian's own products, so it is the Jacobian.
+    out.up = vec3<f32>(
+        sums.dydz * sums.dxdz - sums.dzdz * sums.dydx,
+        out.jacobian,
+        sums.dxdz * sums.dydx - sums.dydz * sums.dxdx,
+    );
     out.slope_variance = sums.variance;
     return out;
 }
 
 // The waves from the first up to the first the pixel filter fades (k·footprint ≥ π/4), whole.
+// The test is k ≥ π/(4·footprint), the cut-off wavenumber formed once per pixel (a footprint
+// of 0, no band limit, is taken as 1e-30 m: a cut-off no wave reaches, as k·0 < π/4). Where
+// the rounding of the two tests differs (k·footprint within a few ULP of π/4), the fade of
+// the wave is exactly 1 (smoothstep's t is below 1e-6 there, its 3t² rounds away against 1),
+// so fading_waves adds sin θ·1 and a variance of 0: the sums are the same either way
+// (render/tests/wave_filter.rs checks the rounding).
 fn resolved_waves(p: vec2<f32>, n: u32, footprint: f32) -> WaveSums {
+    let k_fading = 0.25 * PI / max(footprint, 1e-30);
     var s = WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u);
     var i = 0u;
     for (; i < n; i = i + 1u) {
         let w = waves[i];
-        if w.k * footprint >= 0.25 * PI {
+        if w.k >= k_fading {
             break;
         }
-        s = with_wave(s, w, p, w.slope);
+        let theta = wave_phase(w, p);
+        s = with_wave(s, w, sin(theta), cos(theta));
     }
     s.next = i;
     return s;
@@ -163,23 +188,21 @@ fn fading_waves(p: vec2<f32>, n: u32, footprint: f32, start: WaveSums) -> WaveSu
         }
         let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, kf);
         s.variance += (1.0 - fade * fade) * w.half_slope2;
-        s = with_wave(s, w, p, fade * w.slope);
+        let theta = wave_phase(w, p);
+        s = with_wave(s, w, sin(theta) * fade, cos(theta) * fade);
     }
     return s;
 }
 
-// `s` with wave `w`'s slope terms at p added, its slope k·a scaled to `ka` (the pixel filter's
-// fade): ka scales sin and cos once, not each of the five sums.
-fn with_wave(sums: WaveSums, w: Wave, p: vec2<f32>, ka: f32) -> WaveSums {
+// `s` with wave `w`'s slope terms added for sin θ and cos θ (each times the pixel filter's
+// fade, if any), with its k A·direction products as the CPU formed them.
+fn with_wave(sums: WaveSums, w: Wave, sn: f32, cs: f32) -> WaveSums {
     var s = sums;
-    let theta = wave_phase(w, p);
-    let sn = sin(theta) * ka;
-    let cs = cos(theta) * ka;
-    s.dxdx -= w.direction_xx * sn;
-    s.dxdz -= w.direction_xz * sn;
-    s.dzdz -= w.direction_zz * sn;
-    s.dydx += w.direction.x * cs;
-    s.dydz += w.direction.y * cs;
+    s.dxdx -= w.slope_xx * sn;
+    s.dxdz -= w.slope_xz * sn;
+    s.dzdz -= w.slope_zz * sn;
+    s.dydx += w.slope_x * cs;
+    s.dydz += w.slope_z * cs;
     return s;
 }
 
@@ -238,9 +261,12 @@ fn ray_dir(ndc: vec2<f32>) -> vec3<f32> {
 // border, so border vertices land exactly where the coarser level's do).
 fn sea_displaced(rest: vec2<f32>, fade: f32, level: u32) -> vec3<f32> {
     var pos = vec3<f32>(rest.x, 0.0, rest.y);
+    // The two levels' masks once per vertex, not per wave.
+    let here = level_mask(level);
+    let coarser = level_mask(level + 1u);
     for (var i = 0u; i < frame.counts.x; i = i + 1u) {
-        if wave_in_level(i, level) {
-            let weight = select(fade, 1.0, wave_in_level(i, level + 1u));
+        if wave_in_mask(i, here) {
+            let weight = select(fade, 1.0, wave_in_mask(i, coarser));
             pos += gerstner(waves[i], rest) * weight;
         }
     }

@@ -63,14 +63,13 @@ fn surface_frame_every_wave(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFram
         let fade = 1.0 - smoothstep(0.25 * PI, 0.5 * PI, w.k * footprint);
         variance += (1.0 - fade * fade) * w.half_slope2;
         let theta = wave_phase(w, p);
-        let fka = fade * w.slope;
-        let s = sin(theta) * fka;
-        let c = cos(theta) * fka;
-        dxdx -= w.direction_xx * s;
-        dxdz -= w.direction_xz * s;
-        dzdz -= w.direction_zz * s;
-        dydx += w.direction.x * c;
-        dydz += w.direction.y * c;
+        let s = sin(theta) * fade;
+        let c = cos(theta) * fade;
+        dxdx -= w.slope_xx * s;
+        dxdz -= w.slope_xz * s;
+        dzdz -= w.slope_zz * s;
+        dydx += w.slope_x * c;
+        dydz += w.slope_z * c;
     }
     let tx = vec3<f32>(dxdx, dydx, dxdz);
     let tz = vec3<f32>(dxdz, dydz, dzdz);

@@ -154,3 +154,52 @@ fn unsorted_waves_would_fail_the_early_stop_check() {
         .fold(0.0f32, f32::max);
     assert!(worst > 1e-2, "worst slope difference {worst}");
 }
+
+/// `resolved_waves` takes a wave whole while k < π/(4·footprint), the cut-off wavenumber
+/// formed once per pixel, where it tested k·footprint < π/4 per wave. The two tests disagree
+/// only for k·footprint within a few ULP of π/4, and there the wave's fade,
+/// 1 − smoothstep(π/4, π/2, k·footprint), rounds to exactly 1, so `fading_waves` adds the same
+/// terms (sin θ·1, a variance of 0) as `resolved_waves`: the sums do not change. Checked in
+/// f32 as WGSL computes it, for every wave of the default sea at footprints up to 64 ULP either
+/// side of its cut-off, with every value WGSL's division (2.5 ULP) may give for the cut-off.
+#[test]
+fn the_cut_off_wavenumber_moves_only_waves_whose_fade_is_exactly_one() {
+    // common.wgsl's PI, as its f32.
+    let pi = std::f64::consts::PI as f32;
+    let (fading, faded) = (0.25 * pi, 0.5 * pi);
+    let step = |x: f32, ulps: i32| f32::from_bits(x.to_bits().wrapping_add_signed(ulps));
+    let (mut tests, mut disagreements) = (0, 0);
+    for w in WaveSet::default_sea().gpu_waves(0.0, [0.0, 0.0]) {
+        let k = w.k;
+        let cut = fading / k;
+        for ulps in -64..=64 {
+            let footprint = step(cut, ulps);
+            let kf = k * footprint;
+            let whole_before = kf < fading;
+            let quotient = fading / footprint.max(1e-30);
+            for error in -3..=3 {
+                let k_fading = step(quotient, error);
+                tests += 1;
+                if (k < k_fading) == whole_before {
+                    continue;
+                }
+                disagreements += 1;
+                // smoothstep's t, with its division's 2.5 ULP, and t²(3 − 2t) ≤ 3t²: at most
+                // half an ULP below 1 (2⁻²⁵), which 1 − s rounds back to 1 (to even).
+                let t = f64::from((kf - fading).max(0.0) / (faded - fading))
+                    * (1.0 + 3.0 * f64::from(f32::EPSILON));
+                let s = 3.0 * t * t;
+                assert!(
+                    s <= 2f64.powi(-25),
+                    "k {k} footprint {footprint}: smoothstep {s}"
+                );
+                assert_eq!(1.0 - s as f32, 1.0);
+            }
+        }
+        // A footprint of 0 cuts no wave, as k·0 < π/4 faded none.
+        assert!(k < fading / 0f32.max(1e-30));
+    }
+    eprintln!("{disagreements} of {tests} (wave, footprint, cut-off) cases disagree");
+    // The check is not empty: the tests do disagree near each cut-off.
+    assert!(disagreements > 0);
+}

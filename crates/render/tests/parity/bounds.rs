@@ -9,12 +9,18 @@ use ocean::{Wave, WaveSet};
 use render::wgsl_accuracy::{Inexact, dot, sum};
 
 /// One wave as the GPU gets it (`ocean::GpuWave`), each input the f32 of the f64 value the
-/// reference uses.
+/// reference uses (the products formed in f64 on the CPU, rounded once).
 pub struct WaveBound {
-    k: Inexact,
-    direction: [Inexact; 2],
-    amplitude: Inexact,
+    /// k D.
+    wavevector: [Inexact; 2],
     phase0: Inexact,
+    /// A D and A.
+    amplitude_direction: [Inexact; 2],
+    amplitude: Inexact,
+    /// k A D_x², k A D_x D_z, k A D_z².
+    slope_xx: Inexact,
+    slope_xz: Inexact,
+    slope_zz: Inexact,
 }
 
 /// The waves of `sea` at race time `t` for the local origin `origin`, as `gpu_waves` gives
@@ -23,14 +29,24 @@ pub fn waves(sea: &WaveSet, t: f64, origin: [f64; 2]) -> Vec<WaveBound> {
     sea.waves
         .iter()
         .zip(sea.gpu_waves(t, origin))
-        .map(|(w, g): (&Wave, _)| WaveBound {
-            k: Inexact::input(w.k(), g.k),
-            direction: [
-                Inexact::input(w.direction[0], g.direction[0]),
-                Inexact::input(w.direction[1], g.direction[1]),
-            ],
-            amplitude: Inexact::input(w.amplitude(), g.amplitude),
-            phase0: Inexact::input(ocean::reduce_phase(sea.phase_at(w, origin, t)), g.phase0),
+        .map(|(w, g): (&Wave, _)| {
+            let (k, a) = (w.k(), w.amplitude());
+            let [dx, dz] = w.direction;
+            WaveBound {
+                wavevector: [
+                    Inexact::input(k * dx, g.wavevector[0]),
+                    Inexact::input(k * dz, g.wavevector[1]),
+                ],
+                phase0: Inexact::input(ocean::reduce_phase(sea.phase_at(w, origin, t)), g.phase0),
+                amplitude_direction: [
+                    Inexact::input(a * dx, g.amplitude_direction[0]),
+                    Inexact::input(a * dz, g.amplitude_direction[1]),
+                ],
+                amplitude: Inexact::input(a, g.amplitude),
+                slope_xx: Inexact::input(k * a * dx * dx, g.slope_xx),
+                slope_xz: Inexact::input(k * a * dx * dz, g.slope_xz),
+                slope_zz: Inexact::input(k * a * dz * dz, g.slope_zz),
+            }
         })
         .collect()
 }
@@ -43,19 +59,19 @@ pub fn point(exact: [f64; 2], gpu: [f32; 2]) -> [Inexact; 2] {
     ]
 }
 
-/// `wave_phase(w, p)` of `common.wgsl`: k·dot(D, p) + θ0.
+/// `wave_phase(w, p)` of `common.wgsl`: dot(k D, p) + θ0.
 fn phase(w: &WaveBound, p: [Inexact; 2]) -> Inexact {
-    w.k * dot(&w.direction, &p) + w.phase0
+    dot(&w.wavevector, &p) + w.phase0
 }
 
-/// `gerstner(w, p)` of `common.wgsl`: (Dx·A·cos θ, A·sin θ, Dz·A·cos θ).
+/// `gerstner(w, p)` of `common.wgsl`: ((A D)x·cos θ, A·sin θ, (A D)z·cos θ).
 pub fn gerstner(w: &WaveBound, p: [Inexact; 2]) -> [Inexact; 3] {
     let theta = phase(w, p);
     let c = theta.cos();
     [
-        w.direction[0] * w.amplitude * c,
+        w.amplitude_direction[0] * c,
         w.amplitude * theta.sin(),
-        w.direction[1] * w.amplitude * c,
+        w.amplitude_direction[1] * c,
     ]
 }
 
@@ -79,12 +95,11 @@ pub fn foam(waves: &[WaveBound], p: [Inexact; 2], wake: (f64, f32)) -> Inexact {
     let mut xz = vec![Inexact::exact(0.0)];
     let mut zz = vec![one];
     for w in waves {
-        let ka = w.k * w.amplitude;
+        // `resolved_waves` (fade exactly 1): the CPU's k A·direction products times sin θ.
         let s = phase(w, p).sin();
-        let [dx, dz] = w.direction;
-        xx.push(-(dx * dx * ka * s));
-        xz.push(-(dx * dz * ka * s));
-        zz.push(-(dz * dz * ka * s));
+        xx.push(-(w.slope_xx * s));
+        xz.push(-(w.slope_xz * s));
+        zz.push(-(w.slope_zz * s));
     }
     let (xx, xz, zz) = (sum(&xx), sum(&xz), sum(&zz));
     let jacobian = xx * zz - xz * xz;
