@@ -15,12 +15,11 @@
 //!   kernel never divides by zero);
 //! - the foam strip's −1/w², so its density is `foam · exp(r² · rate)`.
 //!
-//! The kernel's radial derivative uses F'(r) = (F/bracket)/r · [(4g − 9)·bracket + 4g sin Φ −
-//! (Φ + 12/Φ) cos Φ], the closed form of [`source_height_grad_f32`]'s derivation regrouped
-//! around the height's own bracket (module docs of `gpu.rs`; the regrouping is exact in real
-//! arithmetic, only f32 rounding moves).
-//!
-//! [`source_height_grad_f32`]: super::source_height_grad_f32
+//! The gradient: with h = F(r)·(d·dx), F = (q²/r⁶) e^{−g}·B, B = sin Φ + (4g − 3)/Φ cos Φ
+//! (g = k²R²/4, Φ = q/r), r·F'/(F/B) is (4g − 6)·B (the amplitude's derivative) plus
+//! (4g − 3) sin Φ − Φ cos Φ − (12g + 3)/Φ cos Φ (the bracket's), which the kernel forms
+//! regrouped around B as (4g − 9)·B + 4g sin Φ − (Φ + 12/Φ) cos Φ: 8 operations where the
+//! sum as written took 11; exact in real arithmetic, only f32 rounding moves.
 
 use super::gpu::{BAND_END, BAND_START, GpuWakeSource, MIN_R2};
 use super::kelvin::GAUSS_CUTOFF;
