@@ -85,7 +85,7 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
             usage: wgpu::BufferUsages::STORAGE,
         })
     };
-    let sources = storage("sources", frame.bytes());
+    let sources = storage("sources", &frame.bytes());
     let spacing = |i: usize| if i.is_multiple_of(2) { 0.0f32 } else { 1.5 };
     let point_bytes: Vec<u8> = points
         .iter()

@@ -1,10 +1,13 @@
-// Boat wakes: the per-frame wake source buffer (ocean::wake::GpuWakeSource, 48 bytes) and the
-// functions that evaluate it at a local point p = world (x, z) − origin, in metres.
-// Mirrored exactly, in f32, by ocean::wake::gpu::{source_height_f32, wake_foam_f32}.
+// Boat wakes: the per-frame wake source buffer (ocean::wake::WakeKernelSource, 48 bytes) and
+// the functions that evaluate it at a local point p = world (x, z) − origin, in metres.
+// Mirrored exactly, in f32, by ocean::wake::WakeKernelSource::{height, height_grad,
+// foam_density} (through ocean::wake::gpu::{source_height_f32, wake_foam_f32, ...}).
 //
 // Each source is one segment of a boat's path: a Cauchy–Poisson ring-wave packet of the hull's
 // pressure patch. No race time and no large coordinate reach this file: q = g s²/4 carries the
-// source's age s (reduced on the CPU), positions are local.
+// source's age s (reduced on the CPU), positions are local. What is fixed per source (its sign
+// and strength, R², the cut-off's radius, the foam's rate) the CPU forms once per frame, so a
+// (point, source) pair spends nothing on it.
 //
 // A pass includes this file and declares the buffer, then sums:
 //
@@ -19,64 +22,61 @@
 struct WakeSource {
     // Segment midpoint − origin (x, z), m.
     pos: vec2<f32>,
-    // Segment vector (x, z), m.
+    // −strength · segment vector (x, z), strength = F/(√2πρg) · age fade: the term's sign and
+    // strength folded into ΔX, m⁴.
     dx: vec2<f32>,
     // g s²/4 for the source's age s, m.
     q: f32,
-    // F/(√2πρg) · age fade, m³.
-    strength: f32,
-    // R²/4 (pressure-patch radius R), m².
-    gauss: f32,
+    // R² (pressure-patch radius R), m²: k²R² = 4g.
+    hull_r2: f32,
     // Beyond this squared distance the term is below the cull tolerance, m².
     cull_r2: f32,
-    // Squared width of the foam strip, m², and its density at the centre.
-    foam_w2: f32,
+    // Inside this squared distance the term is nothing (k²R²/4 > 40), never 0, m².
+    inner_r2: f32,
+    // Foam density at the centre, and −1/w² for the strip's width w, 1/m².
     foam: f32,
+    foam_rate: f32,
     _pad: vec2<f32>,
 }
 
-// From the generated prelude (ocean::wake::wgsl, the values of the f32 mirror): WAKE_MIN_R2,
-// the squared distance (m²) below which the term is e^{−k²R²/4} ≈ 0 (skip, never divide by
-// zero); WAKE_GAUSS_CUTOFF, the k²R²/4 beyond which the term is nothing (e^{−40}); WAKE_TAU, 2π;
+// From the generated prelude (ocean::wake::wgsl, the values of the f32 mirror): WAKE_TAU, 2π;
 // WAKE_BAND_START and WAKE_BAND_END, the k·spacing over which the band limit fades a term out
 // (1 to 2: a clip-map level drops the sea's waves from k·cell = 2 on).
 
-// The band limit of a field sampled every `spacing` metres (a clip-map level's vertices): a
-// source's local wavenumber k = q/r² is faded out from k·spacing = 1 to 2, as a clip-map
-// level drops the sea's waves shorter than π cells (render::clipmap::plan). Height and gradient are faded alike: the
-// fade filters the local wavenumber, and the gradient of a component of wavenumber k has that
-// wavenumber too. spacing = 0: no band limit (the field itself).
-fn wake_band_fade(k: f32, spacing: f32) -> f32 {
-    return 1.0 - smoothstep(WAKE_BAND_START, WAKE_BAND_END, k * spacing);
+// The band limit of a field sampled every `spacing` metres (a clip-map level's vertices), at
+// x = k·spacing: a source's local wavenumber k = q/r² is faded out from k·spacing = 1 to 2, as
+// a clip-map level drops the sea's waves shorter than π cells (render::clipmap::plan). Height
+// and gradient are faded alike: the fade filters the local wavenumber, and the gradient of a
+// component of wavenumber k has that wavenumber too. spacing = 0: no band limit (the field
+// itself).
+fn wake_band_fade(x: f32) -> f32 {
+    return 1.0 - smoothstep(WAKE_BAND_START, WAKE_BAND_END, x);
 }
 
-// The height one source adds at p, m:
-// −strength · (k²/r) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (r̂·ΔX), k = q/r², Φ = q/r.
+// The height one source adds at p, m: with dx = −strength·ΔX,
+// (k²/r²) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (d·dx), k = q/r², Φ = q/r.
 fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
     let d = p - s.pos;
     let r2 = dot(d, d);
-    if (r2 > s.cull_r2 || r2 < WAKE_MIN_R2) {
+    if (r2 > s.cull_r2 || r2 < s.inner_r2) {
         return 0.0;
     }
     let k = s.q / r2;
-    let g = k * k * s.gauss;
-    if (!(g <= WAKE_GAUSS_CUTOFF)) {
-        return 0.0;
-    }
-    let r = sqrt(r2);
-    let phi = s.q / r;
+    let kk = k * k;
+    let big_g = kk * s.hull_r2;
+    let phi = s.q * inverseSqrt(r2);
     // Φ can reach thousands of radians; phone GPUs' sin/cos are only accurate near [−π, π].
     let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
-    let amp = s.strength * k * k / r * exp(-g);
-    let bracket = sin(phi_r) + (4.0 * g - 3.0) / phi * cos(phi_r);
-    return -amp * bracket * dot(d, s.dx) / r;
+    let bracket = sin(phi_r) + (big_g - 3.0) / phi * cos(phi_r);
+    return kk / r2 * exp(-0.25 * big_g) * bracket * dot(d, s.dx);
 }
 
 // The height one source adds at p and its gradient, (w, ∂w/∂x, ∂w/∂z) in m and m/m: the
 // closed-form derivative of wake_source_height, so a point needs one evaluation, not three.
-// With h = F(r)·(d·ΔX), F = −strength q² e^{−g} [sin Φ + (4g − 3)/Φ cos Φ] / r⁶, g = k²R²/4:
-// ∇h = F'(r) (d/r)(d·ΔX) + F ΔX, F' = (F/bracket)/r · [(4g − 6)·bracket − Φ cos Φ
-// − (12g + 3) cos Φ/Φ + (4g − 3) sin Φ].
+// With h = F(r)·(d·dx), F = q² e^{−g} bracket / r⁶, bracket = sin Φ + (4g − 3)/Φ cos Φ,
+// g = k²R²/4: ∇h = F'(r) (d/r)(d·dx) + F dx, F' = (F/bracket)/r · [(4g − 9)·bracket
+// + 4g sin Φ − (Φ + 12/Φ) cos Φ] (the derivative of q² e^{−g}/r⁶, (4g − 6)/r of it, times
+// the bracket, plus the bracket's own, regrouped around the bracket).
 fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
     let d = p - s.pos;
     return wake_source_height_grad_at(s, d, dot(d, d), 0.0);
@@ -86,36 +86,33 @@ fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
 // limited for points sampled every `spacing` metres (wake_band_fade; 0: not limited). Inside
 // the band limit's radius (k·spacing ≥ 2) the term is nothing and costs no exp or sin.
 fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, spacing: f32) -> vec3<f32> {
-    if (r2 > s.cull_r2 || r2 < WAKE_MIN_R2) {
+    if (r2 > s.cull_r2 || r2 < s.inner_r2) {
         return vec3<f32>(0.0);
     }
     let k = s.q / r2;
-    let kk = k * k;
-    let g = kk * s.gauss;
-    if (!(g <= WAKE_GAUSS_CUTOFF) || !(k * spacing < WAKE_BAND_END)) {
+    let x = k * spacing;
+    if (x >= WAKE_BAND_END) {
         return vec3<f32>(0.0);
     }
-    let r = sqrt(r2);
-    let phi = s.q / r;
+    let kk = k * k;
+    let big_g = kk * s.hull_r2;
+    let phi = s.q * inverseSqrt(r2);
     let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
     let sn = sin(phi_r);
     let cs = cos(phi_r);
-    let c = -s.strength * kk / r2 * exp(-g) * wake_band_fade(k, spacing);
-    // 4g − 3, 4g − 6 and 12g + 3 = 3·4g + 3 from one 4g.
-    let g4 = 4.0 * g;
-    let a = g4 - 3.0;
-    let bracket = sn + a / phi * cs;
-    let f = c * bracket;
-    let df = c / r * ((g4 - 6.0) * bracket - phi * cs - (3.0 * g4 + 3.0) / phi * cs + a * sn);
+    let c = kk / r2 * exp(-0.25 * big_g) * wake_band_fade(x);
+    let bracket = sn + (big_g - 3.0) / phi * cs;
+    let radial_bracket = (big_g - 9.0) * bracket + big_g * sn - (phi + 12.0 / phi) * cs;
     let proj = dot(d, s.dx);
-    // ∇h = F'(r)·(d·ΔX)·d/r + F·ΔX: the scalar F'·(d·ΔX)/r formed once.
-    return vec3<f32>(f * proj, (df * proj / r) * d + f * s.dx);
+    let f = c * bracket;
+    // ∇h = F'(r)·(d·dx)·d/r + F·dx: the scalar F'·(d·dx)/r formed once.
+    return vec3<f32>(f * proj, (c * radial_bracket * proj / r2) * d + f * s.dx);
 }
 
 // The foam density one source adds at p (a Gaussian strip along the segment).
 fn wake_source_foam(s: WakeSource, p: vec2<f32>) -> f32 {
     let d = p - s.pos;
-    return s.foam * exp(-dot(d, d) / s.foam_w2);
+    return s.foam * exp(dot(d, d) * s.foam_rate);
 }
 
 // One source at p: (w, ∂w/∂x, ∂w/∂z) of wake_source_height_grad band limited for points
@@ -125,7 +122,7 @@ fn wake_source_foam(s: WakeSource, p: vec2<f32>) -> f32 {
 fn wake_source_grad_foam(s: WakeSource, p: vec2<f32>, spacing: f32) -> vec4<f32> {
     let d = p - s.pos;
     let r2 = dot(d, d);
-    return vec4<f32>(wake_source_height_grad_at(s, d, r2, spacing), s.foam * exp(-r2 / s.foam_w2));
+    return vec4<f32>(wake_source_height_grad_at(s, d, r2, spacing), s.foam * exp(r2 * s.foam_rate));
 }
 
 // Summed foam density → foam strength in [0, 1].

@@ -55,8 +55,10 @@ fn wake_bin(p: vec2<f32>, level: u32) -> vec4<u32> {
 fn wake_at(p: vec2<f32>, level: u32, spacing: f32) -> vec4<f32> {
     let bin = wake_bin(p, level);
     var grad = vec3<f32>(0.0);
-    for (var i = 0u; i < bin.y; i = i + 1u) {
-        let s = wake_sources[wake_index[bin.x + i]];
+    // The list's index range, its end formed once.
+    let end = bin.x + bin.y;
+    for (var i = bin.x; i < end; i = i + 1u) {
+        let s = wake_sources[wake_index[i]];
         let d = p - s.pos;
         grad += wake_source_height_grad_at(s, d, dot(d, d), spacing);
     }

@@ -1,5 +1,5 @@
-//! The per-frame wake source buffer for a GPU, its culling, and the f32 mirror of
-//! `shaders/wake.wgsl`.
+//! The per-frame wake sources for a GPU, their culling, and the f32 mirror of
+//! `shaders/ocean/wake.wgsl` (whose kernel reads each source's constants, `kernel.rs`).
 //!
 //! f32 safety: a source's age s is reduced on the CPU to q = g s²/4 (s ≤ max_age, never the
 //! race time) and positions are relative to a local origin near the camera. The shader then
@@ -13,8 +13,11 @@
 //! Σ_culled B(distance to the view) + ε × sent sources: `GpuWakeFrame::cull_bound`.
 
 use super::kelvin::{GAUSS_CUTOFF, KelvinSource, Wake, foam_shape};
+use super::kernel::{WakeKernelSource, band_fade_of, foam_density_f32, gauss_hole_r2};
 
-/// One wake source as the shader reads it (std430 layout: 48 bytes, 8-byte aligned).
+/// One wake source of a frame as the CPU culls, bins and bounds it (48 bytes): its physical
+/// quantities in f32. The GPU reads its [`WakeKernelSource`] (the constants the kernel needs,
+/// formed from these fields once per frame: [`GpuWakeFrame::bytes`]).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuWakeSource {
@@ -77,9 +80,12 @@ pub(crate) fn term_bound(c: f64, q: f64, r: f64) -> f64 {
 }
 
 impl GpuWakeFrame {
-    /// The sources as the bytes of a storage buffer of `WakeSource` (shaders/wake.wgsl).
-    pub fn bytes(&self) -> &[u8] {
-        bytemuck::cast_slice(&self.sources)
+    /// The sources as the bytes of a storage buffer of `WakeSource` (shaders/ocean/wake.wgsl):
+    /// each one's [`WakeKernelSource`], in order.
+    pub fn bytes(&self) -> Vec<u8> {
+        let kernel: Vec<WakeKernelSource> =
+            self.sources.iter().map(WakeKernelSource::from).collect();
+        bytemuck::cast_slice(&kernel).to_vec()
     }
 }
 
@@ -163,30 +169,19 @@ pub fn source_peak_bound(s: &GpuWakeSource) -> f64 {
 }
 
 /// Below this squared distance (m²) a source is skipped: its term is e^{−k*²R²/4} ≈ 0 there,
-/// and the shader must never divide by zero.
+/// and the shader must never divide by zero (the floor of `WakeKernelSource::inner_r2`).
 pub const MIN_R2: f32 = 1e-6;
 
-/// One source's height term at local point `p`, f32, exactly as `wake_source_height` in WGSL.
+/// One source's height term at local point `p`, f32, exactly as `wake_source_height` in WGSL
+/// (which reads the source's [`WakeKernelSource`]; a point beyond the cull radius is nothing
+/// there too, so the constants are formed only within it).
 pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
     let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
     let r2 = d[0] * d[0] + d[1] * d[1];
-    if r2 > s.cull_r2 || r2 < MIN_R2 {
+    if r2 > s.cull_r2 {
         return 0.0;
     }
-    let k = s.q / r2;
-    let g = k * k * s.gauss;
-    if g.is_nan() || g > GAUSS_CUTOFF as f32 {
-        return 0.0;
-    }
-    let r = r2.sqrt();
-    let phi = s.q / r;
-    // As the WGSL: Φ reduced to [−π, π] in f32 (WGSL's round is ties-to-even).
-    let tau = std::f32::consts::TAU;
-    let phi_r = phi - tau * (phi / tau).round_ties_even();
-    let amp = s.strength * k * k / r * (-g).exp();
-    let (sn, cs) = phi_r.sin_cos();
-    let bracket = sn + (4.0 * g - 3.0) / phi * cs;
-    -amp * bracket * (d[0] * s.dx[0] + d[1] * s.dx[1]) / r
+    WakeKernelSource::from(s).height(d, r2)
 }
 
 /// The band limit of a field sampled every `spacing` metres: a term of local wavenumber k is
@@ -195,8 +190,7 @@ pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
 /// erring by half its amplitude or more when interpolated; the fade spans the octave below),
 /// f32 exactly as `wake_band_fade` in WGSL (its `smoothstep`). `spacing` = 0: 1 (no limit).
 pub fn band_fade_f32(k: f32, spacing: f32) -> f32 {
-    let t = ((k * spacing - BAND_START) / (BAND_END - BAND_START)).clamp(0.0, 1.0);
-    1.0 - t * t * (3.0 - 2.0 * t)
+    band_fade_of(k * spacing)
 }
 
 /// [`band_fade_f32`] in f64: the reference the f32 mirror and the GPU are held to.
@@ -217,7 +211,7 @@ pub const BAND_END: f32 = 2.0;
 /// drops a source the shader would still add (both fades are e^{−40} or 0 there anyway).
 pub fn inner_radius2(s: &GpuWakeSource, spacing: f32) -> f32 {
     let q = f64::from(s.q.max(0.0));
-    let hole = q * (f64::from(s.gauss.max(0.0)) / GAUSS_CUTOFF).sqrt();
+    let hole = gauss_hole_r2(s);
     let band = q * f64::from(spacing.max(0.0)) / f64::from(BAND_END);
     (hole.max(band) * (1.0 - 1e-4)) as f32
 }
@@ -244,37 +238,15 @@ pub fn source_height_grad_f32(s: &GpuWakeSource, p: [f32; 2]) -> [f32; 3] {
 }
 
 /// [`source_height_grad_f32`] band limited for points sampled every `spacing` metres
-/// ([`band_fade_f32`]), exactly as `wake_source_height_grad_at` in WGSL.
+/// ([`band_fade_f32`]), exactly as `wake_source_height_grad_at` in WGSL (on the source's
+/// [`WakeKernelSource`], formed only within the cull radius, beyond which both give nothing).
 pub fn source_height_grad_sampled_f32(s: &GpuWakeSource, p: [f32; 2], spacing: f32) -> [f32; 3] {
     let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
     let r2 = d[0] * d[0] + d[1] * d[1];
-    if r2 > s.cull_r2 || r2 < MIN_R2 {
+    if r2 > s.cull_r2 {
         return [0.0; 3];
     }
-    let k = s.q / r2;
-    let kk = k * k;
-    let g = kk * s.gauss;
-    if g.is_nan() || g > GAUSS_CUTOFF as f32 || k * spacing >= BAND_END || (k * spacing).is_nan() {
-        return [0.0; 3];
-    }
-    let r = r2.sqrt();
-    let phi = s.q / r;
-    let tau = std::f32::consts::TAU;
-    let phi_r = phi - tau * (phi / tau).round_ties_even();
-    let (sn, cs) = phi_r.sin_cos();
-    let c = -s.strength * kk / r2 * (-g).exp() * band_fade_f32(k, spacing);
-    let g4 = 4.0 * g;
-    let a = g4 - 3.0;
-    let bracket = sn + a / phi * cs;
-    let f = c * bracket;
-    let df = c / r * ((g4 - 6.0) * bracket - phi * cs - (3.0 * g4 + 3.0) / phi * cs + a * sn);
-    let proj = d[0] * s.dx[0] + d[1] * s.dx[1];
-    let radial = df * proj / r;
-    [
-        f * proj,
-        radial * d[0] + f * s.dx[0],
-        radial * d[1] + f * s.dx[1],
-    ]
+    WakeKernelSource::from(s).height_grad(d, r2, spacing)
 }
 
 /// Wake height and gradient at local point `p`, f32: the mirror of `wake_at` in WGSL.
@@ -304,7 +276,7 @@ pub fn wake_foam_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> f32 {
     let mut sum = 0.0f32;
     for s in sources {
         let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
-        sum += s.foam * (-(d[0] * d[0] + d[1] * d[1]) / s.foam_w2).exp();
+        sum += foam_density_f32(s, d[0] * d[0] + d[1] * d[1]);
     }
     (1.0 - (-sum).exp()).clamp(0.0, 1.0)
 }
@@ -320,9 +292,10 @@ pub const WGSL_SIN_ERROR: f64 = 1.0 / 2048.0;
 /// (absolute) on [−π, π]. Per source, with T = C (k*²/r) e^{−G}(1 + |4G − 3|/Φ)(1 + 1/Φ) the
 /// size of the term and its Φ-derivative, the rounding of p, pos, q and r gives r a relative
 /// error ε_r = 2u(|p| + |pos|)/r + 2u (u = 2⁻²⁴), which moves Φ ∝ 1/r by Φε_r, the amplitude
-/// ∝ r⁻⁵ by 5ε_r and G ∝ r⁻⁴ by 4Gε_r; the reduction of Φ to [−π, π] and the ~16 roundings of
-/// the formula add 12u per unit of Φ and 16u of the amplitude, and sin and cos their own error:
-/// bound = Σ T [(Φ + 16)·12u + (Φ + 4G + 6) ε_r + 2 sin_error].
+/// ∝ r⁻⁵ by 5ε_r and G ∝ r⁻⁴ by 4Gε_r; the reduction of Φ to [−π, π] adds 12u per unit of Φ,
+/// the ~22 roundings of the formula and of the source's kernel constants (−strength·ΔX is
+/// rounded once on the CPU, R² is exact) at most 16·12u of the amplitude, and sin and cos their
+/// own error: bound = Σ T [(Φ + 16)·12u + (Φ + 4G + 6) ε_r + 2 sin_error].
 pub fn f32_height_error_bound(sources: &[GpuWakeSource], p: [f32; 2], sin_error: f64) -> f64 {
     const U: f64 = 1.0 / 16_777_216.0;
     let mut b = 0.0;

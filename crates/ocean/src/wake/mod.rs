@@ -22,9 +22,9 @@
 //!
 //! ```text
 //! let frame = wake.gpu_sources(t, origin, &WakeView { min, max }, 1e-6);
-//! // upload frame.bytes() as a storage buffer of WakeSource
-//! // (`wake_wgsl()`: shaders/wake.wgsl after its constants); the vertex shader adds
-//! // wake_height(p) to y, the fragment shader mixes wake_foam(p) into the sea foam,
+//! // upload frame.bytes() (each source's WakeKernelSource) as a storage buffer of
+//! // WakeSource (`wake_wgsl()`: shaders/ocean/wake.wgsl after its constants); a shader sums
+//! // wake_source_height(p) (or its gradient) and wake_source_foam(p) over the sources,
 //! // p = world (x, z) − origin, both f32.
 //! ```
 //!
@@ -37,6 +37,7 @@
 pub mod froude;
 pub mod gpu;
 pub mod kelvin;
+pub mod kernel;
 pub mod measure;
 pub mod reference;
 pub mod ring;
@@ -54,6 +55,7 @@ pub use gpu::{
     wake_height_f32, wake_height_grad_f32, wake_height_grad_sampled_f32,
 };
 pub use kelvin::{KelvinSource, SEA_WATER_DENSITY, Wake, WakeParams};
+pub use kernel::WakeKernelSource;
 pub use reference::{SteadyPatch, kelvin_reference, kelvin_wave_height};
 pub use ring::{RingParams, RingWake};
 pub use track::{TrackSample, WakeError};

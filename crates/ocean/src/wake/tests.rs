@@ -434,7 +434,31 @@ fn wake_wgsl_validates_and_its_struct_matches_the_buffer() {
         .find(|(_, t)| t.name.as_deref() == Some("WakeSource"))
         .expect("struct WakeSource");
     let size = ty.1.inner.size(module.to_ctx());
-    assert_eq!(size as usize, std::mem::size_of::<GpuWakeSource>());
+    assert_eq!(size as usize, std::mem::size_of::<WakeKernelSource>());
+    assert_eq!(size, 48);
+    // Each member where the Rust struct has its field, by name.
+    let naga::TypeInner::Struct { members, .. } = &ty.1.inner else {
+        panic!("WakeSource is a struct");
+    };
+    let rust = [
+        ("pos", std::mem::offset_of!(WakeKernelSource, pos)),
+        ("dx", std::mem::offset_of!(WakeKernelSource, dx)),
+        ("q", std::mem::offset_of!(WakeKernelSource, q)),
+        ("hull_r2", std::mem::offset_of!(WakeKernelSource, hull_r2)),
+        ("cull_r2", std::mem::offset_of!(WakeKernelSource, cull_r2)),
+        ("inner_r2", std::mem::offset_of!(WakeKernelSource, inner_r2)),
+        ("foam", std::mem::offset_of!(WakeKernelSource, foam)),
+        (
+            "foam_rate",
+            std::mem::offset_of!(WakeKernelSource, foam_rate),
+        ),
+        ("_pad", std::mem::offset_of!(WakeKernelSource, _pad)),
+    ];
+    let wgsl: Vec<(&str, usize)> = members
+        .iter()
+        .map(|m| (m.name.as_deref().unwrap_or(""), m.offset as usize))
+        .collect();
+    assert_eq!(wgsl, rust);
 }
 
 /// A random track: steps that move, stop, reverse and jump (zero-time and huge steps).

@@ -4,20 +4,17 @@
 //! the file alone does not compile. (`ocean` sits below `render`, so it writes its own `const`
 //! lines, as `render::shader::wgsl_consts` does.)
 
-use super::gpu::{BAND_END, BAND_START, MIN_R2};
-use super::kelvin::GAUSS_CUTOFF;
+use super::gpu::{BAND_END, BAND_START};
 
 /// The functions that evaluate the source buffer, without their constants.
 const WAKE_FUNCTIONS: &str = include_str!("../../../../shaders/ocean/wake.wgsl");
 
-/// The constants the wake shader shares with its f32 mirror, as WGSL names them: the squared
-/// distance below which a source is skipped, the exponent beyond which its term is nothing,
-/// the period the phase is reduced by (the mirror's `f32::consts::TAU`), and the band limit's
-/// fade (k·spacing from π/4 to π/2).
-pub fn shared_consts() -> [(&'static str, f32); 5] {
+/// The constants the wake shader shares with its f32 mirror, as WGSL names them: the period
+/// the phase is reduced by (the mirror's `f32::consts::TAU`) and the band limit's fade
+/// (k·spacing from 1 to 2). (The squared distance below which a source is skipped and the
+/// Gaussian cut-off reach the shader per source, in `WakeKernelSource::inner_r2`.)
+pub fn shared_consts() -> [(&'static str, f32); 3] {
     [
-        ("WAKE_MIN_R2", MIN_R2),
-        ("WAKE_GAUSS_CUTOFF", GAUSS_CUTOFF as f32),
         ("WAKE_TAU", std::f32::consts::TAU),
         ("WAKE_BAND_START", BAND_START),
         ("WAKE_BAND_END", BAND_END),
@@ -60,8 +57,8 @@ mod tests {
                 .expect("an f32 literal");
             assert_eq!(back.to_bits(), value.to_bits(), "{name}");
         }
-        assert_eq!(shared_consts()[0].1, 1e-6);
-        assert_eq!(shared_consts()[1].1, 40.0);
+        assert_eq!(shared_consts()[0].1, std::f32::consts::TAU);
+        assert_eq!((shared_consts()[1].1, shared_consts()[2].1), (1.0, 2.0));
         // The shader file declares none of them, nor writes the literals it had before.
         for (name, _) in shared_consts() {
             assert!(

@@ -24,6 +24,8 @@ struct VertexCompute {
     group: Option<wgpu::BindGroup>,
     /// Vertices to displace this frame.
     vertex_count: u32,
+    /// This frame's wake sources as the kernel reads them (kept to reuse its allocation).
+    kernel_sources: Vec<ocean::wake::WakeKernelSource>,
 }
 
 /// Bytes of one displaced vertex (`DisplacedVertex` of `shaders/water_vertices.wgsl`).
@@ -107,6 +109,7 @@ impl WaterPass {
                 buffers: Default::default(),
                 group: None,
                 vertex_count: 0,
+                kernel_sources: Vec::new(),
             }
         });
         let (stage, buffer) = vertex_stage(wakes);
@@ -229,13 +232,17 @@ impl Pass for WaterPass {
         };
         // Binned by the renderer (`wake_bins::fit`), within the buffer limits and budget.
         let bins = &frame.wake_bins;
-        // Buffers are never empty (a zeroed entry is never read: counts say what is live).
+        // Each source as the kernel reads it (its constants formed once a frame). Buffers
+        // are never empty (a zeroed entry is never read: counts say what is live).
         let zero = [ocean::wake::GpuWakeSource::default()];
         let sources: &[ocean::wake::GpuWakeSource] = if frame.wakes.sources.is_empty() {
             &zero
         } else {
             &frame.wakes.sources
         };
+        c.kernel_sources.clear();
+        c.kernel_sources
+            .extend(sources.iter().map(ocean::wake::WakeKernelSource::from));
         let indices: &[u32] = if bins.indices.is_empty() {
             &[0]
         } else {
@@ -244,7 +251,7 @@ impl Pass for WaterPass {
         let n = frame.mesh.vertices.len();
         let storage = wgpu::BufferUsages::STORAGE;
         let data: [(&[u8], wgpu::BufferUsages); 5] = [
-            (bytemuck::cast_slice(sources), storage),
+            (bytemuck::cast_slice(&c.kernel_sources), storage),
             (bytemuck::cast_slice(&bins.bins), storage),
             (bytemuck::cast_slice(indices), storage),
             (bytemuck::bytes_of(&bins.grid), wgpu::BufferUsages::UNIFORM),

@@ -1,0 +1,164 @@
+//! What the GPU reads of each wake source, and the exact f32 mirror of the WGSL kernel that
+//! evaluates it (`shaders/ocean/wake.wgsl`).
+//!
+//! A frame's sources are culled, binned and bounded on the CPU as [`GpuWakeSource`]s: the
+//! physical quantities (q = g s²/4, the strength F/(√2πρg)·w(s), R²/4, the cull radius, the
+//! foam strip). The kernel runs once per (point, source) pair, the water's costliest loop, so
+//! what is fixed per source is formed here once per frame, in f64 from those f32 fields and
+//! rounded once, and uploaded instead ([`WakeKernelSource`], the same 48 bytes):
+//!
+//! - the term's sign and strength folded into the segment vector, −strength·ΔX (the term is
+//!   linear in both), so the kernel never multiplies by them;
+//! - R² = 4·(R²/4), so k²R² (the 4g its brackets use) is one product and e^{−g} = e^{−k²R²/4};
+//! - the squared radius inside which the Gaussian cut-off (k²R²/4 > 40) zeroes the term, so one
+//!   range test on r² replaces the cut-off's test of g (it is never below `MIN_R2`, so the
+//!   kernel never divides by zero);
+//! - the foam strip's −1/w², so its density is `foam · exp(r² · rate)`.
+//!
+//! The gradient: with h = F(r)·(d·dx), F = (q²/r⁶) e^{−g}·B, B = sin Φ + (4g − 3)/Φ cos Φ
+//! (g = k²R²/4, Φ = q/r), r·F'/(F/B) is (4g − 6)·B (the amplitude's derivative) plus
+//! (4g − 3) sin Φ − Φ cos Φ − (12g + 3)/Φ cos Φ (the bracket's), which the kernel forms
+//! regrouped around B as (4g − 9)·B + 4g sin Φ − (Φ + 12/Φ) cos Φ: 8 operations where the
+//! sum as written took 11; exact in real arithmetic, only f32 rounding moves.
+
+use super::gpu::{BAND_END, BAND_START, GpuWakeSource, MIN_R2};
+use super::kelvin::GAUSS_CUTOFF;
+
+/// One wake source as the WGSL kernel reads it (`WakeSource` in `shaders/ocean/wake.wgsl`,
+/// std430: 48 bytes, 8-byte aligned), formed from a [`GpuWakeSource`] by `From`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WakeKernelSource {
+    /// Segment midpoint − local origin (x, z), m.
+    pub pos: [f32; 2],
+    /// −strength · ΔX (x, z): the segment vector with the term's sign and strength, m⁴.
+    pub dx: [f32; 2],
+    /// q = g s²/4 for the source's age s, m.
+    pub q: f32,
+    /// R², the pressure patch's radius squared, m²: k²R² = 4g.
+    pub hull_r2: f32,
+    /// r_c²: the term is below ε beyond r_c, m².
+    pub cull_r2: f32,
+    /// Inside this squared distance the term is nothing: the Gaussian cut-off's radius,
+    /// k²R²/4 > 40 for r² < q·√(R²/4/40), and never below [`MIN_R2`], m².
+    pub inner_r2: f32,
+    /// Foam density at the segment's centre.
+    pub foam: f32,
+    /// −1/w², w the foam strip's width, 1/m².
+    pub foam_rate: f32,
+    pub _pad: [f32; 2],
+}
+
+/// The squared radius of a source's Gaussian cut-off, m² (f64 from its f32 fields): inside
+/// it k²R²/4 > [`GAUSS_CUTOFF`] (k = q/r², so r² < q·√(R²/4 / cut-off)).
+pub(crate) fn gauss_hole_r2(s: &GpuWakeSource) -> f64 {
+    f64::from(s.q.max(0.0)) * (f64::from(s.gauss.max(0.0)) / GAUSS_CUTOFF).sqrt()
+}
+
+/// The foam strip's −1/w², 1/m², rounded once from f64.
+fn foam_rate(s: &GpuWakeSource) -> f32 {
+    (-1.0 / f64::from(s.foam_w2)) as f32
+}
+
+impl From<&GpuWakeSource> for WakeKernelSource {
+    fn from(s: &GpuWakeSource) -> WakeKernelSource {
+        let strength = f64::from(s.strength);
+        WakeKernelSource {
+            pos: s.pos,
+            dx: s.dx.map(|v| (-strength * f64::from(v)) as f32),
+            q: s.q,
+            hull_r2: (4.0 * f64::from(s.gauss)) as f32,
+            cull_r2: s.cull_r2,
+            inner_r2: (gauss_hole_r2(s) as f32).max(MIN_R2),
+            foam: s.foam,
+            foam_rate: foam_rate(s),
+            _pad: [0.0; 2],
+        }
+    }
+}
+
+/// 2π as the WGSL's `WAKE_TAU`.
+const TAU: f32 = std::f32::consts::TAU;
+
+/// Φ reduced to [−π, π] in f32 as the WGSL does (its `round` is ties-to-even): phones' sin and
+/// cos are accurate only near there, and Φ reaches thousands of radians.
+fn reduced(phi: f32) -> f32 {
+    phi - TAU * (phi / TAU).round_ties_even()
+}
+
+/// WGSL's `inverseSqrt` in f32 (its square root, then the reciprocal).
+fn inverse_sqrt(x: f32) -> f32 {
+    1.0 / x.sqrt()
+}
+
+/// 1 − smoothstep(BAND_START, BAND_END, x), f32 as WGSL's `smoothstep` defines it.
+pub(crate) fn band_fade_of(x: f32) -> f32 {
+    let t = ((x - BAND_START) / (BAND_END - BAND_START)).clamp(0.0, 1.0);
+    1.0 - t * t * (3.0 - 2.0 * t)
+}
+
+impl WakeKernelSource {
+    /// Is the term nothing at squared distance `r2`: beyond the cull radius or inside the
+    /// cut-off's (`wake_source_*`'s first test).
+    fn outside(&self, r2: f32) -> bool {
+        r2 > self.cull_r2 || r2 < self.inner_r2
+    }
+
+    /// The height term at offset `d` = p − pos (`r2` = |d|²), m, exactly as
+    /// `wake_source_height` in WGSL: (q²/r⁶) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (d·dx).
+    pub fn height(&self, d: [f32; 2], r2: f32) -> f32 {
+        if self.outside(r2) {
+            return 0.0;
+        }
+        let k = self.q / r2;
+        let kk = k * k;
+        let big_g = kk * self.hull_r2;
+        let phi = self.q * inverse_sqrt(r2);
+        let (sn, cs) = reduced(phi).sin_cos();
+        let bracket = sn + (big_g - 3.0) / phi * cs;
+        kk / r2 * (-0.25 * big_g).exp() * bracket * (d[0] * self.dx[0] + d[1] * self.dx[1])
+    }
+
+    /// The height term and its gradient at offset `d` (`r2` = |d|²), band limited for points
+    /// `spacing` metres apart (0: not limited), (w, ∂w/∂x, ∂w/∂z) in m and m/m, exactly as
+    /// `wake_source_height_grad_at` in WGSL.
+    pub fn height_grad(&self, d: [f32; 2], r2: f32, spacing: f32) -> [f32; 3] {
+        if self.outside(r2) {
+            return [0.0; 3];
+        }
+        let k = self.q / r2;
+        let x = k * spacing;
+        if x >= BAND_END {
+            return [0.0; 3];
+        }
+        let kk = k * k;
+        let big_g = kk * self.hull_r2;
+        let phi = self.q * inverse_sqrt(r2);
+        let (sn, cs) = reduced(phi).sin_cos();
+        let c = kk / r2 * (-0.25 * big_g).exp() * band_fade_of(x);
+        let bracket = sn + (big_g - 3.0) / phi * cs;
+        let radial_bracket = (big_g - 9.0) * bracket + big_g * sn - (phi + 12.0 / phi) * cs;
+        let proj = d[0] * self.dx[0] + d[1] * self.dx[1];
+        let f = c * bracket;
+        let radial = c * radial_bracket * proj / r2;
+        [
+            f * proj,
+            radial * d[0] + f * self.dx[0],
+            radial * d[1] + f * self.dx[1],
+        ]
+    }
+
+    /// The foam density at squared distance `r2`, exactly as `wake_source_foam` in WGSL.
+    pub fn foam_density(&self, r2: f32) -> f32 {
+        self.foam * (r2 * self.foam_rate).exp()
+    }
+}
+
+/// A source's foam density at squared distance `r2` from its centre, f32 as the GPU forms it
+/// (the kernel's −1/w², without forming the rest of its [`WakeKernelSource`]).
+pub(crate) fn foam_density_f32(s: &GpuWakeSource, r2: f32) -> f32 {
+    s.foam * (r2 * foam_rate(s)).exp()
+}
+
+#[cfg(test)]
+mod tests;
