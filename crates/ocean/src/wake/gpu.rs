@@ -13,7 +13,8 @@
 //! Σ_culled B(distance to the view) + ε × sent sources: `GpuWakeFrame::cull_bound`.
 
 use super::kelvin::{GAUSS_CUTOFF, KelvinSource, Wake, foam_shape};
-use super::kernel::{WakeKernelSource, band_fade_of, foam_density_f32, gauss_hole_r2};
+pub use super::kernel::{BAND_END, BAND_START, MIN_R2};
+use super::kernel::{WakeKernelSource, band_fade_of};
 
 /// One wake source of a frame as the CPU culls, bins and bounds it (48 bytes): its physical
 /// quantities in f32. The GPU reads its [`WakeKernelSource`] (the constants the kernel needs,
@@ -168,10 +169,6 @@ pub fn source_peak_bound(s: &GpuWakeSource) -> f64 {
     4.0 * c / (r_sq * r_m) * (m1 + r_m / q * m2)
 }
 
-/// Below this squared distance (m²) a source is skipped: its term is e^{−k*²R²/4} ≈ 0 there,
-/// and the shader must never divide by zero (the floor of `WakeKernelSource::inner_r2`).
-pub const MIN_R2: f32 = 1e-6;
-
 /// One source's height term at local point `p`, f32, exactly as `wake_source_height` in WGSL
 /// (which reads the source's [`WakeKernelSource`]; a point beyond the cull radius is nothing
 /// there too, so the constants are formed only within it).
@@ -199,10 +196,6 @@ pub fn band_fade(k: f64, spacing: f64) -> f64 {
     let t = ((k * spacing - a) / (b - a)).clamp(0.0, 1.0);
     1.0 - t * t * (3.0 - 2.0 * t)
 }
-
-/// Where the band limit starts and ends, in k·spacing (radians per sample spacing).
-pub const BAND_START: f32 = 1.0;
-pub const BAND_END: f32 = 2.0;
 
 /// The squared radius (m²) inside which a source adds nothing at points sampled every
 /// `spacing` metres: its Gaussian cut-off (k²R²/4 > 40, k = q/r², so r² < q·√(R²/4/40)) or
@@ -353,6 +346,40 @@ pub fn frame_height_f64(
         })
         .map(|s| super::kelvin::source_height(s, world, t, prm))
         .sum()
+}
+
+/// The squared radius of a source's Gaussian cut-off, m² (f64 from its f32 fields): inside
+/// it k²R²/4 > [`GAUSS_CUTOFF`] (k = q/r², so r² < q·√(R²/4 / cut-off)).
+pub(crate) fn gauss_hole_r2(s: &GpuWakeSource) -> f64 {
+    f64::from(s.q.max(0.0)) * (f64::from(s.gauss.max(0.0)) / GAUSS_CUTOFF).sqrt()
+}
+
+/// The foam strip's −1/w², 1/m², rounded once from f64.
+fn foam_rate(s: &GpuWakeSource) -> f32 {
+    (-1.0 / f64::from(s.foam_w2)) as f32
+}
+
+impl From<&GpuWakeSource> for WakeKernelSource {
+    fn from(s: &GpuWakeSource) -> WakeKernelSource {
+        let strength = f64::from(s.strength);
+        WakeKernelSource {
+            pos: s.pos,
+            dx: s.dx.map(|v| (-strength * f64::from(v)) as f32),
+            q: s.q,
+            hull_r2: (4.0 * f64::from(s.gauss)) as f32,
+            cull_r2: s.cull_r2,
+            inner_r2: (gauss_hole_r2(s) as f32).max(MIN_R2),
+            foam: s.foam,
+            foam_rate: foam_rate(s),
+            _pad: [0.0; 2],
+        }
+    }
+}
+
+/// A source's foam density at squared distance `r2` from its centre, f32 as the GPU forms it
+/// (the kernel's −1/w², without forming the rest of its [`WakeKernelSource`]).
+pub(crate) fn foam_density_f32(s: &GpuWakeSource, r2: f32) -> f32 {
+    s.foam * (r2 * foam_rate(s)).exp()
 }
 
 #[cfg(test)]

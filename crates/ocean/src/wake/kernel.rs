@@ -1,7 +1,7 @@
 //! What the GPU reads of each wake source, and the exact f32 mirror of the WGSL kernel that
 //! evaluates it (`shaders/ocean/wake.wgsl`).
 //!
-//! A frame's sources are culled, binned and bounded on the CPU as [`GpuWakeSource`]s: the
+//! A frame's sources are culled, binned and bounded on the CPU as `GpuWakeSource`s (`gpu.rs`): the
 //! physical quantities (q = g s²/4, the strength F/(√2πρg)·w(s), R²/4, the cull radius, the
 //! foam strip). The kernel runs once per (point, source) pair, the water's costliest loop, so
 //! what is fixed per source is formed here once per frame, in f64 from those f32 fields and
@@ -21,11 +21,16 @@
 //! regrouped around B as (4g − 9)·B + 4g sin Φ − (Φ + 12/Φ) cos Φ: 8 operations where the
 //! sum as written took 11; exact in real arithmetic, only f32 rounding moves.
 
-use super::gpu::{BAND_END, BAND_START, GpuWakeSource, MIN_R2};
-use super::kelvin::GAUSS_CUTOFF;
+/// Below this squared distance (m²) a source is skipped: its term is e^{−k*²R²/4} ≈ 0 there,
+/// and the shader must never divide by zero (the floor of `WakeKernelSource::inner_r2`).
+pub const MIN_R2: f32 = 1e-6;
+
+/// Where the band limit starts and ends, in k·spacing (radians per sample spacing).
+pub const BAND_START: f32 = 1.0;
+pub const BAND_END: f32 = 2.0;
 
 /// One wake source as the WGSL kernel reads it (`WakeSource` in `shaders/ocean/wake.wgsl`,
-/// std430: 48 bytes, 8-byte aligned), formed from a [`GpuWakeSource`] by `From`.
+/// std430: 48 bytes, 8-byte aligned), formed from a `GpuWakeSource` by `From` (in `gpu.rs`).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct WakeKernelSource {
@@ -47,34 +52,6 @@ pub struct WakeKernelSource {
     /// −1/w², w the foam strip's width, 1/m².
     pub foam_rate: f32,
     pub _pad: [f32; 2],
-}
-
-/// The squared radius of a source's Gaussian cut-off, m² (f64 from its f32 fields): inside
-/// it k²R²/4 > [`GAUSS_CUTOFF`] (k = q/r², so r² < q·√(R²/4 / cut-off)).
-pub(crate) fn gauss_hole_r2(s: &GpuWakeSource) -> f64 {
-    f64::from(s.q.max(0.0)) * (f64::from(s.gauss.max(0.0)) / GAUSS_CUTOFF).sqrt()
-}
-
-/// The foam strip's −1/w², 1/m², rounded once from f64.
-fn foam_rate(s: &GpuWakeSource) -> f32 {
-    (-1.0 / f64::from(s.foam_w2)) as f32
-}
-
-impl From<&GpuWakeSource> for WakeKernelSource {
-    fn from(s: &GpuWakeSource) -> WakeKernelSource {
-        let strength = f64::from(s.strength);
-        WakeKernelSource {
-            pos: s.pos,
-            dx: s.dx.map(|v| (-strength * f64::from(v)) as f32),
-            q: s.q,
-            hull_r2: (4.0 * f64::from(s.gauss)) as f32,
-            cull_r2: s.cull_r2,
-            inner_r2: (gauss_hole_r2(s) as f32).max(MIN_R2),
-            foam: s.foam,
-            foam_rate: foam_rate(s),
-            _pad: [0.0; 2],
-        }
-    }
 }
 
 /// 2π as the WGSL's `WAKE_TAU`.
@@ -152,12 +129,6 @@ impl WakeKernelSource {
     pub fn foam_density(&self, r2: f32) -> f32 {
         self.foam * (r2 * self.foam_rate).exp()
     }
-}
-
-/// A source's foam density at squared distance `r2` from its centre, f32 as the GPU forms it
-/// (the kernel's −1/w², without forming the rest of its [`WakeKernelSource`]).
-pub(crate) fn foam_density_f32(s: &GpuWakeSource, r2: f32) -> f32 {
-    s.foam * (r2 * foam_rate(s)).exp()
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! gradient against f64 differences of the physical term.
 
 use super::*;
+use crate::wake::gpu::GpuWakeSource;
 use crate::wake::{TrackSample, Wake, WakeParams, WakeView};
 
 /// A real frame's sources: a boat turning at 5 m/s for 100 s (young and old sources).
