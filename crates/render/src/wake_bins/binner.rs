@@ -148,8 +148,10 @@ impl WakeBinner {
         self.counts.clear();
         let lists = layout.levels_in.len() * layout.lists_per_bin() as usize;
         self.counts.resize(lists, 0);
-        for list in self.entries.lists() {
-            self.counts[list as usize] += 1;
+        for chunk in &self.entries.chunks {
+            for &list in chunk {
+                self.counts[list as usize] += 1;
+            }
         }
     }
 }
@@ -166,10 +168,18 @@ pub(super) fn buffer_bytes(sources: usize, bins: usize, indices: usize) -> u64 {
 /// highest whose list is not empty (`count`: a level's entries; an empty list and none read
 /// alike): [lowest, how many], or none.
 fn level_span(mask: u32, count: impl Fn(u32) -> u32) -> Option<[u32; 2]> {
-    let mut listed = (0..32).filter(|&l| mask & 1 << l != 0 && count(l) != 0);
-    let lowest = listed.next()?;
-    let highest = listed.next_back().unwrap_or(lowest);
-    Some([lowest, highest - lowest + 1])
+    let (mut lowest, mut highest) = (None, 0);
+    // Only the levels of `mask`, one bit at a time (a bin has one or two).
+    let mut levels = mask;
+    while levels != 0 {
+        let l = levels.trailing_zeros();
+        if count(l) != 0 {
+            lowest.get_or_insert(l);
+            highest = l;
+        }
+        levels &= levels - 1;
+    }
+    lowest.map(|lowest| [lowest, highest - lowest + 1])
 }
 
 impl Layout {

@@ -46,11 +46,6 @@ impl Entries {
                     })
             })
     }
-
-    /// Every entry's list, in the sources' order.
-    pub(super) fn lists(&self) -> impl Iterator<Item = u32> + '_ {
-        self.chunks.iter().flat_map(|c| c.iter().copied())
-    }
 }
 
 /// A source's squared distances to the columns (or rows) of its span, m²: per column the
@@ -137,7 +132,6 @@ impl Layout {
         columns: &mut Distances,
     ) {
         let margin = f64::from(self.margin);
-        let levels = self.spacing.len();
         for (n, s) in sources.iter().enumerate() {
             let Some([i0, i1, j0, j1]) = self.span(s) else {
                 continue;
@@ -181,11 +175,13 @@ impl Layout {
                 }
                 // No level lists a bin wholly inside the least inner radius of the row's
                 // levels; such a bin lists the source only when its foam reaches it.
-                let row_levels = self.row_levels[j as usize];
-                let least_inner2 = (0..levels)
-                    .filter(|&l| row_levels & 1 << l != 0)
-                    .map(|l| radii.inner[l])
-                    .fold(f64::INFINITY, f64::min);
+                let mut least_inner2 = f64::INFINITY;
+                let mut row_levels = self.row_levels[j as usize];
+                while row_levels != 0 {
+                    let l = row_levels.trailing_zeros() as usize;
+                    least_inner2 = least_inner2.min(radii.inner[l]);
+                    row_levels &= row_levels - 1;
+                }
                 let [h0, h1] = hole.within(&columns.far2, row.far2, least_inner2, true);
                 let (h0, h1) = (h0.clamp(a0, a1), h1.clamp(a0, a1));
                 self.list_bins(&radii, columns, &row, [a0, h0], lists);
@@ -303,33 +299,35 @@ impl Run {
     /// or an empty one. Each end moves from where the last row's was, so a source's rows
     /// together take a few turns a column, not one a bin.
     fn within(&mut self, d: &[f64], offset: f64, limit: f64, strict: bool) -> [usize; 2] {
-        let inside = |c: usize| {
-            let v = d[c] + offset;
+        // A function, not a closure: the debug build (opt-level 1) calls a closure here.
+        #[inline(always)]
+        fn holds(d: f64, offset: f64, limit: f64, strict: bool) -> bool {
+            let v = d + offset;
             if strict { v < limit } else { v <= limit }
-        };
+        }
         let v = self.valley;
-        if v >= d.len() || !inside(v) {
+        if v >= d.len() || !holds(d[v], offset, limit, strict) {
             return [v, v];
         }
         // d[start..=v] all inside (d falls to v), d[start − 1] not.
         let mut start = self.ends[0].min(v);
-        if inside(start) {
-            while start > 0 && inside(start - 1) {
+        if holds(d[start], offset, limit, strict) {
+            while start > 0 && holds(d[start - 1], offset, limit, strict) {
                 start -= 1;
             }
         } else {
-            while !inside(start) {
+            while !holds(d[start], offset, limit, strict) {
                 start += 1;
             }
         }
         // d[v..end] all inside (d grows from v), d[end] not.
         let mut end = self.ends[1].clamp(v + 1, d.len());
-        if inside(end - 1) {
-            while end < d.len() && inside(end) {
+        if holds(d[end - 1], offset, limit, strict) {
+            while end < d.len() && holds(d[end], offset, limit, strict) {
                 end += 1;
             }
         } else {
-            while !inside(end - 1) {
+            while !holds(d[end - 1], offset, limit, strict) {
                 end -= 1;
             }
         }
