@@ -30,6 +30,7 @@ fn check_tier(tier: Tier) {
         &wake,
         WAKE_BUFFER_BUDGET_BYTES,
         render.wake_source_budget,
+        &mut Default::default(),
         &mut frame,
     );
     equals_the_reference_binning(tier, &scene, &wake, render.wake_source_budget, &frame);

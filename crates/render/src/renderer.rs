@@ -176,6 +176,8 @@ pub struct Renderer {
     wake_budget: u64,
     /// Most wake sources a frame draws (a quality tier's budget; default unlimited).
     wake_sources: usize,
+    /// Bins every frame's wake sources, its memory and the last frame's buffers kept.
+    wake_binner: crate::wake_bins::WakeBinner,
     /// The real sea's water (its type colours the open sea's body).
     water_look: crate::water_look::WaterLook,
     /// The room's diffuse radiance over the camera image (the AR water's and the boats'), in
@@ -220,6 +222,7 @@ impl Renderer {
             upscale: None,
             wake_budget: crate::wake_bins::WAKE_BUFFER_BUDGET_BYTES,
             wake_sources: usize::MAX,
+            wake_binner: Default::default(),
             water_look: Default::default(),
             room_light: None,
         }
@@ -438,7 +441,8 @@ impl Renderer {
         let mut frame = FrameContext::new(scene, size, self.options.error_px);
         frame.uniform.water_body = crate::view_light::water_body_uniform(&self.water_look);
         if let Some(w) = &self.wake {
-            gather_wakes(gpu, w, (self.wake_budget, self.wake_sources), &mut frame);
+            let limits = (self.wake_budget, self.wake_sources);
+            gather_wakes(gpu, w, limits, &mut self.wake_binner, &mut frame);
         }
         let depth = self.depth.view(gpu, size);
         // Plan.
@@ -488,13 +492,17 @@ impl Renderer {
         // Measure.
         let (triangles_source, shader_invocations) =
             measure_frame(gpu, timer, stats, &run, &offscreen, &mut records);
-        self.report(
+        let report = self.report(
             gpu,
             &frame,
             records,
             (triangles_source, shader_invocations),
             raised.as_ref().map(|(_, m)| *m),
-        )
+        );
+        // The wake bins are uploaded: their buffers serve the next frame's.
+        self.wake_binner
+            .recycle(std::mem::take(&mut frame.wake_bins));
+        report
     }
 
     /// Plan the frame: each pass's decision (with the backdrop rule), the passes that run
@@ -568,10 +576,11 @@ fn gather_wakes(
     gpu: &Gpu,
     wake: &ocean::wake::Wake,
     (budget, max_sources): (u64, usize),
+    binner: &mut crate::wake_bins::WakeBinner,
     frame: &mut FrameContext,
 ) {
     let cap = crate::wake_bins::wake_buffer_cap(&gpu.device.limits(), budget);
-    bin_wakes(wake, cap, max_sources, frame);
+    bin_wakes(wake, cap, max_sources, binner, frame);
     if frame.wake_drop.dropped > 0 {
         // Every frame of a bunched fleet drops some: the frame report carries it, the
         // log only at info (a warning per frame would flood the terminal).
@@ -588,8 +597,15 @@ fn gather_wakes(
 /// The frame's wake sources (culled to the clip-map's reach with [`WAKE_EPSILON_M`]) binned
 /// for the clip-map's vertices, each band limited for its level's spacing, within `cap` bytes
 /// and `max_sources` sources: `frame.wakes`, `frame.wake_bins`, `frame.wake_drop`. What the
-/// renderer uploads, and what the budget model counts.
-pub fn bin_wakes(wake: &ocean::wake::Wake, cap: u64, max_sources: usize, frame: &mut FrameContext) {
+/// renderer uploads, and what the budget model counts. `binner` is the renderer's, kept from
+/// frame to frame (the bins do not depend on it).
+pub fn bin_wakes(
+    wake: &ocean::wake::Wake,
+    cap: u64,
+    max_sources: usize,
+    binner: &mut crate::wake_bins::WakeBinner,
+    frame: &mut FrameContext,
+) {
     let scene = frame.scene;
     let eye = DVec2::new(scene.camera.eye.x, scene.camera.eye.z);
     let reach = frame.clipmap.half_extent(frame.clipmap.levels() - 1);
@@ -605,7 +621,7 @@ pub fn bin_wakes(wake: &ocean::wake::Wake, cap: u64, max_sources: usize, frame: 
         crate::wake_spacing::SampleSpacing::of_mesh(&frame.clipmap, &frame.mesh, eye, displacement);
     let half = reach as f32 * 2.0;
     (frame.wake_bins, frame.wake_drop) =
-        crate::wake_bins::fit(&mut frame.wakes, half, cap, max_sources, &spacing);
+        binner.fit(&mut frame.wakes, half, cap, max_sources, &spacing);
     frame.uniform.counts[2] = frame.wakes.sources.len() as u32;
 }
 

@@ -49,12 +49,6 @@ const SOURCE_BYTES: u64 = size_of::<GpuWakeSource>() as u64;
 const BIN_BYTES: u64 = 16;
 const INDEX_BYTES: u64 = 4;
 
-/// Most threads that list a frame's entries.
-const ENTRY_THREADS: usize = 4;
-/// The fewest sources worth a thread of their own (a thread costs tens of microseconds; a
-/// source's entries about ten).
-const MIN_SOURCES_A_THREAD: usize = 256;
-
 /// The cap on one frame's wake buffers, bytes: `budget` within the device's limits for one
 /// storage binding and one buffer.
 pub(crate) fn wake_buffer_cap(limits: &wgpu::Limits, budget: u64) -> u64 {
@@ -124,6 +118,8 @@ struct Layout {
     /// Per row of bins, the columns [first, end) outside which no level lands (`levels_in`
     /// is 0): the binning skips them whole.
     rows: Vec<[u32; 2]>,
+    /// Per row of bins, the levels that land in any of its bins.
+    row_levels: Vec<u32>,
     /// Each level's vertex spacing, m: one height list per level in each bin.
     spacing: Vec<f32>,
     level_spacing: [[f32; 4]; 4],
@@ -166,6 +162,10 @@ impl Layout {
                 [first as u32, end as u32]
             })
             .collect();
+        let row_levels = levels_in
+            .chunks(nx as usize)
+            .map(|row| row.iter().fold(0, |m, &l| m | l))
+            .collect();
         Layout {
             lo,
             cell,
@@ -174,6 +174,7 @@ impl Layout {
             margin,
             levels_in,
             rows,
+            row_levels,
             spacing: (0..levels)
                 .map(|l| spacing.levels.get(l).map_or(0.0, |b| b.spacing))
                 .collect(),
@@ -225,216 +226,18 @@ impl Layout {
         [near, far]
     }
 
-    /// Every list entry of `sources`, in the sources' order: which bins list each source and
-    /// in which of their lists. Bin (i, j) lists source `s` in its foam list when its foam
-    /// strip (grown by the margin) reaches the bin's square, and in level l's height list
-    /// when level l's vertices can land in the bin and its cull circle (grown by the margin)
-    /// reaches the square with some point of the square outside the source's inner radius
-    /// for level l's spacing (a bin in a corner of the circle's bounding square is out of
-    /// reach of every point of the circle, and listing it would only add loop turns to the
-    /// bin's points).
-    ///
-    /// The squared distances are separable: a bin's nearest (and farthest) squared distance
-    /// is its column's plus its row's, so each column's and row's are worked out once per
-    /// source, and columns and rows out of reach of both radii are skipped whole (adding a
-    /// row's square to a column's never makes it smaller). Every comparison is the one of a
-    /// test per bin, on the same f64 values.
-    fn entries(&self, sources: &[GpuWakeSource], out: &mut Entries) {
-        out.pairs.clear();
-        out.per_source.clear();
-        out.per_source.resize(sources.len(), 0);
-        // A source's entries depend only on it and the grid: chunks of sources on threads of
-        // their own (a phone has 8 cores), their entries joined in the chunks' order, are the
-        // entries of one pass over all of them, in the same order.
-        let threads = std::thread::available_parallelism()
-            .map_or(1, |n| n.get())
-            .min(ENTRY_THREADS)
-            .min(sources.len().div_ceil(MIN_SOURCES_A_THREAD))
-            .max(1);
-        if threads == 1 {
-            return self.entries_from(sources, 0, &mut out.pairs, &mut out.per_source);
-        }
-        let chunk = sources.len().div_ceil(threads);
-        let parts: Vec<Vec<[u32; 2]>> = std::thread::scope(|scope| {
-            let workers: Vec<_> = sources
-                .chunks(chunk)
-                .zip(out.per_source.chunks_mut(chunk))
-                .enumerate()
-                .map(|(c, (part, listed))| {
-                    scope.spawn(move || {
-                        let mut pairs = Vec::new();
-                        self.entries_from(part, c * chunk, &mut pairs, listed);
-                        pairs
-                    })
-                })
-                .collect();
-            workers
-                .into_iter()
-                .map(|w| w.join().expect("a binning thread panicked"))
-                .collect()
-        });
-        out.pairs.reserve(parts.iter().map(Vec::len).sum());
-        for part in parts {
-            out.pairs.extend_from_slice(&part);
+    /// The grid as the shader reads it.
+    fn grid(&self) -> WakeGrid {
+        WakeGrid {
+            origin: self.lo,
+            inv_cell: 1.0 / self.cell,
+            margin: self.margin,
+            nx: self.nx,
+            nz: self.nz,
+            _pad: [0; 2],
+            level_spacing: self.level_spacing,
         }
     }
-
-    /// [`Layout::entries`] of `sources`, the first of which is source `first`: its pairs
-    /// appended to `pairs`, each source's count in `listed` (one slot a source).
-    fn entries_from(
-        &self,
-        sources: &[GpuWakeSource],
-        first: usize,
-        pairs: &mut Vec<[u32; 2]>,
-        listed_per_source: &mut [u64],
-    ) {
-        let margin = f64::from(self.margin);
-        let per_bin = self.lists_per_bin();
-        // (column, nearest², farthest²) of the columns in reach of a source.
-        let mut columns: Vec<(u32, f64, f64)> = Vec::new();
-        for (n, s) in sources.iter().enumerate() {
-            let k = first + n;
-            let Some([i0, i1, j0, j1]) = self.span(s) else {
-                continue;
-            };
-            let cull = f64::from(s.cull_r2.max(0.0)).sqrt() + margin;
-            let foam = f64::from(foam_radius2(s)).sqrt() + margin;
-            let (cull2, foam2) = (cull * cull, foam * foam);
-            // Beyond both radii a bin lists nothing. Neither this nor a nearest distance is
-            // NaN (`f64::max` drops a NaN operand, and `cull2` is of a NaN-free radius).
-            let either2 = cull2.max(foam2);
-            let mut inner2 = [0.0; MAX_LEVELS];
-            for (r2, &spacing) in inner2.iter_mut().zip(&self.spacing) {
-                *r2 = f64::from(inner_radius2(s, spacing));
-            }
-            let (x, z) = (f64::from(s.pos[0]), f64::from(s.pos[1]));
-            columns.clear();
-            for i in i0..=i1 {
-                let [near, far] = self.distances(x, self.lo[0], i);
-                let near2 = near * near;
-                if near2 <= either2 {
-                    columns.push((i, near2, far * far));
-                }
-            }
-            let mut listed = 0u64;
-            for j in j0..=j1 {
-                let [near, far] = self.distances(z, self.lo[1], j);
-                let (dz2, fz2) = (near * near, far * far);
-                if dz2 > either2 {
-                    continue;
-                }
-                let [first, end] = self.rows[j as usize];
-                let from = columns.partition_point(|c| c.0 < first);
-                let to = columns.partition_point(|c| c.0 < end);
-                for &(i, dx2, fx2) in &columns[from..to.max(from)] {
-                    let b = j * self.nx + i;
-                    let levels_in = self.levels_in[b as usize];
-                    if levels_in == 0 {
-                        continue;
-                    }
-                    let near2 = dx2 + dz2;
-                    let head = b * per_bin;
-                    if near2 <= foam2 {
-                        pairs.push([head, k as u32]);
-                        listed += 1;
-                    }
-                    if near2 > cull2 {
-                        continue;
-                    }
-                    // Only the levels that land here (a bin has one or two of them).
-                    let far2 = fx2 + fz2;
-                    let mut levels = levels_in;
-                    while levels != 0 {
-                        let l = levels.trailing_zeros();
-                        if far2 >= inner2[l as usize] {
-                            pairs.push([head + 1 + l, k as u32]);
-                            listed += 1;
-                        }
-                        levels &= levels - 1;
-                    }
-                }
-            }
-            listed_per_source[n] = listed;
-        }
-    }
-
-    /// The bins of `sources`' entries (`entries` of the sources kept, renumbered, in order):
-    /// the entries sorted into their lists by a counting sort, which keeps each list in the
-    /// sources' order, then laid out per bin (`WakeBins::bins`).
-    fn bins(&self, pairs: &[[u32; 2]], scratch: &mut Vec<u32>) -> WakeBins {
-        let per_bin = self.lists_per_bin() as usize;
-        let lists = self.levels_in.len() * per_bin;
-        // first[n]..first[n + 1]: list n's sources in `sorted`.
-        let mut first = vec![0u32; lists + 1];
-        for &[list, _] in pairs {
-            first[list as usize + 1] += 1;
-        }
-        for n in 0..lists {
-            first[n + 1] += first[n];
-        }
-        let sorted = scratch;
-        sorted.clear();
-        sorted.resize(pairs.len(), 0);
-        let mut next = first.clone();
-        for &[list, k] in pairs {
-            let at = &mut next[list as usize];
-            sorted[*at as usize] = k;
-            *at += 1;
-        }
-        let list = |n: usize| &sorted[first[n] as usize..first[n + 1] as usize];
-        let slots = self.slots();
-        let mut bins = Vec::with_capacity(self.levels_in.len());
-        let mut indices = Vec::with_capacity(sorted.len() + 2 * lists);
-        for (b, &mask) in self.levels_in.iter().enumerate() {
-            let foam = list(b * per_bin);
-            let height = |l: u32| list(b * per_bin + 1 + l as usize);
-            let foam_first = indices.len() as u32;
-            indices.extend_from_slice(foam);
-            let head = indices.len() as u32;
-            // The levels from the lowest to the highest with a list that is not empty (each
-            // level that lands here; an empty list and none read alike): their (first, count)
-            // pairs, then their lists.
-            let mut listed = (0..slots).filter(|&l| mask & 1 << l != 0 && !height(l).is_empty());
-            let Some(lowest) = listed.next() else {
-                bins.push([head, 0, foam_first, foam.len() as u32]);
-                continue;
-            };
-            let highest = listed.next_back().unwrap_or(lowest);
-            let span = highest - lowest + 1;
-            indices.resize(indices.len() + 2 * span as usize, 0);
-            for (k, l) in (lowest..=highest).enumerate() {
-                let h = height(l);
-                let at = head as usize + 2 * k;
-                indices[at] = indices.len() as u32;
-                indices[at + 1] = h.len() as u32;
-                indices.extend_from_slice(h);
-            }
-            bins.push([head, lowest | span << 16, foam_first, foam.len() as u32]);
-        }
-        WakeBins {
-            grid: WakeGrid {
-                origin: self.lo,
-                inv_cell: 1.0 / self.cell,
-                margin: self.margin,
-                nx: self.nx,
-                nz: self.nz,
-                _pad: [0; 2],
-                level_spacing: self.level_spacing,
-            },
-            bins,
-            indices,
-        }
-    }
-}
-
-/// The list entries of a frame's sources before they are sorted into lists.
-#[derive(Debug, Default)]
-struct Entries {
-    /// (list, source) in the sources' order; list b·(levels + 1) is bin b's foam list and
-    /// b·(levels + 1) + 1 + l its level-l height list.
-    pairs: Vec<[u32; 2]>,
-    /// List entries per source.
-    per_source: Vec<u64>,
 }
 
 /// Per bin of the grid with corner `lo`, side `cell` and `n` bins per side, the levels whose
@@ -492,6 +295,7 @@ fn reach(sources: &[GpuWakeSource], half: f32, margin: f32) -> Option<([f32; 2],
 impl WakeBins {
     /// Bin `sources` over the rectangle their cull circles (grown by `margin`) cover, clipped
     /// to the square [−half, half]² (local metres).
+    #[cfg(any(test, feature = "binning-reference"))]
     pub(crate) fn over_reach(
         sources: &[GpuWakeSource],
         half: f32,
@@ -539,9 +343,7 @@ impl WakeBins {
     }
 
     fn on(sources: &[GpuWakeSource], layout: &Layout) -> WakeBins {
-        let mut entries = Entries::default();
-        layout.entries(sources, &mut entries);
-        layout.bins(&entries.pairs, &mut Vec::new())
+        WakeBinner::default().bin(sources, layout)
     }
 
     /// The sources whose height local point `p` of clip-map level `level` sums: its bin's
@@ -590,9 +392,7 @@ impl WakeBins {
     /// Bytes of the three buffers with `sources` sources (each at least one entry: the
     /// buffers are never empty).
     pub fn bytes(&self, sources: usize) -> u64 {
-        SOURCE_BYTES * sources.max(1) as u64
-            + BIN_BYTES * self.bins.len() as u64
-            + INDEX_BYTES * self.indices.len().max(1) as u64
+        binner::buffer_bytes(sources, self.bins.len(), self.indices.len())
     }
 }
 
@@ -600,7 +400,8 @@ impl WakeBins {
 /// `cap` bytes and at most `max_sources` sources (a quality tier's wake source budget): when
 /// they would need more, the sources with the smallest peak height are removed from
 /// `wakes.sources` until the rest fit (module docs), and the record says how many and the
-/// error bound.
+/// error bound. A renderer binning every frame keeps a [`WakeBinner`] instead, which keeps
+/// its memory.
 pub fn fit(
     wakes: &mut GpuWakeFrame,
     half: f32,
@@ -608,61 +409,12 @@ pub fn fit(
     max_sources: usize,
     spacing: &SampleSpacing,
 ) -> (WakeBins, WakeDrop) {
-    let mut drop = WakeDrop {
-        cap_bytes: cap,
-        ..Default::default()
-    };
-    let margin = lookup_margin(half);
-    let Some((lo, hi)) = reach(&wakes.sources, half, margin) else {
-        let bins = WakeBins::over_reach(&[], half, WAKE_BINS, margin, spacing);
-        return (bins, drop);
-    };
-    // The grid stays the one of all sources in reach, so every count below is exact.
-    let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
-    let mut entries = Entries::default();
-    layout.entries(&wakes.sources, &mut entries);
-    let mut sorted = Vec::new();
-    let all = layout.bins(&entries.pairs, &mut sorted);
-    let listed = &entries.per_source;
-    let mut bytes = all.bytes(wakes.sources.len());
-    let mut kept = wakes.sources.len();
-    if bytes <= cap && kept <= max_sources {
-        return (all, drop);
-    }
-    let peak: Vec<f64> = wakes.sources.iter().map(source_peak_bound).collect();
-    let mut order: Vec<usize> = (0..wakes.sources.len()).collect();
-    order.sort_by(|&a, &b| peak[a].total_cmp(&peak[b]).then(a.cmp(&b)));
-    let mut keep = vec![true; wakes.sources.len()];
-    for k in order {
-        if bytes <= cap && kept <= max_sources {
-            break;
-        }
-        keep[k] = false;
-        kept -= 1;
-        bytes -= SOURCE_BYTES + INDEX_BYTES * listed[k];
-        drop.dropped += 1;
-        drop.height_bound_m += peak[k];
-        drop.foam_bound += f64::from(wakes.sources[k].foam);
-    }
-    // The kept sources' lists are the lists of all less the dropped ones (a source's
-    // entries depend only on it and the grid): renumber the kept entries rather than bin
-    // the kept sources again.
-    let mut rank = vec![u32::MAX; keep.len()];
-    let mut next = 0;
-    for (r, &k) in rank.iter_mut().zip(&keep) {
-        if k {
-            *r = next;
-            next += 1;
-        }
-    }
-    entries.pairs.retain_mut(|[_, k]| {
-        *k = rank[*k as usize];
-        *k != u32::MAX
-    });
-    let mut kept = keep.into_iter();
-    wakes.sources.retain(|_| kept.next().unwrap_or(true));
-    (layout.bins(&entries.pairs, &mut sorted), drop)
+    WakeBinner::default().fit(wakes, half, cap, max_sources, spacing)
 }
+
+mod binner;
+mod listing;
+pub use binner::WakeBinner;
 
 #[cfg(any(test, feature = "binning-reference"))]
 #[doc(hidden)]

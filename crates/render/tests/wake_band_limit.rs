@@ -53,7 +53,14 @@ fn fleet_scene(t: f64) -> render::Scene {
 /// The scene's frame, its wakes binned as the renderer bins them.
 fn fleet_frame<'a>(scene: &'a render::Scene, wake: &Wake) -> FrameContext<'a> {
     let mut frame = FrameContext::new(scene, SIZE, 1.0);
-    render::renderer::bin_wakes(wake, WAKE_BUFFER_BUDGET_BYTES, usize::MAX, &mut frame);
+    let mut binner = render::wake_bins::WakeBinner::default();
+    render::renderer::bin_wakes(
+        wake,
+        WAKE_BUFFER_BUDGET_BYTES,
+        usize::MAX,
+        &mut binner,
+        &mut frame,
+    );
     frame
 }
 

@@ -16,7 +16,7 @@ use quality::Tier;
 use regatta::tier_render::TierRender;
 use render::frame::FrameContext;
 use render::renderer::WAKE_EPSILON_M;
-use render::wake_bins::WAKE_BUFFER_BUDGET_BYTES;
+use render::wake_bins::{WAKE_BUFFER_BUDGET_BYTES, WakeBinner};
 use render::wake_spacing::SampleSpacing;
 
 /// Race time of the frame, s: the sample race's busiest wakes.
@@ -35,7 +35,15 @@ fn bench(c: &mut Criterion) {
         let drawn = SCREEN.map(|v| ((f64::from(v) * scale).round() as u32).max(1));
         let mut frame = FrameContext::new(&scene, drawn, render.options.error_px);
         let budget = render.wake_source_budget;
-        render::renderer::bin_wakes(&wake, WAKE_BUFFER_BUDGET_BYTES, budget, &mut frame);
+        // One binner for every frame, each frame's bins handed back, as the renderer does.
+        let mut binner = WakeBinner::default();
+        render::renderer::bin_wakes(
+            &wake,
+            WAKE_BUFFER_BUDGET_BYTES,
+            budget,
+            &mut binner,
+            &mut frame,
+        );
         eprintln!(
             "{tier}: {}×{} drawn, {} mesh vertices, {} sources kept ({} dropped), {} bins, \
              {} indices",
@@ -49,7 +57,14 @@ fn bench(c: &mut Criterion) {
         );
         c.bench_function(&format!("bin_wakes {tier}"), |b| {
             b.iter(|| {
-                render::renderer::bin_wakes(&wake, WAKE_BUFFER_BUDGET_BYTES, budget, &mut frame);
+                binner.recycle(std::mem::take(&mut frame.wake_bins));
+                render::renderer::bin_wakes(
+                    &wake,
+                    WAKE_BUFFER_BUDGET_BYTES,
+                    budget,
+                    &mut binner,
+                    &mut frame,
+                );
                 black_box(frame.wake_bins.indices.len())
             })
         });
@@ -86,6 +101,21 @@ fn bench(c: &mut Criterion) {
                         budget,
                         &spacing,
                     ))
+                },
+                BatchSize::SmallInput,
+            )
+        });
+        // `fit` with a binner kept from frame to frame, as the renderer bins.
+        let mut binner = WakeBinner::default();
+        c.bench_function(&format!("fit kept binner {tier}"), |b| {
+            b.iter_batched_ref(
+                || sources.clone(),
+                |wakes| {
+                    let (bins, drop) =
+                        binner.fit(wakes, half, WAKE_BUFFER_BUDGET_BYTES, budget, &spacing);
+                    let listed = bins.indices.len();
+                    binner.recycle(bins);
+                    black_box((listed, drop))
                 },
                 BatchSize::SmallInput,
             )

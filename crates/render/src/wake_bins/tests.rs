@@ -492,3 +492,102 @@ fn fit_equals_the_reference_binning() {
     }
     assert!(dropping >= 12, "{dropping} cases drop sources");
 }
+
+/// The entries listed on 1 to 7 threads (chunks of the sources, read in the chunks' order)
+/// are those of one pass over the sources, source by source: on the bunched fleet over three
+/// levels and a random fleet over a clip-map mesh.
+#[test]
+fn entries_on_any_number_of_threads_are_those_of_one_pass() {
+    let (mesh, mesh_half) = mesh_spacing();
+    let cases = [
+        (bunched_fleet(), 2000.0, three_levels()),
+        (random_fleet(42, 40), mesh_half, mesh),
+    ];
+    for (n, (sources, half, spacing)) in cases.iter().enumerate() {
+        let margin = lookup_margin(*half);
+        let (lo, hi) = reach(sources, *half, margin).expect("the fleet is in reach");
+        let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
+        let listed = |threads: usize| {
+            let mut entries = listing::Entries::default();
+            layout.entries_on(sources, threads, &mut entries);
+            let by_source: Vec<(usize, Vec<u32>)> = entries
+                .by_source()
+                .map(|(k, lists)| (k, lists.to_vec()))
+                .collect();
+            (by_source, entries.per_source.clone())
+        };
+        let one = listed(1);
+        assert_eq!(one.0.len(), sources.len(), "case {n}");
+        assert!(
+            one.0.iter().map(|(_, l)| l.len()).sum::<usize>() > 1000,
+            "case {n}"
+        );
+        for threads in [2, 3, 4, 7] {
+            assert!(listed(threads) == one, "case {n}: {threads} threads");
+        }
+    }
+}
+
+/// One binner kept over frames of different fleets, spacings, caps and source budgets, each
+/// frame's bins handed back to it, bins every frame as the straightforward binning does
+/// (`reference::fit`), whatever it binned before: a big frame, then smaller ones, an empty
+/// one, frames that drop sources and one that does not, and the big frame again.
+#[test]
+fn a_binner_kept_over_frames_bins_each_as_the_reference_does() {
+    let (mesh, mesh_half) = mesh_spacing();
+    let frames: Vec<(Vec<GpuWakeSource>, f32, SampleSpacing, u64, usize)> = vec![
+        (
+            bunched_fleet(),
+            2000.0,
+            three_levels(),
+            u64::MAX,
+            usize::MAX,
+        ),
+        (
+            random_fleet(7, 12),
+            mesh_half,
+            mesh.clone(),
+            u64::MAX,
+            usize::MAX,
+        ),
+        (
+            random_fleet(42, 40),
+            mesh_half,
+            mesh.clone(),
+            60_000,
+            usize::MAX,
+        ),
+        (Vec::new(), mesh_half, mesh.clone(), u64::MAX, usize::MAX),
+        (random_fleet(1, 3), mesh_half, mesh.clone(), u64::MAX, 10),
+        (
+            bunched_fleet(),
+            2000.0,
+            SampleSpacing::uniform(0.0),
+            256 << 10,
+            500,
+        ),
+        (
+            bunched_fleet(),
+            2000.0,
+            three_levels(),
+            u64::MAX,
+            usize::MAX,
+        ),
+    ];
+    let mut binner = WakeBinner::default();
+    let mut dropping = 0;
+    for (n, (sources, half, spacing, cap, budget)) in frames.into_iter().enumerate() {
+        let frame = GpuWakeFrame {
+            sources,
+            ..Default::default()
+        };
+        let (mut kept, mut slow) = (frame.clone(), frame);
+        let got = binner.fit(&mut kept, half, cap, budget, &spacing);
+        let want = reference::fit(&mut slow, half, cap, budget, &spacing);
+        assert_eq!(got, want, "frame {n}");
+        assert_eq!(kept, slow, "frame {n}");
+        dropping += usize::from(want.1.dropped > 0);
+        binner.recycle(got.0);
+    }
+    assert!(dropping >= 2, "{dropping} frames drop sources");
+}
