@@ -14,7 +14,11 @@ fn fresnel_reflectance(cos_i_in: f32, n1: f32, n2: f32) -> f32 {
     if sin2_t >= 1.0 {
         return 1.0;
     }
-    let cos_t = sqrt(1.0 - sin2_t);
+    return fresnel_of_cosines(cos_i, sqrt(1.0 - sin2_t), n1, n2);
+}
+
+// The unpolarised reflectance from the incidence and refraction cosines.
+fn fresnel_of_cosines(cos_i: f32, cos_t: f32, n1: f32, n2: f32) -> f32 {
     // Each of the four products once (the same values as written out in both ratios).
     let i1 = n1 * cos_i;
     let i2 = n2 * cos_i;
@@ -76,13 +80,8 @@ fn water_entry(d: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let eta = N_AIR / N_WATER;
     let cos_t = sqrt(1.0 - eta * eta * (1.0 - cos_i * cos_i));
     let t = eta * d + ((eta * cos_i - cos_t) * side) * n;
-    let i1 = N_AIR * cos_i;
-    let i2 = N_WATER * cos_i;
-    let t1 = N_AIR * cos_t;
-    let t2 = N_WATER * cos_t;
-    let rs = (i1 - t2) / (i1 + t2);
-    let rp = (t1 - i2) / (t1 + i2);
-    return vec4<f32>(t, select(0.5 * (rs * rs + rp * rp), 1.0, facing >= 0.0));
+    let r = fresnel_of_cosines(cos_i, cos_t, N_AIR, N_WATER);
+    return vec4<f32>(t, select(r, 1.0, facing >= 0.0));
 }
 
 // Where the ray o + s d (s ≥ 0) meets the plane dot(p.xyz, x) + p.w = 0: vec4(point, s), or
