@@ -47,23 +47,13 @@ impl WakeBinner {
         };
         // The grid stays the one of all sources in reach, so every count below is exact.
         let layout = Layout::new(lo, hi, WAKE_BINS, margin, spacing);
-        layout.entries(&wakes.sources, &mut self.entries);
-        self.count(&layout);
-        let mut bins = std::mem::take(&mut self.spare);
         // The bytes of all sources' bins, from their lists' lengths (laid out as they would
         // be, none filled).
-        let len = layout.plan(&self.counts, &mut self.next, &mut bins.bins);
+        let (mut bins, len) = self.lay_out(&wakes.sources, &layout);
         let mut bytes = buffer_bytes(wakes.sources.len(), bins.bins.len(), len);
         let mut kept = wakes.sources.len();
         if bytes <= cap && kept <= max_sources {
-            layout.fill(
-                &self.entries,
-                &self.counts,
-                &mut self.next,
-                None,
-                len,
-                &mut bins,
-            );
+            self.fill(&layout, false, len, &mut bins);
             return (bins, drop);
         }
         let sources = &wakes.sources;
@@ -105,15 +95,7 @@ impl WakeBinner {
             }
         }
         let len = layout.plan(&self.counts, &mut self.next, &mut bins.bins);
-        let rank = Some(self.rank.as_slice());
-        layout.fill(
-            &self.entries,
-            &self.counts,
-            &mut self.next,
-            rank,
-            len,
-            &mut bins,
-        );
+        self.fill(&layout, true, len, &mut bins);
         let mut keep = self.keep.iter();
         wakes
             .sources
@@ -128,19 +110,26 @@ impl WakeBinner {
 
     /// Every source of `sources` binned on `layout` (no cap).
     pub(super) fn bin(&mut self, sources: &[GpuWakeSource], layout: &Layout) -> WakeBins {
+        let (mut bins, len) = self.lay_out(sources, layout);
+        self.fill(layout, false, len, &mut bins);
+        bins
+    }
+
+    /// The entries of `sources` on `layout`, counted per list, and their bins laid out in the
+    /// spare buffers (none filled): the bins and the index buffer's length.
+    fn lay_out(&mut self, sources: &[GpuWakeSource], layout: &Layout) -> (WakeBins, usize) {
         layout.entries(sources, &mut self.entries);
         self.count(layout);
         let mut bins = std::mem::take(&mut self.spare);
         let len = layout.plan(&self.counts, &mut self.next, &mut bins.bins);
-        layout.fill(
-            &self.entries,
-            &self.counts,
-            &mut self.next,
-            None,
-            len,
-            &mut bins,
-        );
-        bins
+        (bins, len)
+    }
+
+    /// Fill `bins` as laid out (`len` indices), each source by its number, or by its new
+    /// number in `rank` when `renumbered` (a frame that dropped sources).
+    fn fill(&mut self, layout: &Layout, renumbered: bool, len: usize, bins: &mut WakeBins) {
+        let rank = renumbered.then_some(self.rank.as_slice());
+        layout.fill(&self.entries, &self.counts, &mut self.next, rank, len, bins);
     }
 
     /// The entries of each list.
