@@ -277,8 +277,12 @@ fn effects_uniform_seen_by(
     fx.camera_projection = image.as_mat4().to_cols_array_2d();
     fx.table_image = effects::passes::table_image(image, table[0]);
     let screen = render.image_projection(render.pose.inverse());
-    fx.straight_image =
-        effects::passes::straight_columns(effects::passes::straight_image(screen, image, table[0]));
+    fx.straight_image = effects::passes::straight_columns(effects::passes::straight_image(
+        screen,
+        image,
+        table[0],
+        render.position().y,
+    ));
     fx.table = table.map(|v| v as f32);
     fx
 }

@@ -392,6 +392,7 @@ impl Shared {
                 screen_projection(frame.view_proj),
                 image,
                 self.cfg.table_depth,
+                s.camera.eye.y,
             )),
             display_u: [f(d[0][0]), f(d[0][1]), f(d[0][2]), 0.0],
             display_v: [f(d[1][0]), f(d[1][1]), f(d[1][2]), 0.0],

@@ -5,7 +5,7 @@
 //! Both take projections in the form of `PinholeCamera::image_projection`: a `DMat4` whose
 //! rows 0–2 map a local point (p, 1) to (u·w, v·w, w), w > 0 in front of the camera.
 
-use glam::{DMat3, DMat4, DVec3, DVec4};
+use glam::{DMat3, DMat4, DVec4};
 
 /// The constant column of `image_projection` (`PinholeCamera::image_projection`, local points
 /// → (u w, v w, w)) for points on the table plane y = −`depth`: column 1 · (−depth) + column 3,
@@ -39,9 +39,15 @@ pub fn screen_projection(view_proj: DMat4) -> DMat4 {
 /// operations. `screen` is [`screen_projection`] of the render's view (or an
 /// `image_projection` when the render camera is a pinhole camera).
 ///
-/// `None` when the eye is not above the table plane (no ray from it meets the table ahead
-/// through the water) or the plane is seen edge-on (the map is singular).
-pub fn straight_image(screen: DMat4, image_projection: DMat4, depth: f64) -> Option<DMat3> {
+/// `None` when the eye (at height `eye_y`, the render's) is not above the table plane (no ray
+/// from it meets the table ahead through the water) or the plane is seen edge-on (the map is
+/// singular).
+pub fn straight_image(
+    screen: DMat4,
+    image_projection: DMat4,
+    depth: f64,
+    eye_y: f64,
+) -> Option<DMat3> {
     let on_plane = |m: DMat4| {
         let c = table_column(m, depth);
         DMat3::from_cols(m.x_axis.truncate(), m.z_axis.truncate(), c.truncate())
@@ -49,29 +55,10 @@ pub fn straight_image(screen: DMat4, image_projection: DMat4, depth: f64) -> Opt
     // Table (x, z, 1) → screen (s·w, t·w, w), w the eye's depth (clip w) of the point.
     let to_screen = on_plane(screen);
     let det = to_screen.determinant();
-    if !det.is_finite() || det.abs() < 1e-300 {
+    if eye_y <= -depth || !det.is_finite() || det.abs() < 1e-300 {
         return None;
     }
-    // The eye's position: the point the screen projection sends to (0, 0, 0).
-    let eye_above = eye_height(screen).is_some_and(|y| y > -depth);
-    eye_above.then(|| on_plane(image_projection) * to_screen.inverse())
-}
-
-/// The y of the point a projection in `image_projection`'s form is centred on (its null space:
-/// the eye), or `None` for a parallel projection.
-fn eye_height(projection: DMat4) -> Option<f64> {
-    let t = projection.transpose();
-    let rows = [t.x_axis, t.y_axis, t.z_axis];
-    // The null vector of the 3 × 4 matrix, by the cofactors of its 3 × 3 minors.
-    let minor = |skip: usize| {
-        let cols: Vec<DVec3> = (0..4)
-            .filter(|&j| j != skip)
-            .map(|j| DVec3::new(rows[0][j], rows[1][j], rows[2][j]))
-            .collect();
-        DMat3::from_cols(cols[0], cols[1], cols[2]).determinant()
-    };
-    let null = DVec4::new(-minor(0), minor(1), -minor(2), minor(3));
-    (null.w.abs() > 1e-300).then(|| null.y / null.w)
+    Some(on_plane(image_projection) * to_screen.inverse())
 }
 
 /// [`straight_image`] as the effects' uniform holds it: its three columns, each padded to 4
@@ -121,7 +108,8 @@ mod tests {
         let view = render.pose.inverse();
         let screen = render.image_projection(view);
         let image = physical.image_projection(physical.pose.inverse());
-        let m = straight_image(screen, image, depth).expect("the eye is above the table");
+        let m =
+            straight_image(screen, image, depth, render_eye.y).expect("the eye is above the table");
         let mut checked = 0;
         for k in 0..17 * 13 {
             let px = DVec2::new(f64::from(k % 17) * 40.0, f64::from(k / 17) * 40.0);
@@ -158,7 +146,7 @@ mod tests {
         // And the map from it agrees with the table point behind the pixel.
         let physical = camera(DVec3::new(0.3, 0.9, 1.5), DVec3::ZERO, 500.0, 320.0);
         let image = physical.image_projection(physical.pose.inverse());
-        let m = straight_image(screen, image, 0.1).unwrap();
+        let m = straight_image(screen, image, 0.1, 1.0).unwrap();
         let s = DVec2::new(0.4, 0.7);
         let ndc = DVec2::new(2.0 * s.x - 1.0, 1.0 - 2.0 * s.y);
         let inv = vp.inverse();
@@ -177,13 +165,13 @@ mod tests {
         let eye = DVec3::new(0.0, -0.5, 2.0);
         let render = camera(eye, DVec3::new(0.0, -0.6, 0.0), 500.0, 320.0);
         let screen = render.image_projection(render.pose.inverse());
-        assert!(straight_image(screen, screen, 0.3).is_none());
+        assert!(straight_image(screen, screen, 0.3, eye.y).is_none());
         assert_eq!(straight_columns(None), [[0.0; 4]; 3]);
         // The same camera above the table has one, and it is the identity (the render camera
         // is the physical one: the table point behind a pixel is seen at that pixel).
         let render = camera(DVec3::new(0.0, 0.5, 2.0), DVec3::ZERO, 500.0, 320.0);
         let screen = render.image_projection(render.pose.inverse());
-        let m = straight_image(screen, screen, 0.3).unwrap();
+        let m = straight_image(screen, screen, 0.3, 0.5).unwrap();
         let m = m / m.z_axis.z;
         assert!(
             (m - DMat3::IDENTITY)

@@ -30,8 +30,10 @@ pub struct CameraBound {
     projection: [[Inexact; 4]; 4],
     /// The same projection in f64, for `table_image`'s column.
     exact: glam::DMat4,
-    /// The render camera's projection to the screen's uv, f64 (`straight_image`'s screen).
+    /// The render camera's projection to the screen's uv, f64 (`straight_image`'s screen),
+    /// and its eye's height.
     screen: glam::DMat4,
+    eye_y: f64,
 }
 
 impl CameraBound {
@@ -42,6 +44,7 @@ impl CameraBound {
             projection: exact.to_cols_array_2d().map(|col| col.map(input)),
             exact,
             screen: render.image_projection(render.pose.inverse()),
+            eye_y: render.position().y,
         }
     }
 
@@ -49,7 +52,8 @@ impl CameraBound {
     /// the map formed in f64 on the CPU (`effects::passes::straight_image`) reaches the GPU
     /// as its f32 (all zero without one: w = 0, the image's centre).
     fn straight_uv(&self, screen: [Inexact; 2], depth: f64) -> Bounded<Option<[Inexact; 2]>> {
-        let Some(m) = effects::passes::straight_image(self.screen, self.exact, depth) else {
+        let Some(m) = effects::passes::straight_image(self.screen, self.exact, depth, self.eye_y)
+        else {
             return Bounded::Decided(None);
         };
         let cols = [m.x_axis, m.y_axis, m.z_axis].map(|c| [c.x, c.y, c.z].map(input));
