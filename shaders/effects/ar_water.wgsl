@@ -20,9 +20,10 @@ fn fx_on(bit: u32) -> bool {
 }
 
 // The water pass's vertex output and what the effects need of each vertex, in as many
-// varyings as the water's own: with a fifth, in about a third of the bench's runs on lavapipe
-// one case's pass ran up to 1.5× slower for the whole run (a per-process effect whose cause
-// was not found; none in 18 runs with four).
+// varyings as the water's own (five since the vertices carry the long waves' slope sums,
+// render::vertex_slopes; an earlier fifth made one case's pass up to 1.5× slower on lavapipe
+// in about a third of the bench's runs, a per-process effect whose cause was not found: the
+// bench's timed column is to be read with that in mind).
 struct ArVertexOut {
     @builtin(position) clip: vec4<f32>,
     // xy: the rest point (local m); zw: the current around the marks (m/s, flow map), a
@@ -31,6 +32,9 @@ struct ArVertexOut {
     @location(0) rest_current: vec4<f32>,
     @location(1) world: vec3<f32>,
     @location(2) wake: vec3<f32>,
+    // The slope sums of the sea's longest waves, as the water pass's VertexOut has them.
+    @location(3) sea_sums: vec4<f32>,
+    @location(4) sea_sums_z: vec2<f32>,
 }
 
 @vertex
@@ -40,6 +44,8 @@ fn vs_ar(v: VertexIn) -> ArVertexOut {
     out.clip = w.clip;
     out.world = w.world;
     out.wake = w.wake;
+    out.sea_sums = w.sea_sums;
+    out.sea_sums_z = w.sea_sums_z;
     var current = vec2<f32>(0.0);
     if fx_on(FX_FLOWMAP) {
         current = current_at(w.world.xz);
@@ -61,7 +67,7 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     let across = dpdx(rest);
     let down = dpdy(rest);
     let footprint = sqrt(max(dot(across, across), dot(down, down)));
-    let sf = surface_frame(rest, frame.counts.x, footprint);
+    let sf = surface_frame_from(rest, frame.counts.x, footprint, vertex_sums_in(in.sea_sums, in.sea_sums_z));
     // Sea and wake slopes add, as in water.wgsl: the wake's (∂w/∂x, ∂w/∂z) is in.wake.xy.
     var n = normalize(vec3<f32>(sf.up.x / sf.up.y - in.wake.x, 1.0, sf.up.z / sf.up.y - in.wake.y));
     if fx_on(FX_FLOWMAP) {

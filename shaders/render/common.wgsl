@@ -58,6 +58,9 @@ struct Frame {
     room_light: vec4<f32>,
     // R∞ of the chosen water type (rgb) and the open sea's exposure (w).
     water_body: vec4<f32>,
+    // Per clip-map level, how many of the first waves its vertices sum for the pixels
+    // (render::vertex_slopes): level l's at [l / 4][l % 4].
+    vertex_waves: array<vec4<u32>, 4>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -138,7 +141,14 @@ struct WaveSums {
 // fade is exactly 1 below π/4, and every wave past π/2 adds exactly 0 slope), to the
 // rounding of the variance's tail.
 fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
-    let sums = fading_waves(p, n, footprint, resolved_waves(p, n, footprint));
+    return surface_frame_from(p, n, footprint, WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u));
+}
+
+// surface_frame with the sums of the waves before `start.next` already in `start` (whole, no
+// variance): the interpolated sums of the waves a water pixel's vertices carry
+// (vertex_slope_sums; render::vertex_slopes states their error bound).
+fn surface_frame_from(p: vec2<f32>, n: u32, footprint: f32, start: WaveSums) -> SurfaceFrame {
+    let sums = fading_waves(p, n, footprint, resolved_waves(p, n, footprint, start));
     var out: SurfaceFrame;
     out.jacobian = sums.dxdx * sums.dzdz - sums.dxdz * sums.dxdz;
     // cross(tz, tx) of the tangents tx = (dxdx, dydx, dxdz), tz = (dxdz, dydz, dzdz), written
@@ -152,17 +162,18 @@ fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
     return out;
 }
 
-// The waves from the first up to the first the pixel filter fades (k·footprint ≥ π/4), whole.
+// The waves from `start.next` up to the first the pixel filter fades (k·footprint ≥ π/4),
+// whole, added to `start`.
 // The test is k ≥ π/(4·footprint), the cut-off wavenumber formed once per pixel (a footprint
 // of 0, no band limit, is taken as 1e-30 m: a cut-off no wave reaches, as k·0 < π/4). Where
 // the rounding of the two tests differs (k·footprint within a few ULP of π/4), the fade of
 // the wave is exactly 1 (smoothstep's t is below 1e-6 there, its 3t² rounds away against 1),
 // so fading_waves adds sin θ·1 and a variance of 0: the sums are the same either way
 // (render/tests/wave_filter.rs checks the rounding).
-fn resolved_waves(p: vec2<f32>, n: u32, footprint: f32) -> WaveSums {
+fn resolved_waves(p: vec2<f32>, n: u32, footprint: f32, start: WaveSums) -> WaveSums {
     let k_fading = 0.25 * PI / max(footprint, 1e-30);
-    var s = WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u);
-    var i = 0u;
+    var s = start;
+    var i = start.next;
     for (; i < n; i = i + 1u) {
         let w = waves[i];
         if w.k >= k_fading {
@@ -192,6 +203,45 @@ fn fading_waves(p: vec2<f32>, n: u32, footprint: f32, start: WaveSums) -> WaveSu
         s = with_wave(s, w, sin(theta) * fade, cos(theta) * fade);
     }
     return s;
+}
+
+// How many of the first waves the vertices of clip-map level `level` sum for the pixels
+// (none past the frame's levels).
+fn vertex_wave_count(level: u32) -> u32 {
+    if level >= frame.counts.y {
+        return 0u;
+    }
+    return min(frame.vertex_waves[level / 4u][level % 4u], frame.counts.x);
+}
+
+// The slope sums of the waves a vertex of clip-map level `level` carries to the pixels, whole,
+// at its rest point p; `next`: the first wave the pixels sum.
+fn vertex_slope_sums(p: vec2<f32>, level: u32) -> WaveSums {
+    let n = vertex_wave_count(level);
+    var s = WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u);
+    for (var i = 0u; i < n; i = i + 1u) {
+        let w = waves[i];
+        let theta = wave_phase(w, p);
+        s = with_wave(s, w, sin(theta), cos(theta));
+    }
+    s.next = n;
+    return s;
+}
+
+// The vertex's slope sums as the vertex stage hands them to the pixels: (∂x/∂x, ∂x/∂z,
+// ∂z/∂z, ∂y/∂x) and (∂y/∂z, the first wave the pixels sum). A triangle's three vertices are of
+// one level (render::clipmap builds each level's own), so the interpolated index is that
+// level's, to rounding.
+fn vertex_sums_out(s: WaveSums) -> array<vec4<f32>, 2> {
+    return array<vec4<f32>, 2>(
+        vec4<f32>(s.dxdx, s.dxdz, s.dzdz, s.dydx),
+        vec4<f32>(s.dydz, f32(s.next), 0.0, 0.0),
+    );
+}
+
+// The WaveSums a pixel starts from: its triangle's vertex sums, interpolated (vertex_sums_out).
+fn vertex_sums_in(a: vec4<f32>, b: vec2<f32>) -> WaveSums {
+    return WaveSums(a.x, a.y, a.z, a.w, b.x, 0.0, u32(round(b.y)));
 }
 
 // `s` with wave `w`'s slope terms added for sin θ and cos θ (each times the pixel filter's

@@ -13,6 +13,10 @@ struct VertexOut {
     @location(1) world: vec3<f32>,
     // Wake slope (∂w/∂x, ∂w/∂z) and foam at this vertex.
     @location(2) wake: vec3<f32>,
+    // The slope sums of the sea's longest waves, summed per vertex (vertex_sums_out):
+    // interpolated, where the pixel's own wave loops start (render::vertex_slopes).
+    @location(3) sea_sums: vec4<f32>,
+    @location(4) sea_sums_z: vec2<f32>,
 }
 
 const FOAM: vec3<f32> = vec3<f32>(0.85, 0.88, 0.9);
@@ -27,7 +31,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let across = dpdx(in.rest);
     let down = dpdy(in.rest);
     let footprint = sqrt(max(dot(across, across), dot(down, down)));
-    let sf = surface_frame(in.rest, frame.counts.x, footprint);
+    let sf = surface_frame_from(in.rest, frame.counts.x, footprint, vertex_sums_in(in.sea_sums, in.sea_sums_z));
     // Total surface y = h_sea(X) + w(X): add the wake's slope to the sea's.
     let n = normalize(vec3<f32>(sf.up.x / sf.up.y - in.wake.x, 1.0, sf.up.z / sf.up.y - in.wake.y));
     let wfoam = in.wake.z;

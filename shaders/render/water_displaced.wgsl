@@ -8,6 +8,9 @@ struct VertexIn {
     @location(0) pos_rest_x: vec4<f32>,
     // The rest point's z, the wake slope (∂w/∂x, ∂w/∂z) and wake foam.
     @location(1) rest_z_wake: vec4<f32>,
+    // The slope sums of the waves the vertex carries to the pixels (vertex_sums_out).
+    @location(2) sea_sums: vec4<f32>,
+    @location(3) sea_sums_z: vec4<f32>,
 }
 
 @vertex
@@ -22,5 +25,7 @@ fn water_vertex(v: VertexIn) -> VertexOut {
     out.rest = vec2<f32>(v.pos_rest_x.w, v.rest_z_wake.x);
     out.world = v.pos_rest_x.xyz;
     out.wake = v.rest_z_wake.yzw;
+    out.sea_sums = v.sea_sums;
+    out.sea_sums_z = v.sea_sums_z.xy;
     return out;
 }

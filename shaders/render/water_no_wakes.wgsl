@@ -23,5 +23,8 @@ fn water_vertex(v: VertexIn) -> VertexOut {
     out.rest = v.rest;
     out.world = pos;
     out.wake = vec3<f32>(0.0);
+    let sums = vertex_sums_out(vertex_slope_sums(v.rest, v.level));
+    out.sea_sums = sums[0];
+    out.sea_sums_z = sums[1].xy;
     return out;
 }

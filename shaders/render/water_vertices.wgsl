@@ -1,6 +1,7 @@
 // Compute stage of the water pass: displaces every clip-map vertex by the sea and the boats'
 // wakes (shaders/ocean/wake.wgsl, bind group 1) once per frame into the vertex buffer the water's
-// vertex shader (water_displaced.wgsl) draws. The wake at a vertex is band limited for its
+// vertex shader (water_displaced.wgsl) draws, with the slope sums of the sea's longest waves
+// that the pixels interpolate (vertex_slope_sums). The wake at a vertex is band limited for its
 // level's vertex spacing, as the sea's waves are per level: a level cannot carry a wave
 // shorter than π cells (render::clipmap::plan). The CPU bins the wake sources on a grid over
 // where they reach (render::wake_bins): a point sums only the sources listed for its bin, in
@@ -81,10 +82,14 @@ struct ClipVertex {
     level: u32,
 }
 
-// What the vertex shader draws (water_displaced.wgsl's VertexIn, 32 bytes).
+// What the vertex shader draws (water_displaced.wgsl's VertexIn, 64 bytes): the position and
+// rest point, the wake, and the slope sums of the waves the vertex carries to the pixels
+// (vertex_slope_sums, as vertex_sums_out packs them).
 struct DisplacedVertex {
     pos_rest_x: vec4<f32>,
     rest_z_wake: vec4<f32>,
+    sea_sums: vec4<f32>,
+    sea_sums_z: vec4<f32>,
 }
 
 @group(1) @binding(4) var<storage, read> clip_vertices: array<ClipVertex>;
@@ -105,5 +110,6 @@ fn cs_displace(@builtin(global_invocation_id) id: vec3<u32>) {
         pos.y += w.x;
         wake = w.yzw;
     }
-    displaced[i] = DisplacedVertex(vec4<f32>(pos, v.rest.x), vec4<f32>(v.rest.y, wake));
+    let sums = vertex_sums_out(vertex_slope_sums(v.rest, v.level));
+    displaced[i] = DisplacedVertex(vec4<f32>(pos, v.rest.x), vec4<f32>(v.rest.y, wake), sums[0], sums[1]);
 }

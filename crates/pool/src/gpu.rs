@@ -251,6 +251,8 @@ impl PoolFrame {
             light: [1.0, 1.0, 1.0, 0.0],
             room_light: [0.0; 4],
             water_body: [0.0; 4],
+            // The pool has no clip-map: no vertex carries slope sums.
+            vertex_waves: [[0; 4]; 4],
         };
         PoolFrame {
             t,

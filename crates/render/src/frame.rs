@@ -7,6 +7,8 @@
 //! ([`Pass::prepare`]) and draws into its own render pass ([`Pass::draw`]); the renderer
 //! records every decision, the triangles and the GPU time per pass in a [`FrameReport`].
 
+use std::f64::consts::SQRT_2;
+
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use serde::Serialize;
 
@@ -39,6 +41,9 @@ pub struct FrameUniform {
     /// R∞ of the chosen water type per band (rgb) and the open sea's exposure (w)
     /// (`view_light::water_body_uniform`).
     pub water_body: [f32; 4],
+    /// Per clip-map level, the waves whose slope sums its vertices carry to the pixels:
+    /// level l's first pixel wave at [l / 4][l % 4] (`vertex_slopes`).
+    pub vertex_waves: [[u32; 4]; 4],
 }
 
 /// Everything the passes of one frame share, computed once on the CPU.
@@ -58,6 +63,9 @@ pub struct FrameContext<'a> {
     /// The sea's waves as the GPU gets them (the first 64 of `scene.sea.waves`), sorted by
     /// wavenumber, longest first (`ocean::sort_by_wavenumber`).
     pub waves: Vec<ocean::GpuWave>,
+    /// Per clip-map level, the waves its vertices sum for the pixels and the error bound
+    /// ([`crate::vertex_slopes`]).
+    pub vertex_waves: Vec<crate::vertex_slopes::VertexWaves>,
     pub uniform: FrameUniform,
     /// The wake sources that can reach the view (empty without wakes); the renderer fills
     /// them and `uniform.counts[2]` from its wake.
@@ -121,6 +129,19 @@ impl<'a> FrameContext<'a> {
             }
         }
         let eye = cam.eye - DVec3::new(origin.x, 0.0, origin.y);
+        // Each level's widest pixel: from its square's farthest corner, for an eye above
+        // the highest crest (the planner's height).
+        let height = (cam.eye.y.abs() - max_displacement).max(0.5);
+        let footprints: Vec<f64> = (0..levels.len())
+            .map(|l| {
+                let centre = clipmap.centre(l as u32, eye_xz);
+                let across = (centre - eye_xz).length() + levels[l].half_extent * SQRT_2;
+                let distance = across.hypot(cam.eye.y.abs() + max_displacement);
+                crate::vertex_slopes::footprint_bound(&error_target, distance, height)
+            })
+            .collect();
+        let vertex_waves =
+            crate::vertex_slopes::vertex_waves(&clipmap, &levels, &footprints, &waves);
         let uniform = FrameUniform {
             view_proj: view_proj.as_mat4().to_cols_array_2d(),
             inv_view_proj: view_proj.inverse().as_mat4().to_cols_array_2d(),
@@ -153,6 +174,7 @@ impl<'a> FrameContext<'a> {
             water_body: crate::view_light::water_body_uniform(
                 &crate::water_look::WaterLook::default(),
             ),
+            vertex_waves: crate::vertex_slopes::uniform_counts(&vertex_waves),
         };
         FrameContext {
             scene,
@@ -165,6 +187,7 @@ impl<'a> FrameContext<'a> {
             levels,
             mesh,
             waves,
+            vertex_waves,
             uniform,
             wakes: Default::default(),
             wake_bins: Default::default(),

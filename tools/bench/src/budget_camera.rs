@@ -32,6 +32,7 @@ pub fn camera_image_ms(phone: &PhoneGpu, image: [u32; 2]) -> Result<f64, String>
         fading_waves_in_pixel: 0.0,
         wake_sources_per_vertex: 0.0,
         wake_foam_sources_per_vertex: 0.0,
+        vertex_waves_per_vertex: 0.0,
         marks: 0.0,
     };
     Ok(camera_yuv_work(image, 1.0, &no_loops)?.ms(phone, false))

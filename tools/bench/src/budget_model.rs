@@ -171,8 +171,8 @@ pub(crate) fn pass_shaders(
 
 /// Bytes per fragment written: colour (RGBA8) and depth (32-bit read and write).
 const FRAGMENT_BYTES: f64 = 12.0;
-/// Bytes per vertex read from vertex buffers (the displaced water vertex: 32).
-const VERTEX_BYTES: f64 = 32.0;
+/// Bytes per vertex read from vertex buffers (the displaced water vertex).
+const VERTEX_BYTES: f64 = render::passes::water::DISPLACED_VERTEX_BYTES as f64;
 
 /// Every pass's work in the frame. Passes the model has no shaders for are listed in the
 /// second value (none in the frames the budget draws). With `hsr` (hidden surface removal) a
@@ -328,6 +328,7 @@ mod tests {
                 fading_waves_in_pixel: 1.0,
                 wake_sources_per_vertex: 4.0,
                 wake_foam_sources_per_vertex: 1.0,
+                vertex_waves_per_vertex: 1.0,
                 marks: scene.marks.len() as f64,
             },
             screen: size,

@@ -69,12 +69,14 @@ fn trips(
     );
     let [height, foam] = wake_sources_per_vertex(&frame);
     let [resolved, fading] = waves_in_pixel(&frame);
+    let vertex_waves = vertex_waves_per_vertex(&frame);
     let trips = Trips {
         waves: scene.sea.waves.len() as f64,
         resolved_waves_in_pixel: resolved,
         fading_waves_in_pixel: fading,
         wake_sources_per_vertex: height,
         wake_foam_sources_per_vertex: foam,
+        vertex_waves_per_vertex: vertex_waves,
         marks: scene.marks.len() as f64,
     };
     let bytes = frame.wake_bins.bytes(frame.wakes.sources.len()) as f64;
@@ -115,9 +117,29 @@ fn sea_surface<'a>(frame: &'a render::frame::FrameContext) -> impl Fn([f64; 2]) 
     }
 }
 
-/// The turns of a water fragment's two wave loops in `surface_frame`, the means over the
+/// The waves whose slope sums a clip-map vertex carries to the pixels (`vertex_slope_sums`,
+/// its level's first pixel wave), the mean over the vertices.
+fn vertex_waves_per_vertex(frame: &render::frame::FrameContext) -> f64 {
+    let vertices = &frame.mesh.vertices;
+    let sum: f64 = vertices
+        .iter()
+        .map(|v| f64::from(first_pixel_wave(frame, v.level)))
+        .sum();
+    sum / vertices.len().max(1) as f64
+}
+
+/// The first wave a pixel of clip-map level `level` sums (its vertices sum those before).
+fn first_pixel_wave(frame: &render::frame::FrameContext, level: u32) -> u32 {
+    frame
+        .vertex_waves
+        .get(level as usize)
+        .map_or(0, |v| v.first_pixel_wave)
+}
+
+/// The turns of a water fragment's two wave loops in `surface_frame_from`, the means over the
 /// fragments a GPU shading 2×2 quads runs for the frame's clip-map: `resolved_waves` runs the
-/// waves sorted by wavenumber while k·footprint < π/4 (the pixel filter leaves them whole),
+/// waves sorted by wavenumber from the first its triangle's vertices did not sum
+/// (`render::vertex_slopes`) while k·footprint < π/4 (the pixel filter leaves them whole),
 /// `fading_waves` from there while k·footprint < π/2 (the filter fades them). Each loop's
 /// turn that meets its limit runs its test too: counted as a turn.
 fn waves_in_pixel(frame: &render::frame::FrameContext) -> [f64; 2] {
@@ -134,10 +156,11 @@ fn waves_in_pixel(frame: &render::frame::FrameContext) -> [f64; 2] {
             .count()
     };
     let (mut turns, mut fragments) = ([0.0; 2], 0.0);
-    for (footprint, quads) in footprints {
-        let whole = below(quarter, footprint);
-        let fading = below(2.0 * quarter, footprint) - whole;
-        let resolved_turns = (whole + 1).min(n);
+    for (footprint, quads, level) in footprints {
+        let first = (first_pixel_wave(frame, level) as usize).min(n);
+        let whole = below(quarter, footprint).max(first);
+        let fading = below(2.0 * quarter, footprint).max(whole) - whole;
+        let resolved_turns = (whole - first + 1).min(n - first);
         let fading_turns = (fading + 1).min(n - whole);
         turns[0] += (resolved_turns * quads as usize) as f64;
         turns[1] += (fading_turns * quads as usize) as f64;

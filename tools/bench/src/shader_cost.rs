@@ -71,6 +71,9 @@ pub struct Trips {
     pub wake_sources_per_vertex: f64,
     /// Wake sources whose foam a clip-map vertex sums (its bin's foam list), the same mean.
     pub wake_foam_sources_per_vertex: f64,
+    /// Waves whose slope sums a clip-map vertex carries to the pixels (`vertex_slope_sums`),
+    /// the mean over the vertices.
+    pub vertex_waves_per_vertex: f64,
     /// Course marks the flow map loops over (at most 8).
     pub marks: f64,
 }
@@ -89,6 +92,7 @@ impl Trips {
             "fading_waves" => 0.0,
             "resolved_waves" | "sea_displaced" | "grid_point" | "wave_height" => self.waves,
             "wake_at" => self.wake_sources_per_vertex,
+            "vertex_slope_sums" => self.vertex_waves_per_vertex,
             "wake_foam_at" => self.wake_foam_sources_per_vertex,
             "current_at" => self.marks.min(8.0),
             // caustic_scatter's splat: a landed triangle covers about one map cell.
@@ -440,6 +444,7 @@ mod tests {
         fading_waves_in_pixel: 1.0,
         wake_sources_per_vertex: 3.0,
         wake_foam_sources_per_vertex: 1.0,
+        vertex_waves_per_vertex: 1.0,
         marks: 2.0,
     };
 

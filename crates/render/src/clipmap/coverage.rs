@@ -90,8 +90,8 @@ impl ClipMesh {
     }
 
     /// Each triangle's pixel footprint on the rest plane, with the fragments a GPU shading
-    /// 2×2 quads runs for it: (footprint, quad fragments) for every triangle that covers a
-    /// pixel. The footprint is what a fragment shader's `max(length(dpdx(rest)),
+    /// 2×2 quads runs for it and its clip-map level: (footprint, quad fragments, level) for
+    /// every triangle that covers a pixel. The footprint is what a fragment shader's `max(length(dpdx(rest)),
     /// length(dpdy(rest)))` gives inside the triangle (metres of rest plane per pixel): the
     /// larger column of the Jacobian of the triangle's screen → rest map (constant over the
     /// triangle: it ignores the perspective change within it, under a part in a thousand for
@@ -101,7 +101,7 @@ impl ClipMesh {
         view_proj: DMat4,
         size: [u32; 2],
         surface: impl Fn([f64; 2]) -> [f64; 3],
-    ) -> Vec<(f64, u64)> {
+    ) -> Vec<(f64, u64, u32)> {
         let mut out = Vec::new();
         let mut quads = Vec::new();
         self.rasterise(view_proj, size, surface, |tri| {
@@ -127,7 +127,7 @@ impl ClipMesh {
                 let z = r[1][0] * inv[0][j] + r[1][1] * inv[1][j];
                 x.hypot(z)
             };
-            out.push((column(0).max(column(1)), 4 * quads.len() as u64));
+            out.push((column(0).max(column(1)), 4 * quads.len() as u64, tri.level));
         });
         out
     }
@@ -200,6 +200,7 @@ impl ClipMesh {
                 [f64::from(r[0]), f64::from(r[1])]
             });
             each(&TriangleOnScreen {
+                level: self.vertices[tri[0] as usize].level,
                 pixels: &pixels,
                 back_facing: area > 0.0,
                 screen: [a0, b0, c0],
@@ -213,6 +214,8 @@ impl ClipMesh {
 /// One rasterised triangle: the pixels whose centres it covers, and its corners on screen
 /// and on the rest plane (local metres), in the mesh's order.
 struct TriangleOnScreen<'a> {
+    /// The clip-map level of its vertices (each level's triangles are its own).
+    level: u32,
     pixels: &'a [(i64, i64)],
     back_facing: bool,
     screen: [ScreenPoint; 3],

@@ -28,8 +28,9 @@ struct VertexCompute {
     kernel_sources: Vec<ocean::wake::WakeKernelSource>,
 }
 
-/// Bytes of one displaced vertex (`DisplacedVertex` of `shaders/water_vertices.wgsl`).
-const DISPLACED_VERTEX_BYTES: u64 = 32;
+/// Bytes of one displaced vertex (`DisplacedVertex` of `shaders/water_vertices.wgsl`): position
+/// and rest point, wake, and the slope sums the vertex carries to the pixels.
+pub const DISPLACED_VERTEX_BYTES: u64 = 64;
 
 pub struct WaterPass {
     pipeline: wgpu::RenderPipeline,
@@ -66,8 +67,8 @@ pub fn vertex_stage(wakes: bool) -> (&'static str, wgpu::VertexBufferLayout<'sta
     }
 }
 
-const DISPLACED_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
-    wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4];
+const DISPLACED_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
+    wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4];
 
 impl WaterPass {
     /// The water pass; `wakes` builds it with the wake hook (see [`supports_wakes`]).
