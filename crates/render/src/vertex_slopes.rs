@@ -80,9 +80,9 @@ pub fn vertex_waves(
             let footprint = footprints.get(l).copied().unwrap_or(f64::INFINITY);
             for w in waves {
                 let bound = out.bound + interpolation_bound(clipmap, cell, w);
-                if bound > VERTEX_SLOPE_BOUND
-                    || !(f64::from(w.k) * footprint < std::f64::consts::FRAC_PI_4)
-                {
+                // A NaN footprint or bound takes no wave.
+                let whole = f64::from(w.k) * footprint < std::f64::consts::FRAC_PI_4;
+                if !whole || bound.is_nan() || bound > VERTEX_SLOPE_BOUND {
                     break;
                 }
                 out = VertexWaves {
@@ -112,7 +112,7 @@ fn interpolation_bound(clipmap: &ClipMapConfig, cell: f64, w: &ocean::GpuWave) -
         .iter()
         .map(|c| f64::from(c.abs()))
         .fold(0.0, f64::max);
-    if !(k > 0.0) {
+    if k.is_nan() || k <= 0.0 {
         return if c > 0.0 { f64::INFINITY } else { 0.0 };
     }
     let d = DVec2::new(f64::from(w.wavevector[0]), f64::from(w.wavevector[1])) / k;
