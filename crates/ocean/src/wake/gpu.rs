@@ -13,8 +13,8 @@
 //! Σ_culled B(distance to the view) + ε × sent sources: `GpuWakeFrame::cull_bound`.
 
 use super::kelvin::{GAUSS_CUTOFF, KelvinSource, Wake, foam_shape};
-pub use super::kernel::{BAND_END, BAND_START, MIN_R2};
-use super::kernel::{WakeKernelSource, band_fade_of};
+pub use super::kernel::{BAND_END, BAND_START, MIN_R2, SPACING_MIN, band_edges};
+use super::kernel::{WakeKernelSource, band_fade_at};
 
 /// One wake source of a frame as the CPU culls, bins and bounds it (48 bytes): its physical
 /// quantities in f32. The GPU reads its [`WakeKernelSource`] (the constants the kernel needs,
@@ -185,9 +185,10 @@ pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
 /// faded out from k·spacing = [`BAND_START`] to [`BAND_END`] (1 to 2: the clip-map's own rule
 /// for the sea's waves, which a level drops from k·cell = 2 on, a wave shorter than π cells
 /// erring by half its amplitude or more when interpolated; the fade spans the octave below),
-/// f32 exactly as `wake_band_fade` in WGSL (its `smoothstep`). `spacing` = 0: 1 (no limit).
+/// f32 exactly as the WGSL kernel forms it: `smoothstep` between `wake_band_edges(spacing)`
+/// at −k ([`band_edges`]). `spacing` = 0: 1 (no limit).
 pub fn band_fade_f32(k: f32, spacing: f32) -> f32 {
-    band_fade_of(k * spacing)
+    band_fade_at(-k, band_edges(spacing))
 }
 
 /// [`band_fade_f32`] in f64: the reference the f32 mirror and the GPU are held to.
@@ -371,7 +372,8 @@ impl From<&GpuWakeSource> for WakeKernelSource {
             inner_r2: (gauss_hole_r2(s) as f32).max(MIN_R2),
             foam: s.foam,
             foam_rate: foam_rate(s),
-            _pad: [0.0; 2],
+            neg_q: -s.q,
+            _pad: 0.0,
         }
     }
 }

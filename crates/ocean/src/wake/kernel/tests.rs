@@ -47,8 +47,8 @@ fn the_constants_are_the_sources_own_quantities() {
     for s in &sources {
         let k = WakeKernelSource::from(s);
         assert_eq!(
-            (k.pos, k.q, k.cull_r2, k.foam),
-            (s.pos, s.q, s.cull_r2, s.foam)
+            (k.pos, k.q, k.cull_r2, k.foam, k.neg_q),
+            (s.pos, s.q, s.cull_r2, s.foam, -s.q)
         );
         // −strength·ΔX, rounded once.
         for c in 0..2 {
