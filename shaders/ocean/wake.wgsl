@@ -6,8 +6,9 @@
 // Each source is one segment of a boat's path: a Cauchy–Poisson ring-wave packet of the hull's
 // pressure patch. No race time and no large coordinate reach this file: q = g s²/4 carries the
 // source's age s (reduced on the CPU), positions are local. What is fixed per source (its sign
-// and strength, R², the cut-off's radius, the foam's rate) the CPU forms once per frame, so a
-// (point, source) pair spends nothing on it.
+// and strength, R², the cut-off's radius, the foam's rate, −q) the CPU forms once per frame,
+// so a (point, source) pair spends nothing on it; what is fixed per point (the band limit's
+// edges) the caller forms once per point.
 //
 // A pass includes this file and declares the buffer, then sums:
 //

@@ -13,7 +13,10 @@
 //! - the squared radius inside which the Gaussian cut-off (k²R²/4 > 40) zeroes the term, so one
 //!   range test on r² replaces the cut-off's test of g (it is never below `MIN_R2`, so the
 //!   kernel never divides by zero);
-//! - the foam strip's −1/w², so its density is `foam · exp(r² · rate)`.
+//! - the foam strip's −1/w², so its density is `foam · exp(r² · rate)`;
+//! - −q (exact), so −k = −q/r², the band fade's rising variable, is one division: the fade
+//!   1 − smoothstep(1, 2, k·spacing) is smoothstep(−2/spacing, −1/spacing, −k), its edges
+//!   formed once per point ([`band_edges`]), so a pair pays the smoothstep alone.
 //!
 //! The gradient: with h = F(r)·(d·dx), F = (q²/r⁶) e^{−g}·B, B = sin Φ + (4g − 3)/Φ cos Φ
 //! (g = k²R²/4, Φ = q/r), r·F'/(F/B) is (4g − 6)·B (the amplitude's derivative) plus
