@@ -85,7 +85,6 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
             usage: wgpu::BufferUsages::STORAGE,
         })
     };
-    let sources = storage("sources", &frame.bytes());
     let spacing = |i: usize| if i.is_multiple_of(2) { 0.0f32 } else { 1.5 };
     let point_bytes: Vec<u8> = points
         .iter()
@@ -101,21 +100,26 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let bind = render::gpu::buffer_group(
-        device,
-        "wake test",
-        &pipeline.get_bind_group_layout(0),
-        &[&sources, &pts, &out],
-    );
-    let bytes = gpu
-        .dispatch_and_read(&pipeline, &[&bind], points.len(), &out)
-        .unwrap();
-    let got: Vec<[f32; 4]> = bytes
-        .chunks_exact(16)
-        .map(|c| {
-            std::array::from_fn(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().unwrap()))
-        })
-        .collect();
+    // The sum at every point over the sources `source_bytes` (a frame's WakeKernelSources).
+    let run = |source_bytes: &[u8]| -> Vec<[f32; 4]> {
+        let sources = storage("sources", source_bytes);
+        let bind = render::gpu::buffer_group(
+            device,
+            "wake test",
+            &pipeline.get_bind_group_layout(0),
+            &[&sources, &pts, &out],
+        );
+        let bytes = gpu
+            .dispatch_and_read(&pipeline, &[&bind], points.len(), &out)
+            .unwrap();
+        bytes
+            .chunks_exact(16)
+            .map(|c| {
+                std::array::from_fn(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().unwrap()))
+            })
+            .collect()
+    };
+    let got = run(&frame.bytes());
     let slopes: Vec<[f32; 3]> = points
         .iter()
         .enumerate()
@@ -161,6 +165,26 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
     assert!(peak > 1e-2, "no wake in the test field");
     // README: 3e-8 m on lavapipe; asserted there at 1.5x that figure (other adapters' sin and
     // cos differ: they are held to the stated per-point bound above).
+    // Broken on purpose: each source's −q carried as +q, so the kernel's band variable −k
+    // has the wrong sign and the band limit never fades a term: the points sampled 1.5 m
+    // apart then miss the mirror's slopes by far more than the bound.
+    use ocean::wake::WakeKernelSource;
+    let mut broken = frame.bytes();
+    let at = std::mem::offset_of!(WakeKernelSource, neg_q);
+    for source in broken.chunks_exact_mut(std::mem::size_of::<WakeKernelSource>()) {
+        // The sign bit of the little-endian f32.
+        source[at + 3] ^= 0x80;
+    }
+    let missed = run(&broken)
+        .iter()
+        .zip(&slopes)
+        .map(|(g, cpu)| f64::from(g[1] - cpu[1]).hypot(f64::from(g[2] - cpu[2])))
+        .fold(0.0, f64::max);
+    eprintln!(
+        "a kernel that does not band limit misses the slopes by {:.0}x the bound",
+        missed / (1e-3 * peak_slope + 1e-6)
+    );
+    assert!(missed > 10.0 * (1e-3 * peak_slope + 1e-6), "{missed}");
     if gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu {
         assert!(
             worst <= 1.5 * 3e-8,

@@ -6,8 +6,9 @@
 // Each source is one segment of a boat's path: a Cauchy–Poisson ring-wave packet of the hull's
 // pressure patch. No race time and no large coordinate reach this file: q = g s²/4 carries the
 // source's age s (reduced on the CPU), positions are local. What is fixed per source (its sign
-// and strength, R², the cut-off's radius, the foam's rate) the CPU forms once per frame, so a
-// (point, source) pair spends nothing on it.
+// and strength, R², the cut-off's radius, the foam's rate, −q) the CPU forms once per frame,
+// so a (point, source) pair spends nothing on it; what is fixed per point (the band limit's
+// edges) the caller forms once per point.
 //
 // A pass includes this file and declares the buffer, then sums:
 //
@@ -36,21 +37,28 @@ struct WakeSource {
     // Foam density at the centre, and −1/w² for the strip's width w, 1/m².
     foam: f32,
     foam_rate: f32,
-    _pad: vec2<f32>,
+    // −q, m: the kernel's −k = −q/r² is one division (the band fade's rising variable).
+    neg_q: f32,
+    _pad: f32,
 }
 
 // From the generated prelude (ocean::wake::wgsl, the values of the f32 mirror): WAKE_TAU, 2π;
 // WAKE_BAND_START and WAKE_BAND_END, the k·spacing over which the band limit fades a term out
-// (1 to 2: a clip-map level drops the sea's waves from k·cell = 2 on).
+// (1 to 2: a clip-map level drops the sea's waves from k·cell = 2 on); WAKE_SPACING_MIN, the
+// spacing below which a field is not band limited (its fade is exactly 1 for every k a
+// source reaches).
 
-// The band limit of a field sampled every `spacing` metres (a clip-map level's vertices), at
-// x = k·spacing: a source's local wavenumber k = q/r² is faded out from k·spacing = 1 to 2, as
-// a clip-map level drops the sea's waves shorter than π cells (render::clipmap::plan). Height
-// and gradient are faded alike: the fade filters the local wavenumber, and the gradient of a
-// component of wavenumber k has that wavenumber too. spacing = 0: no band limit (the field
-// itself).
-fn wake_band_fade(x: f32) -> f32 {
-    return 1.0 - smoothstep(WAKE_BAND_START, WAKE_BAND_END, x);
+// The band limit of a field sampled every `spacing` metres (a clip-map level's vertices): a
+// source's local wavenumber k = q/r² is faded out from k·spacing = 1 to 2, as a clip-map level
+// drops the sea's waves shorter than π cells (render::clipmap::plan). Height and gradient are
+// faded alike: the fade filters the local wavenumber, and the gradient of a component of
+// wavenumber k has that wavenumber too. The fade is 1 − smoothstep(1, 2, k·spacing) =
+// smoothstep(−2/spacing, −1/spacing, −k) (the Hermite step is symmetric, s(1 − t) = 1 − s(t)):
+// these are its edges in −k, formed once per point, so a (point, source) pair pays the
+// smoothstep alone, on −k = s.neg_q / r². spacing = 0: no band limit (edges about −10³⁰).
+fn wake_band_edges(spacing: f32) -> vec2<f32> {
+    let s = max(spacing, WAKE_SPACING_MIN);
+    return vec2<f32>(-WAKE_BAND_END / s, -WAKE_BAND_START / s);
 }
 
 // The height one source adds at p, m: with dx = −strength·ΔX,
@@ -79,28 +87,28 @@ fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
 // the bracket, plus the bracket's own, regrouped around the bracket).
 fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
     let d = p - s.pos;
-    return wake_source_height_grad_at(s, d, dot(d, d), 0.0);
+    return wake_source_height_grad_at(s, d, dot(d, d), wake_band_edges(0.0));
 }
 
 // wake_source_height_grad with the offset d = p − s.pos and r2 = |d|² already formed, band
-// limited for points sampled every `spacing` metres (wake_band_fade; 0: not limited). Inside
-// the band limit's radius (k·spacing ≥ 2) the term is nothing and costs no exp or sin.
-fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, spacing: f32) -> vec3<f32> {
+// limited by the edges `band` (wake_band_edges of the points' spacing). Inside the band
+// limit's radius (k·spacing ≥ 2, −k at or below band.x) the term is nothing and costs no exp
+// or sin.
+fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, band: vec2<f32>) -> vec3<f32> {
     if (r2 > s.cull_r2 || r2 < s.inner_r2) {
         return vec3<f32>(0.0);
     }
-    let k = s.q / r2;
-    let x = k * spacing;
-    if (x >= WAKE_BAND_END) {
+    let neg_k = s.neg_q / r2;
+    if (neg_k <= band.x) {
         return vec3<f32>(0.0);
     }
-    let kk = k * k;
+    let kk = neg_k * neg_k;
     let big_g = kk * s.hull_r2;
     let phi = s.q * inverseSqrt(r2);
     let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
     let sn = sin(phi_r);
     let cs = cos(phi_r);
-    let c = kk / r2 * exp(-0.25 * big_g) * wake_band_fade(x);
+    let c = kk / r2 * exp(-0.25 * big_g) * smoothstep(band.x, band.y, neg_k);
     let bracket = sn + (big_g - 3.0) / phi * cs;
     let radial_bracket = (big_g - 9.0) * bracket + big_g * sn - (phi + 12.0 / phi) * cs;
     let proj = dot(d, s.dx);
@@ -122,7 +130,8 @@ fn wake_source_foam(s: WakeSource, p: vec2<f32>) -> f32 {
 fn wake_source_grad_foam(s: WakeSource, p: vec2<f32>, spacing: f32) -> vec4<f32> {
     let d = p - s.pos;
     let r2 = dot(d, d);
-    return vec4<f32>(wake_source_height_grad_at(s, d, r2, spacing), s.foam * exp(r2 * s.foam_rate));
+    let band = wake_band_edges(spacing);
+    return vec4<f32>(wake_source_height_grad_at(s, d, r2, band), s.foam * exp(r2 * s.foam_rate));
 }
 
 // Summed foam density → foam strength in [0, 1].

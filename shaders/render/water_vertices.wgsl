@@ -56,12 +56,13 @@ fn wake_bin(p: vec2<f32>, level: u32) -> vec4<u32> {
 fn wake_at(p: vec2<f32>, level: u32, spacing: f32) -> vec4<f32> {
     let bin = wake_bin(p, level);
     var grad = vec3<f32>(0.0);
-    // The list's index range, its end formed once.
+    // The list's index range, its end formed once; the band limit's edges once.
     let end = bin.x + bin.y;
+    let band = wake_band_edges(spacing);
     for (var i = bin.x; i < end; i = i + 1u) {
         let s = wake_sources[wake_index[i]];
         let d = p - s.pos;
-        grad += wake_source_height_grad_at(s, d, dot(d, d), spacing);
+        grad += wake_source_height_grad_at(s, d, dot(d, d), band);
     }
     return vec4<f32>(grad, wake_foam_from_density(wake_foam_at(p, bin)));
 }

@@ -1,6 +1,6 @@
 //! How finely the water's compute stage samples the wake where: the clip-map's levels as
 //! squares around the eye, each with its vertex spacing. The wake at a vertex is band limited
-//! for its level's spacing (`shaders/ocean/wake.wgsl`, `wake_band_fade`), so a bin of the wake
+//! for its level's spacing (`shaders/ocean/wake.wgsl`, `wake_band_edges`), so a bin of the wake
 //! grid needs, for each level whose vertices can land in it, only the sources whose term band
 //! limited for that level's spacing can be non-zero there (`wake_bins`).
 //!

@@ -13,8 +13,8 @@
 //! Σ_culled B(distance to the view) + ε × sent sources: `GpuWakeFrame::cull_bound`.
 
 use super::kelvin::{GAUSS_CUTOFF, KelvinSource, Wake, foam_shape};
-pub use super::kernel::{BAND_END, BAND_START, MIN_R2};
-use super::kernel::{WakeKernelSource, band_fade_of};
+pub use super::kernel::{BAND_END, BAND_START, MIN_R2, SPACING_MIN, band_edges};
+use super::kernel::{WakeKernelSource, band_fade_at};
 
 /// One wake source of a frame as the CPU culls, bins and bounds it (48 bytes): its physical
 /// quantities in f32. The GPU reads its [`WakeKernelSource`] (the constants the kernel needs,
@@ -185,10 +185,20 @@ pub fn source_height_f32(s: &GpuWakeSource, p: [f32; 2]) -> f32 {
 /// faded out from k·spacing = [`BAND_START`] to [`BAND_END`] (1 to 2: the clip-map's own rule
 /// for the sea's waves, which a level drops from k·cell = 2 on, a wave shorter than π cells
 /// erring by half its amplitude or more when interpolated; the fade spans the octave below),
-/// f32 exactly as `wake_band_fade` in WGSL (its `smoothstep`). `spacing` = 0: 1 (no limit).
+/// f32 exactly as the WGSL kernel forms it: `smoothstep` between `wake_band_edges(spacing)`
+/// at −k ([`band_edges`]). `spacing` = 0: 1 (no limit).
 pub fn band_fade_f32(k: f32, spacing: f32) -> f32 {
-    band_fade_of(k * spacing)
+    band_fade_at(-k, band_edges(spacing))
 }
+
+/// Bound of |[`band_fade_f32`] − [`band_fade`]| for the same f32 k and spacing, IEEE f32
+/// (u = 2⁻²⁴): the edges lo = fl(−2/s) (relative error ε ≤ u) and hi = lo/2 exactly, so
+/// hi − lo = −hi is exact; smoothstep's t = fl(fl(−k − lo)/(hi − lo)) then errs by
+/// (2 − t)|ε| + 2u·t ≤ 4u on [0, 1] (the clamp is exact and 1-Lipschitz), and
+/// t²(3 − 2t), of slope at most 1.5, adds three roundings: 1.5·4u + 3u = 9u. (On a GPU,
+/// WGSL's divisions are good to 2.5 ULP, so the edges err by 5u each and hi − lo is no longer
+/// exact: t errs by 10u + 22u·t ≤ 32u and the fade by 1.5·32u + 3u = 51u.)
+pub const BAND_FADE_F32_ERROR: f64 = 9.0 / 16_777_216.0;
 
 /// [`band_fade_f32`] in f64: the reference the f32 mirror and the GPU are held to.
 pub fn band_fade(k: f64, spacing: f64) -> f64 {
@@ -371,7 +381,8 @@ impl From<&GpuWakeSource> for WakeKernelSource {
             inner_r2: (gauss_hole_r2(s) as f32).max(MIN_R2),
             foam: s.foam,
             foam_rate: foam_rate(s),
-            _pad: [0.0; 2],
+            neg_q: -s.q,
+            _pad: 0.0,
         }
     }
 }
@@ -385,6 +396,7 @@ pub(crate) fn foam_density_f32(s: &GpuWakeSource, r2: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::wake::kernel::band_fade_at;
 
     /// The f64 value of [`source_height_f32`]'s formula (no cut-offs but r > 0).
     fn term_f64(s: &GpuWakeSource, p: [f64; 2]) -> f64 {
@@ -443,22 +455,41 @@ mod tests {
         }
     }
 
-    /// The f32 fade is the f64 smoothstep within a few ulp, 1 below k·spacing = 1 and 0 from 2,
-    /// no fade at spacing 0.
+    /// The f32 fade is the f64 smoothstep within its stated bound at spacings that round and
+    /// that do not, 1 below k·spacing = 1 and 0 from 2, no fade at spacing 0; the edges of a
+    /// spacing 0.1 % off miss the bound.
     #[test]
     fn the_band_fade_is_the_sea_rule_in_f32_and_f64() {
-        for i in 0..=2000 {
-            let x = f64::from(i) * 1e-3;
-            let (a, b) = (band_fade_f32(x as f32, 1.0), band_fade(x, 1.0));
-            assert!((f64::from(a) - b).abs() < 1e-6, "{x}: {a} vs {b}");
-            if x <= 1.0 {
-                assert_eq!(b, 1.0);
+        let mut worst = 0.0f64;
+        for spacing in [0.3f32, 1.0, 1.7, 6.0] {
+            let s = f64::from(spacing);
+            let mut broken = 0.0f64;
+            for i in 0..=2200 {
+                let k = (f64::from(i) * 1e-3 / s) as f32;
+                let x = f64::from(k) * s;
+                let (a, b) = (band_fade_f32(k, spacing), band_fade(f64::from(k), s));
+                assert!(
+                    (f64::from(a) - b).abs() <= BAND_FADE_F32_ERROR,
+                    "spacing {spacing} k {k}: {a} vs {b}"
+                );
+                worst = worst.max((f64::from(a) - b).abs());
+                if x <= 1.0 {
+                    assert_eq!((a, b), (1.0, 1.0), "spacing {spacing} k {k}");
+                }
+                if x >= 2.0 {
+                    assert_eq!((a, b), (0.0, 0.0), "spacing {spacing} k {k}");
+                }
+                let off = band_fade_at(-k, band_edges(spacing * 1.001));
+                broken = broken.max((f64::from(off) - b).abs());
             }
-            if x >= 2.0 {
-                assert_eq!((a, b), (0.0, 0.0));
-            }
+            assert!(broken > 100.0 * BAND_FADE_F32_ERROR, "{spacing}: {broken}");
         }
+        eprintln!(
+            "band fade f32 vs f64: worst {:.2} u (bound 9 u)",
+            worst * 16_777_216.0
+        );
         assert_eq!(band_fade_f32(1e6, 0.0), 1.0);
+        assert_eq!(band_edges(0.0), [-2e30, -1e30]);
         // Halfway in k·spacing the smoothstep is ½.
         assert_eq!(band_fade(1.5, 1.0), 0.5);
     }
@@ -494,29 +525,42 @@ mod tests {
         }
     }
 
-    /// Band limiting only scales the term: sampled = fade(k·spacing) × unlimited, f32.
+    /// Band limiting only scales the term: sampled = fade(k·spacing) × unlimited, f32, at
+    /// three spacings. The bound: the fade's own error (`BAND_FADE_F32_ERROR`, 9u) and one
+    /// rounding of its product, and the ~15 roundings after it in either path (the two
+    /// gradient products summed), about 4·10⁻⁶ of the unlimited term. Edges formed for a
+    /// spacing 1 % off miss it.
     #[test]
     fn the_band_limited_term_is_the_faded_term() {
         let s = old_source(20.0, 1.5);
-        for i in 1..400 {
-            let r = 0.5 * f64::from(i);
-            let p = [3.0 + r as f32, -2.0 + (0.3 * r) as f32];
-            let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
-            let k = s.q / (d[0] * d[0] + d[1] * d[1]);
-            let full = source_height_grad_f32(&s, p);
-            let lim = source_height_grad_sampled_f32(&s, p, 2.0);
-            let fade = band_fade(f64::from(k), 2.0);
-            for c in 0..3 {
-                let want = f64::from(full[c]) * fade;
-                // f32: the fade's own rounding (a few ulp, times its slope 1.5 per unit of
-                // k·spacing ≤ 2) and the ~10 roundings after it move the product by a few
-                // parts in 10⁶ of the unlimited term.
-                assert!(
-                    (f64::from(lim[c]) - want).abs() <= 4e-6 * f64::from(full[c].abs()) + 1e-30,
-                    "r {r} c {c}: {} vs {want}",
-                    lim[c]
-                );
+        let kernel = WakeKernelSource::from(&s);
+        let mut faded = 0;
+        for spacing in [0.7f32, 2.0, 5.0] {
+            let mut broken = 0.0f64;
+            for i in 1..400 {
+                let r = 0.5 * f64::from(i);
+                let p = [3.0 + r as f32, -2.0 + (0.3 * r) as f32];
+                let d = [p[0] - s.pos[0], p[1] - s.pos[1]];
+                let r2 = d[0] * d[0] + d[1] * d[1];
+                let k = s.q / r2;
+                let full = source_height_grad_f32(&s, p);
+                let lim = source_height_grad_sampled_f32(&s, p, spacing);
+                let off = kernel.height_grad_in_band(d, r2, band_edges(spacing * 1.01));
+                let fade = band_fade(f64::from(k), f64::from(spacing));
+                faded += usize::from(fade > 0.0 && fade < 1.0);
+                for c in 0..3 {
+                    let want = f64::from(full[c]) * fade;
+                    let bound = 4e-6 * f64::from(full[c].abs()) + 1e-30;
+                    assert!(
+                        (f64::from(lim[c]) - want).abs() <= bound,
+                        "spacing {spacing} r {r} c {c}: {} vs {want}",
+                        lim[c]
+                    );
+                    broken = broken.max((f64::from(off[c]) - want).abs() / bound);
+                }
             }
+            assert!(broken > 100.0, "spacing {spacing}: {broken}");
         }
+        assert!(faded > 30, "{faded} points in the fade");
     }
 }

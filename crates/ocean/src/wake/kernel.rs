@@ -13,7 +13,10 @@
 //! - the squared radius inside which the Gaussian cut-off (k²R²/4 > 40) zeroes the term, so one
 //!   range test on r² replaces the cut-off's test of g (it is never below `MIN_R2`, so the
 //!   kernel never divides by zero);
-//! - the foam strip's −1/w², so its density is `foam · exp(r² · rate)`.
+//! - the foam strip's −1/w², so its density is `foam · exp(r² · rate)`;
+//! - −q (exact), so −k = −q/r², the band fade's rising variable, is one division: the fade
+//!   1 − smoothstep(1, 2, k·spacing) is smoothstep(−2/spacing, −1/spacing, −k), its edges
+//!   formed once per point ([`band_edges`]), so a pair pays the smoothstep alone.
 //!
 //! The gradient: with h = F(r)·(d·dx), F = (q²/r⁶) e^{−g}·B, B = sin Φ + (4g − 3)/Φ cos Φ
 //! (g = k²R²/4, Φ = q/r), r·F'/(F/B) is (4g − 6)·B (the amplitude's derivative) plus
@@ -28,6 +31,12 @@ pub const MIN_R2: f32 = 1e-6;
 /// Where the band limit starts and ends, in k·spacing (radians per sample spacing).
 pub const BAND_START: f32 = 1.0;
 pub const BAND_END: f32 = 2.0;
+
+/// The least spacing (m) the band limit's edges are formed for: a spacing of 0 (no band limit)
+/// gives edges −2·10³⁰ and −10³⁰ in −k, which no source's wavenumber reaches (k = q/r² is at
+/// most q/[`MIN_R2`], below 10¹⁰ for any age a wake keeps), so the fade is exactly 1 and no
+/// edge is infinite (WGSL leaves a division by zero indeterminate).
+pub const SPACING_MIN: f32 = 1e-30;
 
 /// One wake source as the WGSL kernel reads it (`WakeSource` in `shaders/ocean/wake.wgsl`,
 /// std430: 48 bytes, 8-byte aligned), formed from a `GpuWakeSource` by `From` (in `gpu.rs`).
@@ -51,7 +60,9 @@ pub struct WakeKernelSource {
     pub foam: f32,
     /// −1/w², w the foam strip's width, 1/m².
     pub foam_rate: f32,
-    pub _pad: [f32; 2],
+    /// −q, m (exact): −k = −q/r² is then one division, the band fade's rising variable.
+    pub neg_q: f32,
+    pub _pad: f32,
 }
 
 /// 2π as the WGSL's `WAKE_TAU`.
@@ -68,10 +79,26 @@ fn inverse_sqrt(x: f32) -> f32 {
     1.0 / x.sqrt()
 }
 
-/// 1 − smoothstep(BAND_START, BAND_END, x), f32 as WGSL's `smoothstep` defines it.
-pub(crate) fn band_fade_of(x: f32) -> f32 {
-    let t = ((x - BAND_START) / (BAND_END - BAND_START)).clamp(0.0, 1.0);
-    1.0 - t * t * (3.0 - 2.0 * t)
+/// WGSL's `smoothstep(lo, hi, x)` in f32 as WGSL defines it: t²(3 − 2t),
+/// t = clamp((x − lo)/(hi − lo), 0, 1).
+fn smoothstep(lo: f32, hi: f32, x: f32) -> f32 {
+    let t = ((x - lo) / (hi - lo)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// The band limit's edges in −k for points sampled every `spacing` metres, f32 exactly as
+/// `wake_band_edges` in WGSL: (−BAND_END/s, −BAND_START/s), s = max(spacing, SPACING_MIN).
+/// The fade 1 − smoothstep(BAND_START, BAND_END, k·spacing) is smoothstep(lo, hi, −k) (the
+/// Hermite step is symmetric: s(1 − t) = 1 − s(t)), so a (point, source) pair pays the
+/// smoothstep alone.
+pub fn band_edges(spacing: f32) -> [f32; 2] {
+    let s = spacing.max(SPACING_MIN);
+    [-BAND_END / s, -BAND_START / s]
+}
+
+/// The band fade at −k = `neg_k` between `band`'s edges, f32 as the WGSL kernel forms it.
+pub(crate) fn band_fade_at(neg_k: f32, band: [f32; 2]) -> f32 {
+    smoothstep(band[0], band[1], neg_k)
 }
 
 impl WakeKernelSource {
@@ -98,21 +125,26 @@ impl WakeKernelSource {
 
     /// The height term and its gradient at offset `d` (`r2` = |d|²), band limited for points
     /// `spacing` metres apart (0: not limited), (w, ∂w/∂x, ∂w/∂z) in m and m/m, exactly as
-    /// `wake_source_height_grad_at` in WGSL.
+    /// `wake_source_height_grad_at` in WGSL with the edges `wake_band_edges(spacing)`.
     pub fn height_grad(&self, d: [f32; 2], r2: f32, spacing: f32) -> [f32; 3] {
+        self.height_grad_in_band(d, r2, band_edges(spacing))
+    }
+
+    /// [`Self::height_grad`] with the band limit's edges already formed ([`band_edges`]), as
+    /// `wake_at` in WGSL forms them once per point.
+    pub fn height_grad_in_band(&self, d: [f32; 2], r2: f32, band: [f32; 2]) -> [f32; 3] {
         if self.outside(r2) {
             return [0.0; 3];
         }
-        let k = self.q / r2;
-        let x = k * spacing;
-        if x >= BAND_END {
+        let neg_k = self.neg_q / r2;
+        if neg_k <= band[0] {
             return [0.0; 3];
         }
-        let kk = k * k;
+        let kk = neg_k * neg_k;
         let big_g = kk * self.hull_r2;
         let phi = self.q * inverse_sqrt(r2);
         let (sn, cs) = reduced(phi).sin_cos();
-        let c = kk / r2 * (-0.25 * big_g).exp() * band_fade_of(x);
+        let c = kk / r2 * (-0.25 * big_g).exp() * band_fade_at(neg_k, band);
         let bracket = sn + (big_g - 3.0) / phi * cs;
         let radial_bracket = (big_g - 9.0) * bracket + big_g * sn - (phi + 12.0 / phi) * cs;
         let proj = d[0] * self.dx[0] + d[1] * self.dx[1];

@@ -49,10 +49,11 @@ mod tests;
 
 pub use froude::{TableModel, capillary_gravity_transverse_wavelength};
 pub use gpu::{
-    BAND_END, BAND_START, CPU_SIN_ERROR, FOAM_EPSILON, GpuWakeFrame, GpuWakeSource, WGSL_SIN_ERROR,
-    WakeView, band_fade, band_fade_f32, f32_height_error_bound, foam_radius2, inner_radius2,
-    source_height_grad_f32, source_height_grad_sampled_f32, source_peak_bound, wake_foam_f32,
-    wake_height_f32, wake_height_grad_f32, wake_height_grad_sampled_f32,
+    BAND_END, BAND_FADE_F32_ERROR, BAND_START, CPU_SIN_ERROR, FOAM_EPSILON, GpuWakeFrame,
+    GpuWakeSource, WGSL_SIN_ERROR, WakeView, band_edges, band_fade, band_fade_f32,
+    f32_height_error_bound, foam_radius2, inner_radius2, source_height_grad_f32,
+    source_height_grad_sampled_f32, source_peak_bound, wake_foam_f32, wake_height_f32,
+    wake_height_grad_f32, wake_height_grad_sampled_f32,
 };
 pub use kelvin::{KelvinSource, SEA_WATER_DENSITY, Wake, WakeParams};
 pub use kernel::WakeKernelSource;

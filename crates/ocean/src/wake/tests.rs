@@ -452,6 +452,7 @@ fn wake_wgsl_validates_and_its_struct_matches_the_buffer() {
             "foam_rate",
             std::mem::offset_of!(WakeKernelSource, foam_rate),
         ),
+        ("neg_q", std::mem::offset_of!(WakeKernelSource, neg_q)),
         ("_pad", std::mem::offset_of!(WakeKernelSource, _pad)),
     ];
     let wgsl: Vec<(&str, usize)> = members

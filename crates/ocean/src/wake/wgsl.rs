@@ -4,20 +4,21 @@
 //! the file alone does not compile. (`ocean` sits below `render`, so it writes its own `const`
 //! lines, as `render::shader::wgsl_consts` does.)
 
-use super::gpu::{BAND_END, BAND_START};
+use super::gpu::{BAND_END, BAND_START, SPACING_MIN};
 
 /// The functions that evaluate the source buffer, without their constants.
 const WAKE_FUNCTIONS: &str = include_str!("../../../../shaders/ocean/wake.wgsl");
 
 /// The constants the wake shader shares with its f32 mirror, as WGSL names them: the period
-/// the phase is reduced by (the mirror's `f32::consts::TAU`) and the band limit's fade
-/// (k·spacing from 1 to 2). (The squared distance below which a source is skipped and the
+/// the phase is reduced by (the mirror's `f32::consts::TAU`), the band limit's fade
+/// (k·spacing from 1 to 2) and the least spacing its edges are formed for. (The squared distance below which a source is skipped and the
 /// Gaussian cut-off reach the shader per source, in `WakeKernelSource::inner_r2`.)
-pub fn shared_consts() -> [(&'static str, f32); 3] {
+pub fn shared_consts() -> [(&'static str, f32); 4] {
     [
         ("WAKE_TAU", std::f32::consts::TAU),
         ("WAKE_BAND_START", BAND_START),
         ("WAKE_BAND_END", BAND_END),
+        ("WAKE_SPACING_MIN", SPACING_MIN),
     ]
 }
 

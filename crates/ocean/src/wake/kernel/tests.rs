@@ -47,8 +47,8 @@ fn the_constants_are_the_sources_own_quantities() {
     for s in &sources {
         let k = WakeKernelSource::from(s);
         assert_eq!(
-            (k.pos, k.q, k.cull_r2, k.foam),
-            (s.pos, s.q, s.cull_r2, s.foam)
+            (k.pos, k.q, k.cull_r2, k.foam, k.neg_q),
+            (s.pos, s.q, s.cull_r2, s.foam, -s.q)
         );
         // −strength·ΔX, rounded once.
         for c in 0..2 {
@@ -136,4 +136,74 @@ fn the_kernel_is_the_term_and_its_derivative() {
         "kernel vs f64 term: {checked} points, worst height {worst_h:.1e}, gradient {worst_g:.1e} of the source's peak"
     );
     assert!(checked > 10_000, "{checked}");
+}
+
+/// The band-limited kernel (`wake_at`'s, the edges formed once per point) against the f64
+/// term and its central differences times the f64 fade (height and gradient are faded alike),
+/// at two clip-map spacings, within the unlimited kernel's 2·10⁻⁴ of the source's peak (the
+/// fade's own f32 error is 9u, `BAND_FADE_F32_ERROR`); the edges of a spacing 1 % off miss.
+#[test]
+fn the_band_limited_kernel_is_the_faded_term_and_derivative() {
+    use crate::wake::gpu::band_fade;
+    let sources = frame_sources();
+    let (mut checked, mut faded, mut worst) = (0, 0, 0.0f64);
+    for spacing in [0.5f32, 2.0] {
+        let (band, off) = (band_edges(spacing), band_edges(spacing * 1.01));
+        let mut broken = 0.0f64;
+        for s in sources.iter().step_by(13) {
+            let k = WakeKernelSource::from(s);
+            let (inner, cull) = (f64::from(k.inner_r2).sqrt(), f64::from(s.cull_r2).sqrt());
+            let mut cases = Vec::new();
+            let mut peak = [0.0f64; 2];
+            for a in 0..12 {
+                let th = 0.37 + f64::from(a) * std::f64::consts::TAU / 12.0;
+                for i in 1..200 {
+                    let r = inner * (cull / inner).powf(f64::from(i) / 200.0);
+                    let df = [(r * th.cos()) as f32, (r * th.sin()) as f32];
+                    let d = [f64::from(df[0]), f64::from(df[1])];
+                    let h = 1e-6 * r;
+                    let fd = [
+                        (term_f64(s, [d[0] + h, d[1]]) - term_f64(s, [d[0] - h, d[1]])) / (2.0 * h),
+                        (term_f64(s, [d[0], d[1] + h]) - term_f64(s, [d[0], d[1] - h])) / (2.0 * h),
+                    ];
+                    let want = term_f64(s, d);
+                    peak = [peak[0].max(want.abs()), peak[1].max(fd[0].hypot(fd[1]))];
+                    let r2 = df[0] * df[0] + df[1] * df[1];
+                    let fade = band_fade(
+                        f64::from(s.q) / (d[0] * d[0] + d[1] * d[1]),
+                        f64::from(spacing),
+                    );
+                    faded += usize::from(fade > 0.0 && fade < 1.0);
+                    let got = k.height_grad_in_band(df, r2, band);
+                    let bad = k.height_grad_in_band(df, r2, off);
+                    cases.push((r, fade, [want, fd[0], fd[1]], got, bad));
+                }
+            }
+            for (r, fade, want, got, bad) in cases {
+                for c in 0..3 {
+                    // The height against the height's peak, the gradient against the slope's.
+                    let peak = peak[usize::from(c > 0)];
+                    let err = (f64::from(got[c]) - fade * want[c]).abs();
+                    worst = worst.max(err / peak);
+                    assert!(
+                        err <= 2e-4 * peak,
+                        "q {} spacing {spacing} r {r} c {c}: {} vs {} (peak {peak})",
+                        s.q,
+                        got[c],
+                        fade * want[c]
+                    );
+                    broken = broken.max((f64::from(bad[c]) - fade * want[c]).abs() / peak);
+                }
+                checked += 1;
+            }
+        }
+        assert!(
+            broken > 2e-3,
+            "spacing {spacing}: edges 1 % off miss by {broken:.1e}"
+        );
+    }
+    eprintln!(
+        "band-limited kernel vs f64: {checked} points, {faded} in the fade, worst {worst:.1e} of the source's peak"
+    );
+    assert!(faded > 500, "{faded}");
 }
