@@ -62,11 +62,14 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     let down = dpdy(rest);
     let footprint = sqrt(max(dot(across, across), dot(down, down)));
     let sf = surface_frame(rest, frame.counts.x, footprint);
-    // Sea and wake slopes add, as in water.wgsl: the wake's (∂w/∂x, ∂w/∂z) is in.wake.xy.
-    var n = normalize(vec3<f32>(sf.up.x / sf.up.y - in.wake.x, 1.0, sf.up.z / sf.up.y - in.wake.y));
+    // Sea, wake and flow-detail slopes add, as in water.wgsl: the sea's (∂h/∂x, ∂h/∂z) is
+    // −(up.x, up.z)/up.y, the wake's is in.wake.xy, the detail's flow_slope; one normal of
+    // their sum, (−∂/∂x, 1, −∂/∂z) normalised.
+    var tilt = vec2<f32>(sf.up.x / sf.up.y - in.wake.x, sf.up.z / sf.up.y - in.wake.y);
     if fx_on(FX_FLOWMAP) {
-        n = flow_normal(p.xz, in.rest_current.zw, n);
+        tilt -= flow_slope(p.xz, in.rest_current.zw);
     }
+    let n = normalize(vec3<f32>(tilt.x, 1.0, tilt.y));
     // The view entering the water: the refracted ray (xyz) and the Fresnel reflectance (w).
     let entry = water_entry(view, n);
     let r = entry.w;

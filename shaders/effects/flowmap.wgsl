@@ -35,16 +35,17 @@ fn detail_slope(uv: vec2<f32>) -> vec2<f32> {
     return textureSampleLevel(flow_detail, linear_repeat, uv, 0.0).xy;
 }
 
-// The surface normal n at local point p tilted by the flow-advected detail, where the water
-// runs at `current` (m/s, current_at interpolated from the vertices).
-fn flow_normal(p: vec2<f32>, current: vec2<f32>, n: vec3<f32>) -> vec3<f32> {
+// The flow-advected detail's slopes at local point p where the water runs at `current` (m/s,
+// current_at interpolated from the vertices): the gradient (∂/∂x, ∂/∂z) of a height field that
+// adds to the sea's and the wake's, so the caller forms one normal from their summed slopes
+// (f64 reference: effects::flowmap::flow_slope and flowed_normal).
+fn flow_slope(p: vec2<f32>, current: vec2<f32>) -> vec2<f32> {
     // Flow in tiles per period: current (m/s) x period (s, folded into the tile size).
     let flow = current / fx.current.w;
     let uv = p / fx.current.w;
     let sa = detail_slope(uv - flow * fx.flow_a.x + fx.flow_a.zw) * fx.flow_a.y;
     let sb = detail_slope(uv - flow * fx.flow_b.x + fx.flow_b.zw) * fx.flow_b.y;
-    let s = sa + sb;
     // Stronger where the current runs faster (still water shows no flow pattern).
     let k = clamp(length(flow) * 4.0, 0.0, 1.0);
-    return normalize(n + vec3<f32>(-s.x, 0.0, -s.y) * k);
+    return (sa + sb) * k;
 }
