@@ -19,10 +19,12 @@ fn fx_on(bit: u32) -> bool {
     return (FX_MASK & bit) != 0u;
 }
 
-// The water pass's vertex output and what the effects need of each vertex, in as many
-// varyings as the water's own: with a fifth, in about a third of the bench's runs on lavapipe
-// one case's pass ran up to 1.5× slower for the whole run (a per-process effect whose cause
-// was not found; none in 18 runs with four).
+// The water pass's vertex output and what the effects need of each vertex: the water's own
+// three varyings and the flow's sample points. (Before the thirteenth session a fifth output
+// was avoided: in about a third of the bench's runs on lavapipe one case's pass then ran up to
+// 1.5× slower for the whole run, a per-process effect whose cause was not found; docs/quality.md
+// step 23 has the timings with it. On a tile-based phone each varying is written per vertex
+// and read per pixel: 16 bytes a vertex more, which the budget model does not count.)
 struct ArVertexOut {
     @builtin(position) clip: vec4<f32>,
     // xy: the rest point (local m); zw: the current around the marks (m/s, flow map), a
@@ -31,6 +33,9 @@ struct ArVertexOut {
     @location(0) rest_current: vec4<f32>,
     @location(1) world: vec3<f32>,
     @location(2) wake: vec3<f32>,
+    // The flow's two sample points in the detail tile (flow_sample_points: affine in the
+    // world point and the current, so interpolating them is forming them per pixel).
+    @location(3) flow_points: vec4<f32>,
 }
 
 @vertex
@@ -41,10 +46,13 @@ fn vs_ar(v: VertexIn) -> ArVertexOut {
     out.world = w.world;
     out.wake = w.wake;
     var current = vec2<f32>(0.0);
+    var flow_points = vec4<f32>(0.0);
     if fx_on(FX_FLOWMAP) {
         current = current_at(w.world.xz);
+        flow_points = flow_sample_points(w.world.xz, current);
     }
     out.rest_current = vec4<f32>(w.rest, current);
+    out.flow_points = flow_points;
     return out;
 }
 
@@ -67,7 +75,7 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     // their sum, (−∂/∂x, 1, −∂/∂z) normalised.
     var tilt = vec2<f32>(sf.up.x / sf.up.y - in.wake.x, sf.up.z / sf.up.y - in.wake.y);
     if fx_on(FX_FLOWMAP) {
-        tilt -= flow_slope(p.xz, in.rest_current.zw);
+        tilt -= flow_slope(in.flow_points, in.rest_current.zw);
     }
     let n = normalize(vec3<f32>(tilt.x, 1.0, tilt.y));
     // The view entering the water: the refracted ray (xyz) and the Fresnel reflectance (w).

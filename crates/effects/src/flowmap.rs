@@ -287,6 +287,56 @@ mod tests {
     }
 
     #[test]
+    fn a_triangle_interpolates_the_sample_points_as_it_interpolates_point_and_current() {
+        // The AR water forms each copy's sample point at the vertices (`flow_sample_points` in
+        // vs_ar) and the rasteriser blends them with the same barycentric weights as the
+        // point and the current: the blend of the vertices' sample points is the sample point
+        // of the blended point and current (flow_uv is affine in both).
+        let phases = flow_phases(5.7, 2.0, DEFAULT_JUMP);
+        let tile = 12.0;
+        let mut seed = 11u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..500 {
+            let mut corner = || {
+                (
+                    DVec2::new(rnd() * 80.0 - 40.0, rnd() * 80.0 - 40.0),
+                    DVec2::new(rnd() * 2.0 - 1.0, rnd() * 2.0 - 1.0),
+                )
+            };
+            let tri = [corner(), corner(), corner()];
+            let (s, t) = (rnd() * 0.5, rnd() * 0.5);
+            let w = [1.0 - s - t, s, t];
+            let blend = |f: &dyn Fn(DVec2, DVec2) -> DVec2| {
+                tri.iter()
+                    .zip(w)
+                    .map(|(&(p, c), w)| f(p, c) * w)
+                    .sum::<DVec2>()
+            };
+            let (p, c) = (blend(&|p, _| p), blend(&|_, c| c));
+            for phase in &phases {
+                let interpolated = blend(&|p, c| flow_uv(p / tile, c / tile, phase));
+                let formed = flow_uv(p / tile, c / tile, phase);
+                assert!(
+                    (interpolated - formed).length() < 1e-13,
+                    "{interpolated} {formed}"
+                );
+            }
+        }
+        // Not so for the strength k, which the pixel forms from the interpolated current: at
+        // the middle of an edge from still water to 6 m/s the vertices' k (0 and 1) blend to
+        // 0.5, the middle's current gives k = 1.
+        let k = |c: DVec2| (c.length() / tile * 4.0).clamp(0.0, 1.0);
+        let (c0, c1) = (DVec2::ZERO, DVec2::new(6.0, 0.0));
+        assert_eq!((k(c0) + k(c1)) / 2.0, 0.5);
+        assert_eq!(k((c0 + c1) / 2.0), 1.0);
+    }
+
+    #[test]
     fn the_flow_detail_fades_out_in_still_water_and_saturates_in_a_current() {
         let phases = flow_phases(3.1, 2.0, DEFAULT_JUMP);
         let p = DVec2::new(4.0, -1.5);

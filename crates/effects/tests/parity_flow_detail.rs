@@ -167,7 +167,9 @@ const TILE: f64 = 12.0;
 const FLOW_REACH: f64 = 5.0;
 
 /// `flow_slope` of `flowmap.wgsl` at each case (xy: the local point, m; zw: the current, m/s)
-/// with the two copies `phases` in the effects' uniform.
+/// with the two copies `phases` in the effects' uniform, at the sample points
+/// `flow_sample_points` forms there (in the AR water the vertices form them and the rasteriser
+/// interpolates them; `flowmap::tests` checks that interpolating is forming them).
 fn wgsl_flow_slopes(gpu: &Gpu, phases: [[f32; 4]; 2], cases: &[[f32; 4]]) -> Vec<[f32; 2]> {
     let kernel = r#"
 @group(0) @binding(10) var<storage, read> input: array<vec4<f32>>;
@@ -175,7 +177,8 @@ fn wgsl_flow_slopes(gpu: &Gpu, phases: [[f32; 4]; 2], cases: &[[f32; 4]]) -> Vec
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x < arrayLength(&input) {
-        output[id.x] = flow_slope(input[id.x].xy, input[id.x].zw);
+        let current = input[id.x].zw;
+        output[id.x] = flow_slope(flow_sample_points(input[id.x].xy, current), current);
     }
 }
 "#;
@@ -268,7 +271,8 @@ fn flow_slope_bound(case: [f32; 4], phases: [[f32; 4]; 2]) -> DVec2 {
         })
     };
     let (a, b) = (copy(phases[0]), copy(phases[1]));
-    let k = (length(&flow) * Inexact::exact(4.0)).clamp(0.0, 1.0);
+    let current = [Inexact::of(case[2]), Inexact::of(case[3])];
+    let k = (length(&current) * Inexact::exact(4.0) / tile).clamp(0.0, 1.0);
     let s = [0, 1].map(|j| (a[j] + b[j]) * k);
     DVec2::new(s[0].error, s[1].error)
 }
