@@ -19,11 +19,13 @@ fn fx_on(bit: u32) -> bool {
     return (FX_MASK & bit) != 0u;
 }
 
-// The water pass's vertex output and what the effects need of each vertex, in as many
-// varyings as the water's own (five since the vertices carry the long waves' slope sums,
-// render::vertex_slopes; an earlier fifth made one case's pass up to 1.5× slower on lavapipe
-// in about a third of the bench's runs, a per-process effect whose cause was not found: the
-// bench's timed column is to be read with that in mind).
+// The water pass's vertex output and what the effects need of each vertex: the water's own
+// five varyings (with the slope sums of the sea's longest waves, render::vertex_slopes) and
+// the flow's sample points. (Before the thirteenth session a fifth output was avoided: in
+// about a third of the bench's runs on lavapipe one case's pass then ran up to 1.5× slower
+// for the whole run, a per-process effect whose cause was not found; docs/quality.md has the
+// timings since. On a tile-based phone each varying is written per vertex and read per pixel:
+// 40 bytes a vertex more than four outputs, which the budget model does not count.)
 struct ArVertexOut {
     @builtin(position) clip: vec4<f32>,
     // xy: the rest point (local m); zw: the current around the marks (m/s, flow map), a
@@ -35,6 +37,9 @@ struct ArVertexOut {
     // The slope sums of the sea's longest waves, as the water pass's VertexOut has them.
     @location(3) sea_sums: vec4<f32>,
     @location(4) sea_sums_z: vec2<f32>,
+    // The flow's two sample points in the detail tile (flow_sample_points: affine in the
+    // world point and the current, so interpolating them is forming them per pixel).
+    @location(5) flow_points: vec4<f32>,
 }
 
 @vertex
@@ -47,10 +52,13 @@ fn vs_ar(v: VertexIn) -> ArVertexOut {
     out.sea_sums = w.sea_sums;
     out.sea_sums_z = w.sea_sums_z;
     var current = vec2<f32>(0.0);
+    var flow_points = vec4<f32>(0.0);
     if fx_on(FX_FLOWMAP) {
         current = current_at(w.world.xz);
+        flow_points = flow_sample_points(w.world.xz, current);
     }
     out.rest_current = vec4<f32>(w.rest, current);
+    out.flow_points = flow_points;
     return out;
 }
 
@@ -68,11 +76,14 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     let down = dpdy(rest);
     let footprint = sqrt(max(dot(across, across), dot(down, down)));
     let sf = surface_frame_from(rest, frame.counts.x, footprint, vertex_sums_in(in.sea_sums, in.sea_sums_z));
-    // Sea and wake slopes add, as in water.wgsl: the wake's (∂w/∂x, ∂w/∂z) is in.wake.xy.
-    var n = normalize(vec3<f32>(sf.up.x / sf.up.y - in.wake.x, 1.0, sf.up.z / sf.up.y - in.wake.y));
+    // Sea, wake and flow-detail slopes add, as in water.wgsl: the sea's (∂h/∂x, ∂h/∂z) is
+    // −(up.x, up.z)/up.y, the wake's is in.wake.xy, the detail's flow_slope; one normal of
+    // their sum, (−∂/∂x, 1, −∂/∂z) normalised.
+    var tilt = vec2<f32>(sf.up.x / sf.up.y - in.wake.x, sf.up.z / sf.up.y - in.wake.y);
     if fx_on(FX_FLOWMAP) {
-        n = flow_normal(p.xz, in.rest_current.zw, n);
+        tilt -= flow_slope(in.flow_points, in.rest_current.zw);
     }
+    let n = normalize(vec3<f32>(tilt.x, 1.0, tilt.y));
     // The view entering the water: the refracted ray (xyz) and the Fresnel reflectance (w).
     let entry = water_entry(view, n);
     let r = entry.w;

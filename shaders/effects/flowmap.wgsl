@@ -35,16 +35,26 @@ fn detail_slope(uv: vec2<f32>) -> vec2<f32> {
     return textureSampleLevel(flow_detail, linear_repeat, uv, 0.0).xy;
 }
 
-// The surface normal n at local point p tilted by the flow-advected detail, where the water
-// runs at `current` (m/s, current_at interpolated from the vertices).
-fn flow_normal(p: vec2<f32>, current: vec2<f32>, n: vec3<f32>) -> vec3<f32> {
+// The two copies' sample points in the detail tile at local point p where the water runs at
+// `current` (m/s): xy copy A's, zw copy B's, each uv − flow·progress + offset (effects::flowmap::
+// flow_uv). Affine in p and the current, so the vertex shader forms them and the rasteriser
+// interpolates them as it would p and the current (exact up to rounding).
+fn flow_sample_points(p: vec2<f32>, current: vec2<f32>) -> vec4<f32> {
     // Flow in tiles per period: current (m/s) x period (s, folded into the tile size).
     let flow = current / fx.current.w;
     let uv = p / fx.current.w;
-    let sa = detail_slope(uv - flow * fx.flow_a.x + fx.flow_a.zw) * fx.flow_a.y;
-    let sb = detail_slope(uv - flow * fx.flow_b.x + fx.flow_b.zw) * fx.flow_b.y;
-    let s = sa + sb;
-    // Stronger where the current runs faster (still water shows no flow pattern).
-    let k = clamp(length(flow) * 4.0, 0.0, 1.0);
-    return normalize(n + vec3<f32>(-s.x, 0.0, -s.y) * k);
+    return vec4<f32>(uv - flow * fx.flow_a.x + fx.flow_a.zw, uv - flow * fx.flow_b.x + fx.flow_b.zw);
+}
+
+// The flow-advected detail's slopes at the copies' sample `points` (flow_sample_points) where
+// the water runs at `current` (m/s, interpolated from the vertices): the gradient (∂/∂x, ∂/∂z)
+// of a height field that adds to the sea's and the wake's, so the caller forms one normal from
+// their summed slopes (f64 reference: effects::flowmap::flow_slope and normal_of_slopes).
+fn flow_slope(points: vec4<f32>, current: vec2<f32>) -> vec2<f32> {
+    let sa = detail_slope(points.xy) * fx.flow_a.y;
+    let sb = detail_slope(points.zw) * fx.flow_b.y;
+    // Stronger where the current runs faster (still water shows no flow pattern): 4 × the
+    // flow in tiles per period.
+    let k = clamp(length(current) * 4.0 / fx.current.w, 0.0, 1.0);
+    return (sa + sb) * k;
 }

@@ -1,7 +1,7 @@
 //! Flow-map texture distortion with the UV jump (as the Sailing+ AR water thesis, TU Delft
 //! 2022, report 000 in docs/sources.md, does it in its § 3.1; after Vlachos, "Water Flow in
 //! Portal 2", 2010, and Flick's flow tutorial), used for the tidal current around marks.
-//! f64 reference of `shaders/flowmap.wgsl`.
+//! f64 reference of `shaders/effects/flowmap.wgsl`.
 //!
 //! A detail texture is advected along the flow for one period, then restarts. Two copies (A and
 //! B) run half a period apart and are blended with triangle weights that are 0 at each copy's
@@ -13,8 +13,17 @@
 //!
 //! The current around a mark is the closed-form potential flow past a cylinder: uniform far
 //! away, no flow through the mark, twice as fast at its sides, still at its front and back.
+//!
+//! The advected detail is a height field's slopes ([`crate::flow_detail`]), so it tilts the
+//! water as one: its slopes ([`flow_slope`]) add to the sea's and the wakes', and the normal is
+//! that of the summed surface ([`normal_of_slopes`]), normalised once. (Before the thirteenth
+//! session the detail was added to the sea's unit normal and normalised again: that is the
+//! normal of the slopes ∇h + L·s with L = |(∂h/∂x, 1, ∂h/∂z)|, the detail exaggerated by L on
+//! sloped water; on flat water, L = 1, the two agree.)
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
+
+use crate::flow_detail::detail_slope;
 
 /// One of the two advected copies at one moment.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,6 +57,29 @@ pub fn flow_phases(t: f64, period: f64, jump: DVec2) -> [FlowPhase; 2] {
 /// its progress, plus its offset.
 pub fn flow_uv(uv: DVec2, flow: DVec2, phase: &FlowPhase) -> DVec2 {
     uv - flow * phase.progress + phase.offset
+}
+
+/// The flow-advected detail's slopes (∂/∂x, ∂/∂z; dimensionless) at local point `p` (m) where
+/// the water runs at `current` (m/s), for a detail tile of `tile` metres per flow period (the
+/// period folded into the tile: the flow moves `current / tile` tiles per period) and the two
+/// copies `phases` ([`flow_phases`]): the copies' weighted [`detail_slope`]s, scaled by
+/// k = clamp(4·|current / tile|, 0, 1) so still water shows no pattern. `flow_slope` of
+/// `shaders/effects/flowmap.wgsl`.
+pub fn flow_slope(p: DVec2, current: DVec2, tile: f64, phases: &[FlowPhase; 2]) -> DVec2 {
+    let flow = current / tile;
+    let uv = p / tile;
+    let s: DVec2 = phases
+        .iter()
+        .map(|phase| detail_slope(flow_uv(uv, flow, phase)) * phase.weight)
+        .sum();
+    s * (flow.length() * 4.0).clamp(0.0, 1.0)
+}
+
+/// The unit normal of a surface y = h(x, z) whose slopes are `slope` = (∂h/∂x, ∂h/∂z):
+/// (−∂h/∂x, 1, −∂h/∂z) normalised. The AR water's normal is this of the sea's, the wakes' and
+/// [`flow_slope`]'s slopes summed (`fs_ar` in `shaders/effects/ar_water.wgsl`).
+pub fn normal_of_slopes(slope: DVec2) -> DVec3 {
+    DVec3::new(-slope.x, 1.0, -slope.y).normalize()
 }
 
 /// Jump that Flick found to give a long, unrepeating sequence: 25 restarts before a repeat
@@ -207,6 +239,122 @@ mod tests {
              0.5 m cell 1 m off the rim: bound {near:.4} m/s"
         );
         assert!(near < 0.05 * u.length(), "{near}");
+    }
+
+    #[test]
+    fn the_detail_tilts_the_water_as_slopes_of_one_height_field() {
+        // A sea y = h(x, z) and a detail with slopes s: the normal of the summed surface is the
+        // cross product of its tangents along z and x, (0, ∂/∂z, 1) × (1, ∂/∂x, 0), with the
+        // sea's slopes by central differences of the closed-form height.
+        let h = |q: DVec2| 0.3 * (0.7 * q.x).sin() * (0.4 * q.y).cos() + 0.05 * q.y;
+        let d = 1e-5;
+        let phases = flow_phases(7.3, 2.0, DEFAULT_JUMP);
+        let current = DVec2::new(0.5, -0.2);
+        for (i, p) in [
+            DVec2::new(1.0, 2.0),
+            DVec2::new(-3.5, 0.7),
+            DVec2::new(8.0, -6.0),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let sea = DVec2::new(
+                (h(p + DVec2::X * d) - h(p - DVec2::X * d)) / (2.0 * d),
+                (h(p + DVec2::Y * d) - h(p - DVec2::Y * d)) / (2.0 * d),
+            );
+            let s = flow_slope(p, current, 12.0, &phases);
+            assert!(s.length() > 1e-3, "no detail at point {i}: {s}");
+            let g = sea + s;
+            let want = DVec3::new(0.0, g.y, 1.0)
+                .cross(DVec3::new(1.0, g.x, 0.0))
+                .normalize();
+            let got = normal_of_slopes(g);
+            assert!((got - want).length() < 1e-12, "{got} against {want}");
+            // The old definition (the detail added to the sea's unit normal, normalised
+            // again) is the normal of the slopes ∇h + L·s, L = |(∂h/∂x, 1, ∂h/∂z)| > 1 here:
+            // it tilted the sloped sea further than the detail's own slopes do.
+            let up = normal_of_slopes(sea);
+            let old = (up + DVec3::new(-s.x, 0.0, -s.y)).normalize();
+            let l = DVec3::new(sea.x, 1.0, sea.y).length();
+            assert!(l > 1.001, "point {i} is flat");
+            assert!((old - normal_of_slopes(sea + s * l)).length() < 1e-12);
+            assert!((old - up).length() > (got - up).length(), "point {i}");
+        }
+        // On flat water the two definitions agree.
+        let s = flow_slope(DVec2::new(2.0, 3.0), current, 12.0, &phases);
+        let old = (DVec3::Y + DVec3::new(-s.x, 0.0, -s.y)).normalize();
+        assert!((normal_of_slopes(s) - old).length() < 1e-15);
+    }
+
+    #[test]
+    fn a_triangle_interpolates_the_sample_points_as_it_interpolates_point_and_current() {
+        // The AR water forms each copy's sample point at the vertices (`flow_sample_points` in
+        // vs_ar) and the rasteriser blends them with the same barycentric weights as the
+        // point and the current: the blend of the vertices' sample points is the sample point
+        // of the blended point and current (flow_uv is affine in both).
+        let phases = flow_phases(5.7, 2.0, DEFAULT_JUMP);
+        let tile = 12.0;
+        let mut seed = 11u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..500 {
+            let mut corner = || {
+                (
+                    DVec2::new(rnd() * 80.0 - 40.0, rnd() * 80.0 - 40.0),
+                    DVec2::new(rnd() * 2.0 - 1.0, rnd() * 2.0 - 1.0),
+                )
+            };
+            let tri = [corner(), corner(), corner()];
+            let (s, t) = (rnd() * 0.5, rnd() * 0.5);
+            let w = [1.0 - s - t, s, t];
+            let blend = |f: &dyn Fn(DVec2, DVec2) -> DVec2| {
+                tri.iter()
+                    .zip(w)
+                    .map(|(&(p, c), w)| f(p, c) * w)
+                    .sum::<DVec2>()
+            };
+            let (p, c) = (blend(&|p, _| p), blend(&|_, c| c));
+            for phase in &phases {
+                let interpolated = blend(&|p, c| flow_uv(p / tile, c / tile, phase));
+                let formed = flow_uv(p / tile, c / tile, phase);
+                assert!(
+                    (interpolated - formed).length() < 1e-13,
+                    "{interpolated} {formed}"
+                );
+            }
+        }
+        // Not so for the strength k, which the pixel forms from the interpolated current: at
+        // the middle of an edge from still water to 6 m/s the vertices' k (0 and 1) blend to
+        // 0.5, the middle's current gives k = 1.
+        let k = |c: DVec2| (c.length() / tile * 4.0).clamp(0.0, 1.0);
+        let (c0, c1) = (DVec2::ZERO, DVec2::new(6.0, 0.0));
+        assert_eq!((k(c0) + k(c1)) / 2.0, 0.5);
+        assert_eq!(k((c0 + c1) / 2.0), 1.0);
+    }
+
+    #[test]
+    fn the_flow_detail_fades_out_in_still_water_and_saturates_in_a_current() {
+        let phases = flow_phases(3.1, 2.0, DEFAULT_JUMP);
+        let p = DVec2::new(4.0, -1.5);
+        assert_eq!(flow_slope(p, DVec2::ZERO, 12.0, &phases), DVec2::ZERO);
+        // k = 4·|current|/tile: a quarter of it at 0.75 m/s in a 12 m tile...
+        let slow = DVec2::new(0.75, 0.0);
+        let fast = DVec2::new(3.0, 0.0);
+        let full = |c: DVec2| -> DVec2 {
+            let flow = c / 12.0;
+            phases
+                .iter()
+                .map(|ph| detail_slope(p / 12.0 - flow * ph.progress + ph.offset) * ph.weight)
+                .sum()
+        };
+        assert!((flow_slope(p, slow, 12.0, &phases) - full(slow) * 0.25).length() < 1e-15);
+        // ... and all of it from 3 m/s (k = 1) on.
+        assert!((flow_slope(p, fast, 12.0, &phases) - full(fast)).length() < 1e-15);
+        assert!((flow_slope(p, fast * 2.0, 12.0, &phases) - full(fast * 2.0)).length() < 1e-15);
     }
 
     #[test]
