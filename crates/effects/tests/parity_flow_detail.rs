@@ -20,6 +20,47 @@ use render::gpu::{Gpu, test_gpu};
 use render::wgsl_accuracy::{Inexact, length};
 use wgpu::util::DeviceExt;
 
+/// The detail texture of `texture` (`texels`² f16 pairs) and the wrap-around sampler, as the
+/// AR water binds them.
+fn detail_binding(
+    gpu: &Gpu,
+    texture: &[[u16; 2]],
+    texels: u32,
+) -> (wgpu::TextureView, wgpu::Sampler) {
+    let tex = effects::passes::flow_detail_texture_of(gpu, texture, texels);
+    (
+        tex.create_view(&Default::default()),
+        effects::passes::linear_repeat_sampler(&gpu.device),
+    )
+}
+
+/// Bindings 5 and 6 of the effects' group: the detail texture and its sampler.
+fn detail_entries<'a>(
+    view: &'a wgpu::TextureView,
+    sampler: &'a wgpu::Sampler,
+) -> [wgpu::BindGroupEntry<'a>; 2] {
+    [
+        wgpu::BindGroupEntry {
+            binding: 5,
+            resource: wgpu::BindingResource::TextureView(view),
+        },
+        wgpu::BindGroupEntry {
+            binding: 6,
+            resource: wgpu::BindingResource::Sampler(sampler),
+        },
+    ]
+}
+
+/// Uniform numbers in [0, 1) from a fixed seed (a 64-bit LCG's top 53 bits).
+fn uniform_stream(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The farthest the sample points reach from the tile's origin, in tiles.
 const REACH: f64 = 3.0;
 
@@ -45,19 +86,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         effects::passes::FLOWMAP,
         kernel,
     ]);
-    let tex = effects::passes::flow_detail_texture_of(gpu, texture, texels);
-    let view = tex.create_view(&Default::default());
-    let sampler = effects::passes::linear_repeat_sampler(&gpu.device);
-    let fx = [
-        wgpu::BindGroupEntry {
-            binding: 5,
-            resource: wgpu::BindingResource::TextureView(&view),
-        },
-        wgpu::BindGroupEntry {
-            binding: 6,
-            resource: wgpu::BindingResource::Sampler(&sampler),
-        },
-    ];
+    let (view, sampler) = detail_binding(gpu, texture, texels);
+    let fx = detail_entries(&view, &sampler);
     let bytes =
         render::compute::run_kernel_with(gpu, "flow detail parity", &src, points, 8, &[&[], &fx])
             .expect("the kernel runs");
@@ -67,13 +97,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 /// Points over [−REACH, REACH]² (fixed seed): random, and on texel centres and edges, where
 /// the filter's weights are 0, ½ or 1.
 fn points() -> Vec<[f32; 2]> {
-    let mut seed = 17u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = uniform_stream(17);
     let n = f64::from(DETAIL_TEXELS);
     (0..40_000)
         .map(|k| {
@@ -197,26 +221,16 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             contents: bytemuck::bytes_of(&fx),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-    let tex = effects::passes::flow_detail_texture_of(
-        gpu,
-        effects::flow_detail::detail_texture(),
-        DETAIL_TEXELS,
-    );
-    let view = tex.create_view(&Default::default());
-    let sampler = effects::passes::linear_repeat_sampler(&gpu.device);
+    let (view, sampler) =
+        detail_binding(gpu, effects::flow_detail::detail_texture(), DETAIL_TEXELS);
+    let [texture, filter] = detail_entries(&view, &sampler);
     let fx = [
         wgpu::BindGroupEntry {
             binding: 0,
             resource: uniform.as_entire_binding(),
         },
-        wgpu::BindGroupEntry {
-            binding: 5,
-            resource: wgpu::BindingResource::TextureView(&view),
-        },
-        wgpu::BindGroupEntry {
-            binding: 6,
-            resource: wgpu::BindingResource::Sampler(&sampler),
-        },
+        texture,
+        filter,
     ];
     let bytes =
         render::compute::run_kernel_with(gpu, "flow slope parity", &src, cases, 8, &[&[], &fx])
@@ -280,13 +294,7 @@ fn flow_slope_bound(case: [f32; 4], phases: [[f32; 4]; 2]) -> DVec2 {
 /// Points within 40 m and currents to 2 m/s (fixed seed), still water and the speeds where
 /// k = 4·|current|/tile saturates (3 m/s) among them.
 fn flow_cases() -> Vec<[f32; 4]> {
-    let mut seed = 29u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = uniform_stream(29);
     (0..20_000)
         .map(|k| {
             let p = DVec2::new(rnd() * 80.0 - 40.0, rnd() * 80.0 - 40.0) / 2f64.sqrt();
