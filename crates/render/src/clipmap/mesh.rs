@@ -51,6 +51,7 @@ impl ClipMapConfig {
     pub fn build(&self, eye: DVec2, culling: &Culling) -> ClipMesh {
         let origin = self.origin_for(eye);
         let origin_lattice = self.centre_lattice(self.levels() - 1, eye);
+        let to_world = self.world_rotation();
         let (mut vertices, mut indices) = (Vec::new(), Vec::new());
         let centres: Vec<I64Vec2> = (0..self.levels())
             .map(|l| self.centre_index(l, eye))
@@ -73,7 +74,7 @@ impl ClipMapConfig {
                 let slot = &mut slots[(j - lo.y) as usize * side + (i - lo.x) as usize];
                 if *slot == NONE {
                     let (p, fade) = self.morphed_vertex(l, i, j, c);
-                    let q = self.to_world(p - origin_lattice);
+                    let q = to_world(p - origin_lattice);
                     *slot = vertices.len() as u32;
                     vertices.push(ClipVertex {
                         rest: [q.x as f32, q.y as f32],

@@ -195,6 +195,11 @@ pub struct LevelPlan {
     pub allowed_px: f64,
 }
 
+/// `a` turned by the angle whose (sine, cosine) is `(s, c)`.
+fn rotate((s, c): (f64, f64), a: DVec2) -> DVec2 {
+    DVec2::new(c * a.x - s * a.y, s * a.x + c * a.y)
+}
+
 impl ClipMapConfig {
     /// `levels` levels of `cells` cells each, doubling (the source's layout).
     pub fn uniform(levels: u32, cells: u32, base_cell: f64) -> ClipMapConfig {
@@ -215,8 +220,14 @@ impl ClipMapConfig {
 
     /// Lattice coordinates `a` in world (x, z) (rotated by angle).
     pub(crate) fn to_world(&self, a: DVec2) -> DVec2 {
-        let (s, c) = self.angle.sin_cos();
-        DVec2::new(c * a.x - s * a.y, s * a.x + c * a.y)
+        rotate(self.angle.sin_cos(), a)
+    }
+
+    /// [`ClipMapConfig::to_world`] with the angle's sine and cosine formed once, for the many
+    /// points of a mesh (the same values: `rotate` is its arithmetic).
+    pub(crate) fn world_rotation(&self) -> impl Fn(DVec2) -> DVec2 + use<> {
+        let sin_cos = self.angle.sin_cos();
+        move |a| rotate(sin_cos, a)
     }
 
     /// Number of levels.
