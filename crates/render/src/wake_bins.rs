@@ -118,8 +118,6 @@ struct Layout {
     /// Per row of bins and list, the runs of columns whose bins have that list: the binning
     /// lists a source in whole runs.
     slot_runs: runs::SlotRuns,
-    /// Per row of bins, the levels that land in any of its bins.
-    row_levels: Vec<u32>,
     /// Each level's vertex spacing, m: one height list per level in each bin.
     spacing: Vec<f32>,
     level_spacing: [[f32; 4]; 4],
@@ -155,10 +153,6 @@ impl Layout {
         let known = u32::MAX >> (32 - levels);
         let levels_in: Vec<u32> = levels_in.into_iter().map(|m| m & known).collect();
         let slot_runs = runs::SlotRuns::of(&levels_in, nx as usize, levels);
-        let row_levels = levels_in
-            .chunks(nx as usize)
-            .map(|row| row.iter().fold(0, |m, &l| m | l))
-            .collect();
         Layout {
             lo,
             cell,
@@ -167,7 +161,6 @@ impl Layout {
             margin,
             levels_in,
             slot_runs,
-            row_levels,
             spacing: (0..levels)
                 .map(|l| spacing.levels.get(l).map_or(0.0, |b| b.spacing))
                 .collect(),

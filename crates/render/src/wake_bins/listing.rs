@@ -101,15 +101,32 @@ impl Layout {
             .zip(out.chunks.iter_mut().zip(out.scratch.iter_mut()));
         if parts == 1 {
             for ((part, listed), (lists, scratch)) in work {
-                self.entries_from(part, lists, listed, scratch);
+                self.entries_from_owned(part, lists, listed, scratch);
             }
             return;
         }
         std::thread::scope(|scope| {
             for ((part, listed), (lists, scratch)) in work {
-                scope.spawn(move || self.entries_from(part, lists, listed, scratch));
+                scope.spawn(move || self.entries_from_owned(part, lists, listed, scratch));
             }
         });
+    }
+
+    /// [`Layout::entries_from`] on the thread's own copies of the chunk's list and scratch
+    /// headers, put back after: the threads' `Vec` headers sit side by side in one cache
+    /// line, and each entry written updates its list's length, so on the shared headers the
+    /// threads took the line from each other at every entry (a third of the listing's time
+    /// on two threads).
+    fn entries_from_owned(
+        &self,
+        sources: &[GpuWakeSource],
+        lists: &mut Vec<u32>,
+        listed_per_source: &mut [u32],
+        scratch: &mut Distances,
+    ) {
+        let (mut own_lists, mut own_scratch) = (std::mem::take(lists), std::mem::take(scratch));
+        self.entries_from(sources, &mut own_lists, listed_per_source, &mut own_scratch);
+        (*lists, *scratch) = (own_lists, own_scratch);
     }
 
     /// [`Layout::entries`] of `sources`: their lists appended to `lists`, each source's count
@@ -136,9 +153,16 @@ impl Layout {
     ) {
         let margin = f64::from(self.margin);
         for (n, s) in sources.iter().enumerate() {
-            let Some([i0, i1, j0, j1]) = self.span(s) else {
+            // Only the part of its span where some level lands: no list elsewhere.
+            let (Some([i0, i1, j0, j1]), Some([l0, l1, m0, m1])) =
+                (self.span(s), self.slot_runs.landing())
+            else {
                 continue;
             };
+            let ([i0, i1], [j0, j1]) = ([i0.max(l0), i1.min(l1)], [j0.max(m0), j1.min(m1)]);
+            if i0 > i1 || j0 > j1 {
+                continue;
+            }
             let cull = f64::from(s.cull_r2.max(0.0)).sqrt() + margin;
             let foam = f64::from(foam_radius2(s)).sqrt() + margin;
             let mut radii = Radii2 {
@@ -166,7 +190,12 @@ impl Layout {
                     near2: near * near,
                     far2: far * far,
                 };
-                if row.near2 > either2 {
+                // Beyond both radii, or no level lands in the row's columns of the span.
+                let landing = self.slot_runs.of_row(j, 0);
+                let (Some(&[first, _]), Some(&[_, end])) = (landing.first(), landing.last()) else {
+                    continue;
+                };
+                if row.near2 > either2 || end <= i0 || first > i1 {
                     continue;
                 }
                 let foamed = foamed.within(&columns.near2, row.near2, radii.foam, false);
@@ -175,25 +204,22 @@ impl Layout {
                 if c0 >= c1 {
                     continue;
                 }
-                // Only the levels that land in the row, and of those only the ones that land
-                // in the columns the cull circle reaches.
-                let mut levels = self.row_levels[j as usize];
+                // Only the levels that land in the columns the cull circle reaches (one to
+                // three of the ten: a clip-map level lands in a ring).
+                let first_bin = (j * self.nx) as usize + row.i0;
+                let mut levels = self.levels_in[first_bin + c0..first_bin + c1]
+                    .iter()
+                    .fold(0, |m, &l| m | l);
                 while levels != 0 {
                     let l = levels.trailing_zeros();
                     levels &= levels - 1;
-                    let slot = 1 + l;
-                    let (from, to) = ((c0 + row.i0) as u32, (c1 + row.i0) as u32);
-                    let runs = self.slot_runs.of_row(j, slot);
-                    if !runs.iter().any(|&[a, b]| a < to && from < b) {
-                        continue;
-                    }
                     let inner = radii.inner[l as usize];
                     let [h0, h1] = holes[l as usize].within(&columns.far2, row.far2, inner, true);
                     // The culled columns less the hole (both runs, the hole around the
                     // farthest distances' valley): a left and a right run, one of them empty
                     // when the hole is.
                     let outside = [[c0, c1.min(h0)], [c0.max(h1), c1]];
-                    self.list_runs(&row, slot, &outside, lists);
+                    self.list_runs(&row, 1 + l, &outside, lists);
                 }
             }
             listed_per_source[n] = (lists.len() - before) as u32;

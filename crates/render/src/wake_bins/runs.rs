@@ -13,6 +13,8 @@ pub(super) struct SlotRuns {
     /// Per row and slot (row · slots + slot), its runs' range [first, end) in `runs`.
     at: Vec<[u32; 2]>,
     runs: Vec<[u32; 2]>,
+    /// The bins where any level lands, [i0, i1, j0, j1] (inclusive), or none.
+    landing: Option<[u32; 4]>,
 }
 
 impl SlotRuns {
@@ -24,6 +26,7 @@ impl SlotRuns {
             slots,
             at: Vec::with_capacity(levels_in.len() / nx.max(1) * slots),
             runs: Vec::new(),
+            landing: None,
         };
         for row in levels_in.chunks(nx.max(1)) {
             for slot in 0..slots {
@@ -49,7 +52,22 @@ impl SlotRuns {
                 out.at.push([first, out.runs.len() as u32]);
             }
         }
+        for j in 0..(out.at.len() / slots) as u32 {
+            let landing = out.of_row(j, 0);
+            let (Some(&[first, _]), Some(&[_, end])) = (landing.first(), landing.last()) else {
+                continue;
+            };
+            // Rows come in order: the first one found is the lowest.
+            let [i0, i1, _, j1] = out.landing.get_or_insert([first, end - 1, j, j]);
+            (*i0, *i1, *j1) = ((*i0).min(first), (*i1).max(end - 1), j);
+        }
         out
+    }
+
+    /// The bins where any level lands, [i0, i1, j0, j1] (inclusive), or none: no list holds
+    /// a source outside them.
+    pub(super) fn landing(&self) -> Option<[u32; 4]> {
+        self.landing
     }
 
     /// The runs of row `j` whose bins have list `slot`.
@@ -82,6 +100,7 @@ impl Run {
     /// row): one run [start, end) around the valley (a rounded sum grows with its operand),
     /// or an empty one. Each end moves from where the last row's was, so a source's rows
     /// together take a few turns a column, not one a bin.
+    #[inline(always)]
     pub(super) fn within(
         &mut self,
         d: &[f64],
