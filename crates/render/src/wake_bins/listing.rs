@@ -231,11 +231,18 @@ impl Layout {
     fn list_runs(&self, row: &Row, slot: u32, parts: &[[usize; 2]], lists: &mut Vec<u32>) {
         let per_bin = self.lists_per_bin();
         let first_bin = row.j * self.nx;
-        for &[r0, r1] in self.slot_runs.of_row(row.j, slot) {
-            for &[c0, c1] in parts {
-                let from = (c0 + row.i0).max(r0 as usize) as u32;
-                let to = (c1 + row.i0).min(r1 as usize) as u32;
-                lists.extend((from..to).map(|i| (first_bin + i) * per_bin + slot));
+        let runs = self.slot_runs.of_row(row.j, slot);
+        for &[c0, c1] in parts {
+            let (from, to) = ((c0 + row.i0) as u32, (c1 + row.i0) as u32);
+            if from >= to {
+                continue;
+            }
+            // The row's runs are in order, and where few vertices land (a coarse level over
+            // small bins) a row has dozens: only those that overlap [from, to).
+            let first = runs.partition_point(|&[_, end]| end <= from);
+            for &[r0, r1] in runs[first..].iter().take_while(|&&[r0, _]| r0 < to) {
+                let bins = first_bin + from.max(r0)..first_bin + to.min(r1);
+                lists.extend(bins.map(|b| b * per_bin + slot));
             }
         }
     }
