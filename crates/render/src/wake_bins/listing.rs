@@ -24,6 +24,9 @@ pub(super) struct Entries {
     pub(super) chunk: usize,
     /// List entries per source.
     pub(super) per_source: Vec<u32>,
+    /// Per chunk, its entries per list (counted on its thread; empty for a chunk with no
+    /// sources this frame).
+    pub(super) counts: Vec<Vec<u32>>,
     /// Each thread's distances (scratch).
     scratch: Vec<Distances>,
 }
@@ -92,22 +95,26 @@ impl Layout {
             .resize_with(parts.max(out.chunks.len()), Vec::new);
         out.scratch
             .resize_with(parts.max(out.scratch.len()), Default::default);
-        for lists in &mut out.chunks {
+        out.counts
+            .resize_with(parts.max(out.counts.len()), Vec::new);
+        for (lists, counts) in out.chunks.iter_mut().zip(&mut out.counts) {
             lists.clear();
+            counts.clear();
         }
         let work = sources
             .chunks(chunk)
             .zip(out.per_source.chunks_mut(chunk))
-            .zip(out.chunks.iter_mut().zip(out.scratch.iter_mut()));
+            .zip(out.chunks.iter_mut().zip(out.scratch.iter_mut()))
+            .zip(out.counts.iter_mut());
         if parts == 1 {
-            for ((part, listed), (lists, scratch)) in work {
-                self.entries_from_owned(part, lists, listed, scratch);
+            for (((part, listed), (lists, scratch)), counts) in work {
+                self.entries_from_owned(part, lists, listed, scratch, counts);
             }
             return;
         }
         std::thread::scope(|scope| {
-            for ((part, listed), (lists, scratch)) in work {
-                scope.spawn(move || self.entries_from_owned(part, lists, listed, scratch));
+            for (((part, listed), (lists, scratch)), counts) in work {
+                scope.spawn(move || self.entries_from_owned(part, lists, listed, scratch, counts));
             }
         });
     }
@@ -116,16 +123,23 @@ impl Layout {
     /// headers, put back after: the threads' `Vec` headers sit side by side in one cache
     /// line, and each entry written updates its list's length, so on the shared headers the
     /// threads took the line from each other at every entry (a third of the listing's time
-    /// on two threads).
+    /// on two threads). And the chunk's entries counted per list in `counts`, on the same
+    /// thread, while they are in its cache.
     fn entries_from_owned(
         &self,
         sources: &[GpuWakeSource],
         lists: &mut Vec<u32>,
         listed_per_source: &mut [u32],
         scratch: &mut Distances,
+        counts: &mut Vec<u32>,
     ) {
         let (mut own_lists, mut own_scratch) = (std::mem::take(lists), std::mem::take(scratch));
         self.entries_from(sources, &mut own_lists, listed_per_source, &mut own_scratch);
+        counts.resize(self.levels_in.len() * self.lists_per_bin() as usize, 0);
+        let counted = counts.as_mut_slice();
+        for &list in &own_lists {
+            counted[list as usize] += 1;
+        }
         (*lists, *scratch) = (own_lists, own_scratch);
     }
 
