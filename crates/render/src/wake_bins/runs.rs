@@ -200,8 +200,9 @@ mod tests {
         }
     }
 
-    /// A row's runs of a slot are exactly the columns whose bins have that list, on a seeded
-    /// random grid of level masks (runs of each length, empty rows, full rows).
+    /// A row's runs of a slot are exactly the columns whose bins have that list, and the
+    /// landing box is the bounding box of the bins with a level, on seeded random grids of
+    /// level masks (runs of each length, empty rows, full rows, grids with no level).
     #[test]
     fn slot_runs_are_the_columns_with_the_list() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
@@ -211,6 +212,7 @@ mod tests {
             seed ^= seed << 17;
             seed
         };
+        let mut empty_grids = 0;
         for case in 0..200 {
             let (nx, nz, levels) = (
                 1 + (next() % 20) as usize,
@@ -228,6 +230,20 @@ mod tests {
                 })
                 .collect();
             let runs = SlotRuns::of(&levels_in, nx, levels);
+            // The landing box: the least and greatest column and row of a bin with a level.
+            let landed = (0..nx * nz).filter(|&b| levels_in[b] != 0);
+            let want_box = landed.clone().next().map(|_| {
+                let (cols, rows) = (landed.clone().map(|b| b % nx), landed.map(|b| b / nx));
+                [
+                    cols.clone().min(),
+                    cols.max(),
+                    rows.clone().min(),
+                    rows.max(),
+                ]
+                .map(|v| v.unwrap_or(0) as u32)
+            });
+            assert_eq!(runs.landing(), want_box, "case {case}: {levels_in:?}");
+            empty_grids += usize::from(want_box.is_none());
             for j in 0..nz {
                 let row = &levels_in[j * nx..(j + 1) * nx];
                 for slot in 0..=levels {
@@ -252,5 +268,6 @@ mod tests {
                 }
             }
         }
+        assert!(empty_grids > 0, "no grid without a level");
     }
 }
