@@ -115,11 +115,9 @@ struct Layout {
     nz: u32,
     margin: f32,
     levels_in: Vec<u32>,
-    /// Per row of bins, the columns [first, end) outside which no level lands (`levels_in`
-    /// is 0): the binning skips them whole.
-    rows: Vec<[u32; 2]>,
-    /// Per row of bins, the levels that land in any of its bins.
-    row_levels: Vec<u32>,
+    /// Per row of bins and list, the runs of columns whose bins have that list: the binning
+    /// lists a source in whole runs.
+    slot_runs: runs::SlotRuns,
     /// Each level's vertex spacing, m: one height list per level in each bin.
     spacing: Vec<f32>,
     level_spacing: [[f32; 4]; 4],
@@ -154,18 +152,7 @@ impl Layout {
         // A level the spacing does not know has no list (a vertex never carries one).
         let known = u32::MAX >> (32 - levels);
         let levels_in: Vec<u32> = levels_in.into_iter().map(|m| m & known).collect();
-        let rows = levels_in
-            .chunks(nx as usize)
-            .map(|row| {
-                let first = row.iter().position(|&m| m != 0).unwrap_or(0);
-                let end = row.iter().rposition(|&m| m != 0).map_or(first, |i| i + 1);
-                [first as u32, end as u32]
-            })
-            .collect();
-        let row_levels = levels_in
-            .chunks(nx as usize)
-            .map(|row| row.iter().fold(0, |m, &l| m | l))
-            .collect();
+        let slot_runs = runs::SlotRuns::of(&levels_in, nx as usize, levels);
         Layout {
             lo,
             cell,
@@ -173,8 +160,7 @@ impl Layout {
             nz,
             margin,
             levels_in,
-            rows,
-            row_levels,
+            slot_runs,
             spacing: (0..levels)
                 .map(|l| spacing.levels.get(l).map_or(0.0, |b| b.spacing))
                 .collect(),
@@ -414,6 +400,7 @@ pub fn fit(
 
 mod binner;
 mod listing;
+mod runs;
 pub use binner::WakeBinner;
 
 #[cfg(any(test, feature = "binning-reference"))]

@@ -132,14 +132,14 @@ impl WakeBinner {
         layout.fill(&self.entries, &self.counts, &mut self.next, rank, len, bins);
     }
 
-    /// The entries of each list.
+    /// The entries of each list: the sum of the chunks' counts (each counted on its thread).
     fn count(&mut self, layout: &Layout) {
         self.counts.clear();
         let lists = layout.levels_in.len() * layout.lists_per_bin() as usize;
         self.counts.resize(lists, 0);
-        for chunk in &self.entries.chunks {
-            for &list in chunk {
-                self.counts[list as usize] += 1;
+        for chunk in &self.entries.counts {
+            for (count, &n) in self.counts.iter_mut().zip(chunk) {
+                *count += n;
             }
         }
     }

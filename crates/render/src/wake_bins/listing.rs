@@ -2,6 +2,7 @@
 //! listed on up to [`ENTRY_THREADS`] threads, before they are sorted into lists
 //! (`binner.rs`).
 
+use super::runs::Run;
 use super::*;
 
 /// Most threads that list a frame's entries.
@@ -23,6 +24,9 @@ pub(super) struct Entries {
     pub(super) chunk: usize,
     /// List entries per source.
     pub(super) per_source: Vec<u32>,
+    /// Per chunk, its entries per list (counted on its thread; empty for a chunk with no
+    /// sources this frame).
+    pub(super) counts: Vec<Vec<u32>>,
     /// Each thread's distances (scratch).
     scratch: Vec<Distances>,
 }
@@ -91,24 +95,52 @@ impl Layout {
             .resize_with(parts.max(out.chunks.len()), Vec::new);
         out.scratch
             .resize_with(parts.max(out.scratch.len()), Default::default);
-        for lists in &mut out.chunks {
+        out.counts
+            .resize_with(parts.max(out.counts.len()), Vec::new);
+        for (lists, counts) in out.chunks.iter_mut().zip(&mut out.counts) {
             lists.clear();
+            counts.clear();
         }
         let work = sources
             .chunks(chunk)
             .zip(out.per_source.chunks_mut(chunk))
-            .zip(out.chunks.iter_mut().zip(out.scratch.iter_mut()));
+            .zip(out.chunks.iter_mut().zip(out.scratch.iter_mut()))
+            .zip(out.counts.iter_mut());
         if parts == 1 {
-            for ((part, listed), (lists, scratch)) in work {
-                self.entries_from(part, lists, listed, scratch);
+            for (((part, listed), (lists, scratch)), counts) in work {
+                self.entries_from_owned(part, lists, listed, scratch, counts);
             }
             return;
         }
         std::thread::scope(|scope| {
-            for ((part, listed), (lists, scratch)) in work {
-                scope.spawn(move || self.entries_from(part, lists, listed, scratch));
+            for (((part, listed), (lists, scratch)), counts) in work {
+                scope.spawn(move || self.entries_from_owned(part, lists, listed, scratch, counts));
             }
         });
+    }
+
+    /// [`Layout::entries_from`] on the thread's own copies of the chunk's list and scratch
+    /// headers, put back after: the threads' `Vec` headers sit side by side in one cache
+    /// line, and each entry written updates its list's length, so on the shared headers the
+    /// threads took the line from each other at every entry (a third of the listing's time
+    /// on two threads). And the chunk's entries counted per list in `counts`, on the same
+    /// thread, while they are in its cache.
+    fn entries_from_owned(
+        &self,
+        sources: &[GpuWakeSource],
+        lists: &mut Vec<u32>,
+        listed_per_source: &mut [u32],
+        scratch: &mut Distances,
+        counts: &mut Vec<u32>,
+    ) {
+        let (mut own_lists, mut own_scratch) = (std::mem::take(lists), std::mem::take(scratch));
+        self.entries_from(sources, &mut own_lists, listed_per_source, &mut own_scratch);
+        counts.resize(self.levels_in.len() * self.lists_per_bin() as usize, 0);
+        let counted = counts.as_mut_slice();
+        for &list in &own_lists {
+            counted[list as usize] += 1;
+        }
+        (*lists, *scratch) = (own_lists, own_scratch);
     }
 
     /// [`Layout::entries`] of `sources`: their lists appended to `lists`, each source's count
@@ -117,13 +149,15 @@ impl Layout {
     /// The squared distances are separable: a bin's nearest (and farthest) squared distance
     /// is its column's plus its row's, so each column's and row's are worked out once per
     /// source. Along a row the nearest and the farthest squared distances only fall up to one
-    /// column and only grow past it, so the columns within a radius are one run: a row
-    /// walks only the columns within the larger of the cull and foam radii, and within
-    /// those, where the whole bin lies inside the source's least inner radius of the row's
-    /// levels (no level lists it), only the ones its foam reaches (`Run::within`, each run's
-    /// ends moved from the last row's). Every comparison is the one of a test per bin, on the
-    /// same f64 values; a source's entries come out in another order than bin by bin, which
-    /// the lists do not see (each holds a source at most once, in the sources' order).
+    /// column and only grow past it, so the columns within a radius are one run, and so are
+    /// the columns wholly inside a level's inner radius (`Run::within`, each run's ends moved
+    /// from the last row's). A row lists the source in whole runs: in the foam lists of the
+    /// columns its foam reaches, and in level l's lists of the columns its cull circle
+    /// reaches less those wholly inside its inner radius for level l, each intersected with
+    /// the row's runs of bins that have the list (`SlotRuns`). Every comparison is the one of
+    /// a test per bin, on the same f64 values (`reference.rs`); a source's entries come out
+    /// in another order than bin by bin, which the lists do not see (each holds a source at
+    /// most once, in the sources' order).
     fn entries_from(
         &self,
         sources: &[GpuWakeSource],
@@ -133,9 +167,16 @@ impl Layout {
     ) {
         let margin = f64::from(self.margin);
         for (n, s) in sources.iter().enumerate() {
-            let Some([i0, i1, j0, j1]) = self.span(s) else {
+            // Only the part of its span where some level lands: no list elsewhere.
+            let (Some([i0, i1, j0, j1]), Some([l0, l1, m0, m1])) =
+                (self.span(s), self.slot_runs.landing())
+            else {
                 continue;
             };
+            let ([i0, i1], [j0, j1]) = ([i0.max(l0), i1.min(l1)], [j0.max(m0), j1.min(m1)]);
+            if i0 > i1 || j0 > j1 {
+                continue;
+            }
             let cull = f64::from(s.cull_r2.max(0.0)).sqrt() + margin;
             let foam = f64::from(foam_radius2(s)).sqrt() + margin;
             let mut radii = Radii2 {
@@ -143,7 +184,7 @@ impl Layout {
                 foam: foam * foam,
                 inner: [0.0; MAX_LEVELS],
             };
-            // Beyond both radii a bin lists nothing. Neither this nor a nearest distance is
+            // Beyond both radii a row lists nothing. Neither this nor a nearest distance is
             // NaN (`f64::max` drops a NaN operand, and `cull2` is of a NaN-free radius).
             let either2 = radii.cull.max(radii.foam);
             for (r2, &spacing) in radii.inner.iter_mut().zip(&self.spacing) {
@@ -151,90 +192,71 @@ impl Layout {
             }
             let (x, z) = (f64::from(s.pos[0]), f64::from(s.pos[1]));
             columns.of(self, x, self.lo[0], i0..=i1);
-            let mut reach = Run::new(columns.near_least);
-            let mut hole = Run::new(columns.far_least);
             let mut foamed = Run::new(columns.near_least);
+            let mut culled = Run::new(columns.near_least);
+            let mut holes = [Run::new(columns.far_least); MAX_LEVELS];
             let before = lists.len();
             for j in j0..=j1 {
                 let [near, far] = self.distances(z, self.lo[1], j);
                 let row = Row {
-                    bin: j * self.nx + i0,
+                    j,
+                    i0: i0 as usize,
                     near2: near * near,
                     far2: far * far,
                 };
-                if row.near2 > either2 {
+                // Beyond both radii, or no level lands in the row's columns of the span.
+                let landing = self.slot_runs.of_row(j, 0);
+                let (Some(&[first, _]), Some(&[_, end])) = (landing.first(), landing.last()) else {
+                    continue;
+                };
+                if row.near2 > either2 || end <= i0 || first > i1 {
                     continue;
                 }
-                // The row's columns where some level lands, as offsets into the span.
-                let [first, end] = self.rows[j as usize];
-                let (first, end) = (first.max(i0) - i0, end.min(i1 + 1).saturating_sub(i0));
-                let [a0, a1] = reach.within(&columns.near2, row.near2, either2, false);
-                let (a0, a1) = (a0.max(first as usize), a1.min(end as usize));
-                if a0 >= a1 {
+                let foamed = foamed.within(&columns.near2, row.near2, radii.foam, false);
+                self.list_runs(&row, 0, &[foamed], lists);
+                let [c0, c1] = culled.within(&columns.near2, row.near2, radii.cull, false);
+                if c0 >= c1 {
                     continue;
                 }
-                // No level lists a bin wholly inside the least inner radius of the row's
-                // levels; such a bin lists the source only when its foam reaches it.
-                let mut least_inner2 = f64::INFINITY;
-                let mut row_levels = self.row_levels[j as usize];
-                while row_levels != 0 {
-                    let l = row_levels.trailing_zeros() as usize;
-                    least_inner2 = least_inner2.min(radii.inner[l]);
-                    row_levels &= row_levels - 1;
-                }
-                let [h0, h1] = hole.within(&columns.far2, row.far2, least_inner2, true);
-                let (h0, h1) = (h0.clamp(a0, a1), h1.clamp(a0, a1));
-                self.list_bins(&radii, columns, &row, [a0, h0], lists);
-                self.list_bins(&radii, columns, &row, [h1.max(h0), a1], lists);
-                if h0 < h1 {
-                    let [f0, f1] = foamed.within(&columns.near2, row.near2, radii.foam, false);
-                    let per_bin = self.lists_per_bin();
-                    for c in f0.max(h0)..f1.min(h1) {
-                        let b = row.bin + c as u32;
-                        if self.levels_in[b as usize] != 0 {
-                            lists.push(b * per_bin);
-                        }
-                    }
+                // Only the levels that land in the columns the cull circle reaches (one to
+                // three of the ten: a clip-map level lands in a ring).
+                let first_bin = (j * self.nx) as usize + row.i0;
+                let mut levels = self.levels_in[first_bin + c0..first_bin + c1]
+                    .iter()
+                    .fold(0, |m, &l| m | l);
+                while levels != 0 {
+                    let l = levels.trailing_zeros();
+                    levels &= levels - 1;
+                    let inner = radii.inner[l as usize];
+                    let [h0, h1] = holes[l as usize].within(&columns.far2, row.far2, inner, true);
+                    // The culled columns less the hole (both runs, the hole around the
+                    // farthest distances' valley): a left and a right run, one of them empty
+                    // when the hole is.
+                    let outside = [[c0, c1.min(h0)], [c0.max(h1), c1]];
+                    self.list_runs(&row, 1 + l, &outside, lists);
                 }
             }
             listed_per_source[n] = (lists.len() - before) as u32;
         }
     }
 
-    /// The lists of the bins of columns [from, to) of `row` (offsets into the source's span)
-    /// that hold the source, appended to `lists`: each bin tested on its own.
-    fn list_bins(
-        &self,
-        radii: &Radii2,
-        columns: &Distances,
-        row: &Row,
-        [from, to]: [usize; 2],
-        lists: &mut Vec<u32>,
-    ) {
+    /// The source listed in list `slot` of the bins of `row` in the columns `parts` (runs of
+    /// offsets into the source's span) whose bins have that list, appended to `lists`.
+    fn list_runs(&self, row: &Row, slot: u32, parts: &[[usize; 2]], lists: &mut Vec<u32>) {
         let per_bin = self.lists_per_bin();
-        for c in from..to {
-            let b = row.bin + c as u32;
-            let levels_in = self.levels_in[b as usize];
-            if levels_in == 0 {
+        let first_bin = row.j * self.nx;
+        let runs = self.slot_runs.of_row(row.j, slot);
+        for &[c0, c1] in parts {
+            let (from, to) = ((c0 + row.i0) as u32, (c1 + row.i0) as u32);
+            if from >= to {
                 continue;
             }
-            let near2 = columns.near2[c] + row.near2;
-            let head = b * per_bin;
-            if near2 <= radii.foam {
-                lists.push(head);
-            }
-            if near2 > radii.cull {
-                continue;
-            }
-            // Only the levels that land here (a bin has one or two of them).
-            let far2 = columns.far2[c] + row.far2;
-            let mut levels = levels_in;
-            while levels != 0 {
-                let l = levels.trailing_zeros();
-                if far2 >= radii.inner[l as usize] {
-                    lists.push(head + 1 + l);
-                }
-                levels &= levels - 1;
+            // The row's runs are in order, and where few vertices land (a coarse level over
+            // small bins) a row has dozens: only those that overlap [from, to).
+            let first = runs.partition_point(|&[_, end]| end <= from);
+            for &[r0, r1] in runs[first..].iter().take_while(|&&[r0, _]| r0 < to) {
+                let bins = first_bin + from.max(r0)..first_bin + to.min(r1);
+                lists.extend(bins.map(|b| b * per_bin + slot));
             }
         }
     }
@@ -248,10 +270,11 @@ struct Radii2 {
     inner: [f64; MAX_LEVELS],
 }
 
-/// A row of a source's span: its first column's bin and its squared distances to the
-/// source along z, m² (the nearest, and the farthest grown by the margin).
+/// A row `j` of a source's span, whose first column is `i0`, and its squared distances to
+/// the source along z, m² (the nearest, and the farthest grown by the margin).
 struct Row {
-    bin: u32,
+    j: u32,
+    i0: usize,
     near2: f64,
     far2: f64,
 }
@@ -275,115 +298,4 @@ impl Distances {
 /// Where `v` is least (the first such place; 0 when empty).
 fn least(v: &[f64]) -> usize {
     (0..v.len()).fold(0, |m, i| if v[i] < v[m] { i } else { m })
-}
-
-/// A run of columns [start, end) along a row within a radius, tracked from row to row.
-#[derive(Debug, Clone, Copy)]
-struct Run {
-    /// Where the distances are least: inside every run that is not empty.
-    valley: usize,
-    ends: [usize; 2],
-}
-
-impl Run {
-    fn new(valley: usize) -> Run {
-        Run {
-            valley,
-            ends: [valley, valley + 1],
-        }
-    }
-
-    /// The columns c with d[c] + `offset` ≤ `limit` (< where `strict`), where `d` falls up
-    /// to `self.valley` and grows past it (a bin's squared distance to the source along the
-    /// row): one run [start, end) around the valley (a rounded sum grows with its operand),
-    /// or an empty one. Each end moves from where the last row's was, so a source's rows
-    /// together take a few turns a column, not one a bin.
-    fn within(&mut self, d: &[f64], offset: f64, limit: f64, strict: bool) -> [usize; 2] {
-        // A function, not a closure: the debug build (opt-level 1) calls a closure here.
-        #[inline(always)]
-        fn holds(d: f64, offset: f64, limit: f64, strict: bool) -> bool {
-            let v = d + offset;
-            if strict { v < limit } else { v <= limit }
-        }
-        let v = self.valley;
-        if v >= d.len() || !holds(d[v], offset, limit, strict) {
-            return [v, v];
-        }
-        // d[start..=v] all inside (d falls to v), d[start − 1] not.
-        let mut start = self.ends[0].min(v);
-        if holds(d[start], offset, limit, strict) {
-            while start > 0 && holds(d[start - 1], offset, limit, strict) {
-                start -= 1;
-            }
-        } else {
-            while !holds(d[start], offset, limit, strict) {
-                start += 1;
-            }
-        }
-        // d[v..end] all inside (d grows from v), d[end] not.
-        let mut end = self.ends[1].clamp(v + 1, d.len());
-        if holds(d[end - 1], offset, limit, strict) {
-            while end < d.len() && holds(d[end], offset, limit, strict) {
-                end += 1;
-            }
-        } else {
-            while !holds(d[end - 1], offset, limit, strict) {
-                end -= 1;
-            }
-        }
-        self.ends = [start, end];
-        self.ends
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `Run::within` finds the same columns as testing each one, on seeded sequences that
-    /// fall to a valley and grow past it (with flat stretches), for thresholds met nowhere,
-    /// everywhere and in between, with the last row's run as the start anywhere.
-    #[test]
-    fn a_run_is_the_columns_a_test_per_column_finds() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
-        for case in 0..2000 {
-            let n = 1 + (next() % 40) as usize;
-            let valley = (next() % n as u64) as usize;
-            // Falls (steps of 0, 1 or 2) to the valley, grows past it.
-            let mut d = vec![0.0f64; n];
-            for c in (0..valley).rev() {
-                d[c] = d[c + 1] + (next() % 3) as f64;
-            }
-            for c in valley + 1..n {
-                d[c] = d[c - 1] + (next() % 3) as f64;
-            }
-            let mut run = Run::new(valley);
-            for row in 0..12 {
-                let limit = (next() % 50) as f64 - 3.0;
-                let offset = (next() % 4) as f64;
-                let strict = next() & 1 == 0;
-                run.ends = [
-                    (next() % (n as u64 + 1)) as usize,
-                    (next() % (n as u64 + 2)) as usize,
-                ];
-                if row % 3 == 0 {
-                    run.ends = [valley, valley + 1];
-                }
-                let [a, b] = run.within(&d, offset, limit, strict);
-                let inside = |x: f64| if strict { x < limit } else { x <= limit };
-                let want: Vec<usize> = (0..n).filter(|&c| inside(d[c] + offset)).collect();
-                let got: Vec<usize> = (a..b).collect();
-                assert_eq!(
-                    got, want,
-                    "case {case} row {row}: {d:?} + {offset} ≤ {limit}"
-                );
-            }
-        }
-    }
 }
