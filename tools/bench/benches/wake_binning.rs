@@ -1,4 +1,6 @@
-//! Criterion bench of the CPU's per-frame wake work (`render::renderer::bin_wakes`) on the
+//! Criterion bench of the CPU's per-frame plan (`frame_plan TIER`: `FrameContext::new`, the
+//! clip-map chosen for the view, planned, built and culled, the waves' phases reduced, the
+//! frame uniform) and wake work (`render::renderer::bin_wakes`) on the
 //! sample race's busiest frame (t = 600 s, 2,033 sources; built as `regatta bench --only
 //! budget-model` builds it: `world::scene_at`, the tier's wake and mesh error, the OPPO A54's
 //! screen at the tier's render scale), whole and in its three parts: the sources alive and in
@@ -33,7 +35,18 @@ fn bench(c: &mut Criterion) {
         // The size the renderer draws at (`Renderer::render`: the screen at the render scale).
         let scale = render.options.render_scale;
         let drawn = SCREEN.map(|v| ((f64::from(v) * scale).round() as u32).max(1));
-        let mut frame = FrameContext::new(&scene, drawn, render.options.error_px);
+        let error_px = render.options.error_px;
+        c.bench_function(&format!("frame_plan {tier}"), |b| {
+            b.iter(|| {
+                black_box(
+                    FrameContext::new(&scene, drawn, error_px)
+                        .mesh
+                        .vertices
+                        .len(),
+                )
+            })
+        });
+        let mut frame = FrameContext::new(&scene, drawn, error_px);
         let budget = render.wake_source_budget;
         // One binner for every frame, each frame's bins handed back, as the renderer does.
         let mut binner = WakeBinner::default();
