@@ -20,12 +20,13 @@ fn fx_on(bit: u32) -> bool {
 }
 
 // The water pass's vertex output and what the effects need of each vertex: the water's own
-// five varyings (with the slope sums of the sea's longest waves, render::vertex_slopes) and
-// the flow's sample points. (Before the thirteenth session a fifth output was avoided: in
-// about a third of the bench's runs on lavapipe one case's pass then ran up to 1.5× slower
-// for the whole run, a per-process effect whose cause was not found; docs/quality.md has the
-// timings since. On a tile-based phone each varying is written per vertex and read per pixel:
-// 40 bytes a vertex more than four outputs, which the budget model does not count.)
+// five interpolated values (with the slope sums of the sea's longest waves,
+// render::vertex_slopes) and the flow's sample points, six where the twelfth session had three.
+// (A fourth was avoided before: in about a third of the bench's runs on lavapipe one case's
+// pass then ran up to 1.5× slower for the whole run, a per-process effect whose cause was not
+// found; docs/quality.md, step 25, has timings since that do not show it. On a tile-based
+// phone each value is written per vertex and read per pixel: 40 bytes a vertex more, which
+// the budget model does not count.)
 struct ArVertexOut {
     @builtin(position) clip: vec4<f32>,
     // xy: the rest point (local m); zw: the current around the marks (m/s, flow map), a
