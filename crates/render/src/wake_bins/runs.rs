@@ -153,18 +153,22 @@ impl Run {
 mod tests {
     use super::*;
 
+    /// A fixed-seed xorshift64 stream.
+    fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        }
+    }
+
     /// `Run::within` finds the same columns as testing each one, on seeded sequences that
     /// fall to a valley and grow past it (with flat stretches), for thresholds met nowhere,
     /// everywhere and in between, with the last row's run as the start anywhere.
     #[test]
     fn a_run_is_the_columns_a_test_per_column_finds() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = xorshift(0x2545_f491_4f6c_dd1du64);
         for case in 0..2000 {
             let n = 1 + (next() % 40) as usize;
             let valley = (next() % n as u64) as usize;
@@ -205,13 +209,7 @@ mod tests {
     /// level masks (runs of each length, empty rows, full rows, grids with no level).
     #[test]
     fn slot_runs_are_the_columns_with_the_list() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15u64);
         let mut empty_grids = 0;
         for case in 0..200 {
             let (nx, nz, levels) = (
@@ -223,7 +221,7 @@ mod tests {
             let mut mask = 0u32;
             let levels_in: Vec<u32> = (0..nx * nz)
                 .map(|_| {
-                    if next() % 4 == 0 {
+                    if next().is_multiple_of(4) {
                         mask = (next() as u32) & ((1 << levels) - 1);
                     }
                     mask
