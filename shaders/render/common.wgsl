@@ -130,6 +130,9 @@ struct WaveSums {
     next: u32,
 }
 
+// The sums of no wave: the flat surface's frame (∂x/∂x = ∂z/∂z = 1), the next wave the first.
+const NO_WAVES: WaveSums = WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u);
+
 // The band-limited sums of every wave at rest point p for a pixel `footprint` metres across
 // (0: no band limit). Band-limit: a wave whose phase changes by more than π/2 across the
 // footprint (wavelength under four footprints) aliases into moiré; it fades out from
@@ -141,7 +144,7 @@ struct WaveSums {
 // fade is exactly 1 below π/4, and every wave past π/2 adds exactly 0 slope), to the
 // rounding of the variance's tail.
 fn surface_frame(p: vec2<f32>, n: u32, footprint: f32) -> SurfaceFrame {
-    return surface_frame_from(p, n, footprint, WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u));
+    return surface_frame_from(p, n, footprint, NO_WAVES);
 }
 
 // surface_frame with the sums of the waves before `start.next` already in `start` (whole, no
@@ -218,7 +221,7 @@ fn vertex_wave_count(level: u32) -> u32 {
 // at its rest point p; `next`: the first wave the pixels sum.
 fn vertex_slope_sums(p: vec2<f32>, level: u32) -> WaveSums {
     let n = vertex_wave_count(level);
-    var s = WaveSums(1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0u);
+    var s = NO_WAVES;
     for (var i = 0u; i < n; i = i + 1u) {
         let w = waves[i];
         let theta = wave_phase(w, p);

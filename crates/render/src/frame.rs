@@ -7,8 +7,6 @@
 //! ([`Pass::prepare`]) and draws into its own render pass ([`Pass::draw`]); the renderer
 //! records every decision, the triangles and the GPU time per pass in a [`FrameReport`].
 
-use std::f64::consts::SQRT_2;
-
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use serde::Serialize;
 
@@ -129,17 +127,13 @@ impl<'a> FrameContext<'a> {
             }
         }
         let eye = cam.eye - DVec3::new(origin.x, 0.0, origin.y);
-        // Each level's widest pixel: from its square's farthest corner, for an eye above
-        // the highest crest (the planner's height).
-        let height = (cam.eye.y.abs() - max_displacement).max(0.5);
-        let footprints: Vec<f64> = (0..levels.len())
-            .map(|l| {
-                let centre = clipmap.centre(l as u32, eye_xz);
-                let across = (centre - eye_xz).length() + levels[l].half_extent * SQRT_2;
-                let distance = across.hypot(cam.eye.y.abs() + max_displacement);
-                crate::vertex_slopes::footprint_bound(&error_target, distance, height)
-            })
-            .collect();
+        let footprints = crate::vertex_slopes::level_footprints(
+            &clipmap,
+            &levels,
+            &error_target,
+            cam.eye,
+            max_displacement,
+        );
         let vertex_waves =
             crate::vertex_slopes::vertex_waves(&clipmap, &levels, &footprints, &waves);
         let uniform = FrameUniform {

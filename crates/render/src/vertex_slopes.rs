@@ -25,7 +25,7 @@
 //!
 //! **The pixel filter.** A pixel fades a wave from k·footprint = π/4 (the footprint: the pixel's
 //! size on the rest plane), but adds the waves its vertices summed whole. So a level takes a
-//! wave only where no pixel of the level would fade it: k·[`footprint_bound`] < π/4, the bound
+//! wave only where no pixel of the level would fade it: k·[`level_footprints`] < π/4, the bound
 //! being the widest pixel of a flat sea at the level's farthest corner seen from above the
 //! highest crest. Facets that the waves turn away from the eye span more than a flat sea's
 //! pixel; in the tests' three views 0.004–0.3 % of the water's fragments are such facets
@@ -35,9 +35,11 @@
 //! A54 `ultra` frame a pixel sums 1.8 waves fewer on average (3 in the nearest levels), a
 //! vertex about one more (docs/quality.md).
 
-use glam::DVec2;
+use std::f64::consts::SQRT_2;
 
-use crate::clipmap::{ClipMapConfig, ErrorTarget, LevelPlan, extent_along};
+use glam::{DVec2, DVec3};
+
+use crate::clipmap::{ClipMapConfig, ErrorTarget, LevelPlan, extent_along, height_over_crests};
 
 /// The most each of the five sums a pixel forms may err by coming from its triangle's
 /// vertices instead of from its own rest point (see the module docs).
@@ -55,7 +57,7 @@ pub struct VertexWaves {
 
 /// Each level's [`VertexWaves`] for the frame's `waves` (sorted by wavenumber, longest first)
 /// on `clipmap`'s lattice, where level l's pixels are at most `footprints[l]` metres across
-/// on the rest plane ([`footprint_bound`]): a level takes a wave only while the pixel filter
+/// on the rest plane ([`level_footprints`]): a level takes a wave only while the pixel filter
 /// leaves it whole in every pixel (k·footprint < π/4) and the sums' bound holds.
 pub fn vertex_waves(
     clipmap: &ClipMapConfig,
@@ -95,12 +97,35 @@ pub fn vertex_waves(
         .collect()
 }
 
+/// Each level's widest pixel on the rest plane, metres, for an eye at world `eye` over a sea
+/// whose waves lift and move it at most `lift` metres: at the level's farthest point, its
+/// square's corner pushed out by `lift`, seen from above the highest crest
+/// ([`footprint_bound`]).
+pub fn level_footprints(
+    clipmap: &ClipMapConfig,
+    levels: &[LevelPlan],
+    target: &ErrorTarget,
+    eye: DVec3,
+    lift: f64,
+) -> Vec<f64> {
+    let eye_xz = DVec2::new(eye.x, eye.z);
+    let height = height_over_crests(eye.y, lift);
+    (0..levels.len())
+        .map(|l| {
+            let centre = clipmap.centre(l as u32, eye_xz);
+            let across = (centre - eye_xz).length() + levels[l].half_extent * SQRT_2;
+            let distance = across.hypot(eye.y.abs() + lift);
+            footprint_bound(target, distance, height)
+        })
+        .collect()
+}
+
 /// The most a pixel of a level whose farthest point is `distance` metres from an eye `height`
 /// metres above the highest crest spans on the rest plane, metres: a pixel of `target` spans
 /// metres_per_pixel(d) across the view at distance d and d/h times that along it, where the
 /// view meets a flat sea at a grazing angle whose sine is h/d. Facets that the waves turn
 /// away from the eye span more (the tests count them).
-pub fn footprint_bound(target: &ErrorTarget, distance: f64, height: f64) -> f64 {
+fn footprint_bound(target: &ErrorTarget, distance: f64, height: f64) -> f64 {
     target.metres_per_pixel(distance) * distance / height.max(1e-9)
 }
 

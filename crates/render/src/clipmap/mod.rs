@@ -64,7 +64,7 @@ pub use coverage::ScreenCoverage;
 pub(crate) use displacement::vertex_displacement;
 pub use mesh::{ClipMesh, ClipVertex};
 pub use plan::BASE_LADDER_STEPS;
-pub(crate) use plan::extent_along;
+pub(crate) use plan::{extent_along, height_over_crests};
 pub use tiles::{Culling, LevelStats};
 
 /// Cells per side of a culling tile.

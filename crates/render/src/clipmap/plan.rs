@@ -32,7 +32,7 @@ impl ClipMapConfig {
         finer: Option<&LevelPlan>,
     ) -> LevelPlan {
         let lift: f64 = sea.waves.iter().map(|w| w.amplitude()).sum();
-        let h = (eye_height.abs() - lift).max(0.5);
+        let h = height_over_crests(eye_height, lift);
         let cell = self.cell(l);
         let nearest = if l == 0 {
             h
@@ -199,6 +199,14 @@ impl ClipMapConfig {
             }
         }
     }
+}
+
+/// How far an eye `eye_height` metres from the rest level is above the highest crest of a sea
+/// whose waves lift it at most `lift` metres (Σ amplitudes), at least 0.5 m: the height the
+/// planner sees the water from (a level's nearest point; a pixel's grazing angle in
+/// `vertex_slopes`).
+pub(crate) fn height_over_crests(eye_height: f64, lift: f64) -> f64 {
+    (eye_height.abs() - lift).max(0.5)
 }
 
 /// Ladders of base cell sizes that [`ClipMapConfig::for_view`] tries: s₀ = 2^(e + i/steps).
