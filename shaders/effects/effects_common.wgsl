@@ -84,10 +84,12 @@ fn table_uv(xz: vec2<f32>) -> vec3<f32> {
     return select(uv, vec3<f32>(0.5, 0.5, 0.0), h.z <= 0.0);
 }
 
-// 1 inside the image, falling to 0 at EDGE_FADE outside it (effects::refraction::edge_weight).
+// 1 inside the image, falling to 0 at EDGE_FADE outside it by the max-norm distance to the
+// image (effects::refraction::edge_weight). Inside, both components of `outside` are negative
+// and the clamp makes the weight 1.
 fn edge_weight(uv: vec2<f32>) -> f32 {
-    let outside = max(max(-uv, uv - vec2<f32>(1.0)), vec2<f32>(0.0));
-    return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);
+    let outside = max(-uv, uv - vec2<f32>(1.0));
+    return clamp(1.0 - max(outside.x, outside.y) / EDGE_FADE, 0.0, 1.0);
 }
 
 // Linear RGB of the camera image at uv, filtered by the sampler, which decodes the sRGB
