@@ -32,11 +32,17 @@ struct Effects {
     flow_b: vec4<f32>,
     // Far current x, z (m/s), mark radius (m), detail tile size (m).
     current: vec4<f32>,
-    // y = marks; x, z, w unused (which effects run is each pipeline's constant, FX_MASK).
+    // y = marks; z = the cover's vertices (0: none); x, w unused (which effects run is each
+    // pipeline's constant, FX_MASK).
     flags: vec4<u32>,
     marks: array<vec4<f32>, 8>,
     // The sea's water over the table (water_look.wgsl).
     water: WaterOptics,
+    // The screen polygon the water certainly covers (effects::passes::cover), NDC, counter-
+    // clockwise, two vertices a vec4: the background pass draws around it.
+    cover: array<vec4<f32>, 10>,
+    // Its centroid (xy) and the scale (z) about it at which its copy holds the screen.
+    cover_shape: vec4<f32>,
 }
 
 @group(2) @binding(0) var<uniform> fx: Effects;

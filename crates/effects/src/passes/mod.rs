@@ -20,6 +20,7 @@
 
 mod background;
 mod config;
+mod cover;
 mod pipelines;
 mod scissor;
 mod shared;
