@@ -18,10 +18,19 @@ fn folder_with_regatta(name: &str) -> PathBuf {
 }
 
 fn run(dir: &Path, args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(dir.join("regatta"))
-        .args(args)
-        .output()
-        .expect("run the copied regatta");
+    // A copy just written may be refused for a moment with ETXTBSY ("text file busy"): a
+    // process another test thread forked at that moment holds the file's write descriptor
+    // until it execs. Try again a few times (Linux's known fork/exec race, not the program).
+    let mut tries = 0;
+    let o = loop {
+        match Command::new(dir.join("regatta")).args(args).output() {
+            Err(e) if e.kind() == std::io::ErrorKind::ExecutableFileBusy && tries < 50 => {
+                tries += 1;
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            }
+            other => break other.expect("run the copied regatta"),
+        }
+    };
     (
         o.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&o.stdout).into_owned(),
