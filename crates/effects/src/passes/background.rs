@@ -76,6 +76,7 @@ impl BackgroundPass {
                     fragment: "fs_main",
                     depth_write: false,
                     depth_compare: wgpu::CompareFunction::LessEqual,
+                    topology: wgpu::PrimitiveTopology::TriangleList,
                 },
             ),
             shared,

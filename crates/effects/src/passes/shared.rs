@@ -67,14 +67,13 @@ pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
         .filter(|b| in_view(b.position, b.length))
         .count()
         + s.marks.iter().filter(|m| in_view(m.position, 2.0)).count();
-    let px = |v: u32| (f64::from(v) * cfg.reflection_fraction).round() as u32;
     EffectFrame {
         requested: cfg.effects,
         camera_frame: true,
         water_on_screen: water,
         camera_above_water: s.camera.eye.y > 0.0,
         reflectors_in_view: reflectors,
-        reflection_texture_px: [px(frame.size[0]), px(frame.size[1])],
+        reflection_texture_px: reflection_px(frame.size, cfg),
         water_over_table: water,
         sun_elevation: s.sun.y.clamp(-1.0, 1.0).asin(),
         calm_sea: s.sea.waves.is_empty(),
@@ -88,6 +87,12 @@ pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
         camera_still: false,
         previous_frame_reusable: false,
     }
+}
+
+/// The planar reflection texture's size for a target of `size` pixels: the configured
+/// fraction of each side, at least 1.
+pub(crate) fn reflection_px(size: [u32; 2], cfg: &ArConfig) -> [u32; 2] {
+    size.map(|v| ((f64::from(v) * cfg.reflection_fraction).round() as u32).max(1))
 }
 
 /// Resources shared by the effect passes.
@@ -378,6 +383,7 @@ impl Shared {
         let region = self.caustic_region(frame);
         let [a, b] = flow_phases(s.t, self.cfg.flow_period, DEFAULT_JUMP);
         let water = self.cfg.water.gpu_optics(self.cfg.table_depth);
+        let room_grid = crate::reflection::room_grid(reflection_px(frame.size, &self.cfg));
         let mut marks = [[0.0f32; 4]; 8];
         let mut near: Vec<DVec2> = s.marks.iter().map(|m| m.position - o).collect();
         let target = DVec2::new(s.camera.target.x, s.camera.target.z) - o;
@@ -411,7 +417,7 @@ impl Shared {
                 f(self.cfg.mark_radius),
                 f(self.cfg.detail_tile),
             ],
-            flags: [0, near.len().min(8) as u32, 0, 0],
+            flags: [0, near.len().min(8) as u32, room_grid[0], room_grid[1]],
             marks,
             water,
         }
