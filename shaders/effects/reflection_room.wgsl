@@ -59,13 +59,19 @@ fn sky_colour_texel(dir: vec3<f32>) -> vec3<f32> {
     return sky_gradient(dir) + SUN_COLOUR * sun * frame.sun.w;
 }
 
-// The ray through an NDC point of the texture as (far.xyz − eye·far.w, far.w), far =
-// inv_view_proj·(ndc, ½, 1): the ray's direction is that of (far.xyz − eye·far.w)·far.w, and
-// both parts are affine in ndc, so interpolated linearly across the screen (w = 1 at every
-// vertex) they stay exact and a texel only normalises.
-fn room_ray(ndc: vec2<f32>) -> vec4<f32> {
+// The direction of the ray through an NDC point of the texture: far.xyz − eye·far.w, far =
+// inv_view_proj·(ndc, ½, 1). That is w·(X − eye) for the point X = far.xyz / far.w, and it
+// points the way the view looks wherever X lies: the oblique near plane changes only the
+// projection's depth row, so w is the point's depth in front of the eye (> 0 in front) and
+// changes sign exactly where X passes behind the eye. It is affine in ndc, so interpolated
+// linearly across the screen (w = 1 at every vertex) it stays exact and a texel only
+// normalises. (It was multiplied by far.w once more, meant to divide out w's sign: that
+// turned the rays of every texel whose X lay behind the eye, a band of the texture across the
+// far water in the demo view, so those texels mirrored the sky below the horizon, not the
+// room: effects::reflection::grid's room_ray test.)
+fn room_ray(ndc: vec2<f32>) -> vec3<f32> {
     let far = frame.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0);
-    return vec4<f32>(far.xyz - frame.eye.xyz * far.w, far.w);
+    return far.xyz - frame.eye.xyz * far.w;
 }
 
 // The camera-image point of the room the unit reflected direction r meets, homogeneous: (u w,
@@ -92,7 +98,7 @@ fn room_image_point(r: vec3<f32>) -> vec3<f32> {
 struct RoomOut {
     @builtin(position) clip: vec4<f32>,
     // room_ray, for the sky at each texel.
-    @location(0) ray_w: vec4<f32>,
+    @location(0) ray: vec3<f32>,
     // room_image_point at the cell corners.
     @location(1) image: vec3<f32>,
 }
@@ -102,11 +108,11 @@ struct RoomOut {
 fn vs_main(@builtin(vertex_index) i: u32, @builtin(instance_index) row: u32) -> RoomOut {
     let corner = vec2<f32>(vec2<u32>(i >> 1u, row + (i & 1u))) / vec2<f32>(fx.flags.zw);
     let ndc = vec2<f32>(2.0 * corner.x - 1.0, 1.0 - 2.0 * corner.y);
-    let ray_w = room_ray(ndc);
+    let ray = room_ray(ndc);
     var out: RoomOut;
     out.clip = vec4<f32>(ndc, 1.0, 1.0);
-    out.ray_w = ray_w;
-    out.image = room_image_point(normalize(ray_w.xyz * ray_w.w));
+    out.ray = ray;
+    out.image = room_image_point(normalize(ray));
     return out;
 }
 
@@ -115,7 +121,7 @@ fn vs_main(@builtin(vertex_index) i: u32, @builtin(instance_index) row: u32) -> 
 // the camera sees the point, over the sky and the sun.
 @fragment
 fn fs_main(in: RoomOut) -> @location(0) vec4<f32> {
-    let r = normalize(in.ray_w.xyz * in.ray_w.w);
+    let r = normalize(in.ray);
     let seen = in.image.z > 0.0;
     let uv = select(vec2<f32>(0.5), in.image.xy / in.image.z, seen);
     let w = select(0.0, edge_weight(uv), seen);

@@ -18,7 +18,7 @@ use super::refraction::edge_weight;
 use render::optics::PinholeCamera;
 
 pub mod grid;
-pub use grid::{ROOM_CELL_TEXELS, room_grid, room_grid_vertices};
+pub use grid::{ROOM_CELL_TEXELS, room_cell_texels, room_grid, room_grid_vertices};
 
 /// The vertical ring the room's image stands on.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -33,14 +33,30 @@ use super::Ring;
 use crate::refraction::edge_weight;
 use render::optics::PinholeCamera;
 
-/// Texels per side of a cell of the reflected room's grid, at most: chosen by
+/// Texels per side of a cell of the reflected room's grid on a texture whose shorter side is
+/// [`ROOM_CELL_REFERENCE_SIDE`] or more (the OPPO A54's `ultra` texture, 360 × 800): chosen by
 /// [`interpolation_error`]'s measurement over [`phone_views`] (docs/effects.md, "Reflection").
 pub const ROOM_CELL_TEXELS: u32 = 8;
 
+/// The shorter side, texels, from which a cell is [`ROOM_CELL_TEXELS`] a side.
+pub const ROOM_CELL_REFERENCE_SIDE: u32 = 360;
+
+/// Texels per side of a cell on a texture of `texels`: [`ROOM_CELL_TEXELS`] scaled by the
+/// square root of its shorter side over [`ROOM_CELL_REFERENCE_SIDE`] (at least 1). The grid's
+/// error goes as the square of a cell's angle, a texel's footprint as its angle, so cells
+/// that shrink with the square root keep the error in texels of the texture's own footprint
+/// at the reference's (a fixed 8 texels over the 32 × 24 texture of a 128 × 96 test frame
+/// spans a quarter of the view and errs by several texels).
+pub fn room_cell_texels(texels: [u32; 2]) -> u32 {
+    let side = f64::from(texels[0].min(texels[1]).max(1));
+    let scaled = f64::from(ROOM_CELL_TEXELS) * (side / f64::from(ROOM_CELL_REFERENCE_SIDE)).sqrt();
+    (scaled.floor() as u32).clamp(1, ROOM_CELL_TEXELS)
+}
+
 /// The reflected room's grid over a texture of `texels` (width, height): columns and rows of
-/// cells, each at most [`ROOM_CELL_TEXELS`] a side (the cells split the texture evenly).
+/// cells, each at most [`room_cell_texels`] a side (the cells split the texture evenly).
 pub fn room_grid(texels: [u32; 2]) -> [u32; 2] {
-    grid_of(texels, ROOM_CELL_TEXELS)
+    grid_of(texels, room_cell_texels(texels))
 }
 
 fn grid_of(texels: [u32; 2], cell: u32) -> [u32; 2] {
@@ -67,6 +83,8 @@ pub struct RoomSample {
 /// physical camera whose image stands on it, and the water (play area) for the counts.
 #[derive(Debug, Clone)]
 pub struct RoomView {
+    /// The render camera.
+    pub render: render::Camera,
     pub eye: DVec3,
     forward: DVec3,
     right: DVec3,
@@ -94,6 +112,7 @@ impl RoomView {
         let right = forward.cross(cam.up).normalize();
         let up = right.cross(forward);
         RoomView {
+            render: *cam,
             eye: cam.eye,
             forward,
             right,
@@ -371,7 +390,12 @@ mod tests {
     #[test]
     fn the_grid_splits_the_texture_evenly_and_counts_its_strips() {
         assert_eq!(room_grid(TEXELS), [45, 100]);
-        assert_eq!(room_grid([361, 1]), [46, 1]);
+        // Smaller textures get smaller cells: √(24/360) × 8 = 2.07 texels.
+        assert_eq!(room_cell_texels([32, 24]), 2);
+        assert_eq!(room_grid([32, 24]), [16, 12]);
+        assert_eq!(room_cell_texels([180, 400]), 5);
+        assert_eq!(room_cell_texels([1440, 2880]), 8);
+        assert_eq!(room_grid([361, 1]), [361, 1]);
         // 100 strips of 46 column lines, two vertices each.
         assert_eq!(room_grid_vertices(TEXELS), 2 * 46 * 100);
     }
@@ -418,6 +442,17 @@ mod tests {
         assert!(chosen.uv_px < UV_BOUND_PX, "{chosen:?}");
         assert!(chosen.uv_texels < UV_BOUND_TEXELS, "{chosen:?}");
         assert!(chosen.weight < WEIGHT_BOUND, "{chosen:?}");
+        // Smaller textures of the same screen (180 × 400 and 90 × 200), their cells shrunk by
+        // room_cell_texels: within the same bound in texels of their own footprint.
+        for (texels, screen) in [([180, 400], SCREEN), ([90, 200], SCREEN)] {
+            let cell = room_cell_texels(texels);
+            let e = phone_views(24, screen)
+                .iter()
+                .map(|v| interpolation_error(v, texels, cell))
+                .fold(GridError::default(), GridError::max);
+            eprintln!("{texels:?}, cell {cell}: {e:?}");
+            assert!(e.uv_texels < UV_BOUND_TEXELS, "{texels:?}: {e:?}");
+        }
     }
 
     /// A grid of twice the cell errs about four times as much: the error is linear
