@@ -68,7 +68,7 @@ fn sky_colour_texel(dir: vec3<f32>) -> vec3<f32> {
 // normalises. (It was multiplied by far.w once more, meant to divide out w's sign: that
 // turned the rays of every texel whose X lay behind the eye, a band of the texture across the
 // far water in the demo view, so those texels mirrored the sky below the horizon, not the
-// room: effects::reflection::grid's room_ray test.)
+// room: the_room_ray_is_the_texels_mirrored_ray in effects' room_gpu_tests.rs.)
 fn room_ray(ndc: vec2<f32>) -> vec3<f32> {
     let far = frame.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0);
     return far.xyz - frame.eye.xyz * far.w;
