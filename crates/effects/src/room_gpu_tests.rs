@@ -96,9 +96,7 @@ impl Inputs {
     /// does both compute the same). `None` where a conforming GPU may decide a test either way
     /// or the per-texel room meets no ring point.
     fn image_point(&self, r: [Inexact; 3], vertex: bool) -> Option<Option<[Inexact; 3]>> {
-        let Some(rises) = r[1].above(1e-6) else {
-            return None;
-        };
+        let rises = r[1].above(1e-6)?;
         if !rises {
             // The vertex stage's horizon (r.y ≤ 0 decided here only from 10⁻⁶ down: between,
             // undecided) and the per-texel room's miss.

@@ -35,7 +35,8 @@ use render::optics::PinholeCamera;
 
 /// Texels per side of a cell of the reflected room's grid on a texture whose shorter side is
 /// [`ROOM_CELL_REFERENCE_SIDE`] or more (the OPPO A54's `ultra` texture, 360 × 800): chosen by
-/// [`interpolation_error`]'s measurement over [`phone_views`] (docs/effects.md, "Reflection").
+/// [`interpolation_error`]'s measurement over [`phone_views`] (docs/effects.md, "Reflection:
+/// the reflected room as a grid").
 pub const ROOM_CELL_TEXELS: u32 = 8;
 
 /// The shorter side, texels, from which a cell is [`ROOM_CELL_TEXELS`] a side.
@@ -383,6 +384,13 @@ pub fn phone_views(n: usize, screen: [u32; 2]) -> Vec<RoomView> {
 mod tests {
     use super::*;
 
+    /// The bound of [`ROOM_CELL_TEXELS`]'s grid over [`phone_views`] (24 views, the A54's
+    /// 360 × 800 texture): the measured maximum, rounded up (docs/effects.md, "Reflection:
+    /// the reflected room as a grid").
+    const UV_BOUND_PX: f64 = 2.0;
+    const UV_BOUND_TEXELS: f64 = 0.6;
+    const WEIGHT_BOUND: f64 = 0.02;
+
     /// The OPPO A54's screen and its `ultra` reflection texture (half of each side).
     const SCREEN: [u32; 2] = [720, 1600];
     const TEXELS: [u32; 2] = [360, 800];
@@ -471,12 +479,3 @@ mod tests {
         assert!((2.5..6.0).contains(&ratio), "{fine:?} {coarse:?}");
     }
 }
-
-/// The bound of [`ROOM_CELL_TEXELS`]'s grid over [`phone_views`] (24 views, the A54's 360×800
-/// texture): the measured maximum, rounded up (docs/effects.md, "Reflection").
-#[cfg(test)]
-const UV_BOUND_PX: f64 = 2.0;
-#[cfg(test)]
-const UV_BOUND_TEXELS: f64 = 0.6;
-#[cfg(test)]
-const WEIGHT_BOUND: f64 = 0.02;
