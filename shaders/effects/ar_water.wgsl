@@ -21,7 +21,8 @@ fn fx_on(bit: u32) -> bool {
 
 // The water pass's vertex output and what the effects need of each vertex: the water's own
 // five interpolated values (with the slope sums of the sea's longest waves,
-// render::vertex_slopes) and the flow's sample points, six where the twelfth session had three.
+// render::vertex_slopes), the flow's sample points and the straight-through table's map,
+// seven where the twelfth session had three.
 // (A fourth was avoided before: in about a third of the bench's runs on lavapipe one case's
 // pass then ran up to 1.5× slower for the whole run, a per-process effect whose cause was not
 // found; docs/quality.md, step 25, has timings since that do not show it. On a tile-based
@@ -41,6 +42,9 @@ struct ArVertexOut {
     // The flow's two sample points in the detail tile (flow_sample_points: affine in the
     // world point and the current, so interpolating them is forming them per pixel).
     @location(5) flow_points: vec4<f32>,
+    // The camera-image point of the table straight behind the pixel, homogeneous
+    // (straight_image_of_clip: the pixel's straight_image_at times its clip w).
+    @location(6) straight_h: vec3<f32>,
 }
 
 @vertex
@@ -60,6 +64,7 @@ fn vs_ar(v: VertexIn) -> ArVertexOut {
     }
     out.rest_current = vec4<f32>(w.rest, current);
     out.flow_points = flow_points;
+    out.straight_h = straight_image_of_clip(w.clip);
     return out;
 }
 
@@ -84,7 +89,9 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     if fx_on(FX_FLOWMAP) {
         tilt -= flow_slope(in.flow_points, in.rest_current.zw);
     }
-    let n = normalize(vec3<f32>(tilt.x, 1.0, tilt.y));
+    // normalize(tilt.x, 1, tilt.y) with its y written as the scale itself (no product by 1).
+    let unit = inverseSqrt(dot(tilt, tilt) + 1.0);
+    let n = vec3<f32>(tilt.x * unit, unit, tilt.y * unit);
     // The view entering the water: the refracted ray (xyz) and the Fresnel reflectance (w).
     let entry = water_entry(view, n);
     let r = entry.w;
@@ -97,17 +104,18 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
         reflected = sky_colour_rough(reflect_dir(view, n), sf.slope_variance);
     }
 
-    // The table under the water (q), straight through or refracted, and its colour and
-    // path length in the water (table.w). (One refraction per pixel, a tenth of its work; the
-    // straight-through point from the screen uv by a map formed on the CPU.)
-    var q: vec3<f32>;
+    // The table under the water (q: its x and z, the table plane's height known), straight
+    // through or refracted, and its colour and path length in the water (table.w). (One
+    // refraction per pixel, a tenth of its work; the straight-through point by a map formed on
+    // the CPU and carried by the vertices.)
+    var q: vec2<f32>;
     var table: vec4<f32>;
     if fx_on(FX_REFRACTION) {
-        table = refracted_table_along(p, view, screen_uv, vec4<f32>(entry.xyz, 1.0));
-        q = p + entry.xyz * table.w;
+        table = refracted_table_along(p, view, in.straight_h, vec4<f32>(entry.xyz, 1.0));
+        q = p.xz + entry.xz * table.w;
     } else {
-        let straight = straight_through(p, view, screen_uv);
-        q = p + view * straight.z;
+        let straight = straight_through(p, view, in.straight_h);
+        q = p.xz + view.xz * straight.z;
         table = vec4<f32>(sample_camera(straight.xy), straight.z);
     }
     var light = 1.0;
@@ -116,8 +124,9 @@ fn fs_ar(in: ArVertexOut) -> @location(0) vec4<f32> {
     }
     // The real sea's water by optical similarity (water_look.wgsl): the table through the
     // sea's depth and the column's own backscattered light. The room's radiance is the
-    // camera's white (the assumption that makes the table's colour its albedo).
-    let transmitted = water_transmitted(table.rgb * light, vec3<f32>(1.0), table.w * fx.water.down_scale.w, fx.water);
+    // camera's white (the assumption that makes the table's colour its albedo), folded into
+    // the uniform's R∞.
+    let transmitted = water_transmitted(table.rgb * light, table.w * fx.water.down_scale.w, fx.water);
     // R·reflected + (1 − R)·transmitted as one mix.
     var colour = mix(transmitted, reflected, r);
     // Foam of breaking crests (Jacobian) and of the boats' wakes, as the water pass draws it.

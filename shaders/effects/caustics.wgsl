@@ -15,9 +15,10 @@ fn overhead_sun(n: vec3<f32>) -> f32 {
     return select(0.0, exp(-x * x), up.w > 0.0);
 }
 
-// Light on the table point q (local metres) relative to flat water; n is the surface normal
-// above it (cheap tier only). FX_CHEAP_CAUSTICS is a constant of the pipeline (ar_water.wgsl).
-fn caustic_light(q: vec3<f32>, n: vec3<f32>) -> f32 {
+// Light on the table point whose (x, z) is q (local metres: the table's height is the
+// plane's) relative to flat water; n is the surface normal above it (cheap tier only).
+// FX_CHEAP_CAUSTICS is a constant of the pipeline (ar_water.wgsl).
+fn caustic_light(q: vec2<f32>, n: vec3<f32>) -> f32 {
     if FX_CHEAP_CAUSTICS {
         let rgb = vec3<f32>(overhead_sun(n));
         let alpha = clamp(rgb.r + rgb.g + rgb.b, 0.0, 1.0);
@@ -25,7 +26,7 @@ fn caustic_light(q: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     // Outside the map: the light of flat water. (The early return above is on a constant; the
     // map's test is a select: see camera_uv.)
-    let uv = (q.xz - fx.caustic_region.xy) / fx.caustic_region.z;
+    let uv = (q - fx.caustic_region.xy) / fx.caustic_region.z;
     let light = textureSampleLevel(caustic_map, linear_clamp, uv, 0.0).r * fx.caustic_region.w;
     return select(light, 1.0, any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)));
 }

@@ -32,11 +32,18 @@ struct Effects {
     flow_b: vec4<f32>,
     // Far current x, z (m/s), mark radius (m), detail tile size (m).
     current: vec4<f32>,
-    // y = marks; x, z, w unused (which effects run is each pipeline's constant, FX_MASK).
+    // x = the cover's vertices (0: none), y = marks, zw = the reflected room's grid, columns
+    // and rows of cells (effects::reflection::room_grid). Which effects run is each
+    // pipeline's constant, FX_MASK.
     flags: vec4<u32>,
     marks: array<vec4<f32>, 8>,
     // The sea's water over the table (water_look.wgsl).
     water: WaterOptics,
+    // The screen polygon the water certainly covers (effects::passes::cover), NDC, counter-
+    // clockwise, two vertices a vec4: the background pass draws around it.
+    cover: array<vec4<f32>, 10>,
+    // Its centroid (xy) and the scale (z) about it at which its copy holds the screen.
+    cover_shape: vec4<f32>,
 }
 
 @group(2) @binding(0) var<uniform> fx: Effects;
@@ -84,10 +91,12 @@ fn table_uv(xz: vec2<f32>) -> vec3<f32> {
     return select(uv, vec3<f32>(0.5, 0.5, 0.0), h.z <= 0.0);
 }
 
-// 1 inside the image, falling to 0 at EDGE_FADE outside it (effects::refraction::edge_weight).
+// 1 inside the image, falling to 0 at EDGE_FADE outside it by the max-norm distance to the
+// image (effects::refraction::edge_weight). Inside, both components of `outside` are negative
+// and the clamp makes the weight 1.
 fn edge_weight(uv: vec2<f32>) -> f32 {
-    let outside = max(max(-uv, uv - vec2<f32>(1.0)), vec2<f32>(0.0));
-    return clamp(1.0 - length(outside) / EDGE_FADE, 0.0, 1.0);
+    let outside = max(-uv, uv - vec2<f32>(1.0));
+    return clamp(1.0 - max(outside.x, outside.y) / EDGE_FADE, 0.0, 1.0);
 }
 
 // Linear RGB of the camera image at uv, filtered by the sampler, which decodes the sRGB

@@ -17,16 +17,34 @@ fn table_hit(p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(p.xz + s * d.xz, s);
 }
 
-// The table straight through the water at this pixel, as if there were no refraction: xy,
-// the camera-image uv of the table point on the eye's ray through screen uv `screen`, by the
-// map fx.straight_image formed on the CPU (three columns and a division where a ray-plane
-// solve and camera_uv took 46 operations); the image's centre where that point is behind the
-// camera, where no table is ahead (the map is zero) or where the view does not run down (as
-// table_hit finds no plane for |d.y| < 1e-12). z, the path from p along the unit view ray
-// down to the table (0 where the table is not ahead of p: a trough below it).
-fn straight_through(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>) -> vec3<f32> {
-    let h = fx.straight_image[0].xyz * screen.x + fx.straight_image[1].xyz * screen.y
+// The camera-image point of the table straight behind screen uv `screen`, homogeneous: the map
+// fx.straight_image formed on the CPU, (s, t, 1) -> (u w, v w, w) (three columns where a
+// ray-plane solve and camera_uv took 46 operations). Any positive multiple names the same
+// point: the AR water's vertices hand the pixels this map of their clip position
+// (straight_image_of_clip), which the rasteriser's perspective-correct interpolation turns into
+// the pixel's own map times its clip w, so a pixel forms none of it.
+fn straight_image_at(screen: vec2<f32>) -> vec3<f32> {
+    return fx.straight_image[0].xyz * screen.x + fx.straight_image[1].xyz * screen.y
         + fx.straight_image[2].xyz;
+}
+
+// straight_image_at of a vertex's screen point times its clip w, from its clip position: the
+// screen uv times w is (½(x + w), ½(w − y)) (v grows downwards), so the product is linear in
+// the clip coordinates, exact under the rasteriser's interpolation and its near-plane clipping
+// (both linear in clip space), and w > 0 for every pixel drawn keeps the sign of the last
+// component.
+fn straight_image_of_clip(clip: vec4<f32>) -> vec3<f32> {
+    return fx.straight_image[0].xyz * (0.5 * (clip.x + clip.w))
+        + fx.straight_image[1].xyz * (0.5 * (clip.w - clip.y)) + fx.straight_image[2].xyz * clip.w;
+}
+
+// The table straight through the water at this pixel, as if there were no refraction: xy,
+// the camera-image uv of the table point on the eye's ray through the pixel whose
+// straight_image_at (any positive multiple) is `h`; the image's centre where that point is
+// behind the camera, where no table is ahead (the map is zero) or where the view does not run
+// down (as table_hit finds no plane for |d.y| < 1e-12). z, the path from p along the unit view
+// ray down to the table (0 where the table is not ahead of p: a trough below it).
+fn straight_through(p: vec3<f32>, view: vec3<f32>, h: vec3<f32>) -> vec3<f32> {
     let down = view.y <= -1e-12;
     let uv = select(vec2<f32>(0.5), h.xy / h.z, down && h.z > 0.0);
     // Where the view does not run down the division's value is never used.
@@ -35,12 +53,13 @@ fn straight_through(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>) -> vec3<f3
 }
 
 fn refracted_table(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>, n: vec3<f32>) -> vec4<f32> {
-    return refracted_table_along(p, view, screen, refract_dir(view, n, N_AIR, N_WATER));
+    return refracted_table_along(p, view, straight_image_at(screen), refract_dir(view, n, N_AIR, N_WATER));
 }
 
-// refracted_table with the refracted ray t = refract_dir(view, n, N_AIR, N_WATER) given: the
-// AR water needs t again for the table point the caustics light, and refracts once.
-fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>, t: vec4<f32>) -> vec4<f32> {
+// refracted_table with the refracted ray t = refract_dir(view, n, N_AIR, N_WATER) and the
+// pixel's straight_image_at (`straight_h`, any positive multiple) given: the AR water needs t
+// again for the table point the caustics light, refracts once, and has the map interpolated.
+fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, straight_h: vec3<f32>, t: vec4<f32>) -> vec4<f32> {
     let hit = table_hit(p, t.xyz);
     // Without a table along the refracted ray (or behind the camera): w = 0, the unrefracted
     // sample and the ray's path along the view direction (ar_water puts q there). No early
@@ -58,7 +77,7 @@ fn refracted_table_along(p: vec3<f32>, view: vec3<f32>, screen: vec2<f32>, t: ve
     var at = refracted;
     var path = hit.z;
     if w < 1.0 {
-        let straight = straight_through(p, view, screen);
+        let straight = straight_through(p, view, straight_h);
         at = select(straight.xy, mix(straight.xy, refracted, w), w > 0.0);
         path = select(straight.z, hit.z, found);
     }

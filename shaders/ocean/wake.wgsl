@@ -6,13 +6,23 @@
 // Each source is one segment of a boat's path: a Cauchy–Poisson ring-wave packet of the hull's
 // pressure patch. No race time and no large coordinate reach this file: q = g s²/4 carries the
 // source's age s (reduced on the CPU), positions are local. What is fixed per source (its sign
-// and strength, R², the cut-off's radius, the foam's rate, −q) the CPU forms once per frame,
-// so a (point, source) pair spends nothing on it; what is fixed per point (the band limit's
-// edges) the caller forms once per point.
+// and strength, R², the cut-off's radius, the foam's rate, −q, q/2π) the CPU forms once per
+// frame, so a (point, source) pair spends nothing on it; what is fixed per point (the band
+// limit's edges) the caller forms once per point.
 //
-// A pass includes this file and declares the buffer, then sums:
+// The sine and cosine of a source's phase Φ come from a table of (sin 2πu, cos 2πu) over one
+// turn (ocean::turn_table: an Rg16Float texture, linear filtering, repeat addressing) on the
+// texture unit, which runs beside the ALUs a pass summing sources is bound by: u = Φ/2π is
+// (q/2π)/r, q/2π formed per source on the CPU, and fract(u) keeps the texture coordinate in
+// [0, 1) (the hardware's fixed-point coordinates never see Φ's thousands of radians). Its
+// error, 9.6e-4 on any conforming GPU (turn_table_error), replaces sin and cos's 2^-11 in the
+// wake's bounds (ocean::wake::f32_height_error_bound).
+//
+// A pass includes this file and declares the buffer and the table, then sums:
 //
 //   @group(G) @binding(B) var<storage, read> wake_sources: array<WakeSource>;
+//   @group(G) @binding(T) var turn_table: texture_2d<f32>;
+//   @group(G) @binding(T + 1) var turn_sampler: sampler;
 //   var h = 0.0; var foam = 0.0;
 //   for (var i = 0u; i < arrayLength(&wake_sources); i++) {
 //       h += wake_source_height(wake_sources[i], p);
@@ -39,11 +49,11 @@ struct WakeSource {
     foam_rate: f32,
     // −q, m: the kernel's −k = −q/r² is one division (the band fade's rising variable).
     neg_q: f32,
-    _pad: f32,
+    // q/2π, m: the phase in turns Φ/2π = q/(2π r) is one product with 1/r.
+    q_turns: f32,
 }
 
-// From the generated prelude (ocean::wake::wgsl, the values of the f32 mirror): WAKE_TAU, 2π;
-// WAKE_BAND_START and WAKE_BAND_END, the k·spacing over which the band limit fades a term out
+// From the generated prelude (ocean::wake::wgsl, the values of the f32 mirror): WAKE_BAND_START and WAKE_BAND_END, the k·spacing over which the band limit fades a term out
 // (1 to 2: a clip-map level drops the sea's waves from k·cell = 2 on); WAKE_SPACING_MIN, the
 // spacing below which a field is not band limited (its fade is exactly 1 for every k a
 // source reaches).
@@ -61,6 +71,12 @@ fn wake_band_edges(spacing: f32) -> vec2<f32> {
     return vec2<f32>(-WAKE_BAND_END / s, -WAKE_BAND_START / s);
 }
 
+// (sin 2πu, cos 2πu) from the table: one filtered look-up at fract(u) (explicit level 0, so a
+// compute stage may sample). Within turn_table_error's total of the exact values.
+fn turn_sin_cos(u: f32) -> vec2<f32> {
+    return textureSampleLevel(turn_table, turn_sampler, vec2<f32>(fract(u), 0.5), 0.0).xy;
+}
+
 // The height one source adds at p, m: with dx = −strength·ΔX,
 // (k²/r²) e^{−k²R²/4} [sin Φ + (k²R² − 3)/Φ cos Φ] (d·dx), k = q/r², Φ = q/r.
 fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
@@ -72,10 +88,11 @@ fn wake_source_height(s: WakeSource, p: vec2<f32>) -> f32 {
     let k = s.q / r2;
     let kk = k * k;
     let big_g = kk * s.hull_r2;
-    let phi = s.q * inverseSqrt(r2);
-    // Φ can reach thousands of radians; phone GPUs' sin/cos are only accurate near [−π, π].
-    let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
-    let bracket = sin(phi_r) + (big_g - 3.0) / phi * cos(phi_r);
+    let inv_r = inverseSqrt(r2);
+    let phi = s.q * inv_r;
+    // Φ reaches thousands of radians: its sine and cosine from the table, at Φ/2π turns.
+    let sc = turn_sin_cos(s.q_turns * inv_r);
+    let bracket = sc.x + (big_g - 3.0) / phi * sc.y;
     return kk / r2 * exp(-0.25 * big_g) * bracket * dot(d, s.dx);
 }
 
@@ -93,7 +110,7 @@ fn wake_source_height_grad(s: WakeSource, p: vec2<f32>) -> vec3<f32> {
 // wake_source_height_grad with the offset d = p − s.pos and r2 = |d|² already formed, band
 // limited by the edges `band` (wake_band_edges of the points' spacing). Inside the band
 // limit's radius (k·spacing ≥ 2, −k at or below band.x) the term is nothing and costs no exp
-// or sin.
+// or look-up.
 fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, band: vec2<f32>) -> vec3<f32> {
     if (r2 > s.cull_r2 || r2 < s.inner_r2) {
         return vec3<f32>(0.0);
@@ -104,10 +121,11 @@ fn wake_source_height_grad_at(s: WakeSource, d: vec2<f32>, r2: f32, band: vec2<f
     }
     let kk = neg_k * neg_k;
     let big_g = kk * s.hull_r2;
-    let phi = s.q * inverseSqrt(r2);
-    let phi_r = phi - WAKE_TAU * round(phi / WAKE_TAU);
-    let sn = sin(phi_r);
-    let cs = cos(phi_r);
+    let inv_r = inverseSqrt(r2);
+    let phi = s.q * inv_r;
+    let sc = turn_sin_cos(s.q_turns * inv_r);
+    let sn = sc.x;
+    let cs = sc.y;
     let c = kk / r2 * exp(-0.25 * big_g) * smoothstep(band.x, band.y, neg_k);
     let bracket = sn + (big_g - 3.0) / phi * cs;
     let radial_bracket = (big_g - 9.0) * bracket + big_g * sn - (phi + 12.0 / phi) * cs;

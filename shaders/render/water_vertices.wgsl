@@ -33,6 +33,9 @@ struct WakeGrid {
 @group(1) @binding(1) var<storage, read> wake_bins: array<vec4<u32>>;
 @group(1) @binding(2) var<storage, read> wake_index: array<u32>;
 @group(1) @binding(3) var<uniform> wake_grid: WakeGrid;
+// The kernel's table of (sin 2πu, cos 2πu) (ocean::turn_table) and its linear, repeating sampler.
+@group(1) @binding(6) var turn_table: texture_2d<f32>;
+@group(1) @binding(7) var turn_sampler: sampler;
 
 // The lists of the sources that can reach local point p of clip-map level `level`: the
 // level's height list (first, count), then the foam list (first, count).

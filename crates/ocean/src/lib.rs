@@ -15,6 +15,7 @@ pub mod inverse;
 pub mod ndbc;
 pub mod sea_file;
 pub mod spectrum;
+pub mod turn_table;
 pub mod wake;
 
 pub use cull::Culled;

@@ -251,7 +251,8 @@ pub fn run_kernel_in<In: bytemuck::Pod>(
 /// The AR water's transmitted light (`shaders/water_look.wgsl`'s `water_transmitted`) on the
 /// GPU, per item: (dry table colour, room radiance, view path in metres of real sea) for
 /// `look`, its uniform made as the effects make it (`WaterLook::gpu_optics`, a scene in real
-/// metres). The parity test's GPU side of `water_look::transmitted`.
+/// metres), with the item's room radiance folded into R∞ as the effects fold the camera's
+/// white. The parity test's GPU side of `water_look::transmitted`.
 pub fn gpu_water_transmitted(
     gpu: &Gpu,
     look: &crate::water_look::WaterLook,
@@ -267,7 +268,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let a = input[i][0];
     let b = input[i][1];
     let w = WaterOptics(input[i][2], input[i][3], input[i][4], input[i][5], input[i][6]);
-    output[i] = vec4<f32>(water_transmitted(a.xyz, b.xyz, a.w * w.down_scale.w, w), 0.0);
+    output[i] = vec4<f32>(water_transmitted(a.xyz, a.w * w.down_scale.w, w), 0.0);
 }";
     if items.is_empty() {
         return Ok(Vec::new());
@@ -277,12 +278,15 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let inputs: Vec<[[f32; 4]; 7]> = items
         .iter()
         .map(|(t, r, path)| {
+            // The room's radiance folded into R∞ as the uniform carries it: the f32 product
+            // the shader formed before.
+            let room_deep = [deep[0] * r[0], deep[1] * r[1], deep[2] * r[2], deep[3]];
             [
                 [t[0], t[1], t[2], *path],
-                [r[0], r[1], r[2], 0.0],
+                [0.0; 4],
                 down,
                 neg_k,
-                deep,
+                room_deep,
                 a,
                 b,
             ]

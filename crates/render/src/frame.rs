@@ -58,6 +58,9 @@ pub struct FrameContext<'a> {
     pub error_target: ErrorTarget,
     pub levels: Vec<LevelPlan>,
     pub mesh: ClipMesh,
+    /// Half the side of the square around the eye (world axes) the clip-map covers, m: as far
+    /// as the play area's farthest corner, or the far plane if nearer.
+    pub reach: f64,
     /// The sea's waves as the GPU gets them (the first 64 of `scene.sea.waves`), sorted by
     /// wavenumber, longest first (`ocean::sort_by_wavenumber`).
     pub waves: Vec<ocean::GpuWave>,
@@ -180,6 +183,7 @@ impl<'a> FrameContext<'a> {
             error_target,
             levels,
             mesh,
+            reach,
             waves,
             vertex_waves,
             uniform,

@@ -58,6 +58,7 @@ pub mod renderer;
 pub mod scene;
 pub mod shader;
 mod timing;
+pub mod turn_table;
 pub mod vertex_slopes;
 pub mod view_light;
 pub mod wake_bins;

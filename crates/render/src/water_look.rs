@@ -212,7 +212,8 @@ impl WaterLook {
     /// The per-frame shader inputs (`WaterOptics` of `shaders/render/water_look.wgsl`, in the
     /// effects' uniform) for a scene whose table lies `table_depth` scene metres down:
     /// [T_d (R, G, B): the room light's way down to the table, metres of real sea per scene
-    /// metre], [−κ (R, G, B) of the real sea, 1/m, 0], [R∞ (R, G, B), 0], [A (R, G, B), 0],
+    /// metre], [−κ (R, G, B) of the real sea, 1/m, 0], [R∞ (R, G, B), 0] (the shader's
+    /// room·R∞ for the AR water's room, the camera's white: 1), [A (R, G, B), 0],
     /// [B (R, G, B), 0], where the transmitted light's denominator
     /// n² (1 − r̄ (ρ T_d² + R∞ (1 − T_d²))) / (1 − R̄) is A − B ρ for a table albedo ρ: the
     /// parts that do not change within a frame formed here in f64, not per pixel. A table

@@ -10,7 +10,9 @@
 //! WGSL accuracy is 3 + 2|x| ULP (relative error ≤ (3 + 2|x|) u), and t = T_d·e (T_d rounded,
 //! one product: u); so t carries a relative error ε_t = (4 + 3.5|x|) u. The rest is
 //! [table t + room R∞ (1 − t)] / (A − B ρ), with R∞, A and B formed in f64 and rounded to f32
-//! (½ u relative each) and combined by + − × (correctly rounded, ½ u each) and one division
+//! (½ u relative each; room·R∞ one f32 product, in the uniform the shader reads, as the
+//! effects fold the room's white into it) and combined by + − × (correctly rounded, ½ u
+//! each) and one division
 //! (2.5 ULP): eight operations. The denominator A − B ρ = n²(1 − r̄_int albedo)/(1 − R̄) is at
 //! least 0.52 n²/(1 − R̄) while A + B ρ is at most 1.48 n²/(1 − R̄), so A's and B's roundings
 //! grow by at most a factor 3 there. With g = (1 − R̄)/(n²(1 − A r̄_int)), the output's

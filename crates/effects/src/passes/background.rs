@@ -18,6 +18,9 @@ pub struct BackgroundPass {
     pipeline: wgpu::RenderPipeline,
     shared: Rc<RefCell<Shared>>,
     group: Option<wgpu::BindGroup>,
+    /// Vertices of this frame's draw: 3 for the whole screen, six an edge of the water's
+    /// cover around it (`background.wgsl`).
+    vertices: u32,
 }
 
 impl Pass for BackgroundPass {
@@ -28,7 +31,8 @@ impl Pass for BackgroundPass {
         true
     }
     fn condition(&self) -> &'static str {
-        "a camera frame is available (it fills every pixel no water, boat or mark covers)"
+        "a camera frame is available (it fills every pixel no water, boat or mark covers, \
+         outside the part of the screen the water certainly covers)"
     }
     fn plan(&self, frame: &FrameContext) -> Result<String, String> {
         let shared = self.shared.borrow();
@@ -41,12 +45,14 @@ impl Pass for BackgroundPass {
         let mut shared = self.shared.borrow_mut();
         shared.write_uniform(gpu, frame);
         self.group = Some(shared.bind_group(&gpu.device));
+        let cover = shared.written.map_or(0, |u| u.flags[0]);
+        self.vertices = if cover == 0 { 3 } else { 6 * cover };
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
         let Some(group) = &self.group else { return 0 };
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(2, group, &[]);
-        pass.draw(0..3, 0..1);
+        pass.draw(0..self.vertices, 0..1);
         1
     }
     fn revision(&self) -> u64 {
@@ -81,6 +87,7 @@ impl BackgroundPass {
             ),
             shared,
             group: None,
+            vertices: 3,
         }
     }
 }

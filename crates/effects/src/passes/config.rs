@@ -36,6 +36,11 @@ pub struct ArConfig {
     /// golden tests prove they catch that).
     #[doc(hidden)]
     pub shader_knockout: u8,
+    /// Test hook, false in use: draw the camera background over the whole screen, as before
+    /// it left out the part the water certainly covers (`passes::cover`), so a test can show
+    /// that the two frames are the same.
+    #[doc(hidden)]
+    pub background_whole: bool,
 }
 
 impl Default for ArConfig {
@@ -59,6 +64,7 @@ impl Default for ArConfig {
             cheap_caustics: false,
             caustic_resolution: (48, 64),
             shader_knockout: 0,
+            background_whole: false,
         }
     }
 }

@@ -20,6 +20,7 @@
 
 mod background;
 mod config;
+mod cover;
 mod pipelines;
 mod scissor;
 mod shared;
@@ -45,7 +46,8 @@ pub use shared::{
     flow_detail_texture, flow_detail_texture_of, linear_repeat_sampler,
 };
 pub use table_image::{
-    screen_projection, straight_columns, straight_image, table_column, table_image,
+    screen_projection, straight_columns, straight_image, straight_image_of_clip, table_column,
+    table_image,
 };
 pub use water::{ArWaterPass, OFFSCREEN_REUSED, REFLECTION_ROOM};
 

@@ -9,7 +9,7 @@ pub(super) type Scissor = [u32; 4];
 
 /// Largest height of the boats' wakes above or below the sea surface that the scissor allows
 /// for, metres (a Kelvin wake of a keelboat stays well under this).
-const WAKE_HEIGHT_MARGIN: f64 = 1.0;
+pub(super) const WAKE_HEIGHT_MARGIN: f64 = 1.0;
 
 /// The screen rectangle that holds every pixel of the water inside the play area, or `None`
 /// when that is the whole screen. Every fragment outside the play area is discarded by the

@@ -42,6 +42,11 @@ pub struct EffectsUniform {
     pub marks: [[f32; 4]; 8],
     /// `WaterLook::gpu_optics`: the sea's water over the table (`WaterOptics`).
     pub water: [[f32; 4]; 5],
+    /// [`super::cover::water_cover`]: the screen polygon the water certainly covers (NDC, two
+    /// vertices a vec4; `flags[0]` of them, 0 for none), where the background is not drawn.
+    pub cover: [[f32; 4]; super::cover::MAX_COVER_VERTICES / 2],
+    /// The polygon's centroid (xy) and the scale (z) of the copy that holds the screen.
+    pub cover_shape: [f32; 4],
 }
 
 /// What the planner needs, measured from the frame: water coverage from a 9×9 grid of view
@@ -391,6 +396,10 @@ impl Shared {
         for (slot, p) in marks.iter_mut().zip(&near) {
             *slot = [f(p.x), f(p.y), 0.0, 0.0];
         }
+        let cover = (!self.cfg.background_whole)
+            .then(|| super::cover::water_cover(frame))
+            .flatten();
+        let (cover, cover_shape, cover_vertices) = super::cover::cover_uniform(cover.as_ref());
         EffectsUniform {
             camera_projection: projection,
             table_image: table_image(image, self.cfg.table_depth),
@@ -417,9 +426,16 @@ impl Shared {
                 f(self.cfg.mark_radius),
                 f(self.cfg.detail_tile),
             ],
-            flags: [0, near.len().min(8) as u32, room_grid[0], room_grid[1]],
+            flags: [
+                cover_vertices,
+                near.len().min(8) as u32,
+                room_grid[0],
+                room_grid[1],
+            ],
             marks,
             water,
+            cover,
+            cover_shape,
         }
     }
 

@@ -71,6 +71,16 @@ pub fn straight_columns(map: Option<DMat3>) -> [[f32; 4]; 3] {
     [m.x_axis, m.y_axis, m.z_axis].map(|c| [c.x as f32, c.y as f32, c.z as f32, 0.0])
 }
 
+/// `straight_image_of_clip` of refraction.wgsl in f64: the straight map `m` of a vertex's
+/// screen point times its clip w, from its clip position `clip` (screen uv times w is
+/// (½(x + w), ½(w − y))). Linear in the clip coordinates, so the rasteriser's perspective-
+/// correct interpolation of it (and its clipping at the near plane) gives each pixel its own
+/// `m·(s, t, 1)` times the pixel's clip w: the AR water's pixels take the straight-through
+/// point from it without forming the map.
+pub fn straight_image_of_clip(m: DMat3, clip: DVec4) -> glam::DVec3 {
+    m * glam::DVec3::new(0.5 * (clip.x + clip.w), 0.5 * (clip.w - clip.y), clip.w)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -158,6 +168,56 @@ mod tests {
             .unwrap();
         let want = physical.project_uv(point).unwrap();
         assert!((apply(m, s).unwrap() - want).length() < 1e-9);
+    }
+
+    /// What the AR water's pixels read: each vertex's `straight_image_of_clip`, interpolated
+    /// as the rasteriser does (screen-space barycentrics, perspective-correct: Σλᵢaᵢ/wᵢ over
+    /// Σλᵢ/wᵢ), names the same camera-image point as the map at the pixel's own screen uv, for
+    /// triangles of the render view seen at grazing and steep angles (fixed-seed points).
+    #[test]
+    fn the_vertices_straight_map_interpolates_to_the_pixels_own() {
+        let render_eye = DVec3::new(0.4, 1.1, 2.5);
+        let view =
+            glam::dcamera::rh::view::look_at_mat4(render_eye, DVec3::new(0.0, 0.0, -1.0), DVec3::Y);
+        let proj = glam::dcamera::rh::proj::directx::perspective(0.9, 0.45, 0.01, 100.0);
+        let vp = proj * view;
+        let physical = camera(DVec3::new(-0.3, 0.9, 1.8), DVec3::ZERO, 500.0, 320.0);
+        let image = physical.image_projection(physical.pose.inverse());
+        let m = straight_image(screen_projection(vp), image, 0.2, render_eye.y).unwrap();
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200 {
+            // A triangle on the water (y = 0), near and far, and a point inside it.
+            let mut corner = || DVec3::new(4.0 * next() - 2.0, 0.0, -12.0 * next() + 1.5);
+            let tri = [corner(), corner(), corner()];
+            let clip = tri.map(|p| vp * p.extend(1.0));
+            if clip.iter().any(|c| c.w <= 0.05) {
+                continue;
+            }
+            let screen = clip.map(|c| DVec2::new(0.5 * c.x / c.w + 0.5, 0.5 - 0.5 * c.y / c.w));
+            let (a, b) = (next(), next());
+            let lambda = if a + b < 1.0 {
+                [a, b, 1.0 - a - b]
+            } else {
+                [1.0 - a, 1.0 - b, a + b - 1.0]
+            };
+            let pixel: DVec2 = (0..3).map(|i| screen[i] * lambda[i]).sum();
+            let per_w: f64 = (0..3).map(|i| lambda[i] / clip[i].w).sum();
+            let h: DVec3 = (0..3)
+                .map(|i| straight_image_of_clip(m, clip[i]) * (lambda[i] / clip[i].w))
+                .sum::<DVec3>()
+                / per_w;
+            let want = m * pixel.extend(1.0);
+            // The same point of the image (the same ray), scaled by the pixel's clip w > 0.
+            assert!(h.z * want.z > 0.0, "{h} {want}");
+            let (got, want) = (h.truncate() / h.z, want.truncate() / want.z);
+            assert!((got - want).length() < 1e-9, "{got} {want}");
+        }
     }
 
     #[test]

@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 use render::optics::{N_AIR, N_WATER, PinholeCamera};
-use render::wgsl_accuracy::{Inexact, add3, dot, length, mix, scale3};
+use render::wgsl_accuracy::{Inexact, add3, dot, mix, scale3};
 
 /// What a case's bound decided: the value (f64) and bound of each output, or `Undecided` when
 /// one of the function's branches may go either way on a conforming GPU (the case is not
@@ -95,14 +95,13 @@ fn in_front(h: [Inexact; 3]) -> Bounded<Option<[Inexact; 2]>> {
     }
 }
 
-/// `edge_weight` of `effects_common.wgsl`: 1 − |distance outside the image| / EDGE_FADE,
-/// clamped to [0, 1].
+/// `edge_weight` of `effects_common.wgsl`: 1 − (max-norm distance outside the image) /
+/// EDGE_FADE, clamped to [0, 1].
 pub fn edge_weight(uv: [Inexact; 2]) -> Inexact {
-    let zero = Inexact::exact(0.0);
     let one = Inexact::exact(1.0);
-    let outside = uv.map(|c| (-c).max(c - one).max(zero));
+    let outside = uv.map(|c| (-c).max(c - one));
     let fade = input(effects::refraction::EDGE_FADE);
-    (one - length(&outside) / fade).clamp(0.0, 1.0)
+    (one - outside[0].max(outside[1]) / fade).clamp(0.0, 1.0)
 }
 
 /// `ray_plane(o, d, (0, 1, 0, depth))` of `optics.wgsl`: the hit and its distance along the

@@ -15,6 +15,7 @@
 use super::kelvin::{GAUSS_CUTOFF, KelvinSource, Wake, foam_shape};
 pub use super::kernel::{BAND_END, BAND_START, MIN_R2, SPACING_MIN, band_edges};
 use super::kernel::{WakeKernelSource, band_fade_at};
+use crate::turn_table::{TURN_TABLE_TEXELS, turn_table_error};
 
 /// One wake source of a frame as the CPU culls, bins and bounds it (48 bytes): its physical
 /// quantities in f32. The GPU reads its [`WakeKernelSource`] (the constants the kernel needs,
@@ -284,21 +285,32 @@ pub fn wake_foam_f32(sources: &[GpuWakeSource], p: [f32; 2]) -> f32 {
     (1.0 - (-sum).exp()).clamp(0.0, 1.0)
 }
 
-/// sin/cos absolute error of an IEEE f32 CPU libm (≈ 1 ulp of 1).
-pub const CPU_SIN_ERROR: f64 = 1.2e-7;
-/// sin/cos absolute error WGSL allows in [−π, π] (2⁻¹¹): a GPU's `wake_height` is within
-/// `f32_height_error_bound(.., WGSL_SIN_ERROR)` of the f64 terms.
-pub const WGSL_SIN_ERROR: f64 = 1.0 / 2048.0;
+/// sin Φ and cos Φ's absolute error in the CPU mirror ([`source_height_f32`] and the rest): the
+/// table of one turn filtered exactly (`turn_table_error(..).exact_filter()`, 2.45·10⁻⁴).
+pub fn mirror_sin_cos_error() -> f64 {
+    turn_table_error(TURN_TABLE_TEXELS).exact_filter()
+}
+
+/// sin Φ and cos Φ's absolute error on a conforming GPU: the table as a GPU may filter it
+/// (`turn_table_error(..).total()`, 9.6·10⁻⁴, where WGSL's own sin and cos would be 2⁻¹¹): a
+/// GPU's `wake_height` is within `f32_height_error_bound(.., gpu_sin_cos_error())` of the f64
+/// terms.
+pub fn gpu_sin_cos_error() -> f64 {
+    turn_table_error(TURN_TABLE_TEXELS).total()
+}
 
 /// A first-order bound of |wake_height_f32 − Σ f64 terms of the same sources| at local point
-/// `p`, m, for IEEE f32 arithmetic, exp within a few ulp and sin/cos within `sin_error`
-/// (absolute) on [−π, π]. Per source, with T = C (k*²/r) e^{−G}(1 + |4G − 3|/Φ)(1 + 1/Φ) the
-/// size of the term and its Φ-derivative, the rounding of p, pos, q and r gives r a relative
-/// error ε_r = 2u(|p| + |pos|)/r + 2u (u = 2⁻²⁴), which moves Φ ∝ 1/r by Φε_r, the amplitude
-/// ∝ r⁻⁵ by 5ε_r and G ∝ r⁻⁴ by 4Gε_r; the reduction of Φ to [−π, π] adds 12u per unit of Φ,
-/// the ~22 roundings of the formula and of the source's kernel constants (−strength·ΔX is
-/// rounded once on the CPU, R² is exact) at most 16·12u of the amplitude, and sin and cos their
-/// own error: bound = Σ T [(Φ + 16)·12u + (Φ + 4G + 6) ε_r + 2 sin_error].
+/// `p`, m, for IEEE f32 arithmetic, exp within a few ulp and sin Φ, cos Φ within `sin_error`
+/// (absolute: [`mirror_sin_cos_error`] on the CPU, [`gpu_sin_cos_error`] on a GPU). Per
+/// source, with T = C (k*²/r) e^{−G}(1 + |4G − 3|/Φ)(1 + 1/Φ) the size of the term and its
+/// Φ-derivative, the rounding of p, pos, q and r gives r a relative error
+/// ε_r = 2u(|p| + |pos|)/r + 2u (u = 2⁻²⁴), which moves Φ ∝ 1/r by Φε_r, the amplitude ∝ r⁻⁵
+/// by 5ε_r and G ∝ r⁻⁴ by 4Gε_r; the phase the table is read at, (q/2π)·(1/r) turns, errs by
+/// at most 6u of Φ (`kernel.rs`), within the 12u per unit of Φ carried here (the reduction of Φ
+/// to [−π, π] the kernel made before it took the table), the ~22 roundings of the formula and
+/// of the source's kernel constants (−strength·ΔX is rounded once on the CPU, R² is exact) at
+/// most 16·12u of the amplitude, and sin and cos their own error:
+/// bound = Σ T [(Φ + 16)·12u + (Φ + 4G + 6) ε_r + 2 sin_error].
 pub fn f32_height_error_bound(sources: &[GpuWakeSource], p: [f32; 2], sin_error: f64) -> f64 {
     const U: f64 = 1.0 / 16_777_216.0;
     let mut b = 0.0;
@@ -382,7 +394,7 @@ impl From<&GpuWakeSource> for WakeKernelSource {
             foam: s.foam,
             foam_rate: foam_rate(s),
             neg_q: -s.q,
-            _pad: 0.0,
+            q_turns: (f64::from(s.q) / std::f64::consts::TAU) as f32,
         }
     }
 }

@@ -16,13 +16,24 @@
 //! - the foam strip's −1/w², so its density is `foam · exp(r² · rate)`;
 //! - −q (exact), so −k = −q/r², the band fade's rising variable, is one division: the fade
 //!   1 − smoothstep(1, 2, k·spacing) is smoothstep(−2/spacing, −1/spacing, −k), its edges
-//!   formed once per point ([`band_edges`]), so a pair pays the smoothstep alone.
+//!   formed once per point ([`band_edges`]), so a pair pays the smoothstep alone;
+//! - q/2π (from the f32 q in f64, rounded once), so the phase in turns Φ/2π = (q/2π)·(1/r) is
+//!   one product with the 1/r that Φ = q·(1/r) uses: the kernel takes sin Φ and cos Φ from the
+//!   table of one turn ([`crate::turn_table`]) at fract(Φ/2π), where it reduced Φ to [−π, π]
+//!   (Φ reaches thousands of radians; phones' sin and cos are accurate only there) and took
+//!   sin and cos: 12 operations become 2 and a look-up on the texture unit. The phase in turns
+//!   errs by at most 6u of Φ/2π (u = 2⁻²⁴: q/2π rounded once, ½u; a GPU's `inverseSqrt`, 2
+//!   ULP, 4u; the product, ½u; `fract` is exact), less than the reduction's 12u of Φ that
+//!   [`super::gpu::f32_height_error_bound`] carries; sin and cos then err by the table's
+//!   bound ([`crate::turn_table::turn_table_error`]).
 //!
 //! The gradient: with h = F(r)·(d·dx), F = (q²/r⁶) e^{−g}·B, B = sin Φ + (4g − 3)/Φ cos Φ
 //! (g = k²R²/4, Φ = q/r), r·F'/(F/B) is (4g − 6)·B (the amplitude's derivative) plus
 //! (4g − 3) sin Φ − Φ cos Φ − (12g + 3)/Φ cos Φ (the bracket's), which the kernel forms
 //! regrouped around B as (4g − 9)·B + 4g sin Φ − (Φ + 12/Φ) cos Φ: 8 operations where the
 //! sum as written took 11; exact in real arithmetic, only f32 rounding moves.
+
+use crate::turn_table::turn_sin_cos_f32;
 
 /// Below this squared distance (m²) a source is skipped: its term is e^{−k*²R²/4} ≈ 0 there,
 /// and the shader must never divide by zero (the floor of `WakeKernelSource::inner_r2`).
@@ -62,16 +73,8 @@ pub struct WakeKernelSource {
     pub foam_rate: f32,
     /// −q, m (exact): −k = −q/r² is then one division, the band fade's rising variable.
     pub neg_q: f32,
-    pub _pad: f32,
-}
-
-/// 2π as the WGSL's `WAKE_TAU`.
-const TAU: f32 = std::f32::consts::TAU;
-
-/// Φ reduced to [−π, π] in f32 as the WGSL does (its `round` is ties-to-even): phones' sin and
-/// cos are accurate only near there, and Φ reaches thousands of radians.
-fn reduced(phi: f32) -> f32 {
-    phi - TAU * (phi / TAU).round_ties_even()
+    /// q/2π, m (from q in f64, rounded once): the phase in turns Φ/2π = (q/2π)/r.
+    pub q_turns: f32,
 }
 
 /// WGSL's `inverseSqrt` in f32 (its square root, then the reciprocal).
@@ -117,8 +120,9 @@ impl WakeKernelSource {
         let k = self.q / r2;
         let kk = k * k;
         let big_g = kk * self.hull_r2;
-        let phi = self.q * inverse_sqrt(r2);
-        let (sn, cs) = reduced(phi).sin_cos();
+        let inv_r = inverse_sqrt(r2);
+        let phi = self.q * inv_r;
+        let [sn, cs] = turn_sin_cos_f32(self.q_turns * inv_r);
         let bracket = sn + (big_g - 3.0) / phi * cs;
         kk / r2 * (-0.25 * big_g).exp() * bracket * (d[0] * self.dx[0] + d[1] * self.dx[1])
     }
@@ -142,8 +146,9 @@ impl WakeKernelSource {
         }
         let kk = neg_k * neg_k;
         let big_g = kk * self.hull_r2;
-        let phi = self.q * inverse_sqrt(r2);
-        let (sn, cs) = reduced(phi).sin_cos();
+        let inv_r = inverse_sqrt(r2);
+        let phi = self.q * inv_r;
+        let [sn, cs] = turn_sin_cos_f32(self.q_turns * inv_r);
         let c = kk / r2 * (-0.25 * big_g).exp() * band_fade_at(neg_k, band);
         let bracket = sn + (big_g - 3.0) / phi * cs;
         let radial_bracket = (big_g - 9.0) * bracket + big_g * sn - (phi + 12.0 / phi) * cs;

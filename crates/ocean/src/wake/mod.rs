@@ -23,15 +23,17 @@
 //! ```text
 //! let frame = wake.gpu_sources(t, origin, &WakeView { min, max }, 1e-6);
 //! // upload frame.bytes() (each source's WakeKernelSource) as a storage buffer of
-//! // WakeSource (`wake_wgsl()`: shaders/ocean/wake.wgsl after its constants); a shader sums
+//! // WakeSource (`wake_wgsl()`: shaders/ocean/wake.wgsl after its constants) and
+//! // turn_table::turn_table_bytes() as an Rg16Float texture (`turn_table_bindings`); a shader sums
 //! // wake_source_height(p) (or its gradient) and wake_source_foam(p) over the sources,
 //! // p = world (x, z) − origin, both f32.
 //! ```
 //!
 //! The cost per point is the number of sources that reach the view, not the course size or a
-//! texture. `wake_height_f32`/`wake_foam_f32` are the CPU mirrors of the WGSL; culling and f32
-//! have stated error bounds (`GpuWakeFrame::cull_bound`, `f32_height_error_bound` with
-//! `WGSL_SIN_ERROR` for a GPU). `app/tests/wake_gpu.rs` runs the WGSL in a compute pass and
+//! texture (the kernel's one texture is the 8 KiB table of one turn it takes sin and cos from,
+//! `crate::turn_table`). `wake_height_f32`/`wake_foam_f32` are the CPU mirrors of the WGSL;
+//! culling, f32 and the table have stated error bounds (`GpuWakeFrame::cull_bound`,
+//! `f32_height_error_bound` with `gpu_sin_cos_error()` for a GPU). `app/tests/wake_gpu.rs` runs the WGSL in a compute pass and
 //! checks it against the mirror.
 
 pub mod froude;
@@ -49,15 +51,15 @@ mod tests;
 
 pub use froude::{TableModel, capillary_gravity_transverse_wavelength};
 pub use gpu::{
-    BAND_END, BAND_FADE_F32_ERROR, BAND_START, CPU_SIN_ERROR, FOAM_EPSILON, GpuWakeFrame,
-    GpuWakeSource, WGSL_SIN_ERROR, WakeView, band_edges, band_fade, band_fade_f32,
-    f32_height_error_bound, foam_radius2, inner_radius2, source_height_grad_f32,
-    source_height_grad_sampled_f32, source_peak_bound, wake_foam_f32, wake_height_f32,
-    wake_height_grad_f32, wake_height_grad_sampled_f32,
+    BAND_END, BAND_FADE_F32_ERROR, BAND_START, FOAM_EPSILON, GpuWakeFrame, GpuWakeSource, WakeView,
+    band_edges, band_fade, band_fade_f32, f32_height_error_bound, foam_radius2, gpu_sin_cos_error,
+    inner_radius2, mirror_sin_cos_error, source_height_grad_f32, source_height_grad_sampled_f32,
+    source_peak_bound, wake_foam_f32, wake_height_f32, wake_height_grad_f32,
+    wake_height_grad_sampled_f32,
 };
 pub use kelvin::{KelvinSource, SEA_WATER_DENSITY, Wake, WakeParams};
 pub use kernel::WakeKernelSource;
 pub use reference::{SteadyPatch, kelvin_reference, kelvin_wave_height};
 pub use ring::{RingParams, RingWake};
 pub use track::{TrackSample, WakeError};
-pub use wgsl::wake_wgsl;
+pub use wgsl::{turn_table_bindings, wake_wgsl};

@@ -263,7 +263,7 @@ fn f32_buffer_matches_f64_within_the_stated_bounds_far_from_the_origin() {
             let pf = [p[0] as f32, p[1] as f32];
             let h32 = wake_height_f32(&frame.sources, pf) as f64;
             let h64 = frame_height_f64(&wake, t_end, origin, &view, eps, p);
-            let bound = f32_height_error_bound(&frame.sources, pf, gpu::CPU_SIN_ERROR);
+            let bound = f32_height_error_bound(&frame.sources, pf, mirror_sin_cos_error());
             assert!(
                 (h32 - h64).abs() <= bound + 1e-9,
                 "{p:?}: {h32} vs {h64}, bound {bound}"
@@ -420,7 +420,8 @@ fn bad_tracks_and_params_are_refused_with_the_sample_named() {
 
 #[test]
 fn wake_wgsl_validates_and_its_struct_matches_the_buffer() {
-    let module = naga::front::wgsl::parse_str(&wake_wgsl()).expect("wake.wgsl parses");
+    let source = format!("{}{}", wake_wgsl(), turn_table_bindings(0, 0));
+    let module = naga::front::wgsl::parse_str(&source).expect("wake.wgsl parses");
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::empty(),
@@ -453,7 +454,7 @@ fn wake_wgsl_validates_and_its_struct_matches_the_buffer() {
             std::mem::offset_of!(WakeKernelSource, foam_rate),
         ),
         ("neg_q", std::mem::offset_of!(WakeKernelSource, neg_q)),
-        ("_pad", std::mem::offset_of!(WakeKernelSource, _pad)),
+        ("q_turns", std::mem::offset_of!(WakeKernelSource, q_turns)),
     ];
     let wgsl: Vec<(&str, usize)> = members
         .iter()

@@ -9,13 +9,12 @@ use super::gpu::{BAND_END, BAND_START, SPACING_MIN};
 /// The functions that evaluate the source buffer, without their constants.
 const WAKE_FUNCTIONS: &str = include_str!("../../../../shaders/ocean/wake.wgsl");
 
-/// The constants the wake shader shares with its f32 mirror, as WGSL names them: the period
-/// the phase is reduced by (the mirror's `f32::consts::TAU`), the band limit's fade
-/// (k·spacing from 1 to 2) and the least spacing its edges are formed for. (The squared distance below which a source is skipped and the
-/// Gaussian cut-off reach the shader per source, in `WakeKernelSource::inner_r2`.)
-pub fn shared_consts() -> [(&'static str, f32); 4] {
+/// The constants the wake shader shares with its f32 mirror, as WGSL names them: the band
+/// limit's fade (k·spacing from 1 to 2) and the least spacing its edges are formed for. (The
+/// squared distance below which a source is skipped and the Gaussian cut-off reach the shader
+/// per source, in `WakeKernelSource::inner_r2`; the phase's period, in `q_turns`.)
+pub fn shared_consts() -> [(&'static str, f32); 3] {
     [
-        ("WAKE_TAU", std::f32::consts::TAU),
         ("WAKE_BAND_START", BAND_START),
         ("WAKE_BAND_END", BAND_END),
         ("WAKE_SPACING_MIN", SPACING_MIN),
@@ -33,9 +32,21 @@ pub fn prelude() -> String {
     s
 }
 
-/// The WGSL that evaluates the source buffer: the [`prelude`] then `shaders/wake.wgsl`.
+/// The WGSL that evaluates the source buffer: the [`prelude`] then `shaders/wake.wgsl`. A
+/// pass declares the buffer and the table of one turn (`turn_table`, `turn_sampler`: as
+/// [`turn_table_bindings`] writes them) beside it.
 pub fn wake_wgsl() -> String {
     format!("{}{WAKE_FUNCTIONS}", prelude())
+}
+
+/// The declarations of the kernel's table of (sin 2πu, cos 2πu) (`crate::turn_table`, an
+/// `Rg16Float` texture) and its filtering sampler at `group`, bindings `first` and `first + 1`.
+pub fn turn_table_bindings(group: u32, first: u32) -> String {
+    format!(
+        "@group({group}) @binding({first}) var turn_table: texture_2d<f32>;\n\
+         @group({group}) @binding({}) var turn_sampler: sampler;\n",
+        first + 1
+    )
 }
 
 #[cfg(test)]
@@ -58,8 +69,7 @@ mod tests {
                 .expect("an f32 literal");
             assert_eq!(back.to_bits(), value.to_bits(), "{name}");
         }
-        assert_eq!(shared_consts()[0].1, std::f32::consts::TAU);
-        assert_eq!((shared_consts()[1].1, shared_consts()[2].1), (1.0, 2.0));
+        assert_eq!((shared_consts()[0].1, shared_consts()[1].1), (1.0, 2.0));
         // The shader file declares none of them, nor writes the literals it had before.
         for (name, _) in shared_consts() {
             assert!(
@@ -71,6 +81,8 @@ mod tests {
             assert!(!WAKE_FUNCTIONS.contains(old), "wake.wgsl writes {old}");
         }
         assert!(wake_wgsl().starts_with(&p) && wake_wgsl().ends_with(WAKE_FUNCTIONS));
+        // The phase is no longer reduced by 2π in the shader: it takes turns from the table.
+        assert!(!WAKE_FUNCTIONS.contains("WAKE_TAU") && WAKE_FUNCTIONS.contains("q_turns"));
     }
 
     #[test]
@@ -78,6 +90,9 @@ mod tests {
         // Without the prelude the functions name undeclared constants: a consumer that took
         // the file alone would not compile, rather than run with values of its own.
         assert!(naga::front::wgsl::parse_str(WAKE_FUNCTIONS).is_err());
-        assert!(naga::front::wgsl::parse_str(&wake_wgsl()).is_ok());
+        // Nor without the table's declarations, which the pass writes at its own group.
+        assert!(naga::front::wgsl::parse_str(&wake_wgsl()).is_err());
+        let declared = format!("{}{}", wake_wgsl(), turn_table_bindings(0, 0));
+        assert!(naga::front::wgsl::parse_str(&declared).is_ok());
     }
 }

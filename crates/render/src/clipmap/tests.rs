@@ -275,8 +275,9 @@ fn tiles_outside_play_area_and_frustum_are_culled() {
         assert!(p.x.abs() <= slack && p.y.abs() <= slack, "{p}");
     }
     // But only the cells that meet the area are drawn, on a turned lattice too: every
-    // triangle has a vertex within a cell's diagonal of the area, and the cells that
-    // cover the area are all there (its area is drawn).
+    // triangle has a vertex within a cell's diagonal of the area (a morphing level's cell
+    // grown by half a coarser cell: what its morph can move into the area), and the cells
+    // that cover the area are all there (its area is drawn).
     for angle in [0.0, 0.7] {
         let c = ClipMapConfig { angle, ..config() };
         let culling = Culling {
@@ -302,7 +303,7 @@ fn tiles_outside_play_area_and_frustum_are_culled() {
         for t in small.indices.chunks(3) {
             let level = small.vertices[t[0] as usize].level;
             let p = corners(t);
-            let slack = 3.0 + c.cell(level) * 2f64.sqrt() + 1e-4;
+            let slack = 3.0 + (c.cell(level) + c.cell(level + 1)) * 2f64.sqrt() + 1e-4;
             assert!(
                 p.iter().any(|q| q.x.abs() <= slack && q.y.abs() <= slack),
                 "{angle}: {p:?}"

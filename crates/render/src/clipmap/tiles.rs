@@ -74,7 +74,7 @@ impl ClipMapConfig {
             }),
         });
         // Why a box [lo, hi] (lattice coordinates, grown by the sea's largest displacement)
-        // is not drawn, if it is not.
+        // is not drawn, if it is not. The caller grows the box by its level's morph first.
         let cull = |lo: DVec2, hi: DVec2| -> Option<Outside> {
             if let (Some([ax, az, bx, bz]), Some((la, lb))) = (culling.play_area, area_lattice) {
                 // The box's world bounds (the turned box's).
@@ -139,6 +139,18 @@ impl ClipMapConfig {
                 hole.is_some_and(|(x0, x1, z0, z1)| i >= x0 && i < x1 && j >= z0 && j < z1)
             };
             let mut stats = LevelStats::default();
+            // A vertex of a morphing level slides towards the nearest point of the coarser
+            // lattice, at most half a coarse cell along each lattice axis: a cell's triangles
+            // lie within its box grown by that much. Culling the ungrown box dropped cells
+            // whose morphed triangles reached into the view (or the play area) while their
+            // drawn neighbours' shared edges slid away from it: a hole in the water at the
+            // screen's edge, a few pixels wide, where the finer level's morph band meets it.
+            let morph = if l + 1 < self.levels() {
+                DVec2::splat(0.5 * self.cell(l + 1))
+            } else {
+                DVec2::ZERO
+            };
+            let cull = |lo: DVec2, hi: DVec2| cull(lo - morph, hi + morph);
             let lo = self.lattice_min(l, ci);
             let (lo_i, lo_j) = (lo.x, lo.y);
             let mut tj = 0;

@@ -3,10 +3,11 @@
 //! reflection, water-body light, Jacobian foam and wake foam.
 //!
 //! Where the adapter has compute shaders, a compute stage (`shaders/water_vertices.wgsl`)
-//! displaces every clip-map vertex by the sea and the wakes once per frame into a vertex
-//! buffer, and the vertex shader (`shaders/water_displaced.wgsl`) only projects it: a vertex
-//! shader summing hundreds of wake sources starves a GPU's vertex pipeline (13× the water
-//! pass on an H200) and runs on one thread in lavapipe. Without compute (OpenGL ES 3.0) the
+//! displaces every clip-map vertex by the sea and the wakes (their kernel's sin and cos from
+//! the table of one turn, [`crate::turn_table`]) once per frame into a vertex buffer, and the
+//! vertex shader (`shaders/water_displaced.wgsl`) only projects it: a vertex shader summing
+//! hundreds of wake sources starves a GPU's vertex pipeline (13× the water pass on an H200)
+//! and runs on one thread in lavapipe. Without compute (OpenGL ES 3.0) the
 //! vertex shader displaces by the sea alone (`shaders/water_no_wakes.wgsl`) and the report
 //! says that wakes are skipped.
 
@@ -15,12 +16,15 @@ use crate::frame::{FrameContext, Pass, Targets};
 use crate::gpu::{Gpu, upload};
 use crate::passes::{PipelineSpec, pipeline};
 use crate::shader;
+use crate::turn_table::TurnTable;
 
 /// The water pass's compute stage: its pipeline and bind group 1.
 struct VertexCompute {
     pipeline: wgpu::ComputePipeline,
     /// Wake sources, bins, indices, grid, the clip-map vertices and the displaced vertices.
     buffers: [Option<wgpu::Buffer>; 6],
+    /// The wake kernel's table of one turn (bindings 6 and 7), uploaded on the first frame.
+    turn_table: Option<TurnTable>,
     group: Option<wgpu::BindGroup>,
     /// Vertices to displace this frame.
     vertex_count: u32,
@@ -83,8 +87,9 @@ impl WaterPass {
             let cs = wgpu::ShaderStages::COMPUTE;
             let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("water vertices"),
-                entries: &[0, 1, 2, 3, 4, 5].map(|binding| match binding {
+                entries: &[0, 1, 2, 3, 4, 5, 6, 7].map(|binding| match binding {
                     3 => layout::uniform(binding, cs),
+                    6 | 7 => TurnTable::layout_entries(6, cs)[binding as usize - 6],
                     _ => layout::storage(binding, cs, binding != 5),
                 }),
             });
@@ -108,6 +113,7 @@ impl WaterPass {
                     cache: None,
                 }),
                 buffers: Default::default(),
+                turn_table: None,
                 group: None,
                 vertex_count: 0,
                 kernel_sources: Vec::new(),
@@ -271,9 +277,12 @@ impl Pass for WaterPass {
                 mapped_at_creation: false,
             }));
         }
+        let table = c
+            .turn_table
+            .get_or_insert_with(|| TurnTable::new(&gpu.device, &gpu.queue));
         // Made each frame: the vertex bindings are sized to this frame's mesh, so the
         // shader's arrayLength is the vertex count.
-        let entries: Vec<wgpu::BindGroupEntry> = c
+        let mut entries: Vec<wgpu::BindGroupEntry> = c
             .buffers
             .iter()
             .enumerate()
@@ -293,6 +302,7 @@ impl Pass for WaterPass {
                 })
             })
             .collect();
+        entries.extend(table.entries(6));
         c.vertex_count = 0;
         if n == 0 {
             return;
