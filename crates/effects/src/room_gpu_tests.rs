@@ -141,11 +141,11 @@ impl Inputs {
     }
 }
 
-/// `edge_weight(uv)`.
+/// `edge_weight(uv)`: 1 − (max-norm distance outside the image) / EDGE_FADE, clamped.
 fn edge_weight(uv: [Inexact; 2]) -> Inexact {
-    let (zero, one) = (Inexact::exact(0.0), Inexact::exact(1.0));
-    let outside = uv.map(|c| (-c).max(c - one).max(zero));
-    (one - acc::length(&outside) / input(crate::refraction::EDGE_FADE)).clamp(0.0, 1.0)
+    let one = Inexact::exact(1.0);
+    let outside = uv.map(|c| (-c).max(c - one));
+    (one - outside[0].max(outside[1]) / input(crate::refraction::EDGE_FADE)).clamp(0.0, 1.0)
 }
 
 /// `sky_above(r.y)` (the room shaders' sky with the sun's weight 0, for r.y > 0).
