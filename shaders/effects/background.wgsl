@@ -17,7 +17,7 @@ fn cover_vertex(i: u32) -> vec2<f32> {
 fn vs_main(@builtin(vertex_index) i: u32) -> ScreenOut {
     // No cover: one triangle over the whole screen (vertices 0, 1, 2).
     var xy = full_screen_xy(i);
-    let n = fx.flags.z;
+    let n = fx.flags.x;
     if n > 0u {
         // Edge e of the polygon, from vertex e to the next: the quad (inner e, inner e + 1,
         // outer e + 1, outer e) as two triangles, six vertices an edge. (One exit: see

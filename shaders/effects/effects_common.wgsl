@@ -32,8 +32,9 @@ struct Effects {
     flow_b: vec4<f32>,
     // Far current x, z (m/s), mark radius (m), detail tile size (m).
     current: vec4<f32>,
-    // y = marks; z = the cover's vertices (0: none); x, w unused (which effects run is each
-    // pipeline's constant, FX_MASK).
+    // x = the cover's vertices (0: none), y = marks, zw = the reflected room's grid, columns
+    // and rows of cells (effects::reflection::room_grid). Which effects run is each
+    // pipeline's constant, FX_MASK.
     flags: vec4<u32>,
     marks: array<vec4<f32>, 8>,
     // The sea's water over the table (water_look.wgsl).

@@ -4,11 +4,11 @@
 // fraction of the screen (000: a quarter) with the reflection matrix (000 eq. 1) and oblique
 // near-plane clipping at the water (000 eq. 2), so nothing below the water is in it: first the
 // real room over the sky (reflection_room.wgsl: the camera image on a ring around the water,
-// ring_hit below, where the camera sees it; the sky and the sun elsewhere), then boats, sails
-// and marks. The water samples it at the pixel, moved by the surface normal's tilt (000's
-// distortion, which breaks the sun into glints along the waves): one texture sample per pixel
-// for everything reflected. (It was drawn over a per-pixel sky before: on lavapipe that sky
-// cost about a tenth of a water-only frame.)
+// drawn as a grid whose corners take ring_hit's exit root, where the camera sees it; the sky
+// and the sun elsewhere), then boats, sails and marks. The water samples it at the pixel,
+// moved by the surface normal's tilt (000's distortion, which breaks the sun into glints along
+// the waves): one texture sample per pixel for everything reflected. (It was drawn over a
+// per-pixel sky before: on lavapipe that sky cost about a tenth of a water-only frame.)
 
 fn ring_hit(p: vec3<f32>, r: vec3<f32>) -> vec4<f32> {
     // Solve |(p + s r).xz - c| = R for the exit (s > 0) of the ray from inside the ring; w = 0

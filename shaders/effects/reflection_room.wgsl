@@ -12,7 +12,15 @@
 // the water" limitation), blended over the image's edge. Boats, sails and marks are drawn
 // over it.
 //
-// Appended to effects_common.wgsl and reflection.wgsl (ring_hit); binds only the effects'
+// Drawn as a grid of cells over the texture (at most ROOM_CELL_TEXELS texels a side,
+// effects::reflection::room_grid; Effects.flags.zw hold its columns and rows), one triangle
+// strip per row of cells: the smooth part of a texel's map (its reflected ray, the water
+// crossing, the ring point and that point's homogeneous camera-image point) is evaluated at
+// the cell corners and interpolated (error measured against the per-texel f64 map:
+// effects::reflection::grid); each texel divides out its uv, takes the edge weight, samples
+// the camera image and evaluates the sky and the sun itself, so none of them loses detail.
+//
+// Appended to effects_common.wgsl and reflection.wgsl; binds only the effects'
 // uniform and camera image (group 2 without the reflection texture it draws into).
 
 // The sun's disc and glow widened as by a slope variance this large: the disc (about 1.4° at
@@ -31,40 +39,91 @@ const TEXEL_W64: f32 = 0.6 * (TEXEL_N64 + 1.0) / 65.0;
 const TEXEL_W8: f32 = 0.15 * (TEXEL_N8 + 1.0) / 9.0;
 const TEXEL_W_DISC: f32 = 30.0 * 3e-4 * (TEXEL_N_DISC + 1.0);
 
+// sky_colour_texel for a rising direction (dir.y ≥ 0, as every reflected ray is where the
+// water samples the texture): sky_gradient's upper half alone (sky_above), its lower half and
+// the select left out. At dir.y < 0 (texels above the reflected horizon, which the water does
+// not sample) it gives the horizon's haze, the texture's clear colour, where sky_gradient
+// darkens to the sea.
+fn sky_colour_rising(dir: vec3<f32>) -> vec3<f32> {
+    let s = max(dot(dir, frame.sun.xyz), 0.0);
+    let sun = pow(s, TEXEL_N64) * TEXEL_W64 + pow(s, TEXEL_N8) * TEXEL_W8 + pow(s, TEXEL_N_DISC) * TEXEL_W_DISC;
+    return sky_above(dir.y) + SUN_COLOUR * sun * frame.sun.w;
+}
+
+// The sky with the sun at the texel roughness, any direction: sky_colour_rough(dir,
+// TEXEL_ROUGHNESS) to rounding (kept for the test of the folded lobes; the pass draws
+// sky_colour_rising).
 fn sky_colour_texel(dir: vec3<f32>) -> vec3<f32> {
     let s = max(dot(dir, frame.sun.xyz), 0.0);
     let sun = pow(s, TEXEL_N64) * TEXEL_W64 + pow(s, TEXEL_N8) * TEXEL_W8 + pow(s, TEXEL_N_DISC) * TEXEL_W_DISC;
     return sky_gradient(dir) + SUN_COLOUR * sun * frame.sun.w;
 }
 
-// The ray of each texel as a varying: with far = inv_view_proj·(ndc, ½, 1) the texel's ray
-// is (far.xyz/far.w − eye), whose direction is that of (far.xyz − eye·far.w)·far.w, and both
-// far.xyz − eye·far.w and far.w are affine in ndc: interpolated across the full-screen
-// triangle (w = 1 at its corners: linear in the screen) they are exact, and a texel only
-// normalises (ray_dir's matrix product and division once per corner, not per texel).
-struct RoomOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) ray_w: vec4<f32>,
+// The direction of the ray through an NDC point of the texture: far.xyz − eye·far.w, far =
+// inv_view_proj·(ndc, ½, 1). That is w·(X − eye) for the point X = far.xyz / far.w, and it
+// points the way the view looks wherever X lies: the oblique near plane changes only the
+// projection's depth row, so w is the point's depth in front of the eye (> 0 in front) and
+// changes sign exactly where X passes behind the eye. It is affine in ndc, so interpolated
+// linearly across the screen (w = 1 at every vertex) it stays exact and a texel only
+// normalises. (It was multiplied by far.w once more, meant to divide out w's sign: that
+// turned the rays of every texel whose X lay behind the eye, a band of the texture across the
+// far water in the demo view, so those texels mirrored the sky below the horizon, not the
+// room: the_room_ray_is_the_texels_mirrored_ray in effects' room_gpu_tests.rs.)
+fn room_ray(ndc: vec2<f32>) -> vec3<f32> {
+    let far = frame.inv_view_proj * vec4<f32>(ndc, 0.5, 1.0);
+    return far.xyz - frame.eye.xyz * far.w;
 }
 
+// The camera-image point of the room the unit reflected direction r meets, homogeneous: (u w,
+// v w, w) of camera_projection (w > 0 in front of the camera), linear in the ring point, so
+// interpolated over a cell it errs only by the ring point's own curvature (effects::
+// reflection::grid). The ray crosses the water at p (it rises from the mirrored eye below)
+// and leaves the ring at ring_hit's exit root, taken here wherever the ray rises, also where
+// it lies behind p (p outside the ring's circle, off the water): there the map runs on
+// smoothly instead of switching to the sky within a cell. Rays that do not rise (texels above
+// the reflected horizon, which the water does not sample) get w < 0: the sky.
+fn room_image_point(r: vec3<f32>) -> vec3<f32> {
+    let eye = frame.eye.xyz;
+    let p = eye + r * (-eye.y / max(r.y, 1e-6));
+    let o = p.xz - fx.table.zw;
+    let d = r.xz;
+    let a = max(dot(d, d), 1e-8);
+    let b = dot(o, d);
+    let k = max(b * b - a * (dot(o, o) - fx.table.y * fx.table.y), 0.0);
+    let q = p + r * ((-b + sqrt(k)) / a);
+    let h = fx.camera_projection * vec4<f32>(q, 1.0);
+    return select(h, vec3<f32>(0.0, 0.0, -1.0), r.y <= 0.0);
+}
+
+struct RoomOut {
+    @builtin(position) clip: vec4<f32>,
+    // room_ray, for the sky at each texel.
+    @location(0) ray: vec3<f32>,
+    // room_image_point at the cell corners.
+    @location(1) image: vec3<f32>,
+}
+
+// Corner (column i / 2, row `row` + i % 2) of the grid: vertex i of row `row`'s strip.
 @vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> RoomOut {
-    let corner = full_screen(i, 1.0);
-    let far = frame.inv_view_proj * vec4<f32>(corner.ndc, 0.5, 1.0);
+fn vs_main(@builtin(vertex_index) i: u32, @builtin(instance_index) row: u32) -> RoomOut {
+    let corner = vec2<f32>(vec2<u32>(i >> 1u, row + (i & 1u))) / vec2<f32>(fx.flags.zw);
+    let ndc = vec2<f32>(2.0 * corner.x - 1.0, 1.0 - 2.0 * corner.y);
+    let ray = room_ray(ndc);
     var out: RoomOut;
-    out.clip = corner.clip;
-    out.ray_w = vec4<f32>(far.xyz - frame.eye.xyz * far.w, far.w);
+    out.clip = vec4<f32>(ndc, 1.0, 1.0);
+    out.ray = ray;
+    out.image = room_image_point(normalize(ray));
     return out;
 }
 
+// Per texel: the camera image at the interpolated point (its uv divided out here, so the
+// image keeps its full detail and the edge fade its width), weighted by the edge weight where
+// the camera sees the point, over the sky and the sun.
 @fragment
 fn fs_main(in: RoomOut) -> @location(0) vec4<f32> {
-    let r = normalize(in.ray_w.xyz * in.ray_w.w);
-    let eye = frame.eye.xyz;
-    // Where the ray crosses the water (it rises from the mirrored eye below).
-    let s = -eye.y / max(r.y, 1e-6);
-    let ring = ring_hit(eye + r * s, r);
-    let uv = camera_uv(ring.xyz);
-    let w = select(0.0, edge_weight(uv.xy) * uv.z, ring.w > 0.0);
-    return vec4<f32>(mix(sky_colour_texel(r), sample_camera(uv.xy), w), 1.0);
+    let r = normalize(in.ray);
+    let seen = in.image.z > 0.0;
+    let uv = select(vec2<f32>(0.5), in.image.xy / in.image.z, seen);
+    let w = select(0.0, edge_weight(uv), seen);
+    return vec4<f32>(mix(sky_colour_rising(r), sample_camera(uv), w), 1.0);
 }

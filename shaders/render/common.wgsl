@@ -284,16 +284,25 @@ fn sky_colour_rough(dir: vec3<f32>, variance: f32) -> vec3<f32> {
 // The sun's colour (linear) in sky_colour_rough's glow and disc.
 const SUN_COLOUR: vec3<f32> = vec3<f32>(1.0, 0.92, 0.78);
 
+// The sky's haze at the horizon and its blue at the zenith.
+const SKY_HORIZON: vec3<f32> = vec3<f32>(0.62, 0.74, 0.86);
+const SKY_ZENITH: vec3<f32> = vec3<f32>(0.10, 0.28, 0.62);
+
+// The sky without the sun above the horizon, at the sine `up` of the elevation (the horizon's
+// haze at or below 0): sky_gradient's upper half, alone where every ray rises (the reflected
+// room's texels).
+fn sky_above(up: f32) -> vec3<f32> {
+    return mix(SKY_HORIZON, SKY_ZENITH, pow(max(up, 0.0), 0.45));
+}
+
 // The sky without the sun along unit direction dir: horizon haze to zenith blue above the
 // horizon, distant sea under haze below it.
 fn sky_gradient(dir: vec3<f32>) -> vec3<f32> {
     let up = clamp(dir.y, -1.0, 1.0);
-    let zenith = vec3<f32>(0.10, 0.28, 0.62);
-    let horizon = vec3<f32>(0.62, 0.74, 0.86);
-    let above = mix(horizon, zenith, pow(max(up, 0.0), 0.45));
+    let above = sky_above(up);
     // Below the horizon (beyond the play area, or in reflections of steep facets): distant
     // sea under haze, darkening towards the nadir.
-    let below = mix(horizon * 0.85, vec3<f32>(0.05, 0.2, 0.27), clamp(-up * 3.0, 0.0, 1.0));
+    let below = mix(SKY_HORIZON * 0.85, vec3<f32>(0.05, 0.2, 0.27), clamp(-up * 3.0, 0.0, 1.0));
     return select(above, below, up < 0.0);
 }
 

@@ -403,7 +403,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 fn the_room_texels_sky_is_the_rough_sky_at_the_texel_roughness() {
     // `sky_colour_texel` (its lobes' powers and weights folded when the shader is compiled)
     // against `sky_colour_rough(dir, TEXEL_ROUGHNESS)`, on directions over the whole sphere
-    // and close around the sun (its disc and glow), the sun 35° up.
+    // and close around the sun (its disc and glow), the sun 35° up; and `sky_colour_rising`
+    // against `sky_colour_texel` above the horizon.
     let Some(gpu) = test_gpu() else { return };
     let sun = DVec3::new(0.3, 0.574, -0.76).normalize();
     let mut dirs: Vec<[f32; 4]> = Vec::new();
@@ -423,13 +424,14 @@ fn the_room_texels_sky_is_the_rough_sky_at_the_texel_roughness() {
     }
     let kernel = r#"
 @group(0) @binding(10) var<storage, read> input: array<vec4<f32>>;
-@group(0) @binding(11) var<storage, read_write> output: array<array<vec4<f32>, 2>>;
+@group(0) @binding(11) var<storage, read_write> output: array<array<vec4<f32>, 3>>;
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x < arrayLength(&input) {
         let d = input[id.x].xyz;
-        output[id.x] = array<vec4<f32>, 2>(vec4<f32>(sky_colour_texel(d), 0.0),
-            vec4<f32>(sky_colour_rough(d, TEXEL_ROUGHNESS), 0.0));
+        output[id.x] = array<vec4<f32>, 3>(vec4<f32>(sky_colour_texel(d), 0.0),
+            vec4<f32>(sky_colour_rough(d, TEXEL_ROUGHNESS), 0.0),
+            vec4<f32>(sky_colour_rising(d), 0.0));
     }
 }
 "#;
@@ -453,7 +455,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         "room sky",
         &src,
         &dirs,
-        32,
+        48,
         &[wgpu::BindGroupEntry {
             binding: 0,
             resource: frame_buffer.as_entire_binding(),
@@ -461,15 +463,28 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         &[],
     )
     .expect("the kernel runs");
-    let got: &[[[f32; 4]; 2]] = bytemuck::cast_slice(&bytes);
-    let (mut worst, mut brightest) = (0.0f32, 0.0f32);
-    for [texel, rough] in got {
+    let got: &[[[f32; 4]; 3]] = bytemuck::cast_slice(&bytes);
+    let (mut worst, mut brightest, mut rising) = (0.0f32, 0.0f32, 0);
+    for ([texel, rough, above], d) in got.iter().zip(&dirs) {
         for i in 0..3 {
             // Relative to the value: the disc reaches ~30 (the sun), the sky ~1.
             worst = worst.max((texel[i] - rough[i]).abs() / rough[i].abs().max(1.0));
             brightest = brightest.max(rough[i]);
         }
+        // The rising sky the grid pass draws is the texel sky itself above the horizon (the
+        // same operations, sky_gradient's lower half and select left out).
+        if d[1] >= 0.0 {
+            rising += 1;
+            for i in 0..3 {
+                // A compiler may round the two the same or a few ULP apart.
+                assert!(
+                    (above[i] - texel[i]).abs() <= 1e-6 * texel[i].abs().max(1.0),
+                    "{d:?}"
+                );
+            }
+        }
     }
+    assert!(rising > 1000, "{rising}");
     eprintln!("room sky: worst relative difference {worst:e}, brightest {brightest}");
     // A few f32 roundings of the folded constants and of pow (exp2 · log2): WGSL's pow is
     // good to 3 ULP of exp2(y log2 x); well under a thousandth.

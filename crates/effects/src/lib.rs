@@ -32,6 +32,8 @@ pub mod passes;
 pub mod planner;
 pub mod reflection;
 pub mod refraction;
+#[cfg(test)]
+mod room_gpu_tests;
 pub mod wgsl;
 
 use std::fmt;

@@ -17,6 +17,9 @@ use glam::{DVec2, DVec3};
 use super::refraction::edge_weight;
 use render::optics::PinholeCamera;
 
+pub mod grid;
+pub use grid::{ROOM_CELL_TEXELS, room_cell_texels, room_grid, room_grid_vertices};
+
 /// The vertical ring the room's image stands on.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ring {

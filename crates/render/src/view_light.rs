@@ -213,8 +213,8 @@ mod tests {
     #[test]
     fn the_wgsl_sky_is_the_one_the_open_sea_light_integrates() {
         let wgsl = include_str!("../../../shaders/render/common.wgsl");
-        assert!(wgsl.contains("let zenith = vec3<f32>(0.10, 0.28, 0.62);"));
-        assert!(wgsl.contains("let horizon = vec3<f32>(0.62, 0.74, 0.86);"));
+        assert!(wgsl.contains("const SKY_ZENITH: vec3<f32> = vec3<f32>(0.10, 0.28, 0.62);"));
+        assert!(wgsl.contains("const SKY_HORIZON: vec3<f32> = vec3<f32>(0.62, 0.74, 0.86);"));
         assert!(wgsl.contains("pow(max(up, 0.0), 0.45)"));
         assert!(wgsl.contains("vec3<f32>(1.0, 0.92, 0.78)"));
     }

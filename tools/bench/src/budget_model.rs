@@ -217,14 +217,19 @@ pub fn frame_work(inp: &FrameInputs, hsr: bool) -> Result<(Vec<PassWork>, Vec<St
     }
     let drawn = inp.report.size.map(f64::from);
     if let Some([w, h]) = inp.offscreen.reflection_px {
-        // The mirrored room over every texel (the boats' share is a few per cent: left out).
+        // The mirrored room over every texel (the boats' share is a few per cent: left out):
+        // its grid's strips, each corner's vertex stage per strip it borders, then every
+        // texel's fragment. The grid's vertices come from the vertex index: no vertex bytes.
         let px = f64::from(w) * f64::from(h);
+        let vertices = effects::reflection::room_grid_vertices([w, h]) as f64;
         let src = effects::wgsl::source(&[fx::EFFECTS_COMMON, fx::REFLECTION, fx::REFLECTION_ROOM]);
+        let mut cost = run(&src, "vs_main", vertices)?;
+        cost.add(run(&src, "fs_main", px)?);
         out.push(PassWork {
             pass: "reflection texture".into(),
-            cost: run(&src, "fs_main", px)?,
+            cost,
             target_bytes: px * FRAGMENT_BYTES,
-            invocations: [3.0, px],
+            invocations: [vertices, px],
         });
     }
     if let Some(cells) = inp.offscreen.caustic_map_cells {

@@ -487,7 +487,8 @@ pub(crate) fn passes_table(rows: &[Row]) -> Table {
     t.note(
         "Vertex and fragment invocations of the frame's passes from pipeline-statistics \
          queries (this adapter's rasteriser); the water's compute stage once per clip-map vertex \
-         (half its triangles); the reflection texture once per texel; the caustic map once per \
+         (half its triangles); the reflection texture's grid twice per corner of its cells (up to 8 texels a side) \
+         (one triangle strip per row of cells) and once per texel; the caustic map once per \
          surface grid point, twice per grid cell and once per map cell; the upscale once per \
          screen pixel. Work per invocation: naga's IR of each entry point (tools/bench/src/\
          shader_cost.rs), loops × trip counts known on the CPU (waves, marks, wake sources per \

@@ -45,7 +45,7 @@ impl Pass for BackgroundPass {
         let mut shared = self.shared.borrow_mut();
         shared.write_uniform(gpu, frame);
         self.group = Some(shared.bind_group(&gpu.device));
-        let cover = shared.written.map_or(0, |u| u.flags[2]);
+        let cover = shared.written.map_or(0, |u| u.flags[0]);
         self.vertices = if cover == 0 { 3 } else { 6 * cover };
     }
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u64 {
@@ -82,6 +82,7 @@ impl BackgroundPass {
                     fragment: "fs_main",
                     depth_write: false,
                     depth_compare: wgpu::CompareFunction::LessEqual,
+                    topology: wgpu::PrimitiveTopology::TriangleList,
                 },
             ),
             shared,

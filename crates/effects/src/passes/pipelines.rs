@@ -28,13 +28,15 @@ pub const AR_WATER_PARTS: [&str; 7] = [
     AR_WATER,
 ];
 
-/// How an effect pipeline draws: a full-screen triangle (the background) or the water mesh.
+/// How an effect pipeline draws: a full-screen triangle (the background), the water mesh, or
+/// the reflected room's grid of triangle strips.
 pub(super) struct FxDraw<'a> {
     pub(super) buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     pub(super) vertex: &'a str,
     pub(super) fragment: &'a str,
     pub(super) depth_write: bool,
     pub(super) depth_compare: wgpu::CompareFunction,
+    pub(super) topology: wgpu::PrimitiveTopology,
 }
 
 /// A pipeline of bind groups 0 (frame) and 2 (effects); group 1 is unused (it was the water's
@@ -62,6 +64,7 @@ pub(super) fn fx_pipeline(
             depth_compare: draw.depth_compare,
             cull: None,
             blend: None,
+            topology: draw.topology,
         },
     )
 }
@@ -131,6 +134,7 @@ impl ArPipelines {
                 fragment: "fs_ar",
                 depth_write: true,
                 depth_compare: wgpu::CompareFunction::Less,
+                topology: wgpu::PrimitiveTopology::TriangleList,
             },
         ));
     }

@@ -43,7 +43,7 @@ pub struct EffectsUniform {
     /// `WaterLook::gpu_optics`: the sea's water over the table (`WaterOptics`).
     pub water: [[f32; 4]; 5],
     /// [`super::cover::water_cover`]: the screen polygon the water certainly covers (NDC, two
-    /// vertices a vec4; `flags[2]` of them, 0 for none), where the background is not drawn.
+    /// vertices a vec4; `flags[0]` of them, 0 for none), where the background is not drawn.
     pub cover: [[f32; 4]; super::cover::MAX_COVER_VERTICES / 2],
     /// The polygon's centroid (xy) and the scale (z) of the copy that holds the screen.
     pub cover_shape: [f32; 4],
@@ -72,14 +72,13 @@ pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
         .filter(|b| in_view(b.position, b.length))
         .count()
         + s.marks.iter().filter(|m| in_view(m.position, 2.0)).count();
-    let px = |v: u32| (f64::from(v) * cfg.reflection_fraction).round() as u32;
     EffectFrame {
         requested: cfg.effects,
         camera_frame: true,
         water_on_screen: water,
         camera_above_water: s.camera.eye.y > 0.0,
         reflectors_in_view: reflectors,
-        reflection_texture_px: [px(frame.size[0]), px(frame.size[1])],
+        reflection_texture_px: reflection_px(frame.size, cfg),
         water_over_table: water,
         sun_elevation: s.sun.y.clamp(-1.0, 1.0).asin(),
         calm_sea: s.sea.waves.is_empty(),
@@ -93,6 +92,12 @@ pub fn effect_frame(frame: &FrameContext, cfg: &ArConfig) -> EffectFrame {
         camera_still: false,
         previous_frame_reusable: false,
     }
+}
+
+/// The planar reflection texture's size for a target of `size` pixels: the configured
+/// fraction of each side, at least 1.
+pub(crate) fn reflection_px(size: [u32; 2], cfg: &ArConfig) -> [u32; 2] {
+    size.map(|v| ((f64::from(v) * cfg.reflection_fraction).round() as u32).max(1))
 }
 
 /// Resources shared by the effect passes.
@@ -383,6 +388,7 @@ impl Shared {
         let region = self.caustic_region(frame);
         let [a, b] = flow_phases(s.t, self.cfg.flow_period, DEFAULT_JUMP);
         let water = self.cfg.water.gpu_optics(self.cfg.table_depth);
+        let room_grid = crate::reflection::room_grid(reflection_px(frame.size, &self.cfg));
         let mut marks = [[0.0f32; 4]; 8];
         let mut near: Vec<DVec2> = s.marks.iter().map(|m| m.position - o).collect();
         let target = DVec2::new(s.camera.target.x, s.camera.target.z) - o;
@@ -420,7 +426,12 @@ impl Shared {
                 f(self.cfg.mark_radius),
                 f(self.cfg.detail_tile),
             ],
-            flags: [0, near.len().min(8) as u32, cover_vertices, 0],
+            flags: [
+                cover_vertices,
+                near.len().min(8) as u32,
+                room_grid[0],
+                room_grid[1],
+            ],
             marks,
             water,
             cover,

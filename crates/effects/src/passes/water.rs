@@ -38,8 +38,11 @@ pub struct ArWaterPass {
     group: Option<wgpu::BindGroup>,
     /// The planar reflection: its own frame bindings (reflected camera) and boats pass.
     reflection_bindings: FrameBindings,
-    /// The room and sky drawn first into the reflection texture.
+    /// The room and sky drawn first into the reflection texture, as a grid of triangle
+    /// strips, and the grid's columns and rows for this frame's texture
+    /// (`reflection::room_grid`, as the effects uniform gives them to the shader).
     room_pipeline: wgpu::RenderPipeline,
+    room_grid: [u32; 2],
     /// This frame's offscreen work, prepared, for the renderer to record before the frame.
     offscreen: Offscreen,
     /// The caustic map's pass and its own frame bindings (this frame's waves).
@@ -167,6 +170,7 @@ impl ArWaterPass {
                 fragment: "fs_main",
                 depth_write: false,
                 depth_compare: wgpu::CompareFunction::Always,
+                topology: wgpu::PrimitiveTopology::TriangleStrip,
             },
         );
         ArWaterPass {
@@ -178,6 +182,7 @@ impl ArWaterPass {
             reflection_bindings: FrameBindings::new(&gpu.device),
             caustic_map,
             room_pipeline,
+            room_grid: [1, 1],
             offscreen: Offscreen::default(),
             caustic_bindings: FrameBindings::new(&gpu.device),
             reflection_boats,
@@ -227,10 +232,8 @@ impl ArWaterPass {
             self.reflection_boats.prepare(gpu, frame);
         }
         let mut shared = self.shared.borrow_mut();
-        let frac = shared.cfg.reflection_fraction;
-        let size = frame
-            .size
-            .map(|v| ((f64::from(v) * frac).round() as u32).max(1));
+        let size = super::shared::reflection_px(frame.size, &shared.cfg);
+        self.room_grid = crate::reflection::room_grid(size);
         shared.reflection_targets(&gpu.device, size);
         shared.room_group(&gpu.device);
         oblique.is_some()
@@ -269,7 +272,9 @@ impl ArWaterPass {
             pass.set_bind_group(0, &self.reflection_bindings.group, &[]);
             pass.set_pipeline(&self.room_pipeline);
             pass.set_bind_group(2, room, &[]);
-            pass.draw(0..3, 0..1);
+            // One strip per row of cells (the instance), two vertices per column line.
+            let [cols, rows] = self.room_grid;
+            pass.draw(0..2 * (cols + 1), 0..rows);
             self.reflection_boats.draw(&mut pass);
         }
     }

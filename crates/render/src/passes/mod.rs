@@ -49,6 +49,7 @@ pub fn pipeline(
             },
             cull: spec.cull,
             blend: None,
+            topology: wgpu::PrimitiveTopology::TriangleList,
         },
     )
 }
@@ -63,6 +64,9 @@ pub struct Raster<'a> {
     pub cull: Option<wgpu::Face>,
     /// Colour blending (`None`: replace; segment layers blend over the scene).
     pub blend: Option<wgpu::BlendState>,
+    /// How the vertices make triangles: a list, or a strip (the reflected room's grid rows,
+    /// each interior vertex shaded twice rather than six times).
+    pub topology: wgpu::PrimitiveTopology,
 }
 
 /// A render pipeline with bind groups `layouts` (a `None` is an unused slot) into the shared
@@ -90,6 +94,7 @@ pub fn render_pipeline(
             buffers: raster.buffers,
         },
         primitive: wgpu::PrimitiveState {
+            topology: raster.topology,
             cull_mode: raster.cull,
             ..Default::default()
         },

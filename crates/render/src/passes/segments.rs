@@ -202,6 +202,7 @@ impl SegmentPass {
                 depth_compare: wgpu::CompareFunction::LessEqual,
                 cull: None,
                 blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+                topology: wgpu::PrimitiveTopology::TriangleList,
             },
         )
     }
