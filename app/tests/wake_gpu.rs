@@ -112,14 +112,7 @@ fn wake_wgsl_matches_its_cpu_mirror_on_the_gpu() {
     // The sum at every point over the sources `source_bytes` (a frame's WakeKernelSources).
     let run = |source_bytes: &[u8]| -> Vec<[f32; 4]> {
         let sources = storage("sources", source_bytes);
-        let mut entries: Vec<wgpu::BindGroupEntry> = [&sources, &pts, &out]
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
+        let mut entries = render::gpu::buffer_entries(&[&sources, &pts, &out]);
         entries.extend(table.entries(3));
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("wake test"),

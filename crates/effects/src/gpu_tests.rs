@@ -443,13 +443,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     ]);
     let mut frame: render::frame::FrameUniform = bytemuck::Zeroable::zeroed();
     frame.sun = [sun.x as f32, sun.y as f32, sun.z as f32, 1.0];
-    let frame_buffer = gpu
-        .device
-        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("frame"),
-            contents: bytemuck::bytes_of(&frame),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+    let frame_buffer = crate::fixtures::frame_buffer(&gpu, &frame);
     let bytes = render::compute::run_kernel_in(
         &gpu,
         "room sky",

@@ -10,6 +10,7 @@
 use glam::{DMat4, DVec2, DVec3};
 use wgpu::util::DeviceExt;
 
+use crate::fixtures::{UV_IMAGE, uv_image};
 use crate::passes::{EFFECTS_COMMON, EffectsUniform, REFLECTION, REFLECTION_ROOM};
 use crate::reflection::grid::{RoomView, phone_views};
 use crate::reflection::{Ring, room_grid};
@@ -153,45 +154,6 @@ fn sky(r: [Inexact; 3]) -> [Inexact; 3] {
     let t = r[1].pow(input(0.45));
     let (horizon, zenith) = ([0.62, 0.74, 0.86], [0.10, 0.28, 0.62]);
     [0, 1, 2].map(|c| acc::mix(input(horizon[c]), input(zenith[c]), t))
-}
-
-/// Texels per side of the test's camera image, whose texel (i, j) holds its own centre's uv
-/// ((2i + 1)/2N, exact in a half float) in red and green: the colour a shader samples is the
-/// uv it asked for, kept to the texel centres' range.
-const UV_IMAGE: u32 = 1024;
-
-fn uv_image(gpu: &Gpu) -> wgpu::Texture {
-    let n = UV_IMAGE;
-    let half = |v: f32| {
-        let bits = v.to_bits();
-        let exp = ((bits >> 23) & 0xff) as u16 + 15 - 127;
-        (exp << 10) | ((bits >> 13) & 0x3ff) as u16
-    };
-    let texels: Vec<u16> = (0..n * n)
-        .flat_map(|k| {
-            let centre = |i: u32| (2 * i + 1) as f32 / (2 * n) as f32;
-            [half(centre(k % n)), half(centre(k / n))]
-        })
-        .collect();
-    gpu.device.create_texture_with_data(
-        &gpu.queue,
-        &wgpu::TextureDescriptor {
-            label: Some("uv image"),
-            size: wgpu::Extent3d {
-                width: n,
-                height: n,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rg16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&texels),
-    )
 }
 
 /// The colour the uv image gives at `uv` (blue: none), with what the texture unit may add:
@@ -388,20 +350,7 @@ fn draw_both(
             group(1, &[]),
             group(
                 2,
-                &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: fx_buffer.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&image),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: wgpu::BindingResource::Sampler(&sampler),
-                    },
-                ],
+                &crate::fixtures::camera_entries(&fx_buffer, &image, &sampler),
             ),
         ];
         let target = render::gpu::texture_2d(
@@ -660,13 +609,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             view.eye.z as f32,
             0.0,
         ];
-        let frame_buffer = gpu
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("frame"),
-                contents: bytemuck::bytes_of(&frame),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+        let frame_buffer = crate::fixtures::frame_buffer(&gpu, &frame);
         let bytes = render::compute::run_kernel_in(
             &gpu,
             "room ray",

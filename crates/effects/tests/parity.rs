@@ -472,54 +472,7 @@ fn a_broken_ring_fails_the_ring_hit_parity() {
 
 // ---- refracted_table (refraction.wgsl) ---------------------------------------------------------
 
-/// Texels per side of the test's camera image, whose texel (i, j) holds its own centre's uv:
-/// ((i + ½)/N, (j + ½)/N) in red and green. Filtered linearly (clamped to the edge) it returns
-/// the uv it is sampled at, kept to the texel centres' range, so the colour the shader returns
-/// is the point it sampled. (2i + 1)/2N has 11 significant bits: exact in a half float.
-const UV_IMAGE: u32 = 1024;
-
-/// What the uv image shows at `uv`.
-fn uv_image_at(uv: DVec2) -> DVec2 {
-    let half = 0.5 / f64::from(UV_IMAGE);
-    uv.clamp(DVec2::splat(half), DVec2::splat(1.0 - half))
-}
-
-/// The half float of `v`, which it must hold exactly.
-fn f16_bits(v: f32) -> u16 {
-    let bits = v.to_bits();
-    assert!(bits & 0x1fff == 0 && v >= 2f32.powi(-14) && v < 2.0, "{v}");
-    let exp = ((bits >> 23) & 0xff) as u16 + 15 - 127;
-    (exp << 10) | ((bits >> 13) & 0x3ff) as u16
-}
-
-fn uv_image(gpu: &Gpu) -> wgpu::Texture {
-    let n = UV_IMAGE;
-    let texels: Vec<u16> = (0..n * n)
-        .flat_map(|k| {
-            let centre = |i: u32| (2 * i + 1) as f32 / (2 * n) as f32;
-            [f16_bits(centre(k % n)), f16_bits(centre(k / n))]
-        })
-        .collect();
-    gpu.device.create_texture_with_data(
-        &gpu.queue,
-        &wgpu::TextureDescriptor {
-            label: Some("uv image"),
-            size: wgpu::Extent3d {
-                width: n,
-                height: n,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rg16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&texels),
-    )
-}
+use effects::fixtures::{UV_IMAGE, uv_image, uv_image_at};
 
 /// A view of the water: the camera, the table's depth, and the surface points with normals
 /// its pixels see.
@@ -658,20 +611,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         min_filter: wgpu::FilterMode::Linear,
         ..Default::default()
     });
-    let fx = [
-        wgpu::BindGroupEntry {
-            binding: 0,
-            resource: uniform.as_entire_binding(),
-        },
-        wgpu::BindGroupEntry {
-            binding: 1,
-            resource: wgpu::BindingResource::TextureView(&image),
-        },
-        wgpu::BindGroupEntry {
-            binding: 4,
-            resource: wgpu::BindingResource::Sampler(&sampler),
-        },
-    ];
+    let fx = effects::fixtures::camera_entries(&uniform, &image, &sampler);
     let bytes = render::compute::run_kernel_with(
         gpu,
         "refracted table parity",

@@ -34,6 +34,51 @@ pub fn test_scene(t: f64, boats: Vec<crate::Boat>) -> crate::Scene {
     }
 }
 
+/// Uniform numbers in [0, 1) from a fixed seed (xorshift64, its top 53 bits): the tests'
+/// deterministic stream. A test fixture, not an API.
+#[doc(hidden)]
+pub fn fixed_seed_uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed.max(1);
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Cameras over water about `scale` metres each way from the origin: high and steep, low and
+/// grazing, close and oblique, straight down, from outside, rolled, and `random` more from
+/// `seed` (eyes up to ⅔ `scale` across and 0.03–1.03 `scale` up, looking at points up to 0.4
+/// `scale` away); the far plane 50 `scale` off. A test fixture, not an API.
+#[doc(hidden)]
+pub fn test_views(scale: f64, seed: u64, random: usize) -> Vec<crate::Camera> {
+    let look = |eye: [f64; 3], target: [f64; 3]| {
+        crate::Camera::look_at(
+            glam::DVec3::from_array(eye) * scale,
+            glam::DVec3::from_array(target) * scale,
+            50.0 * scale,
+        )
+    };
+    let mut rolled = look([0.17, 0.3, 0.47], [0.0, 0.0, 0.0]);
+    rolled.up = glam::DVec3::new(0.6, 1.0, 0.2);
+    let mut views = vec![
+        look([0.0, 1.33, 0.67], [0.0, 0.0, 0.0]),
+        look([0.0, 0.133, 0.4], [0.0, 0.0, -1.0]),
+        look([-0.1, 0.4, 0.1], [0.067, 0.0, -0.067]),
+        look([0.0, 0.83, 0.0003], [0.0, 0.0, 0.0]),
+        look([1.0, 0.33, 0.83], [0.0, 0.0, 0.0]),
+        rolled,
+    ];
+    let mut next = fixed_seed_uniform(seed);
+    for _ in 0..random {
+        let eye = [1.33 * next() - 0.67, 0.033 + next(), 1.33 * next() - 0.67];
+        let target = [0.8 * next() - 0.4, 0.0, 0.53 * next() - 0.27];
+        views.push(look(eye, target));
+    }
+    views
+}
+
 /// Largest mean absolute difference per channel, levels.
 pub const MEAN_TOLERANCE: f64 = 2.0;
 /// A pixel is off when some channel differs by more than this many levels.

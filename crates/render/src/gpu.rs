@@ -367,6 +367,18 @@ impl Gpu {
     }
 }
 
+/// `buffers`, each bound whole, as entries at bindings 0, 1, … in order.
+pub fn buffer_entries<'a>(buffers: &[&'a wgpu::Buffer]) -> Vec<wgpu::BindGroupEntry<'a>> {
+    buffers
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect()
+}
+
 /// A bind group of `buffers`, each bound whole, at bindings 0, 1, … in order.
 pub fn buffer_group(
     device: &wgpu::Device,
@@ -374,14 +386,7 @@ pub fn buffer_group(
     layout: &wgpu::BindGroupLayout,
     buffers: &[&wgpu::Buffer],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = buffers
-        .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry {
-            binding: i as u32,
-            resource: b.as_entire_binding(),
-        })
-        .collect();
+    let entries = buffer_entries(buffers);
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,

@@ -7,39 +7,11 @@
 use glam::{DVec2, DVec3, DVec4};
 use render::frame::FrameContext;
 
-/// Cameras over a play area of ±40 m: high and steep, low and grazing, rolled, from outside
-/// the area, and fixed-seed random ones.
+/// The test views over a play area of ±40 m, over the default sea and over a short three-wave
+/// sea on a ±30 m table, with that table's own camera (where the hole was found: effects' demo
+/// table).
 fn scenes() -> Vec<render::Scene> {
-    let look = |eye: [f64; 3], target: [f64; 3]| {
-        render::Camera::look_at(DVec3::from_array(eye), DVec3::from_array(target), 2000.0)
-    };
-    let mut cameras = vec![
-        look([22.0, 26.0, 48.0], [0.0, 0.0, 0.0]),
-        look([0.0, 60.0, 30.0], [0.0, 0.0, 0.0]),
-        look([0.0, 5.0, 30.0], [0.0, 0.0, -60.0]),
-        look([70.0, 15.0, 50.0], [0.0, 0.0, 0.0]),
-    ];
-    let mut rolled = look([8.0, 12.0, 20.0], [0.0, 0.0, 0.0]);
-    rolled.up = DVec3::new(0.6, 1.0, 0.2);
-    cameras.push(rolled);
-    let mut state = 0x853c_49e6_748f_ea9b_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    for _ in 0..12 {
-        let eye = [
-            100.0 * next() - 50.0,
-            2.0 + 50.0 * next(),
-            100.0 * next() - 50.0,
-        ];
-        let target = [60.0 * next() - 30.0, 0.0, 60.0 * next() - 30.0];
-        cameras.push(look(eye, target));
-    }
-    // Over the default sea, and over a short three-wave sea on a ±30 m table seen from its
-    // corner (where the hole was found: effects' demo table).
+    let cameras = render::golden::test_views(40.0, 0x853c_49e6_748f_ea9b, 12);
     let short_sea = ocean::WaveSet {
         gravity: 9.81,
         depth: None,
@@ -59,7 +31,7 @@ fn scenes() -> Vec<render::Scene> {
     let table = render::Scene {
         sea: short_sea.into(),
         play_area: [-30.0, -30.0, 30.0, 30.0],
-        camera: look([22.0, 26.0, 48.0], [0.0, 0.0, 0.0]),
+        camera: render::Camera::look_at(DVec3::new(22.0, 26.0, 48.0), DVec3::ZERO, 500.0),
         ..render::golden::test_scene(40.0, Vec::new())
     };
     let mut scenes = vec![table.clone()];

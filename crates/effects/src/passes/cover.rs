@@ -261,41 +261,11 @@ mod tests {
 
     use super::*;
 
-    /// Cameras over the demo table (play area ±15 × ±10 m around the origin, about): the
-    /// demo's own, high and steep, low and grazing, rolled, straight down, from outside the
-    /// table, and fixed-seed random ones.
+    /// The demo table's own camera and the render crate's test views over its ±30 m.
     fn cameras() -> Vec<render::Camera> {
-        let look = |eye: [f64; 3], target: [f64; 3]| {
-            render::Camera::look_at(DVec3::from_array(eye), DVec3::from_array(target), 500.0)
-        };
-        let mut v = vec![
-            crate::demo_table_scene(0.0).camera,
-            look([0.0, 40.0, 20.0], [0.0, 0.0, 0.0]),
-            look([0.0, 4.0, 12.0], [0.0, 0.0, -30.0]),
-            look([-3.0, 12.0, 3.0], [2.0, 0.0, -2.0]),
-            look([0.0, 25.0, 0.01], [0.0, 0.0, 0.0]),
-            look([30.0, 10.0, 25.0], [0.0, 0.0, 0.0]),
-        ];
-        let mut rolled = look([5.0, 9.0, 14.0], [0.0, 0.0, 0.0]);
-        rolled.up = DVec3::new(0.6, 1.0, 0.2);
-        v.push(rolled);
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for _ in 0..24 {
-            let eye = [
-                40.0 * next() - 20.0,
-                1.0 + 30.0 * next(),
-                40.0 * next() - 20.0,
-            ];
-            let target = [24.0 * next() - 12.0, 0.0, 16.0 * next() - 8.0];
-            v.push(look(eye, target));
-        }
-        v
+        let mut views = vec![crate::demo_table_scene(0.0).camera];
+        views.extend(render::golden::test_views(30.0, 0x9e37_79b9_7f4a_7c15, 24));
+        views
     }
 
     /// Where the ray from `eye` along unit `d` first meets the f64 sea surface raised by

@@ -184,13 +184,7 @@ mod tests {
         let physical = camera(DVec3::new(-0.3, 0.9, 1.8), DVec3::ZERO, 500.0, 320.0);
         let image = physical.image_projection(physical.pose.inverse());
         let m = straight_image(screen_projection(vp), image, 0.2, render_eye.y).unwrap();
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = render::golden::fixed_seed_uniform(0x2545_f491_4f6c_dd1d);
         for _ in 0..200 {
             // A triangle on the water (y = 0), near and far, and a point inside it.
             let mut corner = || DVec3::new(4.0 * next() - 2.0, 0.0, -12.0 * next() + 1.5);
