@@ -24,6 +24,8 @@ mod camera_gpu_tests;
 pub mod camera_upload;
 pub mod caustic_map;
 pub mod caustics;
+#[cfg(test)]
+mod cover_gpu_tests;
 #[doc(hidden)]
 pub mod fixtures;
 pub mod flow_detail;
