@@ -225,7 +225,7 @@ mod tests {
         let scene = PoolScene::default();
         assert_eq!(scene.water.waves, s);
         // The highest crest stays below the rim, the lowest trough above the floor.
-        let amp: f64 = s.waves.iter().map(|w| w.amplitude()).sum();
+        let amp = s.total_amplitude();
         assert!(amp < scene.pool.rim_y && -amp > scene.pool.floor_y);
     }
 

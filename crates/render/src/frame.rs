@@ -97,7 +97,7 @@ impl<'a> FrameContext<'a> {
         let origin = clipmap.origin_for(eye_xz);
         let view_proj = cam.view_proj_local(origin, aspect);
         let frustum = Frustum::from_matrix(view_proj);
-        let max_displacement: f64 = scene.sea.waves.iter().map(|w| w.amplitude()).sum();
+        let max_displacement = scene.sea.total_amplitude();
         let mesh = clipmap.build(
             eye_xz,
             &Culling {

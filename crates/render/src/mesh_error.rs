@@ -118,7 +118,7 @@ pub fn regatta_triangles(sea: &WaveSet, cfg: &ClipMapConfig, view: &View) -> u64
     let culling = Culling {
         frustum: Some(Frustum::from_matrix(cam.view_proj_local(origin, aspect))),
         play_area: Some(view.play_area),
-        max_displacement: sea.waves.iter().map(|w| w.amplitude()).sum(),
+        max_displacement: sea.total_amplitude(),
     };
     cfg.triangles_drawn(eye, &culling)
 }

@@ -616,7 +616,7 @@ pub fn bin_wakes(
         &view,
         WAKE_EPSILON_M,
     );
-    let displacement: f64 = scene.sea.waves.iter().map(|w| w.amplitude()).sum();
+    let displacement = scene.sea.total_amplitude();
     let spacing =
         crate::wake_spacing::SampleSpacing::of_mesh(&frame.clipmap, &frame.mesh, eye, displacement);
     let half = reach as f32 * 2.0;

@@ -65,7 +65,7 @@ const THETA_CUTS: [f64; 5] = [3.0, 6.0, 12.0, 24.0, 45.0];
 
 /// See the module docs.
 pub fn water_cover(frame: &FrameContext) -> Option<WaterCover> {
-    let amplitudes: f64 = frame.scene.sea.waves.iter().map(|w| w.amplitude()).sum();
+    let amplitudes = frame.scene.sea.total_amplitude();
     cover_within(frame, amplitudes, amplitudes + WAKE_HEIGHT_MARGIN)
 }
 
@@ -90,7 +90,7 @@ fn cover_at(frame: &FrameContext, theta_cut: f64, horizontal: f64, v: f64) -> Op
     let o = frame.origin;
     let eye = DVec2::new(cam.eye.x, cam.eye.z) - o;
     let radius = h / theta_cut.tan();
-    let mut poly: Vec<DVec2> = (0..DISC_SIDES)
+    let poly: Vec<DVec2> = (0..DISC_SIDES)
         .map(|k| {
             let a = std::f64::consts::TAU * k as f64 / DISC_SIDES as f64;
             eye + radius * DVec2::new(a.cos(), a.sin())
@@ -121,29 +121,19 @@ fn cover_at(frame: &FrameContext, theta_cut: f64, horizontal: f64, v: f64) -> Op
             cam.far - depth_margin - w_row.w,
         ),
     ];
-    for (normal, offset) in halves {
-        poly = clip(&poly, normal, offset);
-        if poly.len() < 3 {
-            return None;
-        }
-    }
+    let poly = clip_all(poly, &halves)?;
     let ndc: Vec<DVec2> = poly
         .iter()
         .map(|p| project(frame.view_proj, *p))
         .collect::<Option<_>>()?;
     // Only its part on the screen matters (convex again, and covered again).
-    let mut ndc = counter_clockwise(ndc);
-    for (normal, offset) in [
+    let screen = [
         (DVec2::X, 1.0),
         (DVec2::Y, 1.0),
         (-DVec2::X, 1.0),
         (-DVec2::Y, 1.0),
-    ] {
-        ndc = clip(&ndc, normal, offset);
-        if ndc.len() < 3 {
-            return None;
-        }
-    }
+    ];
+    let mut ndc = clip_all(counter_clockwise(ndc), &screen)?;
     // A vertex on a clipping line comes back twice: one of each pair.
     ndc.dedup_by(|b, a| (*a - *b).length() < 1e-9);
     while ndc.len() > 1 && (ndc[0] - ndc[ndc.len() - 1]).length() < 1e-9 {
@@ -171,6 +161,18 @@ fn cover_at(frame: &FrameContext, theta_cut: f64, horizontal: f64, v: f64) -> Op
         centroid,
         scale,
     })
+}
+
+/// `poly` cut to every half-plane of `halves` in turn ([`clip`]); `None` once fewer than three
+/// vertices are left.
+fn clip_all(mut poly: Vec<DVec2>, halves: &[(DVec2, f64)]) -> Option<Vec<DVec2>> {
+    for &(normal, offset) in halves {
+        poly = clip(&poly, normal, offset);
+        if poly.len() < 3 {
+            return None;
+        }
+    }
+    Some(poly)
 }
 
 /// `poly` cut to the half-plane normal·p + offset ≥ 0 (Sutherland–Hodgman).
@@ -359,7 +361,7 @@ mod tests {
             let inv = frame.view_proj.inverse();
             let eye = scene.camera.eye;
             let o = frame.origin;
-            let amplitudes: f64 = scene.sea.waves.iter().map(|w| w.amplitude()).sum();
+            let amplitudes = scene.sea.total_amplitude();
             let top = amplitudes + WAKE_HEIGHT_MARGIN;
             let [ax, az, bx, bz] = scene.play_area;
             let (lo, hi) = cover

@@ -22,7 +22,7 @@ pub(super) const WAKE_HEIGHT_MARGIN: f64 = 1.0;
 /// Exact culling, no approximation: a corner behind the camera gives the whole screen.
 pub(super) fn play_area_scissor(frame: &FrameContext) -> Option<Scissor> {
     let s = frame.scene;
-    let reach: f64 = s.sea.waves.iter().map(|w| w.amplitude()).sum();
+    let reach = s.sea.total_amplitude();
     let [ax, az, bx, bz] = s.play_area;
     let o = frame.origin;
     let (w, h) = (f64::from(frame.size[0]), f64::from(frame.size[1]));

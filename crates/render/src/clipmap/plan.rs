@@ -31,7 +31,7 @@ impl ClipMapConfig {
         l: u32,
         finer: Option<&LevelPlan>,
     ) -> LevelPlan {
-        let lift: f64 = sea.waves.iter().map(|w| w.amplitude()).sum();
+        let lift = sea.total_amplitude();
         let h = height_over_crests(eye_height, lift);
         let cell = self.cell(l);
         let nearest = if l == 0 {
