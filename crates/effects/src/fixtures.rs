@@ -1,6 +1,6 @@
 //! Test fixtures shared by the crate's own GPU tests and its integration tests (not an API).
 
-use glam::DVec2;
+use glam::{DMat4, DVec2};
 use wgpu::util::DeviceExt;
 
 /// Texels per side of the uv image, whose texel (i, j) holds its own centre's uv:
@@ -86,4 +86,18 @@ pub fn camera_entries<'a>(
             resource: wgpu::BindingResource::Sampler(sampler),
         },
     ]
+}
+
+/// The effects' test camera: a 640×480 px image, focal length 500 px, principal point at the
+/// centre, at `pose` (camera to world).
+pub fn test_camera(pose: DMat4) -> render::optics::PinholeCamera {
+    render::optics::PinholeCamera {
+        fx: 500.0,
+        fy: 500.0,
+        cx: 320.0,
+        cy: 240.0,
+        width: 640.0,
+        height: 480.0,
+        pose,
+    }
 }

@@ -164,16 +164,6 @@ pub fn current_interpolation_error(
 mod tests {
     use super::*;
 
-    /// Uniform numbers in [0, 1) from a fixed seed (a 64-bit LCG's top 53 bits).
-    fn uniform_stream(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
     #[test]
     fn the_current_interpolated_from_vertices_stays_within_its_bound() {
         // Triangles of 5 cm to 4 m, acute and obtuse, all around two marks in a current; the
@@ -189,7 +179,7 @@ mod tests {
                 radius: 4.0,
             },
         ];
-        let mut rnd = uniform_stream(7);
+        let mut rnd = render::golden::fixed_seed_uniform(7);
         let (mut worst_ratio, mut checked) = (0.0f64, 0);
         for _ in 0..4000 {
             let h = 0.05 * (80.0f64).powf(rnd());
@@ -298,7 +288,7 @@ mod tests {
         // of the blended point and current (flow_uv is affine in both).
         let phases = flow_phases(5.7, 2.0, DEFAULT_JUMP);
         let tile = 12.0;
-        let mut rnd = uniform_stream(11);
+        let mut rnd = render::golden::fixed_seed_uniform(11);
         for _ in 0..500 {
             let mut corner = || {
                 (

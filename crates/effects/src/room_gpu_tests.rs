@@ -16,7 +16,7 @@ use crate::reflection::grid::{RoomView, phone_views};
 use crate::reflection::{Ring, room_grid};
 use render::frame::FrameUniform;
 use render::gpu::{Gpu, test_gpu};
-use render::optics::{DepthRange, PinholeCamera, Plane, oblique_near_plane, reflection_matrix};
+use render::optics::{DepthRange, Plane, oblique_near_plane, reflection_matrix};
 use render::wgsl_accuracy::{self as acc, Inexact};
 
 /// Assumption (WGSL and Vulkan state no precision for it): a varying reaches a fragment as
@@ -555,15 +555,7 @@ fn a_coarser_grid_on_the_gpu_fails_the_room_comparison() {
 /// The demo table scene's view (the golden images'), its texture's aspect 4:3.
 fn demo_view() -> RoomView {
     let scene = crate::demo_table_scene(40.0);
-    let camera = PinholeCamera {
-        fx: 500.0,
-        fy: 500.0,
-        cx: 320.0,
-        cy: 240.0,
-        width: 640.0,
-        height: 480.0,
-        pose: DMat4::IDENTITY,
-    };
+    let camera = crate::fixtures::test_camera(DMat4::IDENTITY);
     let ring = Ring {
         centre: DVec2::ZERO,
         radius: 44.5,

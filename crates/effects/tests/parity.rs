@@ -248,15 +248,9 @@ fn a_broken_sun_radius_fails_the_overhead_sun_parity() {
 
 /// The effects' test camera: 640×480 px, focal length 500 px, at `eye` looking at `target`.
 fn camera(eye: DVec3, target: DVec3) -> PinholeCamera {
-    PinholeCamera {
-        fx: 500.0,
-        fy: 500.0,
-        cx: 320.0,
-        cy: 240.0,
-        width: 640.0,
-        height: 480.0,
-        pose: glam::dcamera::rh::view::look_at_mat4(eye, target, DVec3::Y).inverse(),
-    }
+    effects::fixtures::test_camera(
+        glam::dcamera::rh::view::look_at_mat4(eye, target, DVec3::Y).inverse(),
+    )
 }
 
 /// The `Effects` uniform with `camera` and `table` (depth, ring radius, ring centre x, z) as

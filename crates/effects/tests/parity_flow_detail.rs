@@ -51,16 +51,6 @@ fn detail_entries<'a>(
     ]
 }
 
-/// Uniform numbers in [0, 1) from a fixed seed (a 64-bit LCG's top 53 bits).
-fn uniform_stream(mut seed: u64) -> impl FnMut() -> f64 {
-    move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The farthest the sample points reach from the tile's origin, in tiles.
 const REACH: f64 = 3.0;
 
@@ -97,7 +87,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
 /// Points over [−REACH, REACH]² (fixed seed): random, and on texel centres and edges, where
 /// the filter's weights are 0, ½ or 1.
 fn points() -> Vec<[f32; 2]> {
-    let mut rnd = uniform_stream(17);
+    let mut rnd = render::golden::fixed_seed_uniform(17);
     let n = f64::from(DETAIL_TEXELS);
     (0..40_000)
         .map(|k| {
@@ -294,7 +284,7 @@ fn flow_slope_bound(case: [f32; 4], phases: [[f32; 4]; 2]) -> DVec2 {
 /// Points within 40 m and currents to 2 m/s (fixed seed), still water and the speeds where
 /// k = 4·|current|/tile saturates (3 m/s) among them.
 fn flow_cases() -> Vec<[f32; 4]> {
-    let mut rnd = uniform_stream(29);
+    let mut rnd = render::golden::fixed_seed_uniform(29);
     (0..20_000)
         .map(|k| {
             let p = DVec2::new(rnd() * 80.0 - 40.0, rnd() * 80.0 - 40.0) / 2f64.sqrt();
